@@ -1,0 +1,93 @@
+"""``grader bench derive``: time to derive each scene, beside sympy's ``LagrangesMethod``.
+
+For every scene file, in the same run and the same process, three timings (best of N, with sympy's
+cache cleared before each repetition so no run profits from an earlier one):
+
+- ``engine eom``: our equations of motion solved for accelerations and multipliers
+  (:func:`grader.mechanics.lagrange.equations_of_motion`), the same work as the baseline;
+- ``engine full``: loading the file and the whole derivation: every answer eliminated to its
+  ``in_terms_of`` and simplified, special values, the step-by-step derivation;
+- ``LagrangesMethod``: ``sympy.physics.mechanics.LagrangesMethod`` on the same Lagrangian and
+  holonomic constraints (with dynamicsymbols), ``form_lagranges_equations()`` then
+  ``solve_multipliers()``.
+
+The ratio is baseline time / our time, so > 1 means we are faster. Figures go to
+``bench-results/derive.json``.
+"""
+
+from __future__ import annotations
+
+import json
+import statistics
+import time
+from pathlib import Path
+
+import click
+import sympy
+from sympy.core.cache import clear_cache
+
+__all__ = ["bench_derive", "lagranges_method_baseline"]
+
+
+def lagranges_method_baseline(scene) -> dict:
+    """Derive a scene with sympy's LagrangesMethod and solve for the multipliers."""
+    from sympy.physics.mechanics import LagrangesMethod, dynamicsymbols
+
+    t = scene.time
+    coords = list(scene.coordinates.values())
+    q = [dynamicsymbols(c.name) for c in coords]
+    subs = {}
+    for c, qi in zip(coords, q):
+        subs[c.symbol] = qi
+        subs[c.dot] = qi.diff(t)
+    L = scene.lagrangian.xreplace(subs)
+    constraints = [k.f.xreplace(subs) for k in scene.constraints]
+    lm = LagrangesMethod(L, q, hol_coneqs=constraints or None)
+    lm.form_lagranges_equations()
+    return lm.solve_multipliers() if constraints else {}
+
+
+def _best_of(function, repeat: int) -> float:
+    times = []
+    for _ in range(repeat):
+        clear_cache()
+        start = time.perf_counter()
+        function()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+@click.command("derive")
+@click.argument("paths", nargs=-1, type=click.Path(exists=True, dir_okay=False))
+@click.option("--repeat", default=3, show_default=True, help="Repetitions per timing (best is kept).")
+@click.option("--out", default="bench-results/derive.json", show_default=True, type=click.Path())
+def bench_derive(paths: tuple[str, ...], repeat: int, out: str) -> None:
+    """Time the engine on each scene (default: problems/*.toml) against sympy's LagrangesMethod."""
+    from grader.mechanics.lagrange import derive, equations_of_motion
+    from grader.mechanics.scene import load_scene
+
+    files = [Path(p) for p in paths] or sorted(Path("problems").glob("*.toml"))
+    if not files:
+        raise click.UsageError("no scene files given and none in problems/")
+    rows = []
+    header = f"{'scene':28} {'engine eom':>11} {'engine full':>12} {'LagrangesMethod':>16} {'ratio eom':>10}"
+    click.echo(header)
+    click.echo("-" * len(header))
+    for path in files:
+        scene = load_scene(path)
+        eom = _best_of(lambda: equations_of_motion(scene), repeat)
+        full = _best_of(lambda: derive(load_scene(path)), repeat)
+        baseline = _best_of(lambda: lagranges_method_baseline(scene), repeat)
+        rows.append({"scene": scene.id, "engine_eom_s": eom, "engine_full_s": full,
+                     "lagranges_method_s": baseline, "ratio_eom": baseline / eom,
+                     "ratio_full": baseline / full})
+        click.echo(f"{scene.id:28} {eom * 1e3:9.1f}ms {full * 1e3:10.1f}ms {baseline * 1e3:14.1f}ms "
+                   f"{baseline / eom:9.1f}x")
+    median_ratio = statistics.median(r["ratio_eom"] for r in rows)
+    click.echo("-" * len(header))
+    click.echo(f"median ratio LagrangesMethod / engine eom: {median_ratio:.1f}x "
+               f"(> 1: the engine is faster; best of {repeat}, sympy cache cleared each time)")
+    Path(out).parent.mkdir(parents=True, exist_ok=True)
+    Path(out).write_text(json.dumps({"sympy": sympy.__version__, "repeat": repeat, "rows": rows,
+                                     "median_ratio_eom": median_ratio}, indent=2))
+    click.echo(f"figures written to {out}")

@@ -1,0 +1,185 @@
+"""Euler–Lagrange equations with Lagrange multipliers (the paper's equations VI–VIII).
+
+With L' = L + Σ_i λ_i f_i(q, t), each coordinate q_j obeys
+
+    d/dt ∂L/∂q̇_j = ∂L/∂q_j + Σ_i λ_i ∂f_i/∂q_j,
+
+and each constraint, differentiated twice in time, restricts the accelerations:
+
+    Σ_j ∂f_i/∂q_j q̈_j + Σ_jk ∂²f_i/∂q_j∂q_k q̇_j q̇_k + 2 Σ_j ∂²f_i/∂q_j∂t q̇_j + ∂²f_i/∂t² = 0.
+
+Together they are linear in (q̈, λ): the engine solves that system once, symbolically. The
+generalized constraint force of constraint i on q_j is Q_ij = λ_i ∂f_i/∂q_j. Velocities and
+accelerations are plain symbols (``thetadot``, ``thetaddot``) so that d/dt is the chain rule, which
+keeps the engine fast and its output in the file's own names.
+
+Examples
+--------
+>>> from grader.mechanics.scene import parse_scene
+>>> scene = parse_scene('''
+... id = "yoyo"
+... [parameters]
+... m = { dimension = "mass", domain = "positive" }
+... g = { dimension = "acceleration", domain = "positive" }
+... R = { dimension = "length", domain = "positive" }
+... [coordinates]
+... s = { dimension = "length" }
+... theta = { dimension = "angle" }
+... [energy]
+... kinetic = "m/2*sdot^2 + m*R^2/4*thetadot^2"
+... potential = "-m*g*s"
+... [[constraints]]
+... name = "unwind"
+... f = "R*theta - s"
+... [[answers]]
+... name = "tension"
+... expr = "lambda_unwind"
+... ''')
+>>> derive(scene).answers["tension"]
+g*m/3
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import sympy
+
+from grader.mechanics.scene import Scene, SceneError
+from grader.mechanics.simplification import quick_form
+
+__all__ = ["Derivation", "EquationsOfMotion", "derive", "equations_of_motion", "time_derivative"]
+
+
+def time_derivative(expr: sympy.Expr, scene: Scene, coordinates=None) -> sympy.Expr:
+    """d/dt of an expression in q, q̇ and t, by the chain rule over plain symbols.
+
+    Examples
+    --------
+    >>> from grader.mechanics.scene import parse_scene
+    >>> s = parse_scene('id = "x"\\n[coordinates]\\nx = { dimension = "length" }\\n'
+    ...                 '[energy]\\nkinetic = "0*x + xdot^2*1"\\n') # doctest: +SKIP
+    """
+    coordinates = scene.coordinates.values() if coordinates is None else coordinates
+    result = sympy.diff(expr, scene.time)
+    for c in coordinates:
+        result += sympy.diff(expr, c.symbol) * c.dot + sympy.diff(expr, c.dot) * c.ddot
+    return result
+
+
+@dataclass
+class EquationsOfMotion:
+    """The constrained equations of motion of a scene and their solution.
+
+    Attributes
+    ----------
+    lhs, rhs : per coordinate name, d/dt ∂L/∂q̇ and ∂L/∂q + Σ λ ∂f/∂q.
+    accelerations : per coordinate name, q̈ as a function of the state (q, q̇, t).
+    multipliers : per constraint name, λ as a function of the state.
+    constraint_forces : per constraint and coordinate, Q = λ ∂f/∂q as a function of the state.
+    """
+
+    lhs: dict[str, sympy.Expr]
+    rhs: dict[str, sympy.Expr]
+    partials: dict[str, dict[str, sympy.Expr]]
+    accelerations: dict[str, sympy.Expr]
+    multipliers: dict[str, sympy.Expr]
+    constraint_forces: dict[str, dict[str, sympy.Expr]]
+
+
+def equations_of_motion(scene: Scene) -> EquationsOfMotion:
+    """Build and solve the Euler–Lagrange equations with multipliers of a scene."""
+    coords = list(scene.coordinates.values())
+    cons = scene.constraints
+    L = scene.lagrangian
+    lhs, rhs, partials = {}, {}, {}
+    for c in coords:
+        dL_dq = sympy.diff(L, c.symbol)
+        dL_dqdot = sympy.diff(L, c.dot)
+        ddt = time_derivative(dL_dqdot, scene)
+        reaction = sum((k.multiplier * sympy.diff(k.f, c.symbol) for k in cons), sympy.Integer(0))
+        partials[c.name] = {"dL_dq": dL_dq, "dL_dqdot": dL_dqdot, "ddt_dL_dqdot": ddt,
+                            **{f"df_{k.name}": sympy.diff(k.f, c.symbol) for k in cons}}
+        lhs[c.name] = sympy.expand(ddt)
+        rhs[c.name] = sympy.expand(dL_dq + reaction)
+
+    # The system is linear in the unknowns (q̈, λ): A x = b.
+    unknowns = [c.ddot for c in coords] + [k.multiplier for k in cons]
+    rows = [lhs[c.name] - rhs[c.name] for c in coords]
+    for k in cons:
+        rows.append(sympy.expand(time_derivative(time_derivative(k.f, scene), scene)))
+    A, b = sympy.linear_eq_to_matrix(rows, unknowns)
+    _check_solvable(scene, A, len(coords))
+    solution = _solve_linear(A, b)
+    accelerations = {c.name: quick_form(solution[i]) for i, c in enumerate(coords)}
+    multipliers = {k.name: quick_form(solution[len(coords) + i]) for i, k in enumerate(cons)}
+    forces = {k.name: {c.name: quick_form(multipliers[k.name] * sympy.diff(k.f, c.symbol)) for c in coords}
+              for k in cons}
+    return EquationsOfMotion(lhs, rhs, partials, accelerations, multipliers, forces)
+
+
+def _check_solvable(scene: Scene, A: sympy.Matrix, n: int) -> None:
+    """Reject singular mass matrices and redundant constraints with a message that says which."""
+    M, J = A[:n, :n], A[n:, :n]
+    point = _generic_point(A.free_symbols)
+    if M.subs(point).rank() < n:
+        raise SceneError(scene.source, "energy.kinetic",
+                         "the mass matrix is singular: some coordinate has no kinetic energy")
+    if J.rows and J.subs(point).rank() < J.rows:
+        names = ", ".join(k.name for k in scene.constraints)
+        raise SceneError(scene.source, "constraints",
+                         f"the constraints ({names}) are redundant or singular: their gradients "
+                         "with respect to the coordinates are linearly dependent")
+
+
+def _generic_point(symbols) -> dict:
+    """A reproducible 'generic' point: irrational-looking values where no identity holds by accident."""
+    primes = [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89]
+    point = {}
+    for i, s in enumerate(sorted(symbols, key=str)):
+        p = primes[i % len(primes)]
+        point[s] = sympy.Rational(p + 1, p) + sympy.Rational(i, 97)
+    return point
+
+
+def _solve_linear(A: sympy.Matrix, b: sympy.Matrix) -> list[sympy.Expr]:
+    """Solve A x = b symbolically; LU with cancellation keeps the expressions small."""
+    return list(A.LUsolve(b))
+
+
+@dataclass
+class Derivation:
+    """Everything the engine derives from a scene (see :func:`derive`)."""
+
+    scene: Scene
+    eom: EquationsOfMotion
+    answers: dict[str, sympy.Expr]
+    equations: dict[str, sympy.Equality] = field(default_factory=dict)
+    steps: list = field(default_factory=list)
+    references_cache: list | None = None
+
+    def to_json(self) -> dict:
+        """The contract of ``grader derive --json``: every expression in sympy's str() syntax."""
+        from grader.mechanics.report import derivation_json
+
+        return derivation_json(self)
+
+    def references(self):
+        """Reference answers as the checker takes them (see :mod:`grader.mechanics.references`)."""
+        from grader.mechanics.references import reference_answers
+
+        if self.references_cache is None:
+            self.references_cache = reference_answers(self)
+        return self.references_cache
+
+
+def derive(scene: Scene) -> Derivation:
+    """Derive equations of motion, multipliers, constraint forces and every answer of a scene."""
+    from grader.mechanics.answers import evaluate_answers
+    from grader.mechanics.steps import derivation_steps
+
+    eom = equations_of_motion(scene)
+    answers, equations = evaluate_answers(scene, eom)
+    derivation = Derivation(scene, eom, answers, equations)
+    derivation.steps = derivation_steps(derivation)
+    return derivation

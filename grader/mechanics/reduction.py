@@ -1,0 +1,222 @@
+"""Express quantities of the full, constrained state in independent variables.
+
+A scene's coordinates q are tied by k constraints; answers are written in n − k independent
+variables u: either the ``[parametrization]`` the instructor gave (the pendulum's θ for x, y), or
+the coordinates left after solving the constraints for k of them. :class:`Reduction` holds the map
+q = Φ(u, t) with its velocities and the reduced Lagrangian L_r(u, u̇, t), whose Euler–Lagrange
+equations give ü and whose Jacobi integral h = Σ u̇ ∂L_r/∂u̇ − L_r is conserved when L_r does not
+depend on t (then it is the energy T + V for scleronomic constraints).
+
+Examples
+--------
+>>> from grader.mechanics.scene import load_scene
+>>> r = Reduction(load_scene("problems/sphere.toml"))  # doctest: +SKIP
+>>> r.phi  # doctest: +SKIP
+{r: R, theta: theta}
+"""
+
+from __future__ import annotations
+
+import numpy
+import sympy
+
+from grader.mechanics.scene import Coordinate, Scene, SceneError
+
+__all__ = ["Reduction"]
+
+
+class Reduction:
+    """The map from a scene's coordinates to its independent variables, and what follows from it."""
+
+    def __init__(self, scene: Scene):
+        self.scene = scene
+        if scene.parametrization is not None:
+            self.independent: dict[str, Coordinate] = dict(scene.parametrization.variables)
+            self.phi = dict(scene.parametrization.mapping)
+            self._check_parametrization()
+        else:
+            self.independent, self.phi = self._solve_constraints()
+        self.phi_dot = {q: self.time_derivative(expr) for q, expr in self.phi.items()}
+        self.lagrangian = sympy.expand(self.to_independent(scene.lagrangian))
+        self.accelerations: dict[sympy.Symbol, sympy.Expr] = {}
+        self.multipliers: dict[str, sympy.Expr] = {}
+
+    # -- the map ---------------------------------------------------------------------------------
+    def time_derivative(self, expr: sympy.Expr) -> sympy.Expr:
+        """d/dt of an expression in the independent variables u, u̇ and t."""
+        result = sympy.diff(expr, self.scene.time)
+        for u in self.independent.values():
+            result += sympy.diff(expr, u.symbol) * u.dot + sympy.diff(expr, u.dot) * u.ddot
+        return result
+
+    def to_independent(self, expr: sympy.Expr) -> sympy.Expr:
+        """Replace scene coordinates and velocities by their expressions in u, u̇, t."""
+        subs = {}
+        for c in self.scene.coordinates.values():
+            if c.symbol in self.phi and self.phi[c.symbol] != c.symbol:
+                subs[c.symbol] = self.phi[c.symbol]
+                subs[c.dot] = self.phi_dot[c.symbol]
+        return expr.xreplace(subs) if subs else expr
+
+    def _check_parametrization(self) -> None:
+        scene = self.scene
+        dof = len(scene.coordinates) - len(scene.constraints)
+        if len(self.independent) != dof:
+            raise SceneError(scene.source, "parametrization.variables",
+                             f"has {len(self.independent)} variable(s), but the scene has {dof} degree(s) "
+                             "of freedom (coordinates minus constraints)")
+        for c in scene.constraints:
+            residual = c.f.xreplace(self.phi)
+            if not _vanishes(residual):
+                raise SceneError(scene.source, "parametrization.map",
+                                 f"does not satisfy constraint '{c.name}': f = {c.f} becomes "
+                                 f"{sympy.simplify(residual)}, not 0")
+
+    def _solve_constraints(self) -> tuple[dict[str, Coordinate], dict]:
+        """Pick k dependent coordinates and solve f = 0 for them."""
+        scene = self.scene
+        if not scene.constraints:
+            return dict(scene.coordinates), {c.symbol: c.symbol for c in scene.coordinates.values()}
+        wanted = set()
+        for a in scene.answers:
+            wanted |= set(a.in_terms_of or ())
+        # Later coordinates are eliminated first; coordinates an answer is asked in are kept.
+        order = sorted(reversed(list(scene.coordinates.values())), key=lambda c: c.name in wanted)
+        dependent: list[Coordinate] = []
+        for constraint in scene.constraints:
+            symbols = constraint.f.free_symbols
+            for c in order:
+                if c.symbol in symbols and c not in dependent:
+                    dependent.append(c)
+                    break
+        jac = sympy.Matrix([[sympy.diff(k.f, c.symbol) for c in dependent] for k in scene.constraints])
+        if len(dependent) < len(scene.constraints) or jac.det() == 0:
+            raise SceneError(scene.source, "constraints",
+                             "cannot solve the constraints for a set of coordinates; add a "
+                             "[parametrization] that satisfies them")
+        try:
+            solutions = sympy.solve([k.f for k in scene.constraints], [c.symbol for c in dependent], dict=True)
+        except NotImplementedError:
+            solutions = []
+        if not solutions:
+            raise SceneError(scene.source, "constraints",
+                             "the engine cannot solve the constraints in closed form; add a [parametrization]")
+        solution = self._branch(solutions, dependent)
+        phi = {c.symbol: solution.get(c.symbol, c.symbol) for c in scene.coordinates.values()}
+        independent = {n: c for n, c in scene.coordinates.items() if c not in dependent}
+        return independent, phi
+
+    def _branch(self, solutions: list[dict], dependent: list[Coordinate]) -> dict:
+        """With several branches (y = ±√(l² − x²)), take the one the initial state is on."""
+        if len(solutions) == 1:
+            return solutions[0]
+        initial = {self.scene.coordinates[n].symbol: v for n, v in self.scene.initial.items()
+                   if n in self.scene.coordinates}
+        if all(c.symbol in initial for c in dependent):
+            point = {s: v for s, v in _sample_parameters(self.scene).items()}
+            for solution in solutions:
+                ok = all(
+                    abs(complex(sympy.N((solution[c.symbol] - initial[c.symbol]).xreplace(initial).subs(point))))
+                    < 1e-9
+                    for c in dependent
+                )
+                if ok:
+                    return solution
+        raise SceneError(self.scene.source, "constraints",
+                         "the constraints have several solution branches; give the initial position of "
+                         f"{', '.join(c.name for c in dependent)} in [initial] or add a [parametrization]")
+
+    # -- dynamics in the independent variables ----------------------------------------------------
+    def solve(self, eom) -> None:
+        """ü and λ as functions of (u, u̇, t), from the Euler–Lagrange rows with q̈ = Φ̈(u, u̇, ü).
+
+        Substituting the map before solving keeps every entry small (x² + y² becomes l² before it
+        can spread through an LU solve), which is what makes a double pendulum take seconds rather
+        than minutes.
+        """
+        scene = self.scene
+        us = list(self.independent.values())
+        phi_ddot = {}
+        for c in scene.coordinates.values():
+            if c.symbol in self.phi and self.phi[c.symbol] != c.symbol:
+                phi_ddot[c.ddot] = self.time_derivative(self.phi_dot[c.symbol])
+        rows = []
+        for name, c in scene.coordinates.items():
+            row = (eom.lhs[name] - eom.rhs[name]).xreplace(phi_ddot)
+            rows.append(_tidy_entry(self.to_independent(row)))
+        unknowns = [u.ddot for u in us] + [k.multiplier for k in scene.constraints]
+        A, b = sympy.linear_eq_to_matrix(rows, unknowns)
+        A, b = A.applyfunc(_tidy_entry), b.applyfunc(_tidy_entry)
+        point = {s: sympy.Rational(7 + 3 * i, 11 + 2 * i) for i, s in enumerate(sorted(A.free_symbols, key=str))}
+        if A.subs(point).rank() < len(unknowns):
+            raise SceneError(scene.source, "constraints",
+                             "the equations of motion cannot be solved in the independent variables "
+                             f"{', '.join(self.independent)}: the system is singular")
+        solution = [sympy.cancel(v) for v in A.LUsolve(b)]
+        self.accelerations = {u.ddot: solution[i] for i, u in enumerate(us)}
+        self.multipliers = {k.name: solution[len(us) + i] for i, k in enumerate(scene.constraints)}
+        accelerations = {}
+        for c in scene.coordinates.values():
+            value = phi_ddot.get(c.ddot, c.ddot)
+            accelerations[c.ddot] = value.xreplace(self.accelerations)
+        self.coordinate_accelerations = accelerations
+        self.forces = {}
+        for k in scene.constraints:
+            for c in scene.coordinates.values():
+                gradient = self.to_independent(sympy.diff(k.f, c.symbol))
+                self.forces[scene.forces[(k.name, c.name)]] = self.multipliers[k.name] * gradient
+
+    def jacobi_integral(self) -> sympy.Expr | None:
+        """h = Σ u̇ ∂L_r/∂u̇ − L_r when it is conserved (L_r free of t), else None."""
+        if sympy.diff(self.lagrangian, self.scene.time) != 0:
+            return None
+        h = sum((u.dot * sympy.diff(self.lagrangian, u.dot) for u in self.independent.values()),
+                sympy.Integer(0)) - self.lagrangian
+        return sympy.expand(h)
+
+    def initial_value(self, expr: sympy.Expr) -> sympy.Expr | None:
+        """expr at the [initial] state, or None when [initial] does not fix every variable it uses."""
+        subs = {}
+        for name, value in self.scene.initial.items():
+            for u in self.independent.values():
+                if name == u.name:
+                    subs[u.symbol] = value
+                elif name == u.dot.name:
+                    subs[u.dot] = value
+        subs[self.scene.time] = sympy.Integer(0)
+        result = expr.xreplace(subs)
+        state = {s for u in self.independent.values() for s in (u.symbol, u.dot)}
+        return None if result.free_symbols & state else result
+
+
+def _tidy_entry(expr: sympy.Expr) -> sympy.Expr:
+    """Cheap simplification of one matrix entry: trigsimp where trig functions appear."""
+    expr = sympy.expand(expr)
+    if expr.has(sympy.sin, sympy.cos, sympy.tan):
+        expr = sympy.trigsimp(expr)
+    return expr
+
+
+def _vanishes(expr: sympy.Expr) -> bool:
+    """Whether an expression is identically zero: numerically at generic points, then symbolically."""
+    expr = sympy.sympify(expr)
+    if expr == 0:
+        return True
+    symbols = sorted(expr.free_symbols, key=str)
+    for shift in (0.0, 0.37):
+        point = {s: 0.61 + 0.29 * i + shift for i, s in enumerate(symbols)}
+        if abs(complex(expr.evalf(30, subs=point))) > 1e-20:
+            return False
+    # Zero to 20 digits at two generic points: a nonzero analytic expression would have to
+    # vanish there by accident.
+    return True
+
+
+def _sample_parameters(scene: Scene) -> dict[sympy.Symbol, sympy.Expr]:
+    """Numbers for the parameters: their `value`, else a generic point of their domain."""
+    rng = numpy.random.default_rng(20261121)
+    point = {}
+    for p in scene.parameters.values():
+        value = p.value if p.value is not None else p.domain.sample(rng)
+        point[p.symbol] = sympy.Float(value, 30)
+    return point

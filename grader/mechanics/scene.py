@@ -1,0 +1,528 @@
+"""Scene files: the instructor's description of a mechanical problem.
+
+A scene file is TOML (one problem per file in ``problems/``). Its keys are a contract that other
+tools write, so they are read exactly as documented in ``docs/scene-format.md``. Every expression
+in it goes through our whitelist parser (:mod:`grader.expressions`), never through ``eval`` or
+``sympify``: scene files are uploaded through the web and are untrusted input.
+
+Errors name the file, the key and the problem, e.g.
+``sphere.toml: energy.kinetic: unknown name 'tehta' (did you mean 'theta'?)``.
+
+Examples
+--------
+>>> scene = parse_scene('''
+... id = "drop"
+... title = "Falling body"
+... statement = "A body falls."
+... [parameters]
+... m = { dimension = "mass", domain = "positive" }
+... g = { dimension = "acceleration", domain = "positive" }
+... [coordinates]
+... z = { dimension = "length" }
+... [energy]
+... kinetic = "m/2*zdot^2"
+... potential = "m*g*z"
+... ''', source="drop.toml")
+>>> scene.kinetic
+m*zdot**2/2
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping
+
+import sympy
+
+from grader.expressions import (
+    Dimension,
+    DimensionError,
+    Domain,
+    ExpressionError,
+    Namespace,
+    Variable,
+    dimension_of,
+    parse_dimension,
+    parse_domain,
+    parse_expression,
+)
+
+__all__ = [
+    "AnswerSpec",
+    "Constraint",
+    "Coordinate",
+    "FeedbackSpec",
+    "Parameter",
+    "Parametrization",
+    "Scene",
+    "SceneError",
+    "load_scene",
+    "parse_scene",
+]
+
+ENERGY = parse_dimension("energy")
+TIME = parse_dimension("time")
+_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+_MAX_SOURCE_BYTES = 256 * 1024
+_MAX_ITEMS = 64
+
+
+class SceneError(ValueError):
+    """A scene file that cannot be used, with the file, key and problem named."""
+
+    def __init__(self, source: str, key: str, problem: str):
+        self.source, self.key, self.problem = source, key, problem
+        super().__init__(f"{source}: {key}: {problem}" if key else f"{source}: {problem}")
+
+
+@dataclass(frozen=True)
+class Parameter:
+    name: str
+    symbol: sympy.Symbol
+    dimension: Dimension
+    domain: Domain
+    value: float | None = None
+
+
+@dataclass(frozen=True)
+class Coordinate:
+    """A generalized coordinate q with its velocity q̇ and acceleration q̈ as plain symbols."""
+
+    name: str
+    symbol: sympy.Symbol
+    dot: sympy.Symbol
+    ddot: sympy.Symbol
+    dimension: Dimension
+    domain: Domain
+
+
+@dataclass(frozen=True)
+class Constraint:
+    """A holonomic constraint f(q, t) = 0 and its Lagrange multiplier."""
+
+    name: str
+    f: sympy.Expr
+    kind: str  # "bilateral" | "unilateral"
+    multiplier: sympy.Symbol
+    dimension: Dimension
+
+
+@dataclass(frozen=True)
+class Parametrization:
+    """A change of variables for answers: each scene coordinate as a function of new ones."""
+
+    variables: dict[str, Coordinate]
+    mapping: dict[sympy.Symbol, sympy.Expr]  # scene coordinate symbol -> expression in new variables
+
+
+@dataclass(frozen=True)
+class FeedbackSpec:
+    expr: str
+    message: str
+
+
+@dataclass(frozen=True)
+class AnswerSpec:
+    name: str
+    prompt: str
+    expr: sympy.Expr
+    kind: str  # "expression" | "equation"
+    in_terms_of: tuple[str, ...] | None
+    dimension: Dimension | None
+    where: tuple[sympy.Expr, sympy.Expr] | None  # lhs = rhs over answer names and state
+    feedback: tuple[FeedbackSpec, ...]
+    symbol: sympy.Symbol  # stands for this answer inside later answers and `where`
+    source_expr: str
+
+
+@dataclass
+class Scene:
+    """A parsed, validated scene. Build it with :func:`load_scene` or :func:`parse_scene`."""
+
+    id: str
+    title: str
+    statement: str
+    source: str
+    text: str
+    parameters: dict[str, Parameter]
+    coordinates: dict[str, Coordinate]
+    kinetic: sympy.Expr
+    potential: sympy.Expr
+    constraints: list[Constraint]
+    initial: dict[str, sympy.Expr]
+    parametrization: Parametrization | None
+    answers: list[AnswerSpec]
+    time: sympy.Symbol
+    namespace: Namespace
+    forces: dict[tuple[str, str], sympy.Symbol] = field(default_factory=dict)
+
+    @property
+    def lagrangian(self) -> sympy.Expr:
+        return self.kinetic - self.potential
+
+    def answer(self, name: str) -> AnswerSpec:
+        for spec in self.answers:
+            if spec.name == name:
+                return spec
+        raise KeyError(name)
+
+    def answer_coordinates(self) -> dict[str, Coordinate]:
+        """The coordinates answers are written in: the parametrization's, else the scene's."""
+        return self.parametrization.variables if self.parametrization else self.coordinates
+
+
+def load_scene(path: str | Path) -> Scene:
+    """Read and validate a scene file.
+
+    Examples
+    --------
+    >>> load_scene("problems/sphere.toml").id  # doctest: +SKIP
+    'sphere'
+    """
+    path = Path(path)
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        raise SceneError(path.name, "", f"cannot read the file ({exc.strerror})") from None
+    if len(raw) > _MAX_SOURCE_BYTES:
+        raise SceneError(path.name, "", f"file is larger than {_MAX_SOURCE_BYTES // 1024} KiB")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise SceneError(path.name, "", f"not UTF-8 text (byte {exc.start})") from None
+    return parse_scene(text, source=path.name)
+
+
+def parse_scene(text: str, source: str = "<scene>") -> Scene:
+    """Parse scene TOML text into a validated :class:`Scene` (see the module example)."""
+    if len(text.encode("utf-8")) > _MAX_SOURCE_BYTES:
+        raise SceneError(source, "", f"file is larger than {_MAX_SOURCE_BYTES // 1024} KiB")
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(source, "", f"not valid TOML: {exc}") from None
+    return _SceneReader(data, source, text).read()
+
+
+class _SceneReader:
+    """Reads one scene file's table, building the namespace as it goes."""
+
+    def __init__(self, data: dict[str, Any], source: str, text: str):
+        self.data, self.source, self.text = data, source, text
+        self.variables: list[Variable] = []
+        self.dimensions: dict[sympy.Symbol, Dimension] = {}
+
+    # -- small helpers ---------------------------------------------------------------------------
+    def fail(self, key: str, problem: str) -> SceneError:
+        return SceneError(self.source, key, problem)
+
+    def table(self, key: str, required: bool = False) -> dict[str, Any]:
+        value = self.data.get(key)
+        if value is None:
+            if required:
+                raise self.fail(key, "missing (required)")
+            return {}
+        if not isinstance(value, dict):
+            raise self.fail(key, "must be a table")
+        if len(value) > _MAX_ITEMS:
+            raise self.fail(key, f"more than {_MAX_ITEMS} entries")
+        return value
+
+    def string(self, table: Mapping[str, Any], key: str, where: str, default: str | None = None) -> str:
+        value = table.get(key, default)
+        if value is None:
+            raise self.fail(f"{where}.{key}" if where else key, "missing (required)")
+        if not isinstance(value, str):
+            raise self.fail(f"{where}.{key}" if where else key, "must be a string")
+        return value
+
+    def check_name(self, key: str, name: str) -> None:
+        if not _NAME.match(name) or name.startswith(("lambda_", "Q_")) or name == "t":
+            raise self.fail(key, f"'{name}' is not a usable name (letters, digits and _; "
+                                 "not t, lambda_..., Q_...)")
+
+    def add(self, variable: Variable) -> sympy.Symbol:
+        if any(v.name == variable.name for v in self.variables):
+            raise self.fail(variable.name, f"the name '{variable.name}' is defined twice")
+        self.variables.append(variable)
+        self.dimensions[variable.symbol] = variable.dimension
+        return variable.symbol
+
+    def dimension(self, key: str, spec: Any, default: str | None = None) -> Dimension:
+        if spec is None:
+            if default is None:
+                raise self.fail(key, "missing (required)")
+            spec = default
+        if not isinstance(spec, str):
+            raise self.fail(key, "a dimension is a name such as \"length\" or an SI expression such as \"kg*m^2\"")
+        try:
+            return parse_dimension(spec)
+        except (ValueError, ExpressionError) as exc:
+            raise self.fail(key, f"unknown dimension {spec!r}: {exc}") from None
+
+    def domain(self, key: str, spec: Any, default: str = "real") -> Domain:
+        try:
+            return parse_domain(default if spec is None else spec)
+        except (ValueError, TypeError, ExpressionError) as exc:
+            raise self.fail(key, f"bad domain {spec!r}: {exc}") from None
+
+    def expression(self, key: str, text: Any, namespace: Namespace) -> sympy.Expr:
+        if isinstance(text, (int, float)) and not isinstance(text, bool):
+            text = repr(text)
+        if not isinstance(text, str):
+            raise self.fail(key, "must be an expression in a string")
+        try:
+            return parse_expression(text, namespace).expr
+        except ExpressionError as exc:
+            column = f" at column {exc.position + 1}" if getattr(exc, "position", None) is not None else ""
+            raise self.fail(key, f"{exc.message}{column} in {text!r}") from None
+
+    def dimension_of(self, key: str, expr: sympy.Expr) -> Dimension:
+        try:
+            return dimension_of(expr, self.dimensions)
+        except DimensionError as exc:
+            raise self.fail(key, f"dimensionally inconsistent: {exc}") from None
+
+    # -- sections ----------------------------------------------------------------------------------
+    def read(self) -> Scene:
+        scene_id = self.string(self.data, "id", "")
+        if not re.match(r"^[a-z0-9][a-z0-9_-]{0,63}$", scene_id):
+            raise self.fail("id", "use 1-64 lowercase letters, digits, '-' or '_'")
+        title = self.string(self.data, "title", "", default=scene_id)
+        statement = self.string(self.data, "statement", "", default="")
+        time = self.add(Variable("t", TIME, parse_domain("real"), "time"))
+
+        parameters = self.read_parameters()
+        coordinates = self.read_coordinates("coordinates", self.table("coordinates", required=True))
+        if not coordinates:
+            raise self.fail("coordinates", "a scene needs at least one generalized coordinate")
+        state_ns = Namespace(self.variables)
+        kinetic, potential = self.read_energy(state_ns)
+        constraints = self.read_constraints(state_ns, coordinates)
+        forces = self.add_constraint_forces(constraints, coordinates)
+        parametrization = self.read_parametrization(coordinates)
+        initial = self.read_initial(Namespace(self.variables))
+        answers = self.read_answers(coordinates, parametrization)
+        return Scene(
+            id=scene_id, title=title, statement=statement, source=self.source, text=self.text,
+            parameters=parameters, coordinates=coordinates, kinetic=kinetic, potential=potential,
+            constraints=constraints, initial=initial, parametrization=parametrization,
+            answers=answers, time=time, namespace=Namespace(self.variables), forces=forces,
+        )
+
+    def read_parameters(self) -> dict[str, Parameter]:
+        parameters = {}
+        for name, spec in self.table("parameters").items():
+            key = f"parameters.{name}"
+            self.check_name(key, name)
+            if not isinstance(spec, dict):
+                raise self.fail(key, "must be a table like { dimension = \"mass\", domain = \"positive\" }")
+            dim = self.dimension(f"{key}.dimension", spec.get("dimension"))
+            dom = self.domain(f"{key}.domain", spec.get("domain"))
+            value = spec.get("value")
+            if value is not None:
+                if isinstance(value, bool) or not isinstance(value, (int, float)):
+                    raise self.fail(f"{key}.value", "must be a number")
+                if not dom.contains(float(value)):
+                    raise self.fail(f"{key}.value", f"{value} is outside the domain")
+                value = float(value)
+            symbol = self.add(Variable(name, dim, dom, "parameter"))
+            parameters[name] = Parameter(name, symbol, dim, dom, value)
+        return parameters
+
+    def read_coordinates(self, where: str, table: Mapping[str, Any]) -> dict[str, Coordinate]:
+        coordinates = {}
+        for name, spec in table.items():
+            key = f"{where}.{name}"
+            self.check_name(key, name)
+            if not isinstance(spec, dict):
+                raise self.fail(key, "must be a table like { dimension = \"length\" }")
+            dim = self.dimension(f"{key}.dimension", spec.get("dimension"))
+            dom = self.domain(f"{key}.domain", spec.get("domain"))
+            real = parse_domain("real")
+            q = self.add(Variable(name, dim, dom, "coordinate"))
+            qd = self.add(Variable(f"{name}dot", dim / TIME, real, "velocity"))
+            qdd = self.add(Variable(f"{name}ddot", dim / TIME ** 2, real, "acceleration"))
+            coordinates[name] = Coordinate(name, q, qd, qdd, dim, dom)
+        return coordinates
+
+    def read_energy(self, namespace: Namespace) -> tuple[sympy.Expr, sympy.Expr]:
+        energy = self.table("energy", required=True)
+        result = []
+        for part in ("kinetic", "potential"):
+            key = f"energy.{part}"
+            expr = self.expression(key, energy.get(part, "0"), namespace)
+            if expr.free_symbols and self.dimension_of(key, expr) != ENERGY:
+                raise self.fail(key, f"is {self.dimension_of(key, expr).describe()}, not an energy")
+            if any(s.name.endswith("ddot") for s in expr.free_symbols):
+                raise self.fail(key, "energies may not depend on accelerations")
+            result.append(expr)
+        kinetic, potential = result
+        if kinetic == 0:
+            raise self.fail("energy.kinetic", "a scene needs a kinetic energy")
+        if any(str(s).endswith("dot") for s in potential.free_symbols):
+            raise self.fail("energy.potential", "the potential may not depend on velocities "
+                                                "(velocity-dependent potentials are not supported)")
+        return kinetic, potential
+
+    def read_constraints(self, namespace: Namespace, coordinates: dict[str, Coordinate]) -> list[Constraint]:
+        raw = self.data.get("constraints", [])
+        if not isinstance(raw, list) or not all(isinstance(c, dict) for c in raw):
+            raise self.fail("constraints", "write each constraint as a [[constraints]] table")
+        if len(raw) >= len(coordinates) + 1:
+            raise self.fail("constraints", f"{len(raw)} constraints on {len(coordinates)} coordinates "
+                                           "leave no motion")
+        coordinate_symbols = {c.symbol for c in coordinates.values()}
+        velocity_symbols = {c.dot for c in coordinates.values()} | {c.ddot for c in coordinates.values()}
+        constraints = []
+        for index, spec in enumerate(raw):
+            name = spec.get("name", f"c{index + 1}")
+            key = f"constraints[{index}] ({name})"
+            if not isinstance(name, str) or not re.match(r"^[A-Za-z][A-Za-z0-9]*$", name):
+                raise self.fail(f"constraints[{index}].name", "letters and digits only, e.g. \"string\"")
+            if any(c.name == name for c in constraints):
+                raise self.fail(f"{key}.name", f"two constraints are named '{name}'")
+            f = self.expression(f"{key}.f", self.string(spec, "f", key), namespace)
+            if f.free_symbols & velocity_symbols:
+                raise self.fail(f"{key}.f", "depends on velocities: only holonomic constraints f(q, t) = 0 "
+                                            "are supported")
+            if not f.free_symbols & coordinate_symbols:
+                raise self.fail(f"{key}.f", "does not involve any coordinate")
+            kind = spec.get("kind", "bilateral")
+            if kind not in ("bilateral", "unilateral"):
+                raise self.fail(f"{key}.kind", "must be \"bilateral\" or \"unilateral\"")
+            dim = self.dimension_of(f"{key}.f", f)
+            multiplier = self.add(Variable(f"lambda_{name}", ENERGY / dim, parse_domain("real"), "multiplier"))
+            constraints.append(Constraint(name, f, kind, multiplier, dim))
+        return constraints
+
+    def add_constraint_forces(self, constraints: list[Constraint],
+                              coordinates: dict[str, Coordinate]) -> dict[tuple[str, str], sympy.Symbol]:
+        forces = {}
+        for c in constraints:
+            for q in coordinates.values():
+                variable = Variable(f"Q_{c.name}_{q.name}", ENERGY / q.dimension, parse_domain("real"), "force")
+                forces[(c.name, q.name)] = self.add(variable)
+        return forces
+
+    def read_parametrization(self, coordinates: dict[str, Coordinate]) -> Parametrization | None:
+        spec = self.table("parametrization")
+        if not spec:
+            return None
+        variables = self.read_coordinates("parametrization.variables",
+                                          self.table_in(spec, "variables", "parametrization"))
+        if not variables:
+            raise self.fail("parametrization.variables", "names the new variables; it is empty")
+        mapping_spec = self.table_in(spec, "map", "parametrization")
+        namespace = Namespace(self.variables)
+        mapping = {}
+        for name, text in mapping_spec.items():
+            key = f"parametrization.map.{name}"
+            if name not in coordinates:
+                raise self.fail(key, f"'{name}' is not a coordinate of the scene")
+            expr = self.expression(key, text, namespace)
+            allowed = {v.symbol for v in variables.values()} | {p.symbol for p in self._parameters()} | {
+                next(v.symbol for v in self.variables if v.name == "t")}
+            if not expr.free_symbols <= allowed:
+                extra = ", ".join(sorted(str(s) for s in expr.free_symbols - allowed))
+                raise self.fail(key, f"may use only parameters, t and the new variables, not {extra}")
+            if expr.free_symbols and self.dimension_of(key, expr) != coordinates[name].dimension:
+                raise self.fail(key, f"is {self.dimension_of(key, expr).describe()}, but {name} is "
+                                     f"{coordinates[name].dimension.describe()}")
+            mapping[coordinates[name].symbol] = expr
+        missing = [n for n in coordinates if coordinates[n].symbol not in mapping]
+        if missing:
+            raise self.fail("parametrization.map", f"gives no expression for {', '.join(missing)}")
+        return Parametrization(variables, mapping)
+
+    def table_in(self, table: Mapping[str, Any], key: str, where: str) -> dict[str, Any]:
+        value = table.get(key, {})
+        if not isinstance(value, dict):
+            raise self.fail(f"{where}.{key}", "must be a table")
+        return value
+
+    def _parameters(self) -> list[Variable]:
+        return [v for v in self.variables if v.kind == "parameter"]
+
+    def read_initial(self, namespace: Namespace) -> dict[str, sympy.Expr]:
+        allowed = {v.name: v for v in self.variables if v.kind in ("coordinate", "velocity")}
+        parameter_symbols = {p.symbol for p in self._parameters()}
+        initial = {}
+        for name, text in self.table("initial").items():
+            key = f"initial.{name}"
+            if name not in allowed:
+                raise self.fail(key, f"'{name}' is not a coordinate or a velocity")
+            expr = self.expression(key, text, namespace)
+            if not expr.free_symbols <= parameter_symbols:
+                raise self.fail(key, "may use numbers and parameters only")
+            if expr.free_symbols and self.dimension_of(key, expr) != allowed[name].dimension:
+                raise self.fail(key, f"is {self.dimension_of(key, expr).describe()}, but {name} is "
+                                     f"{allowed[name].dimension.describe()}")
+            initial[name] = expr
+        return initial
+
+    def read_answers(self, coordinates: dict[str, Coordinate],
+                     parametrization: Parametrization | None) -> list[AnswerSpec]:
+        raw = self.data.get("answers", [])
+        if not isinstance(raw, list) or not all(isinstance(a, dict) for a in raw):
+            raise self.fail("answers", "write each answer as an [[answers]] table")
+        if len(raw) > _MAX_ITEMS:
+            raise self.fail("answers", f"more than {_MAX_ITEMS} answers")
+        answers: list[AnswerSpec] = []
+        known = {v.name for v in self.variables}
+        for index, spec in enumerate(raw):
+            name = self.string(spec, "name", f"answers[{index}]")
+            key = f"answers[{index}] ({name})"
+            self.check_name(f"{key}.name", name)
+            if name in known:
+                raise self.fail(f"{key}.name", f"'{name}' is already a name in the scene")
+            namespace = Namespace(self.variables)
+            source_expr = self.string(spec, "expr", key)
+            expr = self.expression(f"{key}.expr", source_expr, namespace)
+            kind = spec.get("kind", "expression")
+            if kind not in ("expression", "equation"):
+                raise self.fail(f"{key}.kind", "must be \"expression\" or \"equation\"")
+            in_terms_of = spec.get("in_terms_of")
+            if in_terms_of is not None:
+                if not isinstance(in_terms_of, list) or not all(isinstance(n, str) for n in in_terms_of):
+                    raise self.fail(f"{key}.in_terms_of", "must be a list of names")
+                unknown = [n for n in in_terms_of if n not in known or n.startswith(("lambda_", "Q_"))]
+                if unknown:
+                    raise self.fail(f"{key}.in_terms_of", f"unknown or unusable name(s): {', '.join(unknown)}")
+                in_terms_of = tuple(in_terms_of)
+            dimension = None
+            if spec.get("dimension") is not None:
+                dimension = self.dimension(f"{key}.dimension", spec["dimension"])
+            inferred = self.dimension_of(f"{key}.expr", expr)
+            if dimension is not None and inferred != dimension:
+                raise self.fail(f"{key}.dimension", f"the expression is {inferred.describe()}, "
+                                                    f"not {dimension.describe()}")
+            where = None
+            if spec.get("where") is not None:
+                where = self.read_where(f"{key}.where", spec["where"], namespace)
+            feedback = self.read_feedback(key, spec.get("feedback", []))
+            prompt = self.string(spec, "prompt", key, default=name.replace("_", " "))
+            symbol = self.add(Variable(name, inferred, parse_domain("real"), "answer"))
+            known.add(name)
+            answers.append(AnswerSpec(name, prompt, expr, kind, in_terms_of, dimension or inferred,
+                                      where, feedback, symbol, source_expr))
+        return answers
+
+    def read_where(self, key: str, text: Any, namespace: Namespace) -> tuple[sympy.Expr, sympy.Expr]:
+        if not isinstance(text, str) or text.count("=") != 1:
+            raise self.fail(key, "write a condition such as \"normal_force = 0\"")
+        lhs_text, rhs_text = text.split("=")
+        lhs = self.expression(key, lhs_text, namespace)
+        rhs = self.expression(key, rhs_text, namespace)
+        self.dimension_of(key, lhs - rhs)
+        return lhs, rhs
+
+    def read_feedback(self, key: str, raw: Any) -> tuple[FeedbackSpec, ...]:
+        if not isinstance(raw, list) or not all(isinstance(f, dict) for f in raw):
+            raise self.fail(f"{key}.feedback", "write each entry as [[answers.feedback]] with expr and message")
+        return tuple(FeedbackSpec(self.string(f, "expr", f"{key}.feedback[{i}]"),
+                                  self.string(f, "message", f"{key}.feedback[{i}]"))
+                     for i, f in enumerate(raw))
