@@ -1,0 +1,417 @@
+"""Physical dimensions over (mass, length, time) and the dimension of a sympy expression.
+
+Angles are dimensionless (radians are a ratio of lengths), so ``sin(theta)`` is
+fine and ``thetadot`` has dimension 1/s.  Exponents are ``Fraction`` because
+``sqrt(l/g)`` is legitimate physics and gives halves along the way.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Mapping
+
+import sympy
+from sympy.core.function import AppliedUndef
+
+from .errors import DimensionError
+
+__all__ = ["Dimension", "parse_dimension", "dimension_of", "NAMED_DIMENSIONS"]
+
+_SUPERSCRIPTS = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
+
+
+def _as_fraction(value) -> Fraction:
+    if isinstance(value, Fraction):
+        return value
+    if isinstance(value, sympy.Rational):
+        return Fraction(int(value.p), int(value.q))
+    if isinstance(value, int):
+        return Fraction(value)
+    raise TypeError(f"dimension exponents must be rational, got {value!r}")
+
+
+@dataclass(frozen=True)
+class Dimension:
+    """Exponents of mass, length and time; immutable and hashable.
+
+    Examples
+    --------
+    >>> force = Dimension(1, 1, -2)
+    >>> force.describe()
+    'a force (kg·m/s²)'
+    >>> (force * Dimension(0, 1, 0)).describe()
+    'an energy or torque (kg·m²/s²)'
+    >>> (Dimension(0, 1, 0) ** Fraction(1, 2)).unit()
+    'm^(1/2)'
+    """
+
+    mass: Fraction = Fraction(0)
+    length: Fraction = Fraction(0)
+    time: Fraction = Fraction(0)
+
+    def __post_init__(self) -> None:
+        for field in ("mass", "length", "time"):
+            object.__setattr__(self, field, _as_fraction(getattr(self, field)))
+
+    # -- arithmetic -------------------------------------------------------
+    def __mul__(self, other: "Dimension") -> "Dimension":
+        return Dimension(self.mass + other.mass, self.length + other.length, self.time + other.time)
+
+    def __truediv__(self, other: "Dimension") -> "Dimension":
+        return Dimension(self.mass - other.mass, self.length - other.length, self.time - other.time)
+
+    def __pow__(self, exponent) -> "Dimension":
+        e = _as_fraction(exponent)
+        return Dimension(self.mass * e, self.length * e, self.time * e)
+
+    @property
+    def is_dimensionless(self) -> bool:
+        return self.mass == 0 and self.length == 0 and self.time == 0
+
+    # -- words ------------------------------------------------------------
+    def unit(self) -> str:
+        """SI unit text such as ``'kg·m/s²'``; ``'1'`` when dimensionless."""
+        num, den = [], []
+        for symbol, exp in (("kg", self.mass), ("m", self.length), ("s", self.time)):
+            if exp == 0:
+                continue
+            (num if exp > 0 else den).append(_unit_power(symbol, abs(exp)))
+        top = "·".join(num) or "1"
+        return top if not den else f"{top}/{'·'.join(den)}"
+
+    def describe(self) -> str:
+        """The dimension in words with its SI unit, e.g. ``'a length (m)'``."""
+        if self.is_dimensionless:
+            return "dimensionless"
+        words = _WORDS.get(self)
+        if words:
+            return f"{words} ({self.unit()})"
+        return f"a quantity in {self.unit()}"
+
+    def __str__(self) -> str:
+        return self.unit()
+
+
+def _unit_power(symbol: str, exp: Fraction) -> str:
+    if exp == 1:
+        return symbol
+    if exp.denominator == 1:
+        return symbol + str(exp.numerator).translate(_SUPERSCRIPTS)
+    return f"{symbol}^({exp})"
+
+
+DIMENSIONLESS = Dimension()
+_M, _L, _T = Dimension(1, 0, 0), Dimension(0, 1, 0), Dimension(0, 0, 1)
+
+#: The named dimensions scene files may use (``dimension = "force"``).
+NAMED_DIMENSIONS: dict[str, Dimension] = {
+    "dimensionless": DIMENSIONLESS,
+    "angle": DIMENSIONLESS,
+    "mass": _M,
+    "length": _L,
+    "time": _T,
+    "velocity": _L / _T,
+    "acceleration": _L / _T ** 2,
+    "force": _M * _L / _T ** 2,
+    "energy": _M * _L ** 2 / _T ** 2,
+    "momentum": _M * _L / _T,
+    "angular_velocity": DIMENSIONLESS / _T,
+    "angular_acceleration": DIMENSIONLESS / _T ** 2,
+    "frequency": DIMENSIONLESS / _T,
+    "moment_of_inertia": _M * _L ** 2,
+    "torque": _M * _L ** 2 / _T ** 2,
+    "power": _M * _L ** 2 / _T ** 3,
+    "area": _L ** 2,
+    "volume": _L ** 3,
+    "stiffness": _M / _T ** 2,
+    "density": _M / _L ** 3,
+    "angular_momentum": _M * _L ** 2 / _T,
+}
+
+# Words for describe(); where two named dimensions coincide (energy and torque,
+# frequency and angular velocity) the phrase says both, since either may be meant.
+_WORDS: dict[Dimension, str] = {
+    _M: "a mass",
+    _L: "a length",
+    _T: "a time",
+    _L / _T: "a velocity",
+    _L / _T ** 2: "an acceleration",
+    _M * _L / _T ** 2: "a force",
+    _M * _L ** 2 / _T ** 2: "an energy or torque",
+    _M * _L / _T: "a momentum",
+    DIMENSIONLESS / _T: "an angular velocity or frequency",
+    DIMENSIONLESS / _T ** 2: "an angular acceleration",
+    _M * _L ** 2: "a moment of inertia",
+    _M * _L ** 2 / _T ** 3: "a power",
+    _L ** 2: "an area",
+    _L ** 3: "a volume",
+    _M / _T ** 2: "a stiffness",
+    _M / _L ** 3: "a density",
+    _M * _L ** 2 / _T: "an angular momentum",
+}
+
+_SI_UNITS: dict[str, Dimension] = {
+    "kg": _M, "m": _L, "s": _T,
+    "N": _M * _L / _T ** 2, "J": _M * _L ** 2 / _T ** 2, "W": _M * _L ** 2 / _T ** 3,
+    "rad": DIMENSIONLESS, "Hz": DIMENSIONLESS / _T,
+}
+
+_DIM_TOKEN = re.compile(r"\s*(?:(\d+(?:/\d+)?)|([A-Za-z_]+)|(\*\*|[*/^()·.\-+]))")
+
+
+def parse_dimension(text: "str | Dimension") -> Dimension:
+    """Read a dimension: a name from :data:`NAMED_DIMENSIONS` or SI units.
+
+    SI units are ``kg m s N J W rad Hz`` combined with ``* / ^ **`` (``·`` too)
+    and parentheses; exponents are integers or fractions, possibly negative.
+
+    Examples
+    --------
+    >>> parse_dimension("force") == parse_dimension("kg*m/s^2") == parse_dimension("N")
+    True
+    >>> parse_dimension("s^-1").describe()
+    'an angular velocity or frequency (1/s)'
+    >>> parse_dimension("N*m").describe()
+    'an energy or torque (kg·m²/s²)'
+    """
+    if isinstance(text, Dimension):
+        return text
+    if not isinstance(text, str):
+        raise DimensionError(f"a dimension must be text such as 'force' or 'kg*m/s^2', got {text!r}")
+    key = text.strip().lower().replace(" ", "_").replace("-", "_")
+    if key in NAMED_DIMENSIONS:
+        return NAMED_DIMENSIONS[key]
+    if len(text) > 200:
+        raise DimensionError("dimension text is too long")
+    return _UnitParser(text).parse()
+
+
+class _UnitParser:
+    """Recursive descent over ``product := power (('*'|'/') power)*``."""
+
+    def __init__(self, text: str) -> None:
+        self.text = text
+        self.tokens: list[tuple[str, str]] = []
+        pos = 0
+        stripped = text.rstrip()
+        while pos < len(stripped):
+            match = _DIM_TOKEN.match(stripped, pos)
+            if not match:
+                raise DimensionError(f"cannot read dimension {text!r} at position {pos}")
+            number, name, op = match.groups()
+            self.tokens.append(("num", number) if number else ("name", name) if name else ("op", op))
+            pos = match.end()
+        self.i = 0
+
+    def peek(self) -> tuple[str, str] | None:
+        return self.tokens[self.i] if self.i < len(self.tokens) else None
+
+    def take(self) -> tuple[str, str]:
+        tok = self.peek()
+        if tok is None:
+            raise DimensionError(f"dimension {self.text!r} ends too early")
+        self.i += 1
+        return tok
+
+    def parse(self) -> Dimension:
+        if not self.tokens:
+            raise DimensionError("empty dimension")
+        dim = self.product(0)
+        if self.peek() is not None:
+            raise DimensionError(f"cannot read dimension {self.text!r}: unexpected {self.peek()[1]!r}")
+        return dim
+
+    def product(self, depth: int) -> Dimension:
+        if depth > 20:
+            raise DimensionError("dimension is nested too deeply")
+        dim = self.power(depth)
+        while self.peek() in (("op", "*"), ("op", "/"), ("op", "·"), ("op", ".")):
+            op = self.take()[1]
+            right = self.power(depth)
+            dim = dim / right if op == "/" else dim * right
+        return dim
+
+    def power(self, depth: int) -> Dimension:
+        kind, value = self.take()
+        if (kind, value) == ("op", "("):
+            dim = self.product(depth + 1)
+            if self.take() != ("op", ")"):
+                raise DimensionError(f"unbalanced parenthesis in dimension {self.text!r}")
+        elif kind == "num" and value == "1":
+            dim = DIMENSIONLESS
+        elif kind == "name" and value in _SI_UNITS:
+            dim = _SI_UNITS[value]
+        elif kind == "name" and value.lower() in NAMED_DIMENSIONS:
+            dim = NAMED_DIMENSIONS[value.lower()]
+        else:
+            known = ", ".join(sorted(NAMED_DIMENSIONS))
+            raise DimensionError(f"unknown dimension or unit {value!r} in {self.text!r}; "
+                                 f"use SI units (kg m s N J W rad Hz) or one of: {known}")
+        if self.peek() in (("op", "^"), ("op", "**")):
+            self.take()
+            dim = dim ** self.exponent()
+        return dim
+
+    def exponent(self) -> Fraction:
+        sign = 1
+        if self.peek() in (("op", "-"), ("op", "+")):
+            sign = -1 if self.take()[1] == "-" else 1
+        kind, value = self.take()
+        if kind == "op" and value == "(":
+            exp = self.exponent()
+            if self.take() != ("op", ")"):
+                raise DimensionError(f"unbalanced parenthesis in dimension {self.text!r}")
+            return sign * exp
+        if kind != "num":
+            raise DimensionError(f"a unit exponent must be a number, got {value!r} in {self.text!r}")
+        return sign * Fraction(value)
+
+
+# -- dimension of an expression --------------------------------------------
+
+_DIMENSIONLESS_FUNCTIONS = (
+    sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc,
+    sympy.asin, sympy.acos, sympy.atan, sympy.acot, sympy.asec, sympy.acsc,
+    sympy.sinh, sympy.cosh, sympy.tanh, sympy.coth, sympy.asinh, sympy.acosh, sympy.atanh,
+    sympy.exp, sympy.log,
+)
+
+
+def _phrase(dim: Dimension) -> str:
+    return "a dimensionless number" if dim.is_dimensionless else dim.describe()
+
+
+def dimension_of(expr, dims: Mapping) -> Dimension:
+    """The dimension of a sympy expression whose symbols have the given dimensions.
+
+    Parameters
+    ----------
+    expr : sympy.Basic
+        An expression, or an ``Eq`` (both sides must agree).
+    dims : mapping
+        ``{Symbol: Dimension}`` (e.g. ``Namespace.dimensions()``); keys may also be
+        names, and symbols are matched by name when the assumptions differ.
+        Applied functions ``theta(t)`` are looked up by their name.
+
+    Raises
+    ------
+    DimensionError
+        Terms of different dimensions added or equated, a function of a
+        dimensional argument, a dimensional base raised to a symbolic power,
+        or a symbol with no known dimension.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> m, g, l, theta = sympy.symbols("m g l theta")
+    >>> dims = {m: parse_dimension("mass"), g: parse_dimension("acceleration"),
+    ...         l: parse_dimension("length"), theta: parse_dimension("angle")}
+    >>> dimension_of(m*g*l*sympy.cos(theta), dims).describe()
+    'an energy or torque (kg·m²/s²)'
+    >>> dimension_of(m*g + l, dims)
+    Traceback (most recent call last):
+    ...
+    grader.expressions.errors.DimensionError: adds a force (kg·m/s²) to a length (m): g*m + l
+    """
+    by_name = {}
+    for key, value in dims.items():
+        name = key if isinstance(key, str) else getattr(key, "name", None)
+        if name is not None:
+            by_name[name] = parse_dimension(value)
+    if isinstance(expr, (int, Fraction)) and not isinstance(expr, bool):
+        expr = sympy.Rational(expr)
+    if not isinstance(expr, sympy.Basic):
+        # Text must go through parse_expression first; nothing here reads strings.
+        raise TypeError(f"dimension_of takes a sympy expression, got {type(expr).__name__}")
+    return _DimensionWalker(dims, by_name).walk(expr)
+
+
+class _DimensionWalker:
+    def __init__(self, dims: Mapping, by_name: dict[str, Dimension]) -> None:
+        self.dims = dims
+        self.by_name = by_name
+
+    def lookup(self, node, name: str) -> Dimension:
+        if node in self.dims:
+            return parse_dimension(self.dims[node])
+        if name in self.by_name:
+            return self.by_name[name]
+        if name == "t":
+            return _T  # time in dynamicsymbols-style expressions, unless declared otherwise
+        raise DimensionError(f"'{name}' has no known dimension", node)
+
+    def walk(self, node) -> Dimension:
+        if isinstance(node, sympy.Equality) or isinstance(node, sympy.core.relational.Relational):
+            left, right = self.walk(node.lhs), self.walk(node.rhs)
+            if left != right and not _is_zero(node.lhs) and not _is_zero(node.rhs):
+                raise DimensionError(f"equates {_phrase(left)} to {_phrase(right)}: {node}", node)
+            return right if _is_zero(node.lhs) else left
+        if node.is_Number or isinstance(node, sympy.NumberSymbol) or node is sympy.I:
+            return DIMENSIONLESS
+        if node.is_Symbol:
+            return self.lookup(node, node.name)
+        if isinstance(node, AppliedUndef):
+            return self.lookup(node, node.func.__name__)
+        if node.is_Add:
+            return self.add(node)
+        if node.is_Mul:
+            dim = DIMENSIONLESS
+            for factor in node.args:
+                dim = dim * self.walk(factor)
+            return dim
+        if node.is_Pow:
+            return self.power(node)
+        if isinstance(node, sympy.Derivative):
+            dim = self.walk(node.expr)
+            for variable, count in node.variable_count:
+                dim = dim / self.walk(variable) ** int(count)
+            return dim
+        if isinstance(node, sympy.Abs):
+            return self.walk(node.args[0])
+        if isinstance(node, sympy.sign):
+            self.walk(node.args[0])
+            return DIMENSIONLESS
+        if isinstance(node, sympy.atan2):
+            y, x = (self.walk(arg) for arg in node.args)
+            if y != x:
+                raise DimensionError(f"atan2 needs two arguments of one dimension, got "
+                                     f"{_phrase(y)} and {_phrase(x)}: {node}", node)
+            return DIMENSIONLESS
+        if isinstance(node, _DIMENSIONLESS_FUNCTIONS):
+            for arg in node.args:
+                dim = self.walk(arg)
+                if not dim.is_dimensionless:
+                    raise DimensionError(f"{node.func.__name__} needs a dimensionless argument, "
+                                         f"got {dim.describe()}: {node}", node)
+            return DIMENSIONLESS
+        raise DimensionError(f"cannot work out the dimension of {node}", node)
+
+    def add(self, node) -> Dimension:
+        first_term, first_dim = None, None
+        for term in node.as_ordered_terms():  # printed order, so messages read like str(expr)
+            if _is_zero(term):
+                continue  # an exact 0 fits any sum
+            dim = self.walk(term)
+            if first_dim is None:
+                first_term, first_dim = term, dim
+            elif dim != first_dim:
+                raise DimensionError(f"adds {_phrase(first_dim)} to {_phrase(dim)}: "
+                                     f"{first_term} + {term}", node)
+        return first_dim if first_dim is not None else DIMENSIONLESS
+
+    def power(self, node) -> Dimension:
+        base, exponent = node.args
+        base_dim, exp_dim = self.walk(base), self.walk(exponent)
+        if not exp_dim.is_dimensionless:
+            raise DimensionError(f"raises to a power that is {exp_dim.describe()}: {node}", node)
+        if base_dim.is_dimensionless:
+            return DIMENSIONLESS
+        if not exponent.is_Rational:
+            raise DimensionError(f"raises {base_dim.describe()} to the non-numeric power {exponent}: {node}", node)
+        return base_dim ** exponent
+
+
+def _is_zero(node) -> bool:
+    return bool(node.is_Number and node == 0)

@@ -1,0 +1,83 @@
+r"""The subset of LaTeX a student may type (or paste from a previewer).
+
+Supported: ``\frac{a}{b}`` (``\dfrac``, ``\tfrac``), ``\sqrt{x}``, ``\sqrt[n]{x}``,
+``\cdot``, ``\times``, ``\left( \right)``, ``\sin`` and friends, Greek letters
+``\theta``, ``\dot{\theta}``, ``\ddot{\theta}``, ``^{...}``, ``_{...}``, ``{}``
+grouping, ``\pi``, spacing commands and ``\mathrm{...}`` around names.
+Anything else (``\int``, ``\sum``, ``\partial``) is refused by name.
+"""
+
+from __future__ import annotations
+
+import re
+
+from .errors import ExpressionError
+from .names import GREEK_LETTERS
+
+__all__ = ["classify_command", "subscript_text", "GREEK_COMMANDS", "FUNCTION_COMMANDS"]
+
+#: \theta -> theta; the var- forms are the same letters to a grader.
+GREEK_COMMANDS = {name: name for name, latex in GREEK_LETTERS.items() if latex.startswith("\\")}
+GREEK_COMMANDS.update({"varphi": "phi", "vartheta": "theta", "varepsilon": "epsilon",
+                       "varrho": "rho", "varsigma": "sigma", "varpi": "pi"})
+
+#: \sin -> sin, \arcsin -> asin.
+FUNCTION_COMMANDS = {name: name for name in
+                     "sin cos tan cot sec csc sinh cosh tanh exp log ln".split()}
+FUNCTION_COMMANDS.update({"arcsin": "asin", "arccos": "acos", "arctan": "atan"})
+
+_OPERATORS = {"cdot": "*", "times": "*", "ast": "*", "div": "/"}
+_SPACING = {"quad", "qquad", "displaystyle", "textstyle", "limits"}
+_STRUCTURE = {"frac": "frac", "dfrac": "frac", "tfrac": "frac", "sqrt": "sqrt",
+              "dot": "dot", "ddot": "ddot", "left": "left", "right": "right"}
+_WRAPPERS = {"mathrm", "text", "mathit", "operatorname", "rm", "mathbf", "textrm"}
+
+
+def classify_command(name: str, position: int) -> tuple[str, str]:
+    r"""What a ``\name`` command is: ``(kind, value)``.
+
+    kind is ``"greek"`` (value: letter name), ``"function"`` (value: function
+    name), ``"op"``, ``"space"``, ``"structure"`` (frac, sqrt, dot, ddot, left,
+    right) or ``"wrapper"`` (``\mathrm`` and friends, whose braced text is a name).
+
+    Examples
+    --------
+    >>> classify_command("theta", 0), classify_command("arcsin", 0), classify_command("cdot", 0)
+    (('greek', 'theta'), ('function', 'asin'), ('op', '*'))
+    """
+    if name in GREEK_COMMANDS:
+        return "greek", GREEK_COMMANDS[name]
+    if name in FUNCTION_COMMANDS:
+        return "function", FUNCTION_COMMANDS[name]
+    if name in _OPERATORS:
+        return "op", _OPERATORS[name]
+    if name in _SPACING:
+        return "space", ""
+    if name in _STRUCTURE:
+        return "structure", _STRUCTURE[name]
+    if name in _WRAPPERS:
+        return "wrapper", name
+    raise ExpressionError(f"the LaTeX command \\{name} is not supported", position, "unsupported_function",
+                          r"use + - * / ^, \frac, \sqrt and functions such as \sin")
+
+
+_WRAPPED = re.compile(r"\\(?:mathrm|text|mathit|rm|textrm|mathbf|operatorname)\s*\{([^{}]*)\}")
+_COMMAND = re.compile(r"\\([A-Za-z]+)")
+_SUBSCRIPT = re.compile(r"^[A-Za-z0-9_]+$")
+
+
+def subscript_text(content: str, position: int) -> str:
+    r"""A braced subscript as name text: ``{1}`` -> ``1``, ``{roll,s}`` -> ``roll_s``.
+
+    Examples
+    --------
+    >>> subscript_text(r"\mathrm{roll},s", 0), subscript_text(r"\theta", 0)
+    ('roll_s', 'theta')
+    """
+    text = _WRAPPED.sub(r"\1", content)
+    text = _COMMAND.sub(lambda m: GREEK_COMMANDS.get(m.group(1), m.group(0)), text)
+    text = re.sub(r"\s*,\s*", "_", text.strip())
+    if not _SUBSCRIPT.match(text):
+        raise ExpressionError(f"cannot read the subscript '{content}'", position, "syntax",
+                              "a subscript holds letters and digits, as in m_{1}")
+    return text

@@ -1,0 +1,293 @@
+"""Variable names: how they look in LaTeX and how typed names resolve to them.
+
+Canonical names are plain identifiers: ``theta``, ``thetadot``, ``thetaddot``,
+``m1``, ``lambda_surface``, ``Q_roll_s``.  Students may type the same variable
+as ``θ``, ``theta_dot``, ``θ̇``, ``theta'``, ``dot(theta)``, ``m_1``, ``m_{1}`` or
+glue names together (``mg``); :func:`resolve_name` maps all of these to one
+namespace symbol, or explains why it cannot.
+"""
+
+from __future__ import annotations
+
+import difflib
+import keyword
+import re
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from .errors import ExpressionError
+from .functions import CONSTANTS, FUNCTIONS, function_names
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .variables import Namespace
+
+__all__ = ["GREEK_LETTERS", "latex_name", "Resolved", "resolve_name", "derivative_name"]
+
+_GREEK_LOWER = ("alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi "
+                "omicron pi rho sigma tau upsilon phi chi psi omega").split()
+# Capitals that look like Latin letters have no LaTeX command of their own.
+_GREEK_UPPER = {
+    "Alpha": "A", "Beta": "B", "Gamma": r"\Gamma", "Delta": r"\Delta", "Epsilon": "E",
+    "Zeta": "Z", "Eta": "H", "Theta": r"\Theta", "Iota": "I", "Kappa": "K",
+    "Lambda": r"\Lambda", "Mu": "M", "Nu": "N", "Xi": r"\Xi", "Omicron": "O", "Pi": r"\Pi",
+    "Rho": "P", "Sigma": r"\Sigma", "Tau": "T", "Upsilon": r"\Upsilon", "Phi": r"\Phi",
+    "Chi": "X", "Psi": r"\Psi", "Omega": r"\Omega",
+}
+
+#: Greek letter name -> LaTeX.
+GREEK_LETTERS: dict[str, str] = {name: "\\" + name for name in _GREEK_LOWER}
+GREEK_LETTERS["omicron"] = "o"
+GREEK_LETTERS.update(_GREEK_UPPER)
+
+_TRAILING_DIGITS = re.compile(r"^(.*?[A-Za-z])(\d+)$")
+
+
+def _latex_word(word: str) -> str:
+    if word in GREEK_LETTERS:
+        return GREEK_LETTERS[word]
+    if len(word) == 1 or word.isdigit():
+        return word
+    return r"\mathrm{" + word + "}"
+
+
+def latex_name(name: str) -> str:
+    r"""LaTeX for a canonical variable name.
+
+    A trailing ``dot``/``ddot`` is a time derivative, trailing digits and
+    ``_parts`` are subscripts (words upright, several parts comma-separated).
+
+    Examples
+    --------
+    >>> latex_name("thetadot"), latex_name("m1"), latex_name("Omega")
+    ('\\dot{\\theta}', 'm_{1}', '\\Omega')
+    >>> latex_name("lambda_surface"), latex_name("Q_roll_s")
+    ('\\lambda_{\\mathrm{surface}}', 'Q_{\\mathrm{roll},s}')
+    """
+    head, *subs = name.split("_")
+    subs = [s for s in subs if s]
+    order = 0
+    if head.endswith("ddot") and len(head) > 4:
+        head, order = head[:-4], 2
+    elif head.endswith("dot") and len(head) > 3:
+        head, order = head[:-3], 1
+    match = _TRAILING_DIGITS.match(head)
+    if match:
+        head = match.group(1)
+        subs.insert(0, match.group(2))
+    text = GREEK_LETTERS.get(head, head)
+    if order:
+        text = ("\\dot{" if order == 1 else "\\ddot{") + text + "}"
+    if subs:
+        text += "_{" + ",".join(_latex_word(s) for s in subs) + "}"
+    return text
+
+
+def derivative_name(base: str, order: int) -> str:
+    """Canonical name of the ``order``-th time derivative of ``base``.
+
+    Examples
+    --------
+    >>> derivative_name("theta", 1), derivative_name("thetadot", 1), derivative_name("x", 2)
+    ('thetadot', 'thetaddot', 'xddot')
+    """
+    if base.endswith("ddot"):
+        base, order = base[:-4], order + 2
+    elif base.endswith("dot"):
+        base, order = base[:-3], order + 1
+    return base + {0: "", 1: "dot", 2: "ddot"}.get(order, "d" * order + "ot")
+
+
+@dataclass
+class Resolved:
+    """What a typed name means.
+
+    ``kind`` is ``"symbol"`` / ``"constant"`` (``value`` is a sympy object),
+    ``"function"`` (``value`` is the whitelisted name) or ``"split"`` (``value``
+    lists the known names the text is made of, e.g. ``["m", "g"]``).
+    """
+
+    kind: str
+    value: object
+    notes: list[str] = field(default_factory=list)
+
+
+_PYTHON_WORDS = set(keyword.kwlist) | {"eval", "exec", "open", "compile", "getattr", "globals",
+                                       "locals", "os", "sys", "subprocess", "print", "input"}
+
+
+def resolve_name(raw: str, ns: "Namespace", *, order: int = 0, typed: str | None = None,
+                 position: int = 0, called: bool = False) -> Resolved:
+    """Resolve a typed identifier to a namespace symbol, constant, function or split.
+
+    Parameters
+    ----------
+    raw : str
+        The identifier with Greek letters spelled out (``θ`` -> ``theta``) and
+        subscript braces removed (``m_{1}`` -> ``m_1``).
+    ns : Namespace
+        The variables the text may use.
+    order : int
+        Time-derivative order added by primes or accents (``θ̇`` -> 1).
+    typed : str
+        The identifier as typed, for messages.
+    position : int
+        Where it starts in the text, for errors.
+    called : bool
+        Whether ``(`` follows directly; an unknown called name is reported as
+        an unsupported function.
+
+    Examples
+    --------
+    >>> from grader.expressions import Namespace, Variable
+    >>> ns = Namespace([Variable("theta", "angle", "real"), Variable("thetadot", "1/s", "real"),
+    ...                 Variable("m", "mass", "positive"), Variable("g", "acceleration", "positive")])
+    >>> resolve_name("theta_dot", ns).value
+    thetadot
+    >>> resolve_name("theta", ns, order=1).value
+    thetadot
+    >>> r = resolve_name("mg", ns); r.kind, r.value, r.notes
+    ('split', ['m', 'g'], ["read 'mg' as m·g"])
+    """
+    typed = typed if typed is not None else raw
+    if len(typed) > 40:  # a 2000-letter "name" should not come back in full in the message
+        typed = typed[:40] + "…"
+    if order:
+        try:
+            return _resolve_derivative(raw, ns, order, typed, position)
+        except ExpressionError:
+            # mθ̇ is m·θ̇: a glued name whose last part carries the accent.
+            parts = _split(raw, ns, typed, position)
+            if not parts or parts[-1] in FUNCTIONS or parts[-1].isdigit():
+                raise
+            parts[-1] = _resolve_derivative(parts[-1], ns, order, typed, position).value.name
+            return Resolved("split", parts, [f"read '{typed}' as {_reading(parts)}"])
+    symbol = _lookup(raw, ns)
+    if symbol is not None:
+        return Resolved("symbol", symbol)
+    if raw in FUNCTIONS or raw.lower() in FUNCTIONS:
+        return Resolved("function", FUNCTIONS[raw if raw in FUNCTIONS else raw.lower()].name)
+    if raw in CONSTANTS:
+        notes = []
+        if raw in ("e", "E"):
+            notes.append(f"read '{typed}' as Euler's number e ≈ 2.718")
+        return Resolved("constant", CONSTANTS[raw], notes)
+    if raw.startswith("_"):
+        raise ExpressionError(f"'{typed}' is not allowed in an expression", position,
+                              "unsupported_function", "write a formula, not program code")
+    parts = _split(raw, ns, typed, position)
+    if parts:
+        return Resolved("split", parts, [f"read '{typed}' as {_reading(parts)}"])
+    if raw in _PYTHON_WORDS:
+        raise ExpressionError(f"'{typed}' is not allowed in an expression", position,
+                              "unsupported_function", "write a formula, not program code")
+    _raise_unknown(raw, ns, typed, position, called)
+
+
+def _reading(parts: list[str]) -> str:
+    """How a split reads, the way the parser will take it: ['m', 'g', 'sin', '2', 'x'] -> m·g·sin(2·x).
+
+    A function takes the glued parts after it up to the next function.
+    """
+    words, open_call = [], False
+    for part in parts:
+        if part in FUNCTIONS:
+            if open_call:
+                words[-1] += ")"
+            words.append(part + "(")
+            open_call = True
+        elif words and words[-1].endswith("("):
+            words[-1] += part
+        else:
+            words.append(part)
+    text = "·".join(words).replace("(·", "(")
+    return text + (")" if open_call and not text.endswith("(") else "")
+
+
+def _lookup(raw: str, ns: "Namespace"):
+    if raw in ns.names:
+        return ns.symbol(raw)
+    # Underscores are only separators to a student: m_1 is m1, theta_dot is thetadot.
+    matches = ns.names_by_key.get(raw.replace("_", ""), ())
+    if len(matches) == 1:
+        return ns.symbol(matches[0])
+    return None
+
+
+def _resolve_derivative(raw: str, ns: "Namespace", order: int, typed: str, position: int) -> Resolved:
+    base_symbol = _lookup(raw, ns)
+    base = base_symbol.name if base_symbol is not None else raw.replace("_", "")
+    if order + (2 if base.endswith("ddot") else 1 if base.endswith("dot") else 0) > 2:
+        raise ExpressionError(f"'{typed}' is a third or higher time derivative, which no answer here uses",
+                              position, "unknown_name")
+    name = derivative_name(base, order)
+    symbol = _lookup(name, ns)
+    if symbol is None:
+        raise ExpressionError(f"'{typed}' means {name}, the time derivative of {base}, "
+                              f"but this problem has no variable {name}", position, "unknown_name",
+                              _suggestion(name, ns))
+    return Resolved("symbol", symbol)
+
+
+def _split(raw: str, ns: "Namespace", typed: str, position: int) -> list[str] | None:
+    """The unique way to read ``raw`` as several known names glued together.
+
+    Parts are variable names (underscores ignored, so ``m_1g`` is m1·g), ``pi``
+    and function names; digits may follow a function only (``sin2x`` is
+    sin(2x), while ``m2g`` needs a variable ``m2``).  Longest match first with
+    backtracking; two different readings are an error, since guessing would
+    grade the wrong expression.
+    """
+    key = raw.replace("_", "")
+    words = {k: names[0] for k, names in ns.names_by_key.items() if len(names) == 1}
+    words.setdefault("pi", "pi")
+    for name in FUNCTIONS:
+        words.setdefault(name, name)
+    longest = max(map(len, words))
+    found: list[list[str]] = []
+
+    # Iterative search so a long run of letters cannot exhaust the Python stack;
+    # stop at two readings, which is all the ambiguity check needs.
+    stack: list[tuple[int, list[str]]] = [(0, [])]
+    steps = 0
+    while stack and len(found) < 2 and steps < 20000:
+        steps += 1
+        start, parts = stack.pop()
+        if start == len(key):
+            if len(parts) > 1:
+                found.append(parts)
+            continue
+        candidates = []
+        if parts and parts[-1] in FUNCTIONS and key[start].isdigit():
+            end = start
+            while end < len(key) and key[end].isdigit():
+                end += 1
+            candidates.append((end, key[start:end]))
+        for end in range(start + 1, min(len(key), start + longest) + 1):
+            if key[start:end] in words:
+                candidates.append((end, words[key[start:end]]))
+        # Push shortest first so the longest match is tried first.
+        for end, part in sorted(candidates):
+            stack.append((end, parts + [part]))
+    if len(found) > 1:
+        readings = " or ".join(_reading(p) for p in found)
+        raise ExpressionError(f"'{typed}' is ambiguous: it could be {readings}", position, "ambiguous",
+                              "put * or spaces between the names you mean")
+    return found[0] if found else None
+
+
+def _suggestion(name: str, ns: "Namespace", functions_only: bool = False) -> str | None:
+    vocabulary = sorted(set(function_names()) if functions_only else set(ns.names) | set(function_names()) | {"pi"})
+    close = difflib.get_close_matches(name, vocabulary, n=3, cutoff=0.6)
+    if close:
+        return "did you mean " + " or ".join(f"'{c}'" for c in close) + "?"
+    if ns.names:
+        return "the variables here are " + ", ".join(sorted(ns.names))
+    return None
+
+
+def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called: bool):
+    if called:
+        raise ExpressionError(f"'{typed}' is not a function you can use here", position,
+                              "unsupported_function",
+                              _suggestion(raw, ns, functions_only=True) or "allowed functions: " + ", ".join(function_names()))
+    raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name", _suggestion(raw, ns))

@@ -1,0 +1,636 @@
+"""Whitelist parser: text -> sympy, built node by node (never eval/sympify/parse_expr).
+
+A Pratt parser over the tokens of :mod:`.tokens`.  Binding powers, loosest first::
+
+    =            equations only (parse_equation / parse_system)
+    + -          10, left   (a sum is built as one Add)
+    * / implicit 20, left   (2 m g, 2(a+b), (a)(b), g(1 - x) with g a variable; one Mul)
+    unary - +    prefix     (-a*b is -(a*b) and -x^2 is -(x^2), but 2^-x*y is 2^(-x)*y)
+    ^ ** ²       30, right  (2^3^2 is 2^9)
+
+Implicit multiplication binds like ``*``: ``1/2 m`` is m/2 and ``g/2l`` is
+(g/2)·l (a note says so).  Sums and products are collected and built in one
+step, the way sympy's printer writes them, so ``str(expr)`` reads back to the
+same tree.
+
+Functions are whitelisted (:mod:`.functions`) and take ``(args)`` or, for a
+single argument, one following factor: ``cos theta``, ``sin 2x`` (= sin(2x)),
+``cos theta^2`` (= cos(theta^2)).  ``sin^2 x`` is sin(x)^2 and ``sin^-1 x`` is
+asin(x).  Names resolve only through the :class:`~.variables.Namespace`
+(:mod:`.names`).  Numbers are exact: ``0.5*m == m/2``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import sympy
+
+from .errors import ExpressionError
+from .functions import FUNCTIONS, INVERSES
+from .magnitudes import checked, guarded_pow, not_real
+from .names import resolve_name
+from .tokens import Token, check_brackets, tokenize
+from .variables import Namespace
+
+__all__ = ["Parsed", "ParsedEquation", "parse_expression", "parse_equation", "parse_system",
+           "MAX_LENGTH"]
+
+#: Longest text accepted, checked before anything else is done with it.
+MAX_LENGTH = 2000
+#: Deepest recursion of the parser (prefix-operator chains, powers of powers).
+MAX_RECURSION = 200
+
+_ADD, _MUL, _POW = 10, 20, 30
+_ATOM_STARTS = ("number", "name", "open", "root", "command")
+
+
+@dataclass(frozen=True)
+class Parsed:
+    """A parsed expression.
+
+    Attributes
+    ----------
+    expr : sympy.Expr
+    text : str
+        Canonical text (sympy's ``str`` with our variable names); it parses back to ``expr``.
+    latex : str
+        LaTeX with the namespace's variable LaTeX (``\\dot{\\theta}``).
+    notes : list of str
+        How ambiguous input was read ("read 'mg' as m·g").
+    """
+
+    expr: sympy.Expr
+    text: str
+    latex: str
+    notes: list[str] = field(default_factory=list)
+
+
+@dataclass(frozen=True)
+class ParsedEquation:
+    """A parsed equation ``lhs = rhs``; attributes as in :class:`Parsed`."""
+
+    lhs: sympy.Expr
+    rhs: sympy.Expr
+    text: str
+    latex: str
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def residual(self) -> sympy.Expr:
+        """``lhs - rhs``, zero exactly when the equation holds."""
+        return self.lhs - self.rhs
+
+    @property
+    def equation(self) -> sympy.Equality:
+        return sympy.Eq(self.lhs, self.rhs, evaluate=False)
+
+
+class _Parser:
+    def __init__(self, tokens: list[Token], namespace: Namespace, text: str) -> None:
+        self.tokens = tokens
+        self.ns = namespace
+        self.text = text
+        self.i = 0
+        self.depth = 0
+        self.notes: list[str] = []
+        # The last product built and its factors, so a/(b*c) can divide factor by factor.
+        self.last_product: tuple[sympy.Expr, list[sympy.Expr]] | None = None
+
+    # -- token access -----------------------------------------------------
+    def peek(self, offset: int = 0) -> Token:
+        return self.tokens[min(self.i + offset, len(self.tokens) - 1)]
+
+    def advance(self) -> Token:
+        token = self.peek()
+        self.i = min(self.i + 1, len(self.tokens) - 1)
+        return token
+
+    def before(self, token: Token) -> Token | None:
+        """The token just before ``token`` (for "'+' needs something after it")."""
+        for index, candidate in enumerate(self.tokens):
+            if candidate is token:
+                return self.tokens[index - 1] if index else None
+        return None
+
+    def note(self, text: str) -> None:
+        if text not in self.notes:
+            self.notes.append(text)
+
+    def unexpected(self, token: Token) -> ExpressionError:
+        if token.kind == "bad":
+            return token.error
+        before = self.before(token)
+        if token.kind == "end":
+            if before is not None and before.kind == "op":
+                return ExpressionError(f"'{before.text}' needs something after it", before.pos, "syntax")
+            return ExpressionError("the expression ends too early", token.pos, "syntax")
+        if token.kind == "close":
+            if before is not None and before.kind == "op":
+                return ExpressionError(f"'{before.text}' needs something after it", before.pos, "syntax")
+            if before is not None and before.kind == "open":
+                return ExpressionError("empty brackets", before.pos, "syntax")
+        if token.kind == "op" and token.value == "=":
+            return ExpressionError("'=' is only allowed once, between the two sides of an equation",
+                                   token.pos, "syntax")
+        if token.kind == "op" and token.value == ",":
+            return ExpressionError("a comma can only separate function arguments, as in atan2(y, x)",
+                                   token.pos, "syntax")
+        if token.kind == "op" and token.value == ";":
+            return ExpressionError("';' cannot be used in a single expression", token.pos,
+                                   "unsupported_function", "write one expression")
+        if token.kind == "prime":
+            return ExpressionError("a prime (') can only follow a variable name, as in theta'",
+                                   token.pos, "syntax")
+        if token.kind == "sup":
+            return ExpressionError(f"superscript '{token.text}' has nothing to raise", token.pos, "syntax")
+        return ExpressionError(f"unexpected '{token.text}'", token.pos, "syntax")
+
+    def expect_close(self, opener: Token) -> Token:
+        token = self.advance()
+        if token.kind != "close":
+            raise self.unexpected(token)
+        return token
+
+    # -- Pratt core ---------------------------------------------------------
+    def expression(self, rbp: int = 0) -> sympy.Expr:
+        self.depth += 1
+        if self.depth > MAX_RECURSION:
+            raise ExpressionError("the expression is nested too deeply", self.peek().pos, "too_deep")
+        start = self.peek()
+        left = self.nud(self.advance(), rbp)
+        # Factors of a product are collected and multiplied once, as sympy's printer
+        # assumes: 33*(E - 4)*f is Mul(33, E - 4, f), while building it pairwise would
+        # distribute 33 over (E - 4) first and str(expr) would not read back.
+        factors: list[sympy.Expr] | None = None
+        terms: list[sympy.Expr] | None = None  # likewise for sums: one Add, not n pairwise ones
+        previous_op = None
+        while True:
+            token = self.peek()
+            lbp = self.left_power(token)
+            if lbp <= rbp:
+                break
+            if lbp == _MUL and terms is None:
+                factors = factors if factors is not None else [left]
+                op = self.product_factor(token, factors)
+                if op == "implicit" and previous_op == "/":
+                    end = self.tokens[self.i - 1].end
+                    self.note(f"read '{self.text[start.pos:end]}' as "
+                              f"({self.text[start.pos:token.pos].strip()})·{self.text[token.pos:end]}")
+            elif lbp == _ADD:
+                if factors is not None:
+                    left, factors = self.product(factors, token.pos), None
+                terms = terms if terms is not None else [left]
+                self.advance()
+                right = self.expression(_ADD)
+                terms.append(right if token.value == "+" else checked(-right, token.pos))
+                op = token.value
+            else:
+                if factors is not None:
+                    left, factors = self.product(factors, token.pos), None
+                if terms is not None:
+                    left, terms = checked(sympy.Add(*terms), token.pos), None
+                left, op = self.led(token, left)
+            previous_op = op
+        if factors is not None:
+            left = self.product(factors, start.pos)
+        if terms is not None:
+            left = checked(sympy.Add(*terms), start.pos)
+        self.depth -= 1
+        return left
+
+    def product(self, factors: list[sympy.Expr], position: int) -> sympy.Expr:
+        result = checked(sympy.Mul(*factors), position)
+        self.last_product = (result, factors)
+        return result
+
+    def product_factor(self, token: Token, factors: list[sympy.Expr]) -> str:
+        """Parse the next factor of a product (after ``*``, ``/`` or side by side) into ``factors``."""
+        if token.kind == "op":
+            self.advance()
+            right = self.expression(_MUL)
+            if token.value == "*":
+                factors.append(right)
+                return "*"
+            # a/(b*c) divides by each factor, so 1/(8*(m - 2)) is not first distributed to 1/(8*m - 16).
+            product, parts = self.last_product or (None, None)
+            for part in (parts if product is right and parts else [right]):
+                factors.append(guarded_pow(part, sympy.Integer(-1), token.pos))
+            return "/"
+        if token.kind == "number":
+            raise ExpressionError(f"missing operator before '{token.text}'", token.pos, "syntax",
+                                  "write * (or another operator) before the number")
+        factors.append(self.expression(_MUL))
+        return "implicit"
+
+    def left_power(self, token: Token) -> int:
+        if token.kind == "op":
+            return {"+": _ADD, "-": _ADD, "*": _MUL, "/": _MUL, "^": _POW}.get(token.value, 0)
+        if token.kind == "sup":
+            return _POW
+        if token.kind in _ATOM_STARTS:
+            return _MUL
+        if token.kind == "prime":
+            return _POW + 10
+        return 0
+
+    def led(self, token: Token, left: sympy.Expr) -> tuple[sympy.Expr, str]:
+        """Powers: ``^`` (right-associative) and superscripts."""
+        if token.kind == "op" and token.value == "^":
+            self.advance()
+            return guarded_pow(left, self.expression(_POW - 1), token.pos), "^"
+        if token.kind == "sup":
+            self.advance()
+            return guarded_pow(left, sympy.Integer(token.value), token.pos), "^"
+        raise self.unexpected(token)
+
+    def nud(self, token: Token, rbp: int = 0) -> sympy.Expr:
+        kind = token.kind
+        if kind == "number":
+            if token.decimal:
+                self.note(f"decimals are read as exact fractions ({token.text} = {token.value})")
+            return token.value
+        if kind == "name":
+            return self.name(token, rbp)
+        if kind == "op" and token.value in "+-":
+            # -a*b is -(a*b) (one product, as sympy prints it), but 2^-x*y is 2^(-x)*y.
+            operand = self.expression(max(rbp, _ADD))
+            return checked(-operand, token.pos) if token.value == "-" else operand
+        if kind == "open":
+            if self.peek().kind == "close":
+                raise ExpressionError("empty brackets", token.pos, "syntax")
+            inner = self.expression(0)
+            self.expect_close(token)
+            return inner
+        if kind == "root":
+            return guarded_pow(self.function_argument(token, "√"), sympy.Rational(1, token.value), token.pos)
+        if kind == "command":
+            return self.latex_command(token)
+        raise self.unexpected(token)
+
+    # -- names and functions ------------------------------------------------
+    def name(self, token: Token, rbp: int = 0) -> sympy.Expr:
+        raw = token.value
+        following = self.peek()
+        called = following.kind == "open" and following.value == "("
+        if token.forced_function:
+            return self.function(token.value, token)
+        if raw in ("dot", "ddot") and raw not in self.ns and following.kind == "open":
+            return self.derivative_call(token, 1 if raw == "dot" else 2)
+        resolved = resolve_name(raw, self.ns, order=token.order, typed=token.text,
+                                position=token.pos, called=called)
+        for text in resolved.notes:
+            self.note(text)
+        if resolved.kind == "function":
+            return self.function(resolved.value, token)
+        if resolved.kind == "split":
+            self.splice(token, resolved.value)
+            return self.nud(self.advance(), rbp)
+        if called and not following.space_before and not token.order:
+            self.note(f"read '{token.text}(…)' as {token.text}·(…): {token.text} is a variable, not a function")
+        return resolved.value
+
+    def splice(self, token: Token, parts: list[str]) -> None:
+        """Replace a glued name (``mg``, ``sin2x``) by one token per part, then parse on.
+
+        A part keeps its own position when it can be found in the typed text;
+        otherwise (``ωt`` typed, ``omega`` meant) each part spans the whole name.
+        """
+        pieces, cursor = [], 0
+        for n, part in enumerate(parts):
+            found = token.text.find(part, cursor)
+            if found >= 0 and token.order == 0:
+                start, end = token.pos + found, token.pos + found + len(part)
+                cursor = found + len(part)
+            else:
+                start, end = token.pos, token.end
+            if part.isdigit():
+                piece = Token("number", sympy.Integer(int(part)), start, end, part)
+            else:
+                piece = Token("name", part, start, end, part)
+            piece.space_before = token.space_before if n == 0 else False
+            piece.glued = n > 0
+            pieces.append(piece)
+        self.i -= 1
+        self.tokens[self.i:self.i + 1] = pieces
+
+    def function(self, name: str, token: Token) -> sympy.Expr:
+        power = None
+        following = self.peek()
+        if following.kind == "sup" or (following.kind == "op" and following.value == "^"):
+            self.advance()
+            exponent = sympy.Integer(following.value) if following.kind == "sup" else self.expression(_POW - 1)
+            if exponent == -1 and name in INVERSES:
+                self.note(f"read '{token.text}^-1' as the inverse function {INVERSES[name]}, not 1/{name}")
+                name = INVERSES[name]
+            elif exponent.is_Integer and 0 < exponent <= 1000:
+                power = exponent
+            else:
+                raise ExpressionError(f"cannot read '{token.text}^{exponent}'", following.pos, "syntax",
+                                      f"write ({name}(x))^n for a power of {name}")
+        spec = FUNCTIONS[name]
+        following = self.peek()
+        if following.kind == "open" and following.value in "({":
+            args = self.call_arguments(token, spec)
+        elif following.kind in _ATOM_STARTS or (following.kind == "op" and following.value == "-"):
+            args = [self.function_argument(token, name)]
+        else:
+            raise ExpressionError(f"{token.text} needs an argument, as in {name}(x)", token.pos, "syntax")
+        if name == "sqrt":
+            value = guarded_pow(args[0], sympy.Rational(1, 2), token.pos)
+        else:
+            value = checked(spec.build(*args), token.pos)
+        if token.text.lower() in ("log", "\\log"):
+            self.note("log is the natural logarithm (ln)")
+        return guarded_pow(value, power, token.pos) if power is not None else value
+
+    def call_arguments(self, token: Token, spec) -> list[sympy.Expr]:
+        opener = self.advance()
+        if self.peek().kind == "close":
+            raise ExpressionError(f"{token.text}() needs an argument", opener.pos, "syntax")
+        args = [self.expression(0)]
+        while self.peek().kind == "op" and self.peek().value == "," and opener.value == "(":
+            self.advance()
+            args.append(self.expression(0))
+        self.expect_close(opener)
+        if not spec.min_args <= len(args) <= spec.max_args:
+            wanted = (f"{spec.min_args}" if spec.min_args == spec.max_args
+                      else f"{spec.min_args} or {spec.max_args}")
+            raise ExpressionError(f"{token.text} takes {wanted} argument{'s' if spec.max_args > 1 else ''}, "
+                                  f"got {len(args)}", token.pos, "syntax")
+        return args
+
+    def function_argument(self, token: Token, name: str) -> sympy.Expr:
+        """The argument of a function written without parentheses: one factor and its power.
+
+        Factors typed glued together stay together: ``sin 2x`` is sin(2x) and
+        ``cos ωt`` is cos(ω·t), because nobody means sin(2)·x.
+        """
+        arg = self.expression(_MUL)
+        glued = False  # glued by us (2 then x), not by a split name, which has its own note
+        while True:
+            following, last = self.peek(), self.tokens[self.i - 1]
+            split_part = following.glued
+            typed_glued = last.kind == "number" and following.pos == last.end and not following.space_before
+            if not (following.kind == "name" and (split_part or typed_glued)
+                    and following.value.lower() not in FUNCTIONS):
+                break
+            arg = checked(sympy.Mul(arg, self.expression(_MUL)), following.pos)
+            glued = glued or not split_part
+        if glued:
+            self.note(f"read '{self.text[token.pos:self.tokens[self.i - 1].end]}' as {name}({arg})")
+        following = self.peek()
+        if following.kind == "name" and following.value.lower() not in FUNCTIONS \
+                and not following.forced_function:
+            self.note(f"read '{self.text[token.pos:following.end]}' as {name}({arg})·{following.text}")
+        return arg
+
+    def derivative_call(self, token: Token, order: int) -> sympy.Expr:
+        opener = self.advance()
+        inner = self.advance()
+        if inner.kind != "name":
+            raise ExpressionError(f"{token.text}(…) takes a variable name, as in {token.text}(theta)",
+                                  inner.pos, "syntax")
+        self.expect_close(opener)
+        return self.derivative_of(inner, order)
+
+    def derivative_of(self, inner: Token, order: int) -> sympy.Expr:
+        resolved = resolve_name(inner.value, self.ns, order=order + inner.order, typed=inner.text,
+                                position=inner.pos)
+        if resolved.kind != "symbol":
+            raise ExpressionError(f"'{inner.text}' is not a variable that has a time derivative",
+                                  inner.pos, "unknown_name")
+        return resolved.value
+
+    # -- LaTeX structures ----------------------------------------------------
+    def braced(self, command: Token) -> sympy.Expr:
+        opener = self.advance()
+        if opener.kind != "open" or opener.value != "{":
+            raise ExpressionError(f"{command.text} needs braces, as in \\frac{{a}}{{b}}", opener.pos, "syntax")
+        if self.peek().kind == "close":
+            raise ExpressionError("empty braces", opener.pos, "syntax")
+        inner = self.expression(0)
+        self.expect_close(opener)
+        return inner
+
+    def latex_command(self, token: Token) -> sympy.Expr:
+        if token.value == "frac":
+            numerator = self.braced(token)
+            denominator = self.braced(token)
+            return checked(sympy.Mul(numerator, guarded_pow(denominator, sympy.Integer(-1), token.pos)),
+                           token.pos)
+        if token.value == "sqrt":
+            index = sympy.Integer(2)
+            if self.peek().kind == "open" and self.peek().value == "[":
+                opener = self.advance()
+                index = self.expression(0)
+                self.expect_close(opener)
+                if not (index.is_Integer and 2 <= index <= 1000):
+                    raise ExpressionError("the root index must be a whole number from 2 up, as in \\sqrt[3]{x}",
+                                          opener.pos, "syntax")
+            following = self.peek()
+            arg = self.braced(token) if following.kind == "open" and following.value == "{" \
+                else self.function_argument(token, "sqrt")
+            return guarded_pow(arg, 1 / index, token.pos)
+        # \dot{x}, \ddot{x}, \dot x
+        order = 1 if token.value == "dot" else 2
+        following = self.peek()
+        if following.kind == "open" and following.value == "{":
+            opener = self.advance()
+            inner = self.advance()
+            if inner.kind == "command" and inner.value in ("dot", "ddot"):
+                raise ExpressionError("nested \\dot is not supported; write \\ddot{x}", inner.pos, "syntax")
+            if inner.kind != "name":
+                raise ExpressionError(f"{token.text}{{…}} takes a variable name", inner.pos, "syntax")
+            self.expect_close(opener)
+            return self.derivative_of(inner, order)
+        inner = self.advance()
+        if inner.kind != "name":
+            raise ExpressionError(f"{token.text} takes a variable name, as in {token.text}{{\\theta}}",
+                                  inner.pos, "syntax")
+        return self.derivative_of(inner, order)
+
+
+# -- entry points -------------------------------------------------------------
+
+def _namespace(namespace) -> Namespace:
+    if isinstance(namespace, Namespace):
+        return namespace
+    if isinstance(namespace, Mapping):  # {name: {"dimension", "domain"}} as the checker receives it
+        return Namespace.from_spec(namespace)
+    raise TypeError(f"expected a Namespace, got {type(namespace).__name__}")
+
+
+def _prepare(text: str, limit: int = MAX_LENGTH) -> list[Token]:
+    if not isinstance(text, str):
+        raise ExpressionError(f"expected text, got {type(text).__name__}", None, "syntax")
+    # Length first: nothing below runs on a megabyte of input.
+    if len(text) > limit:
+        raise ExpressionError(f"the text is too long ({len(text)} characters, at most {limit})",
+                              limit, "too_long")
+    if not text.strip():
+        raise ExpressionError("the answer is empty", 0, "empty", "type an expression")
+    tokens = tokenize(text)
+    check_brackets(tokens)
+    return tokens
+
+
+def _without_newlines(tokens: list[Token]) -> list[Token]:
+    kept: list[Token] = []
+    space = False
+    for token in tokens:
+        if token.kind == "newline":
+            space = True
+            continue
+        if space:
+            token.space_before = True
+            space = False
+        kept.append(token)
+    return kept
+
+
+def _real(expr: sympy.Expr, position: int) -> sympy.Expr:
+    # checked() sees I where it is built; sympy can also create it deeper in one step (atan2 of a complex).
+    if expr.has(sympy.I):
+        raise not_real(position)
+    return expr
+
+
+def _flat(expr: sympy.Expr) -> sympy.Expr:
+    """Rebuild any Mul inside a Mul (or Add inside an Add) that sympy left unflattened.
+
+    ``sqrt(-theta*l^4)`` evaluates to ``Mul(l**2, sqrt(-theta))`` built with
+    evaluate=False, and multiplying that by more factors can leave it nested;
+    its ``str`` would then read back as a different (flat) tree.
+    """
+    if expr.is_Atom or not expr.args:
+        return expr
+    args = [_flat(arg) for arg in expr.args]
+    nested = (expr.is_Mul or expr.is_Add) and any(arg.func is expr.func for arg in args)
+    if nested or any(new is not old for new, old in zip(args, expr.args)):
+        return expr.func(*args)
+    return expr
+
+
+def _finish(parser: _Parser, expr: sympy.Expr) -> Parsed:
+    expr = _flat(_real(expr, 0))
+    latex = sympy.latex(expr, symbol_names=parser.ns.latex_names())
+    return Parsed(expr, str(expr), latex, list(parser.notes))
+
+
+def parse_expression(text: str, namespace: Namespace) -> Parsed:
+    """Parse an expression over the namespace's variables.
+
+    Parameters
+    ----------
+    text : str
+        What an instructor or student typed.
+    namespace : Namespace
+        The only names the text may use (besides whitelisted functions and pi, e).
+
+    Returns
+    -------
+    Parsed
+        ``expr`` (sympy), canonical ``text``, ``latex`` and ``notes``.
+
+    Raises
+    ------
+    ExpressionError
+        With a 0-based ``position``, a ``code`` and usually a ``hint``.
+
+    Examples
+    --------
+    >>> from grader.expressions import Namespace, Variable
+    >>> ns = Namespace([Variable("m", "mass", "positive"), Variable("g", "acceleration", "positive"),
+    ...                 Variable("theta", "angle", "real")])
+    >>> p = parse_expression("mg(1 - cos θ)", ns)
+    >>> p.text, p.notes
+    ('g*m*(1 - cos(theta))', ["read 'mg' as m·g", "read 'g(…)' as g·(…): g is a variable, not a function"])
+    >>> parse_expression("0.5*m", ns).expr == parse_expression("m/2", ns).expr
+    True
+    """
+    namespace = _namespace(namespace)
+    tokens = _without_newlines(_prepare(text))
+    parser = _Parser(tokens, namespace, text)
+    expr = parser.expression(0)
+    token = parser.peek()
+    if token.kind == "op" and token.value == "=":
+        raise ExpressionError("this should be an expression, not an equation", token.pos, "syntax",
+                              "remove the '=' and everything on one side of it")
+    if token.kind != "end":
+        raise parser.unexpected(token)
+    return _finish(parser, expr)
+
+
+def _equation(parser: _Parser) -> ParsedEquation:
+    lhs = parser.expression(0)
+    token = parser.peek()
+    if not (token.kind == "op" and token.value == "="):
+        if token.kind == "end":
+            raise ExpressionError("an equation needs '='", token.pos, "syntax", "write left side = right side")
+        raise parser.unexpected(token)
+    parser.advance()
+    rhs = parser.expression(0)
+    token = parser.peek()
+    if token.kind != "end":
+        if token.kind == "op" and token.value == "=":
+            raise ExpressionError("an equation has exactly one '='", token.pos, "syntax")
+        raise parser.unexpected(token)
+    lhs, rhs = _flat(_real(lhs, 0)), _flat(_real(rhs, token.pos))
+    names = parser.ns.latex_names()
+    return ParsedEquation(lhs, rhs, f"{lhs} = {rhs}",
+                          f"{sympy.latex(lhs, symbol_names=names)} = {sympy.latex(rhs, symbol_names=names)}",
+                          list(parser.notes))
+
+
+def parse_equation(text: str, namespace: Namespace) -> ParsedEquation:
+    """Parse ``lhs = rhs`` (``==`` also accepted) with exactly one top-level ``=``.
+
+    Examples
+    --------
+    >>> from grader.expressions import Namespace, Variable
+    >>> ns = Namespace([Variable("x", "length", "real"), Variable("l", "length", "positive")])
+    >>> eq = parse_equation("x^2 == l^2", ns)
+    >>> eq.lhs, eq.rhs, eq.text
+    (x**2, l**2, 'x**2 = l**2')
+    """
+    namespace = _namespace(namespace)
+    tokens = _without_newlines(_prepare(text))
+    return _equation(_Parser(tokens, namespace, text))
+
+
+def parse_system(text: str, namespace: Namespace) -> list[ParsedEquation]:
+    """Parse several equations separated by ``;``, ``,`` or new lines (at top level).
+
+    Examples
+    --------
+    >>> from grader.expressions import Namespace, Variable
+    >>> ns = Namespace([Variable("x", "length", "real"), Variable("y", "length", "real"),
+    ...                 Variable("l", "length", "positive")])
+    >>> [eq.text for eq in parse_system("x = 1; y = atan2(x, l + y)\\n x + y = 0", ns)]
+    ['x = 1', 'y = atan2(x, l + y)', 'x + y = 0']
+    """
+    namespace = _namespace(namespace)
+    tokens = _prepare(text, 4 * MAX_LENGTH)
+    chunks: list[list[Token]] = [[]]
+    depth = 0
+    for token in tokens[:-1]:
+        if token.kind == "open":
+            depth += 1
+        elif token.kind == "close":
+            depth -= 1
+        if depth == 0 and (token.kind == "newline" or (token.kind == "op" and token.value in ",;")):
+            chunks.append([])
+        else:
+            chunks[-1].append(token)
+    equations = []
+    for chunk in chunks:
+        if not chunk:
+            continue
+        last = chunk[-1]
+        end = Token("end", None, last.end, last.end, "")
+        equations.append(_equation(_Parser(_without_newlines(chunk) + [end], namespace, text)))
+    if not equations:
+        raise ExpressionError("no equations found", 0, "empty")
+    return equations

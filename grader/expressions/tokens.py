@@ -1,0 +1,359 @@
+"""Tokenizer: expression text -> tokens, with every token's position in the original text.
+
+The text is never rewritten before tokenizing (no Unicode normalization, no
+LaTeX pre-substitution), so every position in an error points at what the
+student actually typed.  Token kinds:
+
+``number``   exact sympy ``Integer``/``Rational`` (decimals are exact: 0.5 is 1/2)
+``name``     identifier with Greek spelled out and subscripts flattened (``θ₁`` -> ``theta_1``);
+             ``order`` counts derivative marks (``θ̇``, ``theta'``)
+``op``       ``+ - * / ^ = , ;`` (``**`` -> ``^``, ``==`` -> ``=``, ``·`` -> ``*``, ``−`` -> ``-``)
+``open`` / ``close``  ``( [ {`` and ``) ] }`` (``\\left(`` too)
+``sup``      a run of superscript characters, ``²`` or ``⁻¹``, as an int
+``root``     ``√`` (2), ``∛`` (3), ``∜`` (4)
+``command``  LaTeX structure: ``frac``, ``sqrt``, ``dot``, ``ddot``
+``prime``    a prime not directly after a name (an error if the parser reaches it)
+``newline``  line break (separates equations in a system, blank otherwise)
+``bad``      a character the parser reports when it gets there (``!``, ``.``, ``:``)
+``end``      end of text
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import sympy
+
+from .errors import ExpressionError
+from .latex_input import classify_command, subscript_text
+from .magnitudes import MAX_DIGITS
+from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, GREEK_CHARS, OPERATOR_CHARS, PRIME_CHARS,
+                            ROOT_CHARS, SUBSCRIPT_DIGITS, SUPERSCRIPT_CHARS, bad_character, is_space)
+
+__all__ = ["Token", "tokenize", "check_brackets", "MAX_NESTING"]
+
+#: Deepest bracket nesting accepted; real answers need a handful.
+MAX_NESTING = 50
+
+_PAIRS = {"(": ")", "[": "]", "{": "}"}
+_OPENERS = {v: k for k, v in _PAIRS.items()}
+
+
+@dataclass
+class Token:
+    """One token; ``text`` is the slice of the original input it came from."""
+
+    kind: str
+    value: object
+    pos: int
+    end: int
+    text: str
+    space_before: bool = False
+    order: int = 0
+    forced_function: bool = False
+    decimal: bool = False
+    glued: bool = False  # a later part of a split name (mg -> m, g): belongs with the part before
+    error: ExpressionError | None = None
+
+
+def _is_name_start(ch: str) -> bool:
+    return (ch.isascii() and (ch.isalpha() or ch == "_")) or ch in GREEK_CHARS
+
+
+def _is_digit(ch: str) -> bool:
+    return "0" <= ch <= "9"
+
+
+# Printable ASCII the grammar does not use, and what to tell the student.
+_PUNCTUATION = {
+    "!": ("factorial (!) is not supported", "unsupported_function"),
+    ":": ("':' is not part of a formula", "syntax"),
+    "<": ("inequalities are not supported", "syntax"),
+    ">": ("inequalities are not supported", "syntax"),
+    "|": ("'|' is not supported; write abs(x) for an absolute value", "syntax"),
+    '"': ("quotes are not part of a formula", "syntax"),
+    "`": ("backquotes are not part of a formula", "syntax"),
+}
+
+
+class _Tokenizer:
+    def __init__(self, text: str) -> None:
+        self.text = text
+        self.n = len(text)
+        self.i = 0
+        self.tokens: list[Token] = []
+        self.space = False
+
+    def emit(self, kind: str, value, start: int, end: int, **extra) -> Token:
+        token = Token(kind, value, start, end, self.text[start:end], self.space, **extra)
+        self.tokens.append(token)
+        self.space = False
+        self.i = end
+        return token
+
+    def peek(self, offset: int = 0) -> str:
+        j = self.i + offset
+        return self.text[j] if j < self.n else ""
+
+    def run(self) -> list[Token]:
+        while self.i < self.n:
+            self.step()
+        self.tokens.append(Token("end", None, self.n, self.n, "", self.space))
+        return self.tokens
+
+    def step(self) -> None:
+        ch, start = self.text[self.i], self.i
+        if ch == "\n":
+            self.emit("newline", "\n", start, start + 1)
+        elif is_space(ch) or ch == "$":  # $...$ around pasted LaTeX is only decoration
+            self.space = True
+            self.i += 1
+        elif _is_digit(ch) or (ch == "." and _is_digit(self.peek(1))):
+            self.number()
+        elif _is_name_start(ch):
+            self.identifier(start, "", start)
+        elif ch in DOTTED_LETTERS:
+            letter, order = DOTTED_LETTERS[ch]
+            self.finish_name(start, letter, start + 1, order)
+        elif ch == "\\":
+            self.command()
+        elif ch in OPERATOR_CHARS:
+            self.emit("op", OPERATOR_CHARS[ch], start, start + 1)
+        elif ch == "*" and self.peek(1) == "*":
+            self.emit("op", "^", start, start + 2)
+        elif ch == "=" and self.peek(1) == "=":
+            self.emit("op", "=", start, start + 2)
+        elif ch in "+-*/^=,;":
+            self.emit("op", ch, start, start + 1)
+        elif ch in _PAIRS:
+            self.emit("open", ch, start, start + 1)
+        elif ch in _OPENERS:
+            self.emit("close", ch, start, start + 1)
+        elif ch in SUPERSCRIPT_CHARS:
+            self.superscript()
+        elif ch in ROOT_CHARS:
+            self.emit("root", ROOT_CHARS[ch], start, start + 1)
+        elif ch in PRIME_CHARS:
+            self.emit("prime", PRIME_CHARS[ch], start, start + 1)
+        elif ch == ".":
+            previous = self.tokens[-1].kind if self.tokens else None
+            message = ("'.' (attribute access) is not allowed" if previous in ("name", "close")
+                       else "a decimal point must be followed by digits, as in 0.5")
+            code = "unsupported_function" if previous in ("name", "close") else "syntax"
+            self.emit("bad", ".", start, start + 1, error=ExpressionError(message, start, code))
+        elif ch in _PUNCTUATION:
+            message, code = _PUNCTUATION[ch]
+            self.emit("bad", ch, start, start + 1, error=ExpressionError(message, start, code))
+        elif ch.isascii() and ch.isprintable():
+            self.emit("bad", ch, start, start + 1,
+                      error=ExpressionError(f"'{ch}' is not allowed in a formula", start, "syntax"))
+        else:
+            raise bad_character(ch, start)
+
+    # -- numbers ------------------------------------------------------------
+    def number(self) -> None:
+        text, start = self.text, self.i
+        j = start
+        while j < self.n and _is_digit(text[j]):
+            j += 1
+        int_part, frac_part, exponent, decimal = text[start:j], "", 0, False
+        if j < self.n and text[j] == "." and j + 1 < self.n and _is_digit(text[j + 1]):
+            k = j + 1
+            while k < self.n and _is_digit(text[k]):
+                k += 1
+            frac_part, j, decimal = text[j + 1:k], k, True
+        if j < self.n and text[j] in "eE":
+            k = j + 1
+            if k < self.n and text[k] in "+-":
+                k += 1
+            if k < self.n and _is_digit(text[k]):
+                m = k
+                while m < self.n and _is_digit(text[m]):
+                    m += 1
+                # Check the exponent's size before building 10**exponent.
+                if m - k > 5:
+                    raise ExpressionError("number too large", start, "too_large")
+                exponent, j, decimal = int(text[j + 1:m]), m, True
+        mantissa = (int_part + frac_part).lstrip("0") or "0"
+        scale = exponent - len(frac_part)
+        if len(mantissa) > MAX_DIGITS or (mantissa != "0" and len(mantissa) + scale > MAX_DIGITS) \
+                or (mantissa != "0" and -scale > MAX_DIGITS):
+            raise ExpressionError("number too large (more than 1000 digits)", start, "too_large",
+                                  "no answer here needs numbers that size")
+        value = sympy.Integer(int(mantissa))
+        if mantissa != "0" and scale:
+            value = value * 10 ** scale if scale > 0 else sympy.Rational(int(mantissa), 10 ** -scale)
+        self.emit("number", sympy.Rational(value), start, j, decimal=decimal)
+
+    # -- names ----------------------------------------------------------------
+    def identifier(self, start: int, prefix: str, i: int) -> None:
+        text, parts, after_subscript_digit = self.text, [prefix], False
+        order = 0
+        while i < self.n:
+            c = text[i]
+            subscript_digit = False
+            if c == "_" and i + 1 < self.n and text[i + 1] == "{":
+                close = self.matching_brace(i + 1)
+                parts.append("_" + subscript_text(text[i + 2:close], i + 2))
+                i = close + 1
+            elif c == "_" and i + 1 < self.n and text[i + 1] == "\\":
+                j = i + 2
+                while j < self.n and text[j].isascii() and text[j].isalpha():
+                    j += 1
+                parts.append("_" + subscript_text(text[i + 1:j], i + 1))
+                i = j
+            elif c.isascii() and (c.isalnum() or c == "_"):
+                parts.append(c)
+                i += 1
+            elif c in GREEK_CHARS:
+                parts.append(GREEK_CHARS[c])
+                i += 1
+            elif c in SUBSCRIPT_DIGITS:
+                parts.append(("" if after_subscript_digit else "_") + SUBSCRIPT_DIGITS[c])
+                subscript_digit = True
+                i += 1
+            elif c in COMBINING_DOTS:
+                # An accent ends the name: θ̇ is the derivative of everything typed so far.
+                while i < self.n and text[i] in COMBINING_DOTS:
+                    order += COMBINING_DOTS[text[i]]
+                    i += 1
+                break
+            else:
+                break
+            after_subscript_digit = subscript_digit
+        self.finish_name(start, "".join(parts), i, order)
+
+    def finish_name(self, start: int, name: str, i: int, order: int, **extra) -> None:
+        while i < self.n and self.text[i] in PRIME_CHARS:
+            order += PRIME_CHARS[self.text[i]]
+            i += 1
+        self.emit("name", name, start, i, order=order, **extra)
+
+    def matching_brace(self, open_at: int) -> int:
+        depth = 0
+        for j in range(open_at, self.n):
+            if self.text[j] == "{":
+                depth += 1
+            elif self.text[j] == "}":
+                depth -= 1
+                if depth == 0:
+                    return j
+        raise ExpressionError("'{' is never closed", open_at, "unbalanced")
+
+    # -- LaTeX ----------------------------------------------------------------
+    def command(self) -> None:
+        text, start = self.text, self.i
+        j = start + 1
+        while j < self.n and text[j].isascii() and text[j].isalpha():
+            j += 1
+        if j == start + 1:
+            self.command_symbol(start)
+            return
+        kind, value = classify_command(text[start + 1:j], start)
+        if kind == "greek":
+            self.identifier(start, value, j)
+        elif kind == "function":
+            self.finish_name(start, value, j, 0, forced_function=True)
+        elif kind == "op":
+            self.emit("op", value, start, j)
+        elif kind == "space":
+            self.space = True
+            self.i = j
+        elif kind == "wrapper":
+            k = j
+            while k < self.n and is_space(text[k]):
+                k += 1
+            if k >= self.n or text[k] != "{":
+                raise ExpressionError(f"\\{value} needs braces, as in \\{value}{{x}}", start, "syntax")
+            close = self.matching_brace(k)
+            self.identifier(start, subscript_text(text[k + 1:close], k + 1), close + 1)
+        elif value in ("left", "right"):
+            self.delimiter(start, j, value)
+        else:
+            self.emit("command", value, start, j)
+
+    def command_symbol(self, start: int) -> None:
+        ch = self.text[start + 1] if start + 1 < self.n else ""
+        if ch in (",", ";", ":", "!", " ", ">"):
+            self.space = True
+            self.i = start + 2
+        elif ch in ("{", "}"):
+            self.emit("open" if ch == "{" else "close", ch, start, start + 2)
+        elif ch == "\\":
+            self.emit("newline", "\n", start, start + 2)
+        else:
+            raise ExpressionError("'\\' must start a LaTeX command such as \\frac", start, "syntax")
+
+    def delimiter(self, start: int, j: int, which: str) -> None:
+        while j < self.n and is_space(self.text[j]):
+            j += 1
+        ch = self.text[j] if j < self.n else ""
+        if ch == "\\" and j + 1 < self.n and self.text[j + 1] in "{}":
+            ch, j = self.text[j + 1], j + 1
+        if ch in "([{" and ch and which == "left":
+            self.emit("open", ch, start, j + 1)
+        elif ch in ")]}" and ch and which == "right":
+            self.emit("close", ch, start, j + 1)
+        else:
+            shown = ch or "end of text"
+            raise ExpressionError(f"\\{which} followed by '{shown}' is not supported", start,
+                                  "unsupported_function", "use \\left( ... \\right), or abs(x) for |x|")
+
+    def superscript(self) -> None:
+        start, j = self.i, self.i
+        while j < self.n and self.text[j] in SUPERSCRIPT_CHARS:
+            j += 1
+        digits = "".join(SUPERSCRIPT_CHARS[c] for c in self.text[start:j])
+        body = digits.lstrip("+-")
+        if not body or not body.isdigit() or len(digits) - len(body) > 1:
+            raise ExpressionError(f"cannot read the superscript '{self.text[start:j]}'", start, "syntax",
+                                  "write the power with ^, as in x^-1")
+        if len(body) > 4:
+            raise ExpressionError("exponent too large", start, "too_large")
+        self.emit("sup", int(digits), start, j)
+
+
+def tokenize(text: str) -> list[Token]:
+    """Split text into tokens; raises ``ExpressionError`` on characters it refuses.
+
+    Examples
+    --------
+    >>> [(t.kind, t.value) for t in tokenize("2θ̇ ·x²")]
+    [('number', 2), ('name', 'theta'), ('op', '*'), ('name', 'x'), ('sup', 2), ('end', None)]
+    >>> tokenize("2θ̇")[1].order
+    1
+    """
+    return _Tokenizer(text).run()
+
+
+def check_brackets(tokens: list[Token]) -> None:
+    """Raise for an unmatched or mismatched bracket, pointing at it, or nesting beyond :data:`MAX_NESTING`.
+
+    Checked before parsing so ``((((...`` is refused without recursing into it.
+
+    Examples
+    --------
+    >>> try:
+    ...     check_brackets(tokenize("(a + b"))
+    ... except ExpressionError as err:
+    ...     print(err.code, err.position)
+    unbalanced 0
+    """
+    stack: list[Token] = []
+    for token in tokens:
+        if token.kind == "open":
+            stack.append(token)
+            if len(stack) > MAX_NESTING:
+                raise ExpressionError(f"brackets nested more than {MAX_NESTING} deep", token.pos, "too_deep")
+        elif token.kind == "close":
+            opener = _OPENERS[token.value]
+            if not stack:
+                raise ExpressionError(f"'{token.value}' has no matching '{opener}'", token.pos, "unbalanced")
+            top = stack.pop()
+            if top.value != opener:
+                raise ExpressionError(f"'{token.value}' does not match the '{top.value}' at position {top.pos}",
+                                      token.pos, "unbalanced", f"close it with '{_PAIRS[top.value]}'")
+    if stack:
+        top = stack[-1]
+        raise ExpressionError(f"'{top.value}' is never closed", top.pos, "unbalanced",
+                              f"add a '{_PAIRS[top.value]}'")

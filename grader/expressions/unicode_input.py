@@ -1,0 +1,108 @@
+"""What non-ASCII characters mean in typed expressions.
+
+Students paste from phones, Word and PDFs, so ``θ``, ``·``, ``−``, ``²`` and
+``√`` are accepted.  Characters that merely *look* like Latin letters (Cyrillic
+``а``, Greek omicron ``ο``, full-width ``ｍ``) and invisible ones are refused
+with a message naming them: accepting them silently would make ``а`` and ``a``
+different variables and grade a correct answer wrong.
+"""
+
+from __future__ import annotations
+
+import unicodedata
+
+from .errors import ExpressionError
+
+__all__ = ["GREEK_CHARS", "OPERATOR_CHARS", "SUPERSCRIPT_CHARS", "SUBSCRIPT_DIGITS", "ROOT_CHARS",
+           "COMBINING_DOTS", "DOTTED_LETTERS", "PRIME_CHARS", "is_space", "bad_character"]
+
+_GREEK_NAMES = ("alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi "
+                "omicron pi rho sigma tau upsilon phi chi psi omega").split()
+
+#: Greek letters accepted in names, spelled out (θ -> theta).  Omicron is left out
+#: because it is indistinguishable from Latin o.
+GREEK_CHARS: dict[str, str] = {chr(0x3B1 + i): name for i, name in enumerate(_GREEK_NAMES[:17])}
+GREEK_CHARS.update({chr(0x3C3 + i): name for i, name in enumerate(_GREEK_NAMES[17:])})
+del GREEK_CHARS["ο"]
+GREEK_CHARS.update({"ς": "sigma", "ϑ": "theta", "ϕ": "phi", "ϵ": "epsilon", "ϱ": "rho",
+                    "µ": "mu",  # MICRO SIGN, what many keyboards type for mu
+                    "Γ": "Gamma", "Δ": "Delta", "Θ": "Theta", "Λ": "Lambda", "Ξ": "Xi",
+                    "Π": "Pi", "Σ": "Sigma", "Φ": "Phi", "Ψ": "Psi", "Ω": "Omega"})
+
+#: Operator look-alikes -> ASCII operator.
+OPERATOR_CHARS = {"·": "*", "⋅": "*", "×": "*", "∗": "*", "•": "*", "−": "-", "÷": "/", "∕": "/"}
+
+#: Superscript characters -> the ASCII they stand for (x² is x^2).
+SUPERSCRIPT_CHARS = {"⁰": "0", "¹": "1", "²": "2", "³": "3", "⁴": "4", "⁵": "5", "⁶": "6",
+                     "⁷": "7", "⁸": "8", "⁹": "9", "⁻": "-", "⁺": "+"}
+
+#: Subscript digits (m₁ is m_1).
+SUBSCRIPT_DIGITS = {chr(0x2080 + i): str(i) for i in range(10)}
+
+#: Radical signs -> root index.
+ROOT_CHARS = {"√": 2, "∛": 3, "∜": 4}
+
+#: Combining accents after a letter: dot above = first, diaeresis = second time derivative.
+COMBINING_DOTS = {"\u0307": 1, "\u0308": 2}
+
+#: Precomposed dotted letters.
+DOTTED_LETTERS = {"ẋ": ("x", 1), "ẏ": ("y", 1), "ż": ("z", 1), "ṙ": ("r", 1), "ṡ": ("s", 1),
+                  "ẍ": ("x", 2), "ẗ": ("t", 2)}
+
+#: Prime marks after a name: theta' and theta'' are time derivatives.
+PRIME_CHARS = {"'": 1, "′": 1, "″": 2, "’": 1}
+
+_INVISIBLE = {"\u200b", "\u200c", "\u200d", "\u2060", "\ufeff", "\u00ad", "\u200e", "\u200f"}
+
+# Letters from other scripts that look like Latin ones, with the letter they imitate.
+_LOOKALIKES = {
+    "а": "a", "е": "e", "о": "o", "р": "p", "с": "c", "х": "x", "у": "y", "к": "k", "м": "m",
+    "т": "t", "н": "h", "в": "b", "і": "i", "ј": "j", "ѕ": "s", "ԁ": "d", "ɡ": "g",
+    "А": "A", "В": "B", "Е": "E", "К": "K", "М": "M", "Н": "H", "О": "O", "Р": "P", "С": "C",
+    "Т": "T", "Х": "X", "І": "I",
+    "ο": "o", "Α": "A", "Β": "B", "Ε": "E", "Ζ": "Z", "Η": "H", "Ι": "I", "Κ": "K", "Μ": "M",
+    "Ν": "N", "Ο": "O", "Ρ": "P", "Τ": "T", "Υ": "Y", "Χ": "X",
+}
+
+
+def is_space(ch: str) -> bool:
+    """Blank characters, including no-break and thin spaces pasted from documents.
+
+    Examples
+    --------
+    >>> is_space("\u00a0"), is_space("\u200b")
+    (True, False)
+    """
+    return ch in " \t\r" or unicodedata.category(ch) == "Zs"
+
+
+def bad_character(ch: str, position: int) -> ExpressionError:
+    """The error for a character the grammar refuses, naming it and saying what to type.
+
+    Examples
+    --------
+    >>> bad_character("а", 3).message
+    "'а' (CYRILLIC SMALL LETTER A) looks like the Latin letter 'a' but is a different character"
+    """
+    name = unicodedata.name(ch, f"U+{ord(ch):04X}")
+    if ch in _LOOKALIKES:
+        latin = _LOOKALIKES[ch]
+        return ExpressionError(f"'{ch}' ({name}) looks like the Latin letter "
+                               f"'{latin}' but is a different character", position, "bad_character",
+                               f"retype it as '{latin}' on an English keyboard layout")
+    if 0xFF01 <= ord(ch) <= 0xFF5E:
+        ascii_ch = chr(ord(ch) - 0xFEE0)
+        return ExpressionError(f"full-width character '{ch}' ({name})",
+                               position, "bad_character", f"type the ordinary '{ascii_ch}' (half-width input)")
+    if ch in _INVISIBLE or unicodedata.category(ch) == "Cf":
+        return ExpressionError(f"invisible character {name} (U+{ord(ch):04X})",
+                               position, "bad_character", "delete it (it often comes with copy and paste)")
+    if unicodedata.category(ch).startswith("C"):
+        return ExpressionError(f"control character U+{ord(ch):04X}",
+                               position, "bad_character", "delete it")
+    if unicodedata.combining(ch):
+        return ExpressionError(f"accent {name} does not follow a variable name",
+                               position, "bad_character", "a dot accent marks a time derivative, as in θ̇")
+    shown = ch if ch.isprintable() else f"U+{ord(ch):04X}"
+    return ExpressionError(f"character '{shown}' ({name}) is not allowed",
+                           position, "bad_character")

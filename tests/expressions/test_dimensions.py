@@ -1,0 +1,108 @@
+"""Dimensions: named and SI input, words for students, and the dimension of an expression."""
+
+from fractions import Fraction
+
+import pytest
+import sympy
+
+from grader.expressions import Dimension, DimensionError, dimension_of, parse_dimension
+from grader.expressions.dimensions import NAMED_DIMENSIONS
+
+M, L, T = Dimension(1, 0, 0), Dimension(0, 1, 0), Dimension(0, 0, 1)
+
+
+@pytest.mark.parametrize("name, si", [
+    ("dimensionless", "1"), ("angle", "rad"), ("mass", "kg"), ("length", "m"), ("time", "s"),
+    ("velocity", "m/s"), ("acceleration", "m/s^2"), ("force", "N"), ("energy", "J"),
+    ("momentum", "kg*m/s"), ("angular_velocity", "rad/s"), ("angular_acceleration", "s^-2"),
+    ("frequency", "Hz"), ("moment_of_inertia", "kg*m^2"), ("torque", "N*m"), ("power", "W"),
+    ("area", "m^2"), ("volume", "m**3"), ("stiffness", "N/m"), ("density", "kg/m^3"),
+    ("angular_momentum", "kg*m^2/s"),
+])
+def test_every_named_dimension_matches_its_si_units(name, si):
+    assert parse_dimension(name) == parse_dimension(si)
+
+
+def test_all_named_dimensions_are_tested():
+    assert len(NAMED_DIMENSIONS) == 21
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("kg*m^2", M * L ** 2),
+    ("m/s^2", L / T ** 2),
+    ("1/s", Dimension(0, 0, -1)),
+    ("s^-1", Dimension(0, 0, -1)),
+    ("(kg*m)/(s*s)", M * L / T ** 2),
+    ("m^(1/2)", Dimension(0, Fraction(1, 2), 0)),
+    ("J/(kg*m)", L / T ** 2),
+    ("Angular Velocity", Dimension(0, 0, -1)),
+])
+def test_si_expressions(text, expected):
+    assert parse_dimension(text) == expected
+
+
+@pytest.mark.parametrize("text", ["furlong", "kg*", "m^x", "(m", ""])
+def test_bad_dimension_text_is_refused(text):
+    with pytest.raises(DimensionError):
+        parse_dimension(text)
+
+
+@pytest.mark.parametrize("dim, words", [
+    (M * L / T ** 2, "a force (kg·m/s²)"),
+    (L, "a length (m)"),
+    (Dimension(), "dimensionless"),
+    (M * L ** 2 / T ** 2, "an energy or torque (kg·m²/s²)"),
+    (Dimension(0, 0, -1), "an angular velocity or frequency (1/s)"),
+    (M * L ** 3, "a quantity in kg·m³"),
+])
+def test_describe_in_words(dim, words):
+    assert dim.describe() == words
+
+
+m, g, l, x, theta = sympy.symbols("m g l x theta")
+DIMS = {m: M, g: L / T ** 2, l: L, x: L, theta: Dimension()}
+
+
+@pytest.mark.parametrize("expr, expected", [
+    (m * g * l * sympy.cos(theta), M * L ** 2 / T ** 2),           # potential energy of a pendulum
+    (sympy.sqrt(g / l), Dimension(0, 0, -1)),                      # small-oscillation frequency
+    (2 * sympy.pi * sympy.sqrt(l / g), T),                         # period
+    (l ** 2 - x ** 2, L ** 2),                                     # a constraint
+    (sympy.atan2(x, l), Dimension()),
+    (sympy.Abs(x), L),
+    (sympy.sign(x) * m, M),
+    (sympy.exp(-x / l) * m, M),
+    (sympy.Eq(m * g, m * g * sympy.sin(theta)), M * L / T ** 2),
+    (sympy.Integer(0), Dimension()),
+])
+def test_dimension_of_physical_expressions(expr, expected):
+    assert dimension_of(expr, DIMS) == expected
+
+
+@pytest.mark.parametrize("expr, words", [
+    (m * g + l, ["adds", "a force (kg·m/s²)", "a length (m)"]),      # sympy orders the terms
+    (l + 1, ["adds", "a length (m)", "a dimensionless number"]),
+    (sympy.sin(l), "sin needs a dimensionless argument, got a length (m)"),
+    (sympy.log(m), "log needs a dimensionless argument, got a mass (kg)"),
+    (sympy.atan2(x, m), "atan2 needs two arguments of one dimension"),
+    (l ** x, "raises to a power that is a length (m)"),
+    (l ** theta, "raises a length (m) to the non-numeric power theta"),
+    (sympy.Eq(m, l), "equates a mass (kg) to a length (m)"),
+    (sympy.Symbol("k"), "'k' has no known dimension"),
+])
+def test_dimension_mismatches_are_explained_in_words(expr, words):
+    with pytest.raises(DimensionError) as err:
+        dimension_of(expr, DIMS)
+    for fragment in [words] if isinstance(words, str) else words:
+        assert fragment in str(err.value)
+
+
+def test_symbols_match_by_name_whatever_their_assumptions():
+    positive_m = sympy.Symbol("m", positive=True)
+    assert dimension_of(positive_m * g, {"m": "mass", g: "acceleration"}) == M * L / T ** 2
+
+
+def test_dynamicsymbols_and_time_derivatives():
+    t = sympy.Symbol("t")
+    q = sympy.Function("q")(t)
+    assert dimension_of(q.diff(t, 2), {"q": "length"}) == L / T ** 2

@@ -1,0 +1,43 @@
+"""Exact arithmetic that cannot be made to explode."""
+
+import pytest
+import sympy
+
+from grader.expressions import ExpressionError
+from grader.expressions.magnitudes import MAX_DIGITS, checked, digits, guarded_pow
+
+x = sympy.Symbol("x")
+
+
+@pytest.mark.parametrize("base, exponent", [
+    (sympy.Integer(9), sympy.Integer(387420489)),     # 9^9^9 would have 370 million digits
+    (sympy.Integer(10), sympy.Integer(1001)),
+    (sympy.Integer(10) ** 500, sympy.Integer(3)),
+    (x, sympy.Integer(10 ** 6)),
+    (sympy.Integer(2), sympy.Rational(1, 10 ** 7)),
+])
+def test_huge_powers_are_refused_before_evaluation(base, exponent):
+    with pytest.raises(ExpressionError) as err:
+        guarded_pow(base, exponent, 0)
+    assert err.value.code == "too_large"
+
+
+@pytest.mark.parametrize("base, exponent, expected", [
+    (sympy.Integer(10), sympy.Integer(999), sympy.Integer(10) ** 999),
+    (sympy.Integer(2), sympy.Integer(1000), sympy.Integer(2) ** 1000),
+    (x, sympy.Integer(-1000), x ** -1000),
+    (sympy.Integer(4), sympy.Rational(1, 2), sympy.Integer(2)),
+])
+def test_reasonable_powers_are_built(base, exponent, expected):
+    assert guarded_pow(base, exponent, 0) == expected
+
+
+@pytest.mark.parametrize("expr", [sympy.zoo, sympy.nan, x + sympy.oo, sympy.I * x,
+                                  sympy.Integer(10) ** (MAX_DIGITS + 1)])
+def test_undefined_imaginary_or_huge_results_are_refused(expr):
+    with pytest.raises(ExpressionError):
+        checked(expr, 0)
+
+
+def test_digits_counts_numerator_or_denominator():
+    assert digits(sympy.Rational(1, 10 ** 50)) == 50

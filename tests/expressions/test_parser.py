@@ -1,0 +1,398 @@
+"""The whitelist parser: what instructors and students type, and what it must refuse."""
+
+import random
+import time
+
+import pytest
+import sympy
+
+from grader.expressions import ExpressionError, Namespace, Variable, parse_equation, parse_expression
+from grader.expressions.parser import parse_system
+
+
+def sym(ns, name):
+    return ns.symbol(name)
+
+
+def parse(text, ns):
+    return parse_expression(text, ns).expr
+
+
+# -- priority 1: the scene-file grammar ----------------------------------------
+
+@pytest.mark.parametrize("text, expected", [
+    ("m/2*(rdot^2 + r^2*thetadot^2)", lambda s: s("m") / 2 * (s("rdot") ** 2 + s("r") ** 2 * s("thetadot") ** 2)),
+    ("l^2 - x^2 - y^2", lambda s: s("l") ** 2 - s("x") ** 2 - s("y") ** 2),
+    ("lambda_surface", lambda s: s("lambda_surface")),
+    ("-Q_roll_s", lambda s: -s("Q_roll_s")),
+    ("m*g*r*cos(theta)", lambda s: s("m") * s("g") * s("r") * sympy.cos(s("theta"))),
+    ("m**2", lambda s: s("m") ** 2),
+    ("2^3^2", lambda s: sympy.Integer(512)),           # power is right-associative
+    ("-x^2", lambda s: -s("x") ** 2),                  # unary minus binds looser than ^
+    ("2^-1", lambda s: sympy.Rational(1, 2)),
+    ("x - y - l", lambda s: s("x") - s("y") - s("l")),  # left-associative
+    ("x / y / l", lambda s: s("x") / (s("y") * s("l"))),
+    ("atan2(y, x)", lambda s: sympy.atan2(s("y"), s("x"))),
+    ("sqrt(g/l)", lambda s: sympy.sqrt(s("g") / s("l"))),
+    ("ln(x) + log(y)", lambda s: sympy.log(s("x")) + sympy.log(s("y"))),
+    ("abs(x) + Abs(y)", lambda s: sympy.Abs(s("x")) + sympy.Abs(s("y"))),
+    ("exp(-t) + E^t", lambda s: sympy.exp(-s("t")) + sympy.exp(s("t"))),
+    ("pi*r^2", lambda s: sympy.pi * s("r") ** 2),
+    ("sinh(x/l) + cosh(x/l) + tanh(x/l)", lambda s: sympy.sinh(s("x") / s("l")) + sympy.cosh(s("x") / s("l")) + sympy.tanh(s("x") / s("l"))),
+    ("cot(theta)*sec(theta)*csc(theta)", lambda s: sympy.cot(s("theta")) * sympy.sec(s("theta")) * sympy.csc(s("theta"))),
+    ("asin(x/l) + acos(x/l) + atan(x/l)", lambda s: sympy.asin(s("x") / s("l")) + sympy.acos(s("x") / s("l")) + sympy.atan(s("x") / s("l"))),
+])
+def test_scene_file_expressions(ns, text, expected):
+    assert parse(text, ns) == expected(ns.symbol)
+
+
+def test_symbols_carry_the_domain_assumptions(ns):
+    expr = parse("m*x", ns)
+    m = next(s for s in expr.free_symbols if s.name == "m")
+    assert m.is_positive and m == ns.symbol("m")
+
+
+@pytest.mark.parametrize("text, value", [
+    ("3", sympy.Integer(3)),
+    ("0.5", sympy.Rational(1, 2)),
+    ("1.5e-3", sympy.Rational(3, 2000)),
+    ("2E3", sympy.Integer(2000)),
+    (".25", sympy.Rational(1, 4)),
+    ("9.81", sympy.Rational(981, 100)),
+])
+def test_numbers_are_exact(ns, text, value):
+    result = parse(text, ns)
+    assert result == value and isinstance(result, sympy.Rational)
+
+
+def test_decimal_half_equals_exact_half(ns):
+    parsed = parse_expression("0.5*m*thetadot^2", ns)
+    assert parsed.expr == parse("m*thetadot^2/2", ns)
+    assert any("exact fractions" in note for note in parsed.notes)
+
+
+def test_parsed_has_canonical_text_and_latex(ns):
+    parsed = parse_expression("m/2*(rdot^2 + r^2*thetadot^2)", ns)
+    assert parsed.text == str(parsed.expr)
+    assert r"\dot{\theta}" in parsed.latex and r"\dot{r}" in parsed.latex
+    assert parsed.notes == []
+
+
+@pytest.mark.parametrize("text, did_you_mean", [
+    ("thta", "theta"),
+    ("lamda_surface", "lambda_surface"),
+    ("sinn(x)", "sin"),
+])
+def test_unknown_names_suggest_the_close_one(ns, text, did_you_mean):
+    with pytest.raises(ExpressionError) as err:
+        parse(text, ns)
+    assert err.value.code in ("unknown_name", "unsupported_function")
+    assert err.value.position == 0
+    assert did_you_mean in err.value.hint
+
+
+@pytest.mark.parametrize("text", ["9^9^9^9", "10^10^10", "2^(1/10^999)", "sqrt(10^999)^1000",
+                                  "10^999*10^999", "1e999999999", "1" * 1500, "x^1001"])
+def test_huge_numbers_are_refused_before_sympy_computes_them(ns, text):
+    with pytest.raises(ExpressionError) as err:
+        parse(text, ns)
+    assert err.value.code == "too_large"
+
+
+def test_large_but_reasonable_powers_are_fine(ns):
+    assert parse("2^1000", ns) == sympy.Integer(2) ** 1000
+    assert parse("x^1000", ns) == ns.symbol("x") ** 1000
+
+
+@pytest.mark.parametrize("text, code, position", [
+    ("", "empty", 0),
+    ("   ", "empty", 0),
+    ("(x + y", "unbalanced", 0),
+    ("x + y)", "unbalanced", 5),
+    ("(x]", "unbalanced", 2),
+    ("x +", "syntax", 2),
+    ("x * ", "syntax", 2),
+    ("sin()", "syntax", 3),
+    ("2 3", "syntax", 2),
+    ("1/0", "syntax", 1),
+    ("x = y", "syntax", 2),
+    ("atan2(x)", "syntax", 0),
+    ("factorial(10)", "unsupported_function", 0),
+    ("Integral(x)", "unsupported_function", 0),
+    ("__import__('os')", "unsupported_function", 0),
+    ("x.real", "unsupported_function", 1),
+    ("lambda x: x", "unsupported_function", 0),
+    ("x;y", "unsupported_function", 1),
+    ("x!", "unsupported_function", 1),
+    ("x\x00", "bad_character", 1),
+    ("\x07x", "bad_character", 0),
+    ("x" * 2001, "too_long", 2000),
+    ("(" * 51 + "x" + ")" * 51, "too_deep", 50),
+])
+def test_errors_have_a_code_and_position(ns, text, code, position):
+    with pytest.raises(ExpressionError) as err:
+        parse(text, ns)
+    assert (err.value.code, err.value.position) == (code, position)
+    assert err.value.message
+
+
+def test_error_show_points_at_the_problem(ns):
+    with pytest.raises(ExpressionError) as err:
+        parse("m*g*cos(thta)", ns)
+    assert err.value.show("m*g*cos(thta)").splitlines()[1] == " " * 8 + "^"
+
+
+def test_parse_equation(ns):
+    eq = parse_equation("x^2 + y^2 == l^2", ns)
+    assert (eq.lhs, eq.rhs) == (sym(ns, "x") ** 2 + sym(ns, "y") ** 2, sym(ns, "l") ** 2)
+    assert eq.residual == eq.lhs - eq.rhs
+    assert eq.text == "x**2 + y**2 = l**2"
+
+
+@pytest.mark.parametrize("text, position", [("x = y = l", 6), ("x + y", 5)])
+def test_equation_needs_exactly_one_equals(ns, text, position):
+    with pytest.raises(ExpressionError) as err:
+        parse_equation(text, ns)
+    assert err.value.position == position
+
+
+# -- priority 2: what students type ------------------------------------------------
+
+@pytest.mark.parametrize("student, canonical", [
+    # implicit multiplication
+    ("2 m g cos(theta)", "2*m*g*cos(theta)"),
+    ("2(x + y)", "2*(x + y)"),
+    ("(x)(y)", "x*y"),
+    ("(x + y)(x - y)", "(x + y)*(x - y)"),
+    ("2x", "2*x"),
+    ("m g l (1 - cos theta)", "m*g*l*(1 - cos(theta))"),
+    ("g(1 - x/l)", "g*(1 - x/l)"),                 # g is a variable, so this is a product
+    # functions without parentheses take one factor (and its power)
+    ("cos theta", "cos(theta)"),
+    ("m g(1 - cos theta)", "m*g*(1 - cos(theta))"),
+    ("sin 2x", "sin(2*x)"),
+    ("cos theta^2", "cos(theta^2)"),
+    ("sin theta cos theta", "sin(theta)*cos(theta)"),
+    ("-sin theta", "-sin(theta)"),
+    # powers and inverses of functions
+    ("sin^2(theta)", "sin(theta)^2"),
+    ("sin^2 theta + cos^2 theta", "sin(theta)^2 + cos(theta)^2"),
+    ("sin²θ", "sin(theta)^2"),
+    ("sin^-1(x/l)", "asin(x/l)"),
+    ("tan^{-1}(y/x)", "atan(y/x)"),
+    ("arcsin(x/l)", "asin(x/l)"),
+    # names: Greek, subscripts, time derivatives
+    ("θ", "theta"), ("\\theta", "theta"), ("m_1", "m1"), ("m_{1}", "m1"), ("m₁", "m1"),
+    ("thetadot", "thetadot"), ("theta_dot", "thetadot"), ("dot(theta)", "thetadot"),
+    ("θ̇", "thetadot"), ("θ̈", "thetaddot"), ("theta'", "thetadot"), ("theta''", "thetaddot"),
+    ("thetaddot", "thetaddot"), ("ddot(theta)", "thetaddot"), ("\\dot{\\theta}", "thetadot"),
+    ("\\ddot{\\theta}", "thetaddot"), ("ṙ", "rdot"), ("r'", "rdot"), ("λ_surface", "lambda_surface"),
+    ("Q_{roll,s}", "Q_roll_s"), ("Q_{\\mathrm{roll},s}", "Q_roll_s"),
+    # Unicode operators
+    ("2·m·g", "2*m*g"), ("x × y", "x*y"), ("x − y", "x - y"), ("x ÷ y", "x/y"), ("√x", "sqrt(x)"),
+    ("√(x + l)", "sqrt(x + l)"), ("∛x", "x^(1/3)"), ("x²", "x^2"), ("x³", "x^3"), ("x⁻¹", "1/x"),
+    ("2πr", "2*pi*r"), ("x\u00a0+\u2009y", "x + y"),
+    # LaTeX
+    ("\\frac{m}{2}\\dot{r}^2", "m/2*rdot^2"), ("\\sqrt{x^2 + y^2}", "sqrt(x^2 + y^2)"),
+    ("\\sqrt[3]{x}", "x^(1/3)"), ("m \\cdot g", "m*g"), ("m \\times g", "m*g"),
+    ("\\left(x + y\\right)^{2}", "(x + y)^2"), ("\\sin\\theta", "sin(theta)"), ("\\sin^2\\theta", "sin(theta)^2"),
+    ("{x + y}^2", "(x + y)^2"), ("\\pi r^2", "pi*r^2"), ("$x^2$", "x^2"), ("\\frac{1}{2} m \\dot{r}^{2}", "m*rdot^2/2"),
+    ("\\cos(\\omega t)", "cos(omega*t)"), ("e^{-t}", "exp(-t)"),
+    # glued names
+    ("mg", "m*g"), ("mgl", "m*g*l"), ("mgcos(theta)", "m*g*cos(theta)"), ("mgsinθ", "m*g*sin(theta)"),
+    ("sin2x", "sin(2*x)"), ("ωt", "omega*t"), ("cos ωt", "cos(omega*t)"), ("mθ̇", "m*thetadot"), ("m_1g", "m1*g"),
+])
+def test_student_input_means_what_the_student_meant(student_ns, student, canonical):
+    assert parse(student, student_ns) == parse(canonical, student_ns)
+
+
+@pytest.fixture
+def student_ns(ns):
+    extra = [Variable("omega", "angular_velocity", "real"), Variable("z", "length", "real")]
+    return Namespace(list(ns.variables) + extra)
+
+
+def test_glued_names_are_noted(ns):
+    parsed = parse_expression("mg(1 - cos θ)", ns)
+    assert parsed.expr == parse("m*g*(1 - cos(theta))", ns)
+    assert "read 'mg' as m·g" in parsed.notes
+
+
+def test_existing_name_is_never_split(ns):
+    parsed = parse_expression("thetadot", ns)
+    assert parsed.expr == ns.symbol("thetadot") and parsed.notes == []
+
+
+def test_ambiguous_split_lists_the_readings():
+    ns = Namespace([Variable(n, "length") for n in ("a", "b", "ab", "c")])
+    with pytest.raises(ExpressionError) as err:
+        parse("abc", ns)
+    assert err.value.code == "ambiguous"
+    assert "ab·c" in err.value.message and "a·b·c" in err.value.message
+
+
+@pytest.mark.parametrize("text", ["e", "E", "e^x"])
+def test_e_is_eulers_number_when_no_variable_claims_it(ns, text):
+    parsed = parse_expression(text, ns)
+    assert parsed.expr.has(sympy.E) or parsed.expr == sympy.exp(ns.symbol("x"))
+    assert any("Euler" in note for note in parsed.notes)
+
+
+def test_a_variable_named_e_wins_over_eulers_number():
+    ns = Namespace([Variable("e", "dimensionless", "positive")])
+    parsed = parse_expression("2e", ns)
+    assert parsed.expr == 2 * ns.symbol("e") and parsed.notes == []
+
+
+@pytest.mark.parametrize("text, note", [
+    ("sin^-1(x/l)", "inverse function asin"),
+    ("g/2 l", "read 'g/2 l' as (g/2)·l"),
+    ("sin 2x", "sin(2*x)"),
+    ("g(1 - x/l)", "g is a variable, not a function"),
+])
+def test_surprising_readings_are_noted(ns, text, note):
+    assert any(note in n for n in parse_expression(text, ns).notes)
+
+
+@pytest.mark.parametrize("text, code, position", [
+    ("xаy", "bad_character", 1),            # Cyrillic а
+    ("cοs(x)", "bad_character", 1),         # Greek omicron
+    ("ｍ*g", "bad_character", 0),            # full-width m
+    ("m\u200bg", "bad_character", 1),       # zero-width space
+    ("sin", "syntax", 0),
+    ("x ^", "syntax", 2),
+    ("(x)'", "syntax", 3),
+    ("|x|", "syntax", 0),
+    ("\\int x", "unsupported_function", 0),
+    ("sqrt(-1)", "syntax", 0),
+    ("m + (-4)^(1/2)", "syntax", None),
+    ("thetadddot", "unknown_name", 0),
+    ("z'", "unknown_name", 0),
+    ("\\frac12", "syntax", 5),
+])
+def test_student_errors(ns, text, code, position):
+    with pytest.raises(ExpressionError) as err:
+        parse(text, ns)
+    assert err.value.code == code
+    if position is not None:
+        assert err.value.position == position
+
+
+def test_homoglyph_error_names_the_character(ns):
+    with pytest.raises(ExpressionError) as err:
+        parse("xаy", ns)
+    assert "CYRILLIC SMALL LETTER A" in err.value.message and err.value.position == 1
+
+
+HOSTILE = [
+    "x" * 1_000_000,
+    "(" * 10_000 + "x" + ")" * 10_000,
+    "(" * 900 + "x" + ")" * 900,
+    "-" * 1999 + "x",
+    "x^" * 999 + "x",
+    "9^9^9^9",
+    "10^10^10",
+    "factorial(10^10)",
+    "().__class__",
+    "__import__('os')",
+    "2^2^2^2^2^2^2^2",
+    "(10^999)^(10^999)",
+    "sqrt(" * 50 + "x" + ")" * 50,
+    "x" * 1999,
+    "m" * 1999,
+    "mg" * 999,
+    "\x00" * 1000,
+    "1" * 1999,
+    "1e99999",
+    "exp(exp(exp(exp(exp(1000)))))",
+    "sin(10^999)*cos(10^999*pi/7)",
+    "(x+1)^1000",
+    "+".join(["x"] * 999),
+    "*".join(["(x+1)"] * 399),
+]
+
+
+@pytest.mark.parametrize("text", HOSTILE, ids=[f"hostile{i}" for i in range(len(HOSTILE))])
+def test_hostile_input_is_handled_quickly(ns, text):
+    start = time.perf_counter()
+    try:
+        parse(text, ns)
+    except ExpressionError:
+        pass
+    assert time.perf_counter() - start < 0.5
+
+
+def test_parse_system_splits_at_top_level(ns):
+    equations = parse_system("x = l sin(theta); y = -l cos(theta)\n atan2(y, x) = theta, r = l", ns)
+    assert [eq.text for eq in equations][:2] == ["x = l*sin(theta)", "y = -l*cos(theta)"]
+    assert len(equations) == 4
+
+
+def test_parse_system_reports_positions_in_the_whole_text(ns):
+    with pytest.raises(ExpressionError) as err:
+        parse_system("x = l; y = thta", ns)
+    assert err.value.position == 11
+
+
+def test_equation_latex_uses_variable_latex(ns):
+    eq = parse_equation("thetaddot = -g/l sin(theta)", ns)
+    assert eq.latex.startswith(r"\ddot{\theta} = ")
+
+
+# -- round trip: str(expr) reads back ----------------------------------------------
+
+_NAMES = ["m", "m1", "theta", "thetadot", "x", "l", "lambda_surface", "Q_roll_s", "phi", "pi", "E"]
+_FUNCTIONS = ["sin", "cos", "tan", "cot", "sec", "csc", "asin", "acos", "atan", "sinh", "cosh", "tanh",
+              "exp", "log", "ln", "abs", "Abs", "sign"]
+
+
+def _random_text(rng, depth):
+    """Random text from the grammar (numbers, names, operators, functions, implicit products)."""
+    if depth == 0 or rng.random() < 0.25:
+        roll = rng.random()
+        if roll < 0.6:
+            return rng.choice(_NAMES)
+        return str(rng.randint(0, 12)) if roll < 0.8 else f"{rng.randint(0, 9)}.{rng.randint(0, 99)}"
+    a, b = _random_text(rng, depth - 1), _random_text(rng, depth - 1)
+    form = rng.choice(["+", "-", "*", "/", "^", "neg", "f", "f", "sqrt", "atan2", "implicit"])
+    if form in "+-*/":
+        return f"{a} {form} {b}"
+    if form == "^":
+        return f"({a})^{rng.choice(['2', '3', '-1', '-2', 'x'])}"
+    if form == "sqrt":  # over a variable, so sympy has no numeric radicals to re-arrange
+        return f"sqrt({rng.choice(_NAMES[:9])}*({a}))"
+    if form == "neg":
+        return f"-{a}"
+    if form == "f":
+        return f"{rng.choice(_FUNCTIONS)}({a})"
+    if form == "atan2":
+        return f"atan2({a}, {b})"
+    return f"({a})({b})"
+
+
+@pytest.mark.parametrize("seed", range(300))
+def test_str_of_a_parsed_expression_parses_back_to_it(ns, seed):
+    rng = random.Random(seed)
+    for _ in range(20):  # a few random texts are not valid (1/0, sqrt(-4)); take the first that is
+        try:
+            parsed = parse_expression(_random_text(rng, 4), ns)
+            break
+        except ExpressionError:
+            continue
+    assert parse(parsed.text, ns) == parsed.expr
+
+
+@pytest.mark.parametrize("build", [
+    lambda s: -(s("theta") + 2 * s("x")) * sympy.atan(s("l")),          # Mul(-1, Add, f)
+    lambda s: 33 * (sympy.E - 4) * sympy.exp(-1) / sympy.atan(s("theta")),
+    lambda s: -9 * sympy.E * sympy.sec(sympy.E) / (8 * (s("m") - 2)),
+    lambda s: s("x") ** sympy.Rational(-3, 2) + sympy.sqrt(s("l")) / s("l"),
+    lambda s: sympy.atan2(s("x"), s("theta")) - sympy.Abs(s("x")) * sympy.sign(s("theta")),
+    lambda s: s("lambda_surface") * s("Q_roll_s") ** 2 / (2 * s("m1")),
+    lambda s: sympy.exp(-s("theta")) * sympy.log(s("l")) + sympy.pi ** 2 + sympy.E,
+    lambda s: 2 ** s("x") * (-1) ** s("theta"),
+    lambda s: s("x") ** s("theta") ** 2,
+])
+def test_sympy_built_expressions_round_trip(ns, build):
+    expr = build(ns.symbol)
+    assert parse(str(expr), ns) == expr

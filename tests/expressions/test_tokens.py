@@ -1,0 +1,91 @@
+"""The tokenizer keeps positions in the text as typed, and refuses what it cannot read."""
+
+import pytest
+import sympy
+
+from grader.expressions import ExpressionError
+from grader.expressions.tokens import MAX_NESTING, check_brackets, tokenize
+
+
+def kinds(text):
+    return [(t.kind, t.value) for t in tokenize(text)[:-1]]
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("x**2", [("name", "x"), ("op", "^"), ("number", 2)]),
+    ("a == b", [("name", "a"), ("op", "="), ("name", "b")]),
+    ("2x", [("number", 2), ("name", "x")]),
+    ("2e3x", [("number", 2000), ("name", "x")]),
+    ("2e", [("number", 2), ("name", "e")]),                    # e not followed by digits is a name
+    ("θ₁", [("name", "theta_1")]),
+    ("m_{12}", [("name", "m_12")]),
+    ("Q_{roll,s}", [("name", "Q_roll_s")]),
+    ("\\lambda_{surface}", [("name", "lambda_surface")]),
+    ("x·y×z", [("name", "x"), ("op", "*"), ("name", "y"), ("op", "*"), ("name", "z")]),
+    ("x−y", [("name", "x"), ("op", "-"), ("name", "y")]),
+    ("x⁻¹²", [("name", "x"), ("sup", -12)]),
+    ("√∛", [("root", 2), ("root", 3)]),
+    ("\\left( x \\right]", [("open", "("), ("name", "x"), ("close", "]")]),
+    ("\\frac\\sqrt\\dot", [("command", "frac"), ("command", "sqrt"), ("command", "dot")]),
+    ("\\sin\\arctan", [("name", "sin"), ("name", "atan")]),
+    ("a\\,b\\;c\\quad d", [("name", "a"), ("name", "b"), ("name", "c"), ("name", "d")]),
+    ("x\ny", [("name", "x"), ("newline", "\n"), ("name", "y")]),
+])
+def test_token_kinds_and_values(text, expected):
+    assert kinds(text) == expected
+
+
+@pytest.mark.parametrize("text, order", [("θ̇", 1), ("θ̈", 2), ("x'", 1), ("x''", 2), ("x″", 2), ("ẋ", 1), ("ẍ", 2)])
+def test_derivative_marks_are_counted_on_the_name(text, order):
+    token = tokenize(text)[0]
+    assert token.kind == "name" and token.order == order and token.end == len(text)
+
+
+def test_positions_refer_to_the_original_text():
+    tokens = tokenize("\\theta + √x·θ̇")
+    assert [(t.pos, t.end) for t in tokens[:-1]] == [(0, 6), (7, 8), (9, 10), (10, 11), (11, 12), (12, 14)]
+
+
+def test_decimals_are_exact_and_flagged():
+    token = tokenize("0.1")[0]
+    assert token.value == sympy.Rational(1, 10) and token.decimal
+
+
+@pytest.mark.parametrize("text, code, position", [
+    ("x + 1e100000", "too_large", 4),
+    ("1" * 1001, "too_large", 0),
+    ("x\x01", "bad_character", 1),
+    ("m_{1", "unbalanced", 2),
+    ("\\", "syntax", 0),
+    ("\\left| x \\right|", "unsupported_function", 0),
+    ("\\mathrm x", "syntax", 0),
+    ("x⁻", "syntax", 1),
+])
+def test_tokenizer_errors(text, code, position):
+    with pytest.raises(ExpressionError) as err:
+        tokenize(text)
+    assert (err.value.code, err.value.position) == (code, position)
+
+
+@pytest.mark.parametrize("text", ["a!", "a.b", "a:b", "a<b", "a|b", "a@b"])
+def test_stray_punctuation_is_reported_where_the_parser_meets_it(text):
+    token = tokenize(text)[1]
+    assert token.kind == "bad" and token.error.position == 1
+
+
+@pytest.mark.parametrize("text, code, position", [
+    ("(a", "unbalanced", 0),
+    ("a)", "unbalanced", 1),
+    ("((a)", "unbalanced", 0),
+    ("(a]", "unbalanced", 2),
+    ("{a)", "unbalanced", 2),
+    ("(" * (MAX_NESTING + 1) + ")" * (MAX_NESTING + 1), "too_deep", MAX_NESTING),
+])
+def test_bracket_errors_point_at_the_unmatched_bracket(text, code, position):
+    with pytest.raises(ExpressionError) as err:
+        check_brackets(tokenize(text))
+    assert (err.value.code, err.value.position) == (code, position)
+
+
+def test_fifty_levels_are_allowed():
+    check_brackets(tokenize("(" * MAX_NESTING + "x" + ")" * MAX_NESTING))
