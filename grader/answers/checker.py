@@ -1,0 +1,395 @@
+"""``check``: one student answer against one reference, start to finish.
+
+1. Read the reference and the answer with our whitelist parser (``grader.expressions``); the
+   reference's preparation (namespace, parse, dimension, sample points, compiled evaluator,
+   instructor feedback) is cached, so a file of answers to one question is cheap.
+2. Dimensions: an answer that adds a force to a length, or has the wrong dimension, is
+   ``not_equivalent`` with a message in words.
+3. Equivalence: `grader.answers.equivalence` (expressions) or `grader.answers.equations`.
+4. Feedback for wrong answers: `grader.answers.feedback`.
+
+``check`` never raises: any input gives a `Verdict`. It has a cooperative time budget; the
+hard limits (a killed process) are `grader.answers.sandbox`'s job.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from dataclasses import dataclass, field
+from functools import lru_cache
+from typing import Any, Mapping, Sequence
+
+import sympy
+
+from grader.answers.equations import compare_equations, state_symbols
+from grader.answers.equivalence import Comparison, Compiled, Options, compare_expressions
+from grader.answers.evaluate import ArbBackend, Undefined, Unresolved, Unsupported
+from grader.answers.feedback import diagnose
+from grader.answers.sampling import Sampler, seed_for
+from grader.answers.verdict import Verdict
+from grader.expressions import (
+    DimensionError,
+    ExpressionError,
+    Namespace,
+    dimension_of,
+    parse_expression,
+    parse_system,
+)
+
+__all__ = ["check", "check_request", "DEFAULT_OPTIONS"]
+
+DEFAULT_OPTIONS = Options()
+FEEDBACK_OPTIONS = Options(points=4, symbolic=False)
+KINDS = ("expression", "equation")
+# Share of the budget the mathematics may use; the rest is for the reply (and, in the sandbox,
+# is the margin before the hard kill).
+BUDGET_SHARE = 0.8
+_UNDEFINED = (sympy.zoo, sympy.nan, sympy.oo, -sympy.oo)
+
+
+class _RequestError(ValueError):
+    """The request itself is wrong (not the student's answer): becomes an ``invalid`` verdict."""
+
+
+@dataclass
+class _Reference:
+    """Everything about a reference that does not depend on the answer."""
+
+    namespace: Namespace
+    kind: str
+    exprs: list[sympy.Expr]  # one expression, or the residuals of the equations
+    dims: dict
+    dimension: Any  # the reference's Dimension, or None when it cannot be trusted
+    sampler: Sampler | None = None
+    parameters: Sampler | None = None
+    states: Sampler | None = None
+    instructor: list[tuple[Any, str]] = field(default_factory=list)
+    compiled: dict = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+
+    def compiled_for(self, options: Options):
+        backend = options.backend()
+        if backend.name not in self.compiled:
+            self.compiled[backend.name] = [Compiled(e, backend) for e in self.exprs]
+        return self.compiled[backend.name]
+
+
+def _namespace(variables: Mapping) -> Namespace:
+    if not isinstance(variables, Mapping):
+        raise _RequestError("'variables' must be an object {name: {dimension, domain}}")
+    for name, spec in variables.items():
+        if not isinstance(spec, Mapping):
+            raise _RequestError(f"variable {name!r} must be an object {{dimension, domain}}")
+    try:
+        return Namespace.from_spec(variables)
+    except (ValueError, TypeError, KeyError) as error:
+        raise _RequestError(f"bad variables: {error}") from None
+
+
+def _read(text: str, namespace: Namespace, kind: str):
+    """(exprs, parsed-json) of a text: one expression, or the residuals of its equations."""
+    if kind == "expression":
+        p = parse_expression(text, namespace)
+        return [p.expr], {"text": p.text, "latex": p.latex, "notes": list(p.notes)}
+    try:
+        equations = parse_system(text, namespace)
+    except ExpressionError as error:
+        if "needs '='" not in error.message:
+            raise
+        p = parse_expression(text, namespace)  # an expression alone is read as "... = 0"
+        return [p.expr], {"text": f"{p.text} = 0", "latex": f"{p.latex} = 0",
+                          "notes": list(p.notes) + ["read as an equation '... = 0'"]}
+    notes = [n for eq in equations for n in eq.notes]
+    return [eq.residual for eq in equations], {
+        "text": "; ".join(eq.text for eq in equations),
+        "latex": r" \\ ".join(eq.latex for eq in equations),
+        "notes": notes,
+    }
+
+
+@lru_cache(maxsize=256)
+def _prepare(reference: str, kind: str, variables_json: str, state_json: str, feedback_json: str) -> _Reference:
+    variables = json.loads(variables_json)
+    namespace = _namespace(variables)
+    try:
+        exprs, _ = _read(reference, namespace, kind)
+    except ExpressionError as error:
+        raise _RequestError(f"the reference does not parse: {error}") from None
+    if any(e.has(*_UNDEFINED) for e in exprs):
+        raise _RequestError("the reference is undefined (division by zero)")
+    dims = namespace.dimensions()
+    notes = []
+    dimension = None
+    try:
+        for e in exprs:
+            dimension = dimension_of(e, dims)
+    except DimensionError as error:
+        dimension = None  # never blame the student for the reference's dimensions
+        notes.append(f"dimensions not checked: the reference {error}")
+    symbols = {v.name: v.symbol for v in namespace.variables}
+    domains = {v.symbol: v.domain for v in namespace.variables}
+    seed = seed_for(reference, kind, variables_json)
+    ref = _Reference(namespace, kind, exprs, dims, dimension, notes=notes)
+    if kind == "expression":
+        ref.sampler = Sampler(domains, seed)
+    else:
+        state = state_symbols(variables, symbols, json.loads(state_json))
+        ref.parameters = Sampler({s: d for s, d in domains.items() if s not in state}, seed)
+        ref.states = Sampler({s: d for s, d in domains.items() if s in state}, seed + 1)
+    for entry in json.loads(feedback_json):
+        try:
+            expr_text, message = entry["expr"], entry["message"]
+            entry_exprs, _ = _read(expr_text, namespace, kind)
+        except (ExpressionError, KeyError, TypeError) as error:
+            ref.notes.append(f"instructor feedback entry skipped: {error}")
+            continue
+        ref.instructor.append((entry_exprs if kind == "equation" else entry_exprs[0], str(message)))
+    return ref
+
+
+def _dimension_verdict(ref: _Reference, exprs: list[sympy.Expr], kind: str) -> tuple[str, str] | None:
+    """(reason, feedback message) when the answer's dimensions are wrong, else None."""
+    if ref.dimension is None:
+        return None
+    try:
+        answer_dims = [dimension_of(e, ref.dims) for e in exprs]
+    except DimensionError as error:
+        side = "Your equation " if kind == "equation" else "Your answer "
+        text = f"{side}{error.message if hasattr(error, 'message') else error}"
+        return text, text + "."
+    if kind == "equation" or (len(exprs) == 1 and exprs[0] == 0):
+        return None  # an equation may be scaled by anything; zero has every dimension
+    got = answer_dims[0]
+    if got != ref.dimension:
+        text = (f"Your answer is {_phrase(got)}, but the answer should be {_phrase(ref.dimension)}.")
+        return text, text
+    return None
+
+
+def _phrase(dim) -> str:
+    return "a dimensionless number" if dim.is_dimensionless else dim.describe()
+
+
+def _filter_values(example: dict | None, symbols: set) -> dict | None:
+    if example is None:
+        return None
+    names = {s.name for s in symbols}
+    for key in ("values", "other_state"):
+        if key in example:
+            example[key] = {k: v for k, v in example[key].items() if k in names}
+    return example
+
+
+def _compare(ref: _Reference, exprs: list[sympy.Expr], options: Options, deadline: float) -> Comparison:
+    compiled = ref.compiled_for(options)
+    if ref.kind == "expression":
+        return compare_expressions(ref.exprs[0], exprs[0], ref.sampler, options, deadline, compiled[0])
+    return compare_equations(ref.exprs, exprs, ref.parameters, ref.states, options, deadline, compiled)
+
+
+def _could_be_same(r: sympy.Expr, a: sympy.Expr, point: dict) -> bool:
+    """A one-point screen for feedback candidates (most fail it): False only when proved different."""
+    try:
+        backend = ArbBackend()
+        ra, _ = Compiled(r, backend).at(point, 64)
+        aa, _ = Compiled(a, backend).at(point, 64)
+    except (Undefined, Unresolved, Unsupported):
+        return True
+    return (aa - ra).contains(0)
+
+
+def _feedback(ref: _Reference, exprs: list[sympy.Expr], comparison: Comparison, deadline: float) -> list[dict]:
+    if ref.kind == "expression":
+        def same(r, a):
+            if not _could_be_same(r, a, ref.sampler.point(0)):
+                return False
+            return compare_expressions(r, a, ref.sampler, FEEDBACK_OPTIONS, deadline).equivalent is True
+
+        ratio = None
+        if comparison.values is not None:
+            a, r = comparison.values
+            ratio = a / r if r else None
+        rel = (comparison.counterexample or {}).get("relative_difference")
+        return diagnose(ref.exprs[0], exprs[0], same, ref.instructor, ratio, rel, deadline)
+
+    def same_equation(r, a):
+        r_list = r if isinstance(r, list) else [r]
+        a_list = a if isinstance(a, list) else [a]
+        return compare_equations(r_list, a_list, ref.parameters, ref.states, FEEDBACK_OPTIONS,
+                                 deadline).equivalent is True
+
+    found = [{"code": "instructor", "message": m} for e, m in ref.instructor if same_equation(e, exprs)][:1]
+    if found or len(exprs) != 1 or len(ref.exprs) != 1:
+        return found
+    return diagnose(ref.exprs[0], exprs[0], same_equation, (), None, None, deadline, equation=True)
+
+
+def check(
+    reference: str,
+    answer: str,
+    variables: Mapping[str, Mapping],
+    kind: str = "expression",
+    feedback: Sequence[Mapping] | None = None,
+    budget_s: float = 2.0,
+    state: Sequence[str] | None = None,
+    options: Options = DEFAULT_OPTIONS,
+) -> Verdict:
+    """Check a student's answer against a reference answer.
+
+    Parameters
+    ----------
+    reference : str
+        The reference answer, in the same grammar as the student's (an equation, or several
+        separated by ``;``, when ``kind="equation"``).
+    answer : str
+        What the student typed.
+    variables : mapping
+        ``{name: {"dimension": str, "domain": "positive" | "nonnegative" | "real" | [lo, hi],
+        "kind"?: "parameter" | "coordinate" | ...}}``: the names the texts may use.
+    kind : {"expression", "equation"}
+    feedback : list of {"expr", "message"}, optional
+        Known wrong answers and what to tell a student who gives one.
+    budget_s : float
+        Wall-clock budget; when it runs out the verdict says so (``budget_exceeded``).
+    state : list of str, optional
+        For equations: the variables an equation's factor may not depend on (default: from each
+        variable's ``kind``, else from names ending in ``dot``/``ddot``).
+    options : Options
+        How hard the numeric judge works (the benchmark varies this).
+
+    Returns
+    -------
+    Verdict
+
+    Examples
+    --------
+    >>> v = check("m*g*(3*cos(theta) - 2)", "3mg cos θ - 2mg",
+    ...           {"m": {"dimension": "mass", "domain": "positive"},
+    ...            "g": {"dimension": "acceleration", "domain": "positive"},
+    ...            "theta": {"dimension": "angle", "domain": "real"}})
+    >>> v.verdict, v.certainty
+    ('equivalent', 'proved')
+    >>> v = check("m*g/3", "m*g + 1", {"m": {"dimension": "mass", "domain": "positive"},
+    ...                                 "g": {"dimension": "acceleration", "domain": "positive"}})
+    >>> v.verdict, v.feedback[0]["code"]
+    ('not_equivalent', 'dimension')
+    """
+    started = time.monotonic()
+    text = answer if isinstance(answer, str) else ""
+    try:
+        verdict = _check(reference, answer, variables, kind, feedback, budget_s, state, options, started)
+    except _RequestError as error:
+        verdict = Verdict.invalid(str(error), text)
+    except RecursionError:
+        verdict = Verdict.invalid("the answer is nested too deeply", text)
+    except MemoryError:
+        raise  # the sandbox turns this into a verdict and a fresh process
+    except Exception as error:  # a checker bug must not crash the caller; say so plainly
+        verdict = Verdict.invalid(f"internal error while checking ({type(error).__name__}: {error})", text)
+    verdict.ms = (time.monotonic() - started) * 1000
+    return verdict
+
+
+def _check(reference, answer, variables, kind, feedback, budget_s, state, options, started) -> Verdict:
+    if not isinstance(reference, str) or not reference.strip():
+        raise _RequestError("'reference' must be a non-empty string")
+    if not isinstance(answer, str):
+        raise _RequestError("'answer' must be a string")
+    if kind not in KINDS:
+        raise _RequestError(f"'kind' must be one of {', '.join(KINDS)}")
+    if state is not None and (not isinstance(state, (list, tuple)) or not all(isinstance(s, str) for s in state)):
+        raise _RequestError("'state' must be a list of variable names")
+    if feedback is not None and not isinstance(feedback, (list, tuple)):
+        raise _RequestError("'feedback' must be a list of {expr, message}")
+    try:
+        budget = float(budget_s)
+    except (TypeError, ValueError):
+        raise _RequestError("'budget_s' must be a number") from None
+    deadline = started + max(budget, 0.01) * BUDGET_SHARE
+    try:
+        key = (
+            json.dumps(variables, sort_keys=True),
+            json.dumps(sorted(state) if state else []),
+            json.dumps([dict(e) if isinstance(e, Mapping) else e for e in feedback or []], sort_keys=True),
+        )
+    except (TypeError, ValueError):
+        raise _RequestError("'variables' and 'feedback' must be JSON data") from None
+    ref = _prepare(reference, kind, *key)
+
+    try:
+        exprs, parsed = _read(answer, ref.namespace, kind)
+    except ExpressionError as error:
+        evidence = {"error": {"code": error.code, "position": error.position, "hint": error.hint}}
+        return Verdict("invalid", "none", str(error), parsed={"text": answer, "latex": "", "notes": []},
+                       evidence=evidence)
+    if any(e.has(*_UNDEFINED) for e in exprs):
+        return Verdict("invalid", "none", "your answer is undefined (it divides by zero)", parsed=parsed)
+    parsed["notes"] = parsed["notes"] + ref.notes
+    if any(e.has(sympy.I) for e in exprs):
+        return Verdict("not_equivalent", "proved", "your answer is not a real number (it contains the square "
+                       "root or logarithm of a negative number)", parsed=parsed, evidence={"method": "exact"},
+                       feedback=[{"code": "not_real", "message": "Your answer is not a real number: check "
+                                  "square roots and logarithms of negative quantities."}])
+
+    wrong_dimension = _dimension_verdict(ref, exprs, kind)
+    if wrong_dimension is not None:
+        reason, message = wrong_dimension
+        return Verdict("not_equivalent", "proved", reason, parsed=parsed,
+                       feedback=[{"code": "dimension", "message": message}], evidence={"method": "dimensions"})
+
+    try:
+        comparison = _compare(ref, exprs, options, deadline)
+    except Unsupported as error:
+        return Verdict("invalid", "none", f"the checker cannot evaluate {error}", parsed=parsed)
+    symbols = set().union(*(e.free_symbols for e in ref.exprs + exprs))
+    example = _filter_values(comparison.counterexample, symbols)
+    if comparison.equivalent is None:
+        reason = comparison.reason
+        if comparison.budget_exceeded:
+            reason = f"budget exceeded: {reason}"
+        return Verdict("invalid", "none", reason, parsed=parsed, evidence=comparison.evidence,
+                       budget_exceeded=comparison.budget_exceeded)
+    if comparison.equivalent:
+        return Verdict("equivalent", comparison.certainty, comparison.reason, parsed=parsed,
+                       evidence=comparison.evidence)
+    items = _feedback(ref, exprs, comparison, deadline)
+    return Verdict("not_equivalent", comparison.certainty, comparison.reason, parsed=parsed,
+                   counterexample=example, feedback=items, evidence=comparison.evidence)
+
+
+def check_request(request: Any) -> dict:
+    """`check` for one decoded JSON request; returns the verdict's JSON (never raises).
+
+    The request is ``{"reference", "answer", "variables", "kind"?, "feedback"?, "state"?,
+    "budget_s"?}``, as read by ``grader check --jsonl`` and sent by the grading worker.
+
+    Examples
+    --------
+    >>> check_request({"reference": "m*g", "answer": "g m",
+    ...                "variables": {"m": {"dimension": "mass", "domain": "positive"},
+    ...                              "g": {"dimension": "acceleration", "domain": "positive"}}})["verdict"]
+    'equivalent'
+    >>> check_request("not an object")["verdict"]
+    'invalid'
+    """
+    started = time.monotonic()
+    if not isinstance(request, Mapping):
+        verdict = Verdict.invalid("malformed request: expected a JSON object")
+    else:
+        missing = [k for k in ("reference", "answer", "variables") if k not in request]
+        if missing:
+            verdict = Verdict.invalid(f"malformed request: missing {', '.join(missing)}",
+                                      request.get("answer") if isinstance(request.get("answer"), str) else "")
+        else:
+            verdict = check(
+                request["reference"],
+                request["answer"],
+                request["variables"],
+                kind=request.get("kind", "expression"),
+                feedback=request.get("feedback"),
+                budget_s=request.get("budget_s", 2.0),
+                state=request.get("state"),
+            )
+    verdict.ms = (time.monotonic() - started) * 1000
+    return verdict.to_json()

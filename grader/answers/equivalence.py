@@ -1,0 +1,459 @@
+"""Equivalence of two expressions over the variables' domains: symbolic when cheap, else numeric.
+
+The numeric judge evaluates both expressions at sample points in ball arithmetic (python-flint
+``arb``) and raises the working precision until each point is decided:
+
+- the ball of ``answer - reference`` excludes zero: the expressions provably differ there, and the
+  point is a counterexample (a proof of non-equivalence);
+- the ball contains zero and its radius is below ``10**-digits`` times the scale of the
+  computation (the largest term it added): the expressions agree there to ``digits`` digits.
+
+Balls make float64's failure modes harmless: ``1 - cos(theta)`` at ``theta = 1e-8`` is computed
+with more bits until the answer is certain, instead of cancelling to zero. The ``float64`` and
+``mpmath`` methods (fixed precision and a tolerance, no error bound) exist for the benchmark.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field, replace
+from typing import Any, Callable
+
+import flint
+import mpmath
+import sympy
+
+from grader.answers.evaluate import (
+    SCALE,
+    ArbBackend,
+    FloatBackend,
+    MpmathBackend,
+    Undefined,
+    Unresolved,
+    _log2_mag,
+    compile_expr,
+)
+from grader.answers.sampling import Sampler
+
+__all__ = ["Options", "Comparison", "Compiled", "PointResult", "compare_expressions", "symbolic_zero"]
+
+LOG2_10 = math.log2(10)
+
+
+@dataclass(frozen=True)
+class Options:
+    """How hard the numeric judge works.
+
+    Attributes
+    ----------
+    points : int
+        Sample points that must agree before answering ``equivalent``.
+    method : str
+        ``"arb"`` (ball arithmetic, adaptive precision: the default and the only rigorous one),
+        ``"mpmath"`` (fixed ``digits`` of precision) or ``"float64"``.
+    digits : int
+        ``arb``: digits of agreement required at each point; ``mpmath``: working digits.
+    tolerance : float
+        Relative tolerance of the ``float64`` and ``mpmath`` methods.
+    max_bits : int
+        Highest working precision tried by ``arb`` before a point is called unresolved.
+    symbolic : bool
+        Try a cheap symbolic proof (expansion) first.
+    """
+
+    points: int = 8
+    method: str = "arb"
+    digits: int = 30
+    tolerance: float = 1e-9
+    max_bits: int = 4096
+    symbolic: bool = True
+
+    def backend(self):
+        return {"arb": ArbBackend, "mpmath": MpmathBackend, "float64": FloatBackend}[self.method]()
+
+    def describe(self) -> str:
+        if self.method == "arb":
+            return "ball arithmetic"
+        if self.method == "mpmath":
+            return f"mpmath at {self.digits} digits, relative tolerance {self.tolerance:g}"
+        return f"float64, relative tolerance {self.tolerance:g}"
+
+
+@dataclass
+class Comparison:
+    """The outcome of comparing two expressions (or equations).
+
+    ``equivalent`` is True, False, or None when undecided (budget spent, or no usable point).
+    ``certainty`` is ``"proved"`` (symbolic identity, or a counterexample certified in ball
+    arithmetic), ``"numeric"`` (agreement at ``evidence["points"]`` points to
+    ``evidence["digits"]`` digits) or ``"none"``.
+    """
+
+    equivalent: bool | None
+    certainty: str
+    reason: str
+    evidence: dict = field(default_factory=dict)
+    counterexample: dict | None = None
+    budget_exceeded: bool = False
+    # values at the counterexample, for feedback (answer, reference) as floats
+    values: tuple[float, float] | None = None
+
+
+@dataclass
+class PointResult:
+    kind: str  # agree | differ | answer_undefined | reference_undefined | unresolved | budget
+    answer: Any = None
+    reference: Any = None
+    digits: float = 0.0
+    reason: str = ""
+
+
+class Compiled:
+    """An expression compiled for one backend, with a cache of values at keyed points.
+
+    The cache is what makes a file of answers to the same reference cheap: the reference is
+    evaluated once per sample point and precision.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> x = sympy.Symbol("x", positive=True)
+    >>> c = Compiled(x**2, ArbBackend())
+    >>> value, scale = c.at({x: 3.0}, prec=64, key=0)
+    >>> value == 9
+    True
+    """
+
+    def __init__(self, expr: sympy.Expr, backend):
+        self.expr = expr
+        self.backend = backend
+        self.f: Callable = compile_expr(expr, backend)
+        self._cache: dict = {}
+
+    def at(self, point: dict, prec: int, key=None):
+        """Value and scale (log2 of the largest term added) at ``point``; may raise."""
+        if key is not None and (key, prec) in self._cache:
+            cached = self._cache[key, prec]
+            if isinstance(cached, Exception):
+                raise cached
+            return cached
+        try:
+            result = self._evaluate(point, prec)
+        except (Undefined, Unresolved) as error:
+            if key is not None:
+                self._cache[key, prec] = error
+            raise
+        if key is not None:
+            self._cache[key, prec] = result
+        return result
+
+    def _evaluate(self, point: dict, prec: int):
+        backend = self.backend
+        if backend.name == "arb":
+            with flint.ctx.workprec(prec):
+                env = {s: flint.arb(v) for s, v in point.items()}
+                env[SCALE] = -math.inf
+                value = self.f(env)
+                if not value.is_finite():
+                    raise Unresolved
+                return value, env[SCALE]
+        if backend.name == "mpmath":
+            with mpmath.workprec(prec):
+                env = {s: mpmath.mpf(v) for s, v in point.items()}
+                env[SCALE] = -math.inf
+                value = self.f(env)
+                if not mpmath.isfinite(value):
+                    raise Undefined("not a finite number")
+                return value, env[SCALE]
+        env = {s: float(v) for s, v in point.items()}
+        env[SCALE] = -math.inf
+        try:
+            value = self.f(env)
+        except (OverflowError, ZeroDivisionError) as error:
+            raise Undefined("overflow in float64") from error
+        if isinstance(value, complex) or not math.isfinite(value):
+            raise Undefined("overflow in float64")
+        return value, env[SCALE]
+
+
+def as_float(x) -> float | str:
+    """A JSON-friendly number: a float when it is one, else a decimal string."""
+    if isinstance(x, flint.arb):
+        mid = x.mid()
+        f = float(mid)
+        if math.isfinite(f) and (f != 0 or mid.is_zero()):
+            return f
+        return mid.str(15, radius=False)
+    try:
+        f = float(x)
+    except (TypeError, ValueError, OverflowError):
+        return str(x)
+    return f if math.isfinite(f) else str(x)
+
+
+def compare_at(ref: Compiled, ans: Compiled, point: dict, key, options: Options, deadline: float | None) -> PointResult:
+    """Decide whether ``ans`` and ``ref`` agree at one point (see the module docstring)."""
+    if options.method != "arb":
+        return _compare_fixed(ref, ans, point, key, options)
+    target = options.digits * LOG2_10
+    prec = int(target) + 32
+    while True:
+        try:
+            r, r_scale = ref.at(point, prec, key)
+        except Undefined as error:
+            return PointResult("reference_undefined", reason=error.reason)
+        except Unresolved:
+            r = None
+        if r is not None:
+            try:
+                a, a_scale = ans.at(point, prec)
+            except Undefined as error:
+                return PointResult("answer_undefined", reference=r, reason=error.reason)
+            except Unresolved:
+                a = None
+            if a is not None:
+                d = a - r
+                if not d.contains(0):
+                    return PointResult("differ", answer=a, reference=r)
+                if d.rad().is_zero():
+                    return PointResult("agree", a, r, digits=math.inf)
+                scale = max(r_scale, a_scale, _log2_mag(a), _log2_mag(r))
+                noise = _log2_mag(d.rad())
+                if noise <= scale - target:
+                    return PointResult("agree", a, r, digits=(scale - noise) / LOG2_10)
+        prec *= 2
+        if prec > options.max_bits:
+            return PointResult("unresolved")
+        if deadline is not None and time.monotonic() > deadline:
+            return PointResult("budget")
+
+
+def _compare_fixed(ref: Compiled, ans: Compiled, point: dict, key, options: Options) -> PointResult:
+    """float64 / mpmath: agreement within a relative tolerance (WeBWorK's rule)."""
+    prec = 53 if options.method == "float64" else int(options.digits * LOG2_10) + 1
+    try:
+        r, _ = ref.at(point, prec, key)
+    except (Undefined, Unresolved) as error:
+        return PointResult("reference_undefined", reason=getattr(error, "reason", ""))
+    try:
+        a, _ = ans.at(point, prec)
+    except (Undefined, Unresolved) as error:
+        return PointResult("answer_undefined", reference=r, reason=getattr(error, "reason", ""))
+    diff, size = abs(a - r), max(abs(a), abs(r))
+    # WeBWorK: relative tolerance, except near zero (zeroLevel 1e-14) where 1e-12 is absolute
+    ok = diff <= 1e-12 if size < 1e-14 else diff <= options.tolerance * size
+    if ok:
+        digits = math.inf if diff == 0 else -math.log10(max(diff / size, 1e-300)) if size else 0.0
+        return PointResult("agree", a, r, digits=digits)
+    return PointResult("differ", answer=a, reference=r)
+
+
+def counterexample(point: dict, result: PointResult) -> dict:
+    """The counterexample record of a verdict: values, both results, and their difference."""
+    values = {s.name: v for s, v in point.items()}
+    record = {"values": values, "answer": None, "reference": as_float(result.reference)}
+    if result.kind == "answer_undefined":
+        record["answer"] = "undefined"
+        record["note"] = f"your answer is undefined here ({result.reason})"
+        return record
+    record["answer"] = as_float(result.answer)
+    try:
+        a, r = float(result.answer.mid() if hasattr(result.answer, "mid") else result.answer), float(
+            result.reference.mid() if hasattr(result.reference, "mid") else result.reference
+        )
+        if r != 0 and math.isfinite(a) and math.isfinite(r):
+            record["relative_difference"] = abs(a - r) / abs(r)
+    except (TypeError, ValueError, OverflowError):
+        pass
+    return record
+
+
+def _points_evidence(options: Options, agreed: int, digits: float, unresolved: int) -> dict:
+    evidence = {"method": options.describe(), "points": agreed}
+    if options.method == "arb":
+        evidence["digits"] = options.digits if math.isinf(digits) else int(min(digits, 1e6))
+    if unresolved:
+        evidence["unresolved_points"] = unresolved
+    return evidence
+
+
+def compare_numeric(
+    ref: Compiled,
+    ans: Compiled,
+    sampler: Sampler,
+    options: Options,
+    deadline: float | None = None,
+) -> Comparison:
+    """Compare two compiled expressions at the sampler's points.
+
+    Points where the reference is undefined are skipped (as WeBWorK does); a point where the
+    answer is undefined but the reference is not is a counterexample.
+    """
+    needed = options.points
+    agreed, unresolved, ref_undefined = 0, 0, 0
+    digits = math.inf
+    proved = options.method == "arb"
+    for i in range(needed * 3):
+        point = sampler.point(i)
+        result = compare_at(ref, ans, point, i, options, deadline)
+        if result.kind == "agree":
+            agreed += 1
+            digits = min(digits, result.digits)
+            if agreed >= needed:
+                break
+        elif result.kind in ("differ", "answer_undefined"):
+            example = counterexample(point, result)
+            if result.kind == "differ":
+                reason = "your answer and the correct one differ at the point in the counterexample"
+                values = (_to_float(result.answer), _to_float(result.reference))
+            else:
+                reason = f"your answer is undefined at a point where the correct one is defined ({result.reason})"
+                values = None
+            return Comparison(
+                False,
+                "proved" if proved else "numeric",
+                reason,
+                evidence={"method": options.describe(), "points": agreed + 1},
+                counterexample=example,
+                values=values,
+            )
+        elif result.kind == "reference_undefined":
+            ref_undefined += 1
+        elif result.kind == "unresolved":
+            unresolved += 1
+        else:  # budget
+            return Comparison(
+                None,
+                "none",
+                "the time budget ran out while comparing",
+                evidence=_points_evidence(options, agreed, digits, unresolved),
+                budget_exceeded=True,
+            )
+    if agreed >= min(needed, 3) or (agreed and agreed >= needed):
+        evidence = _points_evidence(options, agreed, digits, unresolved)
+        how = f"agree at {agreed} sample points"
+        if options.method == "arb":
+            how += f" to at least {evidence['digits']} digits (ball arithmetic)"
+        else:
+            how += f" ({options.describe()})"
+        return Comparison(True, "numeric", how, evidence=evidence)
+    if agreed == 0 and ref_undefined and not unresolved:
+        return Comparison(None, "none", "the reference is undefined at every sample point of the domain")
+    return Comparison(
+        None,
+        "none",
+        "could not decide: the expressions could not be evaluated reliably at enough points",
+        evidence=_points_evidence(options, agreed, digits, unresolved),
+    )
+
+
+def _to_float(x) -> float:
+    try:
+        return float(x.mid()) if isinstance(x, flint.arb) else float(x)
+    except (TypeError, ValueError, OverflowError):
+        return math.nan
+
+
+# -- symbolic --------------------------------------------------------------------------------
+
+SYMBOLIC_MAX_NODES = 80
+SYMBOLIC_MAX_POWER = 6
+
+
+def _small(expr: sympy.Expr) -> bool:
+    nodes = 0
+    for node in sympy.preorder_traversal(expr):
+        nodes += 1
+        if nodes > SYMBOLIC_MAX_NODES:
+            return False
+        if node.is_Pow and node.exp.is_Integer and abs(int(node.exp)) > SYMBOLIC_MAX_POWER:
+            return False
+    return True
+
+
+def symbolic_zero(diff: sympy.Expr) -> bool:
+    """A cheap proof that ``diff`` is identically zero: sympy's automatic simplification plus
+    ``expand`` on small expressions. False means "not proved", not "nonzero".
+
+    Examples
+    --------
+    >>> import sympy
+    >>> m, g, t = sympy.symbols("m g theta", positive=True)
+    >>> symbolic_zero(m*g*(3*sympy.cos(t) - 2) - (3*m*g*sympy.cos(t) - 2*m*g))
+    True
+    >>> symbolic_zero(sympy.sin(t)**2 + sympy.cos(t)**2 - 1)  # true, but not proved cheaply
+    False
+    """
+    if diff == 0:
+        return True
+    if not _small(diff):
+        return False
+    return sympy.expand(diff) == 0
+
+
+def compare_expressions(
+    reference: sympy.Expr,
+    answer: sympy.Expr,
+    sampler: Sampler,
+    options: Options = Options(),
+    deadline: float | None = None,
+    compiled_reference: Compiled | None = None,
+) -> Comparison:
+    """Are ``answer`` and ``reference`` the same function on the sampler's domains?
+
+    Parameters
+    ----------
+    reference, answer : sympy.Expr
+        Built over the same symbols (with the domains' assumptions).
+    sampler : Sampler
+        Points inside the variables' domains.
+    options : Options
+    deadline : float, optional
+        ``time.monotonic()`` after which the judge gives up (``budget_exceeded``).
+    compiled_reference : Compiled, optional
+        The reference compiled for ``options.backend()``, to reuse its cached values.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> class Positive:
+    ...     assumptions = {"positive": True}
+    ...     def sample(self, rng): return float(rng.uniform(0.5, 2))
+    ...     def contains(self, x): return x > 0
+    >>> m1, m2, g = sympy.symbols("m1 m2 g", positive=True)
+    >>> s = Sampler({m1: Positive(), m2: Positive(), g: Positive()}, seed=3)
+    >>> a = m2 * g / (m1 + m2)
+    >>> c = compare_expressions(m1*m2*g/(m1 + m2), m2*(g - a), s, Options(symbolic=False))
+    >>> c.equivalent, c.certainty
+    (True, 'numeric')
+    >>> c = compare_expressions(m1*m2*g/(m1 + m2), m1*m2*g/(m1 + m2)*(1 + sympy.Rational(1, 10**9)), s)
+    >>> c.equivalent, c.certainty
+    (False, 'proved')
+    """
+    diff = answer - reference
+    if diff == 0:
+        return Comparison(True, "proved", "symbolically identical", evidence={"method": "symbolic"})
+    if diff.is_Rational:  # two constants that differ, however little: exact arithmetic decides
+        example = {"values": {}, "answer": as_float(answer), "reference": as_float(reference)}
+        if reference != 0:
+            example["relative_difference"] = abs(float(diff / reference))
+        return Comparison(False, "proved", f"your answer differs from the correct one by the constant {diff}",
+                          evidence={"method": "exact"}, counterexample=example,
+                          values=(float(answer), float(reference)))
+    backend = options.backend()
+    ref = compiled_reference if compiled_reference is not None else Compiled(reference, backend)
+    ans = Compiled(answer, backend)
+    if options.symbolic:
+        # One point first: most wrong answers differ there, and then expanding would be wasted.
+        first = compare_numeric(ref, ans, sampler, replace(options, points=1), deadline)
+        if first.equivalent is False or first.budget_exceeded:
+            return first
+        if symbolic_zero(diff):
+            return Comparison(True, "proved", "symbolically identical", evidence={"method": "symbolic"})
+    return compare_numeric(ref, ans, sampler, options, deadline)
+
+
+def with_points(options: Options, points: int) -> Options:
+    """A copy of ``options`` with another number of points."""
+    return replace(options, points=points)

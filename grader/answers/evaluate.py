@@ -1,0 +1,505 @@
+"""Evaluate a sympy expression at a point: in ball arithmetic, in fixed precision, or in float64.
+
+An expression is compiled once into a tree of Python closures (no code generation, no ``eval``),
+then called with a point ``{Symbol: value}``. The arithmetic comes from a backend:
+
+- ``ArbBackend``: python-flint's ``arb`` balls at the working precision ``flint.ctx.prec``. Each
+  result is a ball that provably contains the true value, so a difference whose ball excludes zero
+  is a proof that two expressions differ at that point.
+- ``MpmathBackend``: mpmath floats at a fixed precision (no error bound), for the benchmark.
+- ``FloatBackend``: IEEE float64 through ``math``, what WeBWorK-style checkers do.
+
+Evaluation is over the reals. A point where the expression is undefined (division by zero, log of
+a non-positive number, square root of a negative number) raises `Undefined`; a ball too wide to
+tell raises `Unresolved`, and the caller raises the precision and tries again.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Callable
+
+import flint
+import mpmath
+import sympy
+
+__all__ = [
+    "Undefined",
+    "Unresolved",
+    "Unsupported",
+    "ArbBackend",
+    "MpmathBackend",
+    "FloatBackend",
+    "compile_expr",
+    "SCALE",
+]
+
+# Key under which an evaluation records the largest magnitude (log2) of any term it added: the
+# scale against which cancellation is measured.
+SCALE = "__scale__"
+
+
+class Undefined(ArithmeticError):
+    """The expression has no real value at this point; ``reason`` says why, in words."""
+
+    def __init__(self, reason: str):
+        super().__init__(reason)
+        self.reason = reason
+
+
+class Unresolved(ArithmeticError):
+    """The working precision is too low to tell whether the expression is defined here."""
+
+
+class Unsupported(ValueError):
+    """The expression contains something the evaluator does not know (named in the message)."""
+
+
+def _log2_mag(x: flint.arb) -> float:
+    """log2 of an upper bound of ``|x|`` (``-inf`` for an exact zero)."""
+    u = x.abs_upper()
+    if u.is_zero():
+        return -math.inf
+    if not u.is_finite():
+        return math.inf
+    man, exp = u.mid().man_exp()
+    return float(int(exp) + int(man).bit_length())
+
+
+class ArbBackend:
+    """Ball arithmetic with python-flint ``arb`` at the precision ``flint.ctx.prec``.
+
+    Examples
+    --------
+    >>> import flint, sympy
+    >>> x = sympy.Symbol("x", positive=True)
+    >>> f = compile_expr(sympy.sqrt(x) - 1, ArbBackend())
+    >>> with flint.ctx.workprec(100):
+    ...     v = f({x: flint.arb(4), SCALE: -math.inf})
+    >>> v == 1
+    True
+    """
+
+    name = "arb"
+
+    def point(self, value: float) -> flint.arb:
+        return flint.arb(value)
+
+    def integer(self, n: int):
+        return lambda env: flint.arb(n)
+
+    def rational(self, p: int, q: int):
+        return lambda env: flint.arb(flint.fmpq(p, q))
+
+    def float_(self, f: sympy.Float):
+        sign, man, exp, _ = f._mpf_
+        value = flint.arb(flint.fmpz(-man if sign else man)) * flint.arb(2) ** exp
+        return lambda env: value
+
+    def pi(self):
+        return lambda env: flint.arb.pi()
+
+    def e(self):
+        return lambda env: flint.arb.const_e()
+
+    def add(self, fs):
+        def add(env):
+            total = flint.arb(0)
+            scale = env[SCALE]
+            for f in fs:
+                t = f(env)
+                total += t
+                m = _log2_mag(t)
+                if m > scale:
+                    scale = m
+            env[SCALE] = scale
+            return total
+
+        return add
+
+    def mul(self, fs):
+        def mul(env):
+            total = flint.arb(1)
+            for f in fs:
+                total *= f(env)
+            return total
+
+        return mul
+
+    def pow_int(self, f, n: int):
+        if n >= 0:
+            return lambda env: f(env) ** n
+
+        def inverse_power(env):
+            x = f(env)
+            if x == 0:
+                raise Undefined("division by zero")
+            if x.contains(0):
+                raise Unresolved
+            return x ** n
+
+        return inverse_power
+
+    def pow_real(self, f, g):
+        def power(env):
+            x, y = f(env), g(env)
+            if x > 0:
+                return (y * x.log()).exp()
+            if x == 0 and y > 0:
+                return flint.arb(0)
+            if x == 0 and y <= 0:
+                raise Undefined("division by zero")
+            if x < 0:
+                raise Undefined("a root (fractional power) of a negative number")
+            raise Unresolved
+
+        return power
+
+    def sqrt(self, f):
+        def sqrt(env):
+            x = f(env)
+            if x >= 0:
+                return x.sqrt()
+            if x < 0:
+                raise Undefined("the square root of a negative number")
+            raise Unresolved
+
+        return sqrt
+
+    def function(self, name: str, fs):
+        unary = _ARB_UNARY.get(name)
+        if unary is not None:
+            (f,) = fs
+            return lambda env: unary(f(env))
+        if name == "atan2":
+            fy, fx = fs
+
+            def atan2(env):
+                y, x = fy(env), fx(env)
+                if x > 0 or y != 0:
+                    return flint.arb.atan2(y, x)
+                if x == 0 and y == 0:
+                    raise Undefined("atan2(0, 0)")
+                raise Unresolved
+
+            return atan2
+        raise Unsupported(name)
+
+
+def _arb_log(x):
+    if x > 0:
+        return x.log()
+    if x <= 0:
+        raise Undefined("the logarithm of a number that is not positive")
+    raise Unresolved
+
+
+def _arb_inverse(x, reason="division by zero"):
+    if x == 0:
+        raise Undefined(reason)
+    if x.contains(0):
+        raise Unresolved
+    return 1 / x
+
+
+def _arb_unit_interval(x, name):
+    if x.abs_upper() <= 1:
+        return x
+    if x.abs_lower() > 1:
+        raise Undefined(f"{name} of a number outside [-1, 1]")
+    raise Unresolved
+
+
+def _arb_sign(x):
+    if x > 0:
+        return flint.arb(1)
+    if x < 0:
+        return flint.arb(-1)
+    if x == 0:
+        return flint.arb(0)
+    raise Unresolved
+
+
+_ARB_UNARY: dict[str, Callable[[Any], Any]] = {
+    "sin": lambda x: x.sin(),
+    "cos": lambda x: x.cos(),
+    "tan": lambda x: x.sin() * _arb_inverse(x.cos(), "tan at an odd multiple of pi/2"),
+    "cot": lambda x: x.cos() * _arb_inverse(x.sin(), "cot at a multiple of pi"),
+    "sec": lambda x: _arb_inverse(x.cos(), "sec at an odd multiple of pi/2"),
+    "csc": lambda x: _arb_inverse(x.sin(), "csc at a multiple of pi"),
+    "asin": lambda x: _arb_unit_interval(x, "asin").asin(),
+    "acos": lambda x: _arb_unit_interval(x, "acos").acos(),
+    "atan": lambda x: x.atan(),
+    "sinh": lambda x: x.sinh(),
+    "cosh": lambda x: x.cosh(),
+    "tanh": lambda x: x.tanh(),
+    "exp": lambda x: x.exp(),
+    "log": _arb_log,
+    "Abs": lambda x: abs(x),
+    "sign": _arb_sign,
+}
+
+
+class _ScalarBackend:
+    """Shared code of the two point-value backends without error bounds (float64, mpmath)."""
+
+    def integer(self, n: int):
+        value = self.convert(n)
+        return lambda env: value
+
+    def rational(self, p: int, q: int):
+        return lambda env: self.convert(p) / self.convert(q)
+
+    def float_(self, f: sympy.Float):
+        value = self.convert_float(f)
+        return lambda env: value
+
+    def add(self, fs):
+        def add(env):
+            total = self.convert(0)
+            for f in fs:
+                total += f(env)
+            return total
+
+        return add
+
+    def mul(self, fs):
+        def mul(env):
+            total = self.convert(1)
+            for f in fs:
+                total *= f(env)
+            return total
+
+        return mul
+
+    def pow_int(self, f, n: int):
+        def power(env):
+            x = f(env)
+            if n < 0 and x == 0:
+                raise Undefined("division by zero")
+            return self.check(x**n)
+
+        return power
+
+    def pow_real(self, f, g):
+        def power(env):
+            x, y = f(env), g(env)
+            if x > 0:
+                return self.check(self.lib.exp(y * self.lib.log(x)))
+            if x == 0 and y > 0:
+                return self.convert(0)
+            if x == 0:
+                raise Undefined("division by zero")
+            raise Undefined("a root (fractional power) of a negative number")
+
+        return power
+
+    def sqrt(self, f):
+        def sqrt(env):
+            x = f(env)
+            if x < 0:
+                raise Undefined("the square root of a negative number")
+            return self.lib.sqrt(x)
+
+        return sqrt
+
+    def function(self, name: str, fs):
+        lib = self.lib
+        check = self.check
+
+        def inverse(x, reason):
+            if x == 0:
+                raise Undefined(reason)
+            return 1 / x
+
+        def log(x):
+            if x <= 0:
+                raise Undefined("the logarithm of a number that is not positive")
+            return lib.log(x)
+
+        def unit(x, name):
+            if abs(x) > 1:
+                raise Undefined(f"{name} of a number outside [-1, 1]")
+            return x
+
+        table = {
+            "sin": lib.sin,
+            "cos": lib.cos,
+            "tan": lambda x: lib.sin(x) * inverse(lib.cos(x), "tan at an odd multiple of pi/2"),
+            "cot": lambda x: lib.cos(x) * inverse(lib.sin(x), "cot at a multiple of pi"),
+            "sec": lambda x: inverse(lib.cos(x), "sec at an odd multiple of pi/2"),
+            "csc": lambda x: inverse(lib.sin(x), "csc at a multiple of pi"),
+            "asin": lambda x: lib.asin(unit(x, "asin")),
+            "acos": lambda x: lib.acos(unit(x, "acos")),
+            "atan": lib.atan,
+            "sinh": lib.sinh,
+            "cosh": lib.cosh,
+            "tanh": lib.tanh,
+            "exp": lib.exp,
+            "log": log,
+            "Abs": abs,
+            "sign": lambda x: self.convert((x > 0) - (x < 0)),
+        }
+        if name in table:
+            (f,) = fs
+            g = table[name]
+
+            def apply(env):
+                try:
+                    return check(g(f(env)))
+                except (OverflowError, ValueError, ZeroDivisionError) as error:
+                    raise Undefined(f"{name} overflows in {self.name}") from error
+
+            return apply
+        if name == "atan2":
+            fy, fx = fs
+
+            def atan2(env):
+                y, x = fy(env), fx(env)
+                if x == 0 and y == 0:
+                    raise Undefined("atan2(0, 0)")
+                return lib.atan2(y, x)
+
+            return atan2
+        raise Unsupported(name)
+
+
+class FloatBackend(_ScalarBackend):
+    """IEEE float64 through :mod:`math`; overflow and NaN count as undefined."""
+
+    name = "float64"
+    lib = math
+
+    def point(self, value: float) -> float:
+        return float(value)
+
+    def convert(self, n) -> float:
+        return float(n)
+
+    def convert_float(self, f: sympy.Float) -> float:
+        return float(f)
+
+    def pi(self):
+        return lambda env: math.pi
+
+    def e(self):
+        return lambda env: math.e
+
+    def check(self, x):
+        if isinstance(x, complex) or not math.isfinite(x):
+            raise Undefined("overflow in float64")
+        return x
+
+    def pow_int(self, f, n: int):
+        inner = super().pow_int(f, n)
+
+        def power(env):
+            try:
+                return inner(env)
+            except (OverflowError, ZeroDivisionError) as error:
+                raise Undefined("overflow in float64") from error
+
+        return power
+
+
+class MpmathBackend(_ScalarBackend):
+    """mpmath floats at the working precision of ``mpmath.mp`` (no error bound)."""
+
+    name = "mpmath"
+    lib = mpmath
+
+    def point(self, value: float):
+        return mpmath.mpf(value)
+
+    def convert(self, n):
+        return mpmath.mpf(n)
+
+    def convert_float(self, f: sympy.Float):
+        return mpmath.mpf(f._mpf_)
+
+    def pi(self):
+        return lambda env: +mpmath.pi
+
+    def e(self):
+        return lambda env: +mpmath.e
+
+    def check(self, x):
+        if isinstance(x, mpmath.mpc) or not mpmath.isfinite(x):
+            raise Undefined("not a finite real number")
+        return x
+
+
+_FUNCTIONS = {
+    sympy.sin: "sin",
+    sympy.cos: "cos",
+    sympy.tan: "tan",
+    sympy.cot: "cot",
+    sympy.sec: "sec",
+    sympy.csc: "csc",
+    sympy.asin: "asin",
+    sympy.acos: "acos",
+    sympy.atan: "atan",
+    sympy.atan2: "atan2",
+    sympy.sinh: "sinh",
+    sympy.cosh: "cosh",
+    sympy.tanh: "tanh",
+    sympy.exp: "exp",
+    sympy.log: "log",
+    sympy.Abs: "Abs",
+    sympy.sign: "sign",
+}
+
+
+def compile_expr(expr: sympy.Expr, backend) -> Callable[[dict], Any]:
+    """Compile ``expr`` into a function of a point ``{Symbol: backend value, SCALE: float}``.
+
+    Raises `Unsupported` for anything outside the arithmetic of real elementary functions
+    (``zoo``, ``nan``, unknown functions, derivatives, ...).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> t = sympy.Symbol("theta")
+    >>> f = compile_expr(1 - sympy.cos(t), FloatBackend())
+    >>> f({t: 1e-8, SCALE: 0.0})  # float64 loses every digit here
+    0.0
+    """
+    if expr.is_Symbol:
+        return lambda env: env[expr]
+    if expr.is_Integer:
+        return backend.integer(int(expr))
+    if expr.is_Rational:
+        return backend.rational(int(expr.p), int(expr.q))
+    if expr.is_Float:
+        return backend.float_(expr)
+    if expr is sympy.pi:
+        return backend.pi()
+    if expr is sympy.E:
+        return backend.e()
+    if expr.is_Add:
+        return backend.add([compile_expr(a, backend) for a in expr.args])
+    if expr.is_Mul:
+        return backend.mul([compile_expr(a, backend) for a in expr.args])
+    if expr.is_Pow:
+        base, exponent = expr.args
+        f = compile_expr(base, backend)
+        if exponent.is_Integer:
+            return backend.pow_int(f, int(exponent))
+        if exponent == sympy.S.Half:
+            return backend.sqrt(f)
+        if exponent == -sympy.S.Half:
+            return backend.pow_int(backend.sqrt(f), -1)
+        return backend.pow_real(f, compile_expr(exponent, backend))
+    if isinstance(expr, sympy.Function) and expr.func in _FUNCTIONS:
+        return backend.function(_FUNCTIONS[expr.func], [compile_expr(a, backend) for a in expr.args])
+    raise Unsupported(_describe(expr))
+
+
+def _describe(expr: sympy.Basic) -> str:
+    if expr in (sympy.zoo, sympy.oo, -sympy.oo):
+        return "an infinite value (division by zero)"
+    if expr is sympy.nan:
+        return "an undefined value"
+    if isinstance(expr, sympy.Function):
+        return f"the function {expr.func.__name__}"
+    return type(expr).__name__

@@ -1,0 +1,152 @@
+"""Feedback for a wrong answer: instructor messages for known wrong answers, then common slips.
+
+Every message is earned by an equivalence check, never by pattern matching on the text: an
+instructor's ``[[answers.feedback]]`` entry matches when the student's answer is equivalent to its
+``expr``; "check the sign" appears only when the answer is equivalent to minus the reference; and
+so on for a constant factor, sin <-> cos, a missing term, an extra term and one term's sign.
+Feedback runs only when the answer is not equivalent, and stops when the time budget runs low.
+"""
+
+from __future__ import annotations
+
+import time
+from fractions import Fraction
+from typing import Callable, Sequence
+
+import sympy
+
+__all__ = ["diagnose", "factor_message"]
+
+MAX_TERMS = 6
+
+
+def factor_message(q: Fraction) -> str:
+    """What to tell a student whose answer is ``q`` times the correct one.
+
+    >>> factor_message(Fraction(-1)), factor_message(Fraction(1, 2))
+    ('Check the sign: your answer is the negative of the correct one.', 'Your answer is half the correct one: check for a missing or extra factor of 2.')
+    """
+    if q == -1:
+        return "Check the sign: your answer is the negative of the correct one."
+    sign = "" if q > 0 else "Check the sign, and: "
+    q = abs(q)
+    if q == 2:
+        text = "Your answer is twice the correct one: check for a missing or extra factor of 2."
+    elif q == Fraction(1, 2):
+        text = "Your answer is half the correct one: check for a missing or extra factor of 2."
+    else:
+        text = f"Your answer is {q} times the correct one: check the constant factors."
+    return sign + (text[0].lower() + text[1:] if sign else text)
+
+
+def _simple_ratio(value: float) -> Fraction | None:
+    if not value or value != value or abs(value) > 1e3:
+        return None
+    q = Fraction(value).limit_denominator(12)
+    if q == 1 or q == 0 or abs(float(q) - value) > 1e-9 * abs(value):
+        return None
+    return q
+
+
+def _swap_sin_cos(expr: sympy.Expr) -> sympy.Expr:
+    """``expr`` with every sin written as cos and every cos as sin."""
+    if not expr.args:
+        return expr
+    args = [_swap_sin_cos(a) for a in expr.args]
+    if expr.func is sympy.sin:
+        return sympy.cos(*args)
+    if expr.func is sympy.cos:
+        return sympy.sin(*args)
+    return expr.func(*args)
+
+
+def _terms(expr: sympy.Expr) -> tuple[sympy.Expr, ...]:
+    terms = sympy.Add.make_args(expr)
+    if len(terms) < 2:
+        terms = sympy.Add.make_args(sympy.expand(expr))
+    return terms if 2 <= len(terms) <= MAX_TERMS else ()
+
+
+def diagnose(
+    reference: sympy.Expr,
+    answer: sympy.Expr,
+    same: Callable[[sympy.Expr, sympy.Expr], bool],
+    instructor: Sequence[tuple[sympy.Expr, str]] = (),
+    ratio: float | None = None,
+    relative_difference: float | None = None,
+    deadline: float | None = None,
+    equation: bool = False,
+) -> list[dict]:
+    """Feedback items ``{"code", "message"}`` for an answer known not to be equivalent.
+
+    Parameters
+    ----------
+    reference, answer : sympy.Expr
+        For equations, the residuals ``lhs - rhs``.
+    same : callable
+        ``same(reference_candidate, answer_candidate)``: the equivalence check to use.
+    instructor : sequence of (expr, message)
+        Known wrong answers with the instructor's message; the first equivalent one is reported.
+    ratio : float, optional
+        answer / reference at the counterexample, to spot a constant factor cheaply.
+    relative_difference : float, optional
+        At the counterexample; a tiny one earns a "close but not equal" note.
+    deadline : float, optional
+        ``time.monotonic()`` after which no more candidates are tried.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> m, g, t = sympy.symbols("m g theta", positive=True)
+    >>> same = lambda r, a: sympy.expand(a - r) == 0
+    >>> [f["code"] for f in diagnose(m*g*sympy.cos(t), m*g*sympy.sin(t), same)]
+    ['sin_cos']
+    >>> [f["code"] for f in diagnose(m*g*(3*sympy.cos(t) - 2), 3*m*g*sympy.cos(t), same)]
+    ['missing_term']
+    """
+    found: list[dict] = []
+
+    def out_of_time() -> bool:
+        return deadline is not None and time.monotonic() > deadline
+
+    for expr, message in instructor:
+        if out_of_time():
+            return found
+        if same(expr, answer):
+            found.append({"code": "instructor", "message": message})
+            break
+
+    slips: list[tuple[str, Callable[[], bool], str]] = []
+    if ratio is not None and not equation:
+        q = _simple_ratio(ratio)
+        if q is not None:
+            slips.append(("sign" if q == -1 else "factor",
+                          lambda q=q: same(sympy.Rational(q.numerator, q.denominator) * reference, answer),
+                          factor_message(q)))
+    if answer.has(sympy.sin, sympy.cos):
+        slips.append(("sin_cos", lambda: same(reference, _swap_sin_cos(answer)),
+                      "Check sin and cos: with them swapped, your answer would be right."))
+    ref_terms = _terms(reference)
+    for t in ref_terms:
+        slips.append(("missing_term", lambda t=t: same(reference - t, answer),
+                      "Your answer is missing a term: the rest of it is right."))
+    for t in ref_terms:
+        slips.append(("term_sign", lambda t=t: same(reference - 2 * t, answer),
+                      "One term of your answer has the wrong sign."))
+    for t in _terms(answer):
+        slips.append(("extra_term", lambda t=t: same(reference, answer - t),
+                      "Your answer has an extra term: without it, it would be right."))
+
+    for code, test, message in slips:
+        if out_of_time():
+            break
+        if test():
+            found.append({"code": code, "message": message})
+            break
+    if not found and relative_difference is not None and relative_difference < 1e-3:
+        found.append({
+            "code": "close",
+            "message": f"Your answer is close to the correct one (relative difference {relative_difference:.1g} "
+                       "at a test point) but not equal: check for rounded numbers or a small extra term.",
+        })
+    return found

@@ -1,0 +1,100 @@
+"""The verdict on one answer, as stored by the service and printed by ``grader check --jsonl``.
+
+This module imports nothing heavy, so the sandbox's parent process can build a verdict for a
+child it had to kill without loading sympy.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+__all__ = ["Verdict", "VERDICTS", "CERTAINTIES"]
+
+VERDICTS = ("equivalent", "not_equivalent", "invalid")
+CERTAINTIES = ("proved", "numeric", "none")
+
+
+@dataclass
+class Verdict:
+    """What the checker says about one answer.
+
+    Attributes
+    ----------
+    verdict : str
+        ``"equivalent"``, ``"not_equivalent"`` or ``"invalid"`` (unreadable, or not decided).
+    certainty : str
+        ``"proved"``: a symbolic identity, a dimension mismatch, or a counterexample certified in
+        ball arithmetic. ``"numeric"``: agreement at ``evidence["points"]`` sample points to
+        ``evidence["digits"]`` digits. ``"none"``: no verdict on the mathematics.
+    reason : str
+        One sentence, for people.
+    parsed : dict
+        ``{"text", "latex", "notes"}``: how the answer was read.
+    counterexample : dict or None
+        For ``not_equivalent``: ``{"values": {name: value}, "answer": ..., "reference": ...}``.
+    feedback : list of dict
+        ``{"code", "message"}`` items: instructor messages and detected slips.
+    ms : float
+        Wall-clock time of the check.
+    evidence : dict
+        How the verdict was reached (method, points, digits).
+    budget_exceeded : bool
+        True when the time budget ran out (the check was stopped or its child process killed).
+
+    Examples
+    --------
+    >>> v = Verdict("invalid", "none", "budget exceeded", budget_exceeded=True)
+    >>> v.to_json()["verdict"], v.to_json()["budget_exceeded"]
+    ('invalid', True)
+    """
+
+    verdict: str
+    certainty: str
+    reason: str
+    parsed: dict = field(default_factory=lambda: {"text": "", "latex": "", "notes": []})
+    counterexample: dict | None = None
+    feedback: list = field(default_factory=list)
+    ms: float = 0.0
+    evidence: dict = field(default_factory=dict)
+    budget_exceeded: bool = False
+
+    def __post_init__(self) -> None:
+        if self.verdict not in VERDICTS:
+            raise ValueError(f"verdict {self.verdict!r} is not one of {VERDICTS}")
+        if self.certainty not in CERTAINTIES:
+            raise ValueError(f"certainty {self.certainty!r} is not one of {CERTAINTIES}")
+
+    @property
+    def equivalent(self) -> bool:
+        return self.verdict == "equivalent"
+
+    def to_json(self) -> dict[str, Any]:
+        """The JSON object of the ``grader check --jsonl`` contract."""
+        return {
+            "verdict": self.verdict,
+            "certainty": self.certainty,
+            "reason": self.reason,
+            "parsed": self.parsed,
+            "counterexample": self.counterexample,
+            "feedback": self.feedback,
+            "ms": round(self.ms, 3),
+            "evidence": self.evidence,
+            "budget_exceeded": self.budget_exceeded,
+        }
+
+    @classmethod
+    def from_json(cls, data: dict[str, Any]) -> "Verdict":
+        """The inverse of `to_json` (unknown keys are ignored).
+
+        >>> Verdict.from_json(Verdict("equivalent", "proved", "identical").to_json()).certainty
+        'proved'
+        """
+        keys = ("verdict", "certainty", "reason", "parsed", "counterexample", "feedback", "ms",
+                "evidence", "budget_exceeded")
+        return cls(**{k: data[k] for k in keys if k in data and (data[k] is not None or k == "counterexample")})
+
+    @classmethod
+    def invalid(cls, reason: str, text: str = "", **extra) -> "Verdict":
+        """An ``invalid`` verdict for text that could not be checked."""
+        return cls("invalid", "none", reason, parsed={"text": text, "latex": "", "notes": []}, **extra)

@@ -1,0 +1,322 @@
+"""``grader bench check``: verdict accuracy and latency of the answer checker on the labelled corpus.
+
+In one run:
+
+1. our checker, in process, on every corpus item: wrong verdicts, p50/p99 latency;
+2. the same through the sandbox (what ``grader check --jsonl`` and the grading worker do), with the
+   slowest hostile input;
+3. the naive baseline on the same items (sympy's ``parse_expr`` + ``simplify(a - b) == 0``), in a
+   killable child process with a per-item timeout, and the ratio of the medians. The baseline
+   executes its input (that is what ``parse_expr`` does), so it never sees the hostile items;
+4. what accuracy costs: error rate and latency as the number of spot points and the working
+   precision change (float64 at WeBWorK's tolerance, float64 tight, mpmath at 30 digits, ball
+   arithmetic), as a table and a PNG plot.
+
+Figures go to ``bench-results/check.json`` and ``bench-results/check-precision.png``.
+"""
+
+from __future__ import annotations
+
+import json
+import multiprocessing
+import statistics
+import time
+from pathlib import Path
+
+import click
+
+DEFAULT_CORPUS = Path("tests/answers/corpus")
+
+
+def load_corpus(folder: Path) -> list[dict]:
+    """All labelled items of the corpus folder (``*.jsonl``), in file order."""
+    items = []
+    for path in sorted(Path(folder).glob("*.jsonl")):
+        with open(path, encoding="utf-8") as f:
+            items.extend(json.loads(line) for line in f if line.strip())
+    return items
+
+
+def _percentile(values: list[float], q: float) -> float:
+    if not values:
+        return float("nan")
+    ordered = sorted(values)
+    return ordered[min(len(ordered) - 1, int(q * len(ordered)))]
+
+
+def _run_ours(items, options=None, budget_s=2.0):
+    from grader.answers.checker import DEFAULT_OPTIONS, check
+
+    results = []
+    for item in items:
+        started = time.perf_counter()
+        verdict = check(item["reference"], item["answer"], item["variables"], kind=item["kind"],
+                        feedback=item.get("feedback"), state=item.get("state"), budget_s=budget_s,
+                        options=options or DEFAULT_OPTIONS)
+        ms = (time.perf_counter() - started) * 1000
+        results.append({"id": item["id"], "verdict": verdict.verdict, "ms": ms,
+                        "codes": [f["code"] for f in verdict.feedback]})
+    return results
+
+
+def _summary(items, results) -> dict:
+    wrong = [(i["id"], i["expected"], r["verdict"]) for i, r in zip(items, results) if r["verdict"] != i["expected"]]
+    ms = [r["ms"] for r in results]
+    return {
+        "items": len(items),
+        "wrong": len(wrong),
+        "accuracy": 1 - len(wrong) / len(items) if items else float("nan"),
+        "p50_ms": _percentile(ms, 0.5),
+        "p99_ms": _percentile(ms, 0.99),
+        "max_ms": max(ms) if ms else float("nan"),
+        "wrong_items": wrong[:50],
+    }
+
+
+# -- the naive baseline ---------------------------------------------------------------------------
+
+
+def _baseline_verdict(item: dict) -> str:
+    """What a naive checker says: sympy's parser and ``simplify(a - b) == 0``."""
+    import sympy
+    from sympy.parsing.sympy_parser import (
+        convert_xor,
+        implicit_multiplication_application,
+        parse_expr,
+        standard_transformations,
+    )
+
+    transformations = standard_transformations + (implicit_multiplication_application, convert_xor)
+    assumptions = {"positive": {"positive": True}, "nonnegative": {"nonnegative": True}}
+    local = {}
+    for name, spec in item["variables"].items():
+        domain = spec.get("domain", "real")
+        kw = assumptions.get(domain, {"real": True}) if isinstance(domain, str) else (
+            {"positive": True} if float(domain[0]) > 0 else {"real": True})
+        local[name] = sympy.Symbol(name, **kw)
+
+    def read(text):
+        return parse_expr(text, local_dict=local, transformations=transformations)
+
+    try:
+        if item["kind"] == "expression":
+            diff = read(item["answer"]) - read(item["reference"])
+            return "equivalent" if sympy.simplify(diff) == 0 else "not_equivalent"
+
+        def residuals(text):
+            out = []
+            for part in text.replace("\n", ";").split(";"):
+                if part.strip():
+                    lhs, _, rhs = part.replace("==", "=").partition("=")
+                    out.append(read(lhs) - read(rhs or "0"))
+            return out
+
+        ref, ans = residuals(item["reference"]), residuals(item["answer"])
+        if len(ref) != len(ans):
+            return "not_equivalent"
+        state = {local[n] for n, s in item["variables"].items() if s.get("kind")} or {
+            local[n] for n in local if n.endswith("dot") or f"{n}dot" in local}
+        for r, a in zip(ref, ans):
+            ratio = sympy.simplify(a / r)
+            if ratio == 0 or ratio.free_symbols & state or ratio.has(sympy.zoo, sympy.nan):
+                return "not_equivalent"
+        return "equivalent"
+    except Exception:
+        return "invalid"
+
+
+def _baseline_worker(connection) -> None:
+    from sympy.core.cache import clear_cache
+
+    clear_cache()  # start cold, as our checker did: the fork inherited the cache our run filled
+    while True:
+        item = connection.recv()
+        if item is None:
+            return
+        started = time.perf_counter()
+        verdict = _baseline_verdict(item)
+        connection.send((verdict, (time.perf_counter() - started) * 1000))
+
+
+class _Baseline:
+    """The baseline in a forked child, killed and restarted when an item overruns its timeout."""
+
+    def __init__(self, timeout_s: float):
+        self.timeout_s = timeout_s
+        self._context = multiprocessing.get_context("fork")
+        self._start()
+
+    def _start(self):
+        self._parent, child = self._context.Pipe()
+        self._process = self._context.Process(target=_baseline_worker, args=(child,), daemon=True)
+        self._process.start()
+
+    def run(self, item: dict) -> tuple[str, float]:
+        started = time.perf_counter()
+        self._parent.send(item)
+        if self._parent.poll(self.timeout_s):
+            verdict, ms = self._parent.recv()
+            return verdict, ms  # timed inside the worker, like ours (no pipe overhead)
+        self._process.kill()
+        self._process.join()
+        self._start()
+        return "timeout", (time.perf_counter() - started) * 1000
+
+    def close(self):
+        try:
+            self._parent.send(None)
+        except OSError:
+            pass
+        self._process.join(1)
+        if self._process.is_alive():
+            self._process.kill()
+
+
+# -- the run -------------------------------------------------------------------------------------
+
+SWEEP_METHODS = [
+    ("float64, tol 1e-3 (WeBWorK)", {"method": "float64", "tolerance": 1e-3}),
+    ("float64, tol 1e-9", {"method": "float64", "tolerance": 1e-9}),
+    ("mpmath 30 digits, tol 1e-20", {"method": "mpmath", "digits": 30, "tolerance": 1e-20}),
+    ("arb balls, adaptive (ours)", {"method": "arb"}),
+]
+SWEEP_POINTS = [1, 2, 4, 8, 16]
+
+
+def _sweep(items) -> list[dict]:
+    from grader.answers.equivalence import Options
+
+    rows = []
+    for label, settings in SWEEP_METHODS:
+        for points in SWEEP_POINTS:
+            options = Options(points=points, symbolic=False, **settings)
+            results = _run_ours(items, options)
+            s = _summary(items, results)
+            rows.append({"method": label, "points": points, "error_rate": 1 - s["accuracy"], "wrong": s["wrong"],
+                         "p50_ms": s["p50_ms"], "p99_ms": s["p99_ms"]})
+    return rows
+
+
+def _plot(rows: list[dict], path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for label, _ in SWEEP_METHODS:
+        mine = [r for r in rows if r["method"] == label]
+        xs = [r["points"] for r in mine]
+        left.plot(xs, [100 * r["error_rate"] for r in mine], marker="o", label=label)
+        right.plot(xs, [r["p50_ms"] for r in mine], marker="o", label=label)
+    left.set(xscale="log", xlabel="spot points", ylabel="wrong verdicts (%)", title="Accuracy")
+    right.set(xscale="log", yscale="log", xlabel="spot points", ylabel="median check (ms)", title="Latency")
+    for ax in (left, right):
+        ax.set_xticks(SWEEP_POINTS, [str(p) for p in SWEEP_POINTS])
+        ax.grid(True, alpha=0.3)
+    left.legend(fontsize=8)
+    fig.suptitle("What accuracy costs: spot points x working precision (numeric judge only, no symbolic step)")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+@click.command("check")
+@click.option("--corpus", type=click.Path(exists=True, file_okay=False, path_type=Path), default=DEFAULT_CORPUS,
+              show_default=True)
+@click.option("--out", type=click.Path(file_okay=False, path_type=Path), default=Path("bench-results"),
+              show_default=True)
+@click.option("--baseline-timeout", type=float, default=5.0, show_default=True,
+              help="Per-item timeout of the naive baseline, seconds.")
+@click.option("--no-baseline", is_flag=True, help="Skip the naive baseline.")
+@click.option("--no-sweep", is_flag=True, help="Skip the points x precision sweep.")
+def bench_check(corpus: Path, out: Path, baseline_timeout: float, no_baseline: bool, no_sweep: bool) -> None:
+    """Accuracy and latency of `grader check` on the labelled corpus, against the naive baseline."""
+    from grader.answers.sandbox import Sandbox
+
+    items = load_corpus(corpus)
+    if not items:
+        raise click.ClickException(f"no corpus items in {corpus}")
+    out.mkdir(parents=True, exist_ok=True)
+    hostile = [i for i in items if "hostile" in i["tags"]]
+    benign = [i for i in items if "hostile" not in i["tags"]]
+    typical = [i for i in items if "typical" in i["tags"]]
+    click.echo(f"corpus: {len(items)} items ({len(benign)} answers, {len(hostile)} hostile inputs) from {corpus}")
+
+    _run_ours(items[:30])  # warm-up: imports, sympy's caches, first compilations
+    ours = _run_ours(items)
+    by_id = {r["id"]: r for r in ours}
+    figures: dict = {"corpus": {"items": len(items), "hostile": len(hostile), "typical": len(typical)}}
+    figures["ours"] = _summary(items, ours)
+    figures["ours_typical"] = _summary(typical, [by_id[i["id"]] for i in typical])
+    figures["ours_benign"] = _summary(benign, [by_id[i["id"]] for i in benign])
+    expected_feedback = [i for i in items if i.get("expect_feedback")]
+    missed = [i["id"] for i in expected_feedback if i["expect_feedback"] not in by_id[i["id"]]["codes"]]
+    figures["feedback"] = {"expected": len(expected_feedback), "missed": len(missed), "missed_items": missed}
+
+    with Sandbox(budget_s=2.0) as box:
+        sandboxed = []
+        for item in items:
+            request = {k: item[k] for k in ("reference", "answer", "variables", "kind") if k in item}
+            for k in ("feedback", "state"):
+                if k in item:
+                    request[k] = item[k]
+            started = time.perf_counter()
+            reply = box.run(request)
+            sandboxed.append({"id": item["id"], "verdict": reply.get("verdict"),
+                              "ms": (time.perf_counter() - started) * 1000, "codes": []})
+        figures["sandbox"] = _summary(items, sandboxed)
+        host = [r for i, r in zip(items, sandboxed) if "hostile" in i["tags"]]
+        figures["sandbox"]["hostile_max_ms"] = max(r["ms"] for r in host) if host else 0.0
+        figures["sandbox"]["restarts"] = box.restarts
+
+    if not no_baseline:
+        baseline = _Baseline(baseline_timeout)
+        try:
+            base = []
+            for item in benign:
+                verdict, ms = baseline.run(item)
+                base.append({"id": item["id"], "verdict": verdict, "ms": ms, "codes": []})
+        finally:
+            baseline.close()
+        figures["baseline"] = _summary(benign, base)
+        figures["baseline"]["timeouts"] = sum(r["verdict"] == "timeout" for r in base)
+        figures["baseline"]["timeout_s"] = baseline_timeout
+        figures["speedup_median"] = figures["baseline"]["p50_ms"] / figures["ours_benign"]["p50_ms"]
+
+    if not no_sweep:
+        figures["sweep"] = _sweep(benign)
+        _plot(figures["sweep"], out / "check-precision.png")
+
+    (out / "check.json").write_text(json.dumps(figures, indent=2, default=str))
+    _print(figures, out)
+
+
+def _print(f: dict, out: Path) -> None:
+    def row(name, s, extra=""):
+        click.echo(f"{name:34s} {s['items']:6d} {s['wrong']:6d} {100 * s['accuracy']:8.2f}% "
+                   f"{s['p50_ms']:9.2f} {s['p99_ms']:9.2f} {s['max_ms']:9.1f} {extra}")
+
+    click.echo("")
+    click.echo(f"{'checker':34s} {'items':>6s} {'wrong':>6s} {'accuracy':>9s} {'p50 ms':>9s} {'p99 ms':>9s} {'max ms':>9s}")
+    row("ours (all items)", f["ours"])
+    row("ours (typical answers)", f["ours_typical"])
+    row("ours (answers, no hostile)", f["ours_benign"])
+    row("ours via sandbox (all items)", f["sandbox"],
+        f"hostile max {f['sandbox']['hostile_max_ms']:.0f} ms, restarts {f['sandbox']['restarts']}")
+    if "baseline" in f:
+        row("naive baseline (no hostile)", f["baseline"],
+            f"timeouts {f['baseline']['timeouts']} (at {f['baseline']['timeout_s']:g} s)")
+        click.echo(f"median speed-up over the baseline: {f['speedup_median']:.0f}x")
+    click.echo(f"feedback: {f['feedback']['expected'] - f['feedback']['missed']}/{f['feedback']['expected']} "
+               "expected feedback codes given")
+    if f["ours"]["wrong_items"]:
+        click.echo("wrong verdicts (ours): " + ", ".join(f"{i} (expected {e}, got {g})" for i, e, g in f["ours"]["wrong_items"]))
+    if "sweep" in f:
+        click.echo("")
+        click.echo("what accuracy costs (numeric judge alone, answers without hostile input):")
+        click.echo(f"{'method':32s} {'points':>6s} {'wrong':>6s} {'error %':>8s} {'p50 ms':>8s} {'p99 ms':>8s}")
+        for r in f["sweep"]:
+            click.echo(f"{r['method']:32s} {r['points']:6d} {r['wrong']:6d} {100 * r['error_rate']:8.2f} "
+                       f"{r['p50_ms']:8.2f} {r['p99_ms']:8.2f}")
+    click.echo(f"\nfigures: {out / 'check.json'}" + (f", {out / 'check-precision.png'}" if "sweep" in f else ""))

@@ -1,0 +1,534 @@
+"""Build the labelled answer corpus (``*.jsonl`` beside this file): ``python tests/answers/corpus/build.py``.
+
+Each line is a ``grader check --jsonl`` request plus the truth:
+``{"id", "problem", "question", "reference", "answer", "variables", "kind", "expected", "tags"}``
+with ``expected`` one of ``equivalent``, ``not_equivalent``, ``invalid`` and tags such as
+``typical``, ``float64_hostile``, ``near_miss``, ``domain``, ``dimension``, ``slip``, ``hostile``.
+A ``feedback`` list (instructor messages) and ``expect_feedback`` (a feedback code that must
+appear) are given where the item tests them.
+
+The references are the problems' answers in ``problems/`` (pendulum tension
+``m l thetadot^2 + m g cos(theta)``, half-Atwood ``m1 m2 g/(m1+m2)``, yo-yo ``m g/3``, sphere
+``m g (3 cos(theta) - 2)``, rolling with ``I = beta m R^2``) and their equations of motion. Every
+label was decided by hand from the mathematics, never by running the checker.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+HERE = Path(__file__).parent
+
+POS = "positive"
+PI_DOMAIN = [-3.1416, 3.1416]
+
+
+def var(dimension, domain="real", kind=None):
+    spec = {"dimension": dimension, "domain": domain}
+    if kind:
+        spec["kind"] = kind
+    return spec
+
+
+PENDULUM = {
+    "m": var("mass", POS), "g": var("acceleration", POS), "l": var("length", POS),
+    "theta": var("angle", PI_DOMAIN), "thetadot": var("angular_velocity"),
+}
+PENDULUM_EOM = {
+    "g": var("acceleration", POS), "l": var("length", POS), "m": var("mass", POS),
+    "theta": var("angle", PI_DOMAIN, "coordinate"), "thetadot": var("angular_velocity", "real", "velocity"),
+    "thetaddot": var("angular_acceleration", "real", "acceleration"),
+}
+ATWOOD = {"m1": var("mass", POS), "m2": var("mass", POS), "g": var("acceleration", POS)}
+# A very light block on the table and a very heavy hanging one: float64 cancels in g - a.
+ATWOOD_EXTREME = {"m1": var("mass", [1e-7, 1e-5]), "m2": var("mass", [1e5, 1e7]), "g": var("acceleration", POS)}
+ATWOOD_SYSTEM = {
+    "m1": var("mass", POS), "m2": var("mass", POS), "g": var("acceleration", POS),
+    "xddot": var("acceleration", "real", "acceleration"), "yddot": var("acceleration", "real", "acceleration"),
+    "T": var("force", "real", "force"),
+}
+YOYO = {"m": var("mass", POS), "g": var("acceleration", POS), "R": var("length", POS)}
+YOYO_EOM = {"m": var("mass", POS), "g": var("acceleration", POS), "R": var("length", POS),
+            "sddot": var("acceleration", "real", "acceleration")}
+SPHERE = {"m": var("mass", POS), "g": var("acceleration", POS), "R": var("length", POS),
+          "theta": var("angle", PI_DOMAIN)}
+# Near the top of the sphere: tiny angles, where 1 - cos(theta) cancels in float64.
+SPHERE_SMALL = {"R": var("length", POS), "theta": var("angle", [1e-9, 1e-7])}
+ROLLING = {"m": var("mass", POS), "g": var("acceleration", POS), "R": var("length", POS),
+           "alpha": var("angle", [0, 1.5708]), "beta": var("dimensionless", [0.01, 1])}
+ROLLING_EOM = {**ROLLING, "sddot": var("acceleration", "real", "acceleration")}
+
+EQ, NE, INV = "equivalent", "not_equivalent", "invalid"
+
+items: list[dict] = []
+
+
+def add(problem, question, reference, variables, entries, kind="expression", feedback=None, state=None):
+    for entry in entries:
+        answer, expected, *rest = entry
+        tags = rest[0] if rest else []
+        item = {
+            "problem": problem, "question": question, "reference": reference, "answer": answer,
+            "variables": variables, "kind": kind, "expected": expected,
+            "tags": tags if isinstance(tags, list) else [tags],
+        }
+        if len(rest) > 1:
+            item["expect_feedback"] = rest[1]
+        if feedback:
+            item["feedback"] = feedback
+        if state:
+            item["state"] = state
+        items.append(item)
+
+
+# -- pendulum: tension ------------------------------------------------------------------------
+PENDULUM_FEEDBACK = [
+    {"expr": "m*g*cos(theta)", "message": "That is the tension of a bob at rest."},
+    {"expr": "m*l*thetadot^2/2 + m*g*cos(theta)/2", "message": "This is the multiplier, not the tension."},
+]
+add("pendulum", "tension", "m*l*thetadot^2 + m*g*cos(theta)", PENDULUM, [
+    ("m*l*thetadot^2 + m*g*cos(theta)", EQ, "typical"),
+    ("m l thetadot^2 + m g cos theta", EQ, "typical"),
+    ("m(l thetadot^2 + g cos(theta))", EQ, "typical"),
+    ("m*(g*cos(theta) + l*thetadot**2)", EQ, "typical"),
+    ("mgcos(theta) + ml thetadot^2", EQ, "typical"),
+    ("m·l·θ̇² + m·g·cos θ", EQ, "typical"),
+    ("m l \\dot\\theta^2 + m g \\cos\\theta", EQ, "typical"),
+    ("m*l*theta_dot^2 + m*g*cos(theta)", EQ, "typical"),
+    ("m*l*dot(theta)^2 + m*g*cos(theta)", EQ, "typical"),
+    ("m*g*cos(theta) + m*l*thetadot*thetadot", EQ, "typical"),
+    ("m*(l*thetadot^2 + g*(1 - 2*sin(theta/2)^2))", EQ, "typical"),
+    ("m*l*thetadot^2 + m*g*(cos(theta/2)^2 - sin(theta/2)^2)", EQ, "typical"),
+    ("m*l*thetadot^2 + m*g*sin(theta + pi/2)", EQ, "typical"),
+    ("m*l*thetadot^2 + m*g*cos(-theta)", EQ, "typical"),
+    ("m*l*thetadot^2 + m*g*(2*cos(theta/2)^2 - 1)", EQ, "typical"),
+    ("m*l*thetadot^2 + m*g/sec(theta)", EQ, "typical"),
+    ("m*l*thetadot^2 + m*g*cos(theta)*(sin(theta)^2 + cos(theta)^2)", EQ, "typical"),
+    ("(m*l^2*thetadot^2 + m*g*l*cos(theta))/l", EQ, "typical"),
+    ("m*l*thetadot^2 + m*g + m*g*(cos(theta) - 1)", EQ, ["typical", "float64_hostile"]),
+    ("m*l*thetadot^2 + m*g - 2*m*g*sin(theta/2)^2", EQ, "typical"),
+    ("2*l*(m*thetadot^2/2 + m*g*cos(theta)/(2*l))", EQ, "typical"),
+    ("m*l*thetadot^2 + m*g*cos(theta) + 0*m*g", EQ, "typical"),
+    ("0.5*m*l*thetadot^2*2 + m*g*cos(theta)", EQ, "typical"),
+    ("m*l*thetadot^2 + m*g*sqrt(1 - sin(theta)^2)", NE, ["domain"]),
+    ("m*l*thetadot^2 - m*g*cos(theta)", NE, ["typical", "slip"], "term_sign"),
+    ("-m*l*thetadot^2 - m*g*cos(theta)", NE, ["typical", "slip"], "sign"),
+    ("m*g*cos(theta)", NE, ["typical", "slip"], "instructor"),
+    ("m*l*thetadot^2/2 + m*g*cos(theta)/2", NE, ["typical", "slip"], "instructor"),
+    ("m*l*thetadot^2", NE, ["typical", "slip"], "missing_term"),
+    ("m*l*thetadot^2 + m*g*sin(theta)", NE, ["typical", "slip"], "sin_cos"),
+    ("2*m*l*thetadot^2 + 2*m*g*cos(theta)", NE, ["typical", "slip"], "factor"),
+    ("m*l*thetadot^2 + m*g*cos(theta) + m*g", NE, ["typical", "slip"], "extra_term"),
+    ("m*l*thetadot^2 + m*g", NE, ["typical"]),
+    ("m*l^2*thetadot^2 + m*g*cos(theta)", NE, ["dimension"], "dimension"),
+    ("m*l*thetadot + m*g*cos(theta)", NE, ["dimension"], "dimension"),
+    ("m*thetadot^2 + m*g*cos(theta)", NE, ["dimension"], "dimension"),
+    ("m*l*thetadot^2 + g*cos(theta)", NE, ["dimension"], "dimension"),
+    ("l*thetadot^2 + g*cos(theta)", NE, ["dimension"], "dimension"),
+    ("m*l*thetadot^2 + m*g*cos(m)", NE, ["dimension"], "dimension"),
+    ("m*l*thetadot^2 + m*g*cos(theta)*(1 + 10^-9)", NE, ["near_miss"]),
+    ("m*l*thetadot^2 + m*g*cos(theta) + m*g/10^9", NE, ["near_miss"]),
+    ("m*l*thetadot^2*1.000000001 + m*g*cos(theta)", NE, ["near_miss"]),
+    ("m*l*thetadot^2 + 0.999999999*m*g*cos(theta)", NE, ["near_miss"]),
+    ("m*l*thetadot^2 + m*g*cos(theta + 10^-9)", NE, ["near_miss"]),
+    ("m*l*thetadot^2 + m*g*cos(theta)", EQ, ["typical"]),
+    ("m*l*thetadot^2 + m*g*cos(theta", INV, ["syntax"]),
+    ("m*l*thetadot^2 + M*g*cos(theta)", INV, ["syntax"]),
+    ("m*l*omega^2 + m*g*cos(theta)", INV, ["syntax"]),
+    ("m*l*thetadot^2 + m*g*cos(theta) = T", INV, ["syntax"]),
+    ("", INV, ["syntax"]),
+    ("m*l*thetadot^2 +* m*g*cos(theta)", INV, ["syntax"]),
+], feedback=PENDULUM_FEEDBACK)
+
+# lowest point, released from rest at theta0: T = m g (3 - 2 cos theta0)
+add("pendulum", "tension_lowest", "m*g*(3 - 2*cos(theta0))",
+    {"m": var("mass", POS), "g": var("acceleration", POS), "theta0": var("angle", [0.01, 3.1])}, [
+    ("3mg - 2mg cos(theta0)", EQ, "typical"),
+    ("m*g + 2*m*g*(1 - cos(theta0))", EQ, "typical"),
+    ("m*g*(1 + 4*sin(theta0/2)^2)", EQ, "typical"),
+    ("m*g*(3 - 2*sqrt(1 - sin(theta0)^2))", NE, "domain"),  # theta0 may exceed pi/2
+    ("m*g*(3 - 2*cos(theta0))*(1 + 10^-9)", NE, "near_miss"),
+    ("m*g*(3 - 2*sin(theta0))", NE, ["typical", "slip"], "sin_cos"),
+    ("m*g*(3 + 2*cos(theta0))", NE, ["typical", "slip"], "term_sign"),
+    ("m*g*(1 - 2*cos(theta0))", NE, ["typical"]),
+    ("3*m*g", NE, ["typical", "slip"], "missing_term"),
+    ("m*g*(3 - 2*cos(theta0)) + theta0", NE, ["dimension"], "dimension"),
+])
+
+# -- half-Atwood ------------------------------------------------------------------------------
+ATWOOD_FEEDBACK = [{"expr": "m2*g", "message": "That would be the tension if m2 hung at rest."}]
+T_ATWOOD = "m1*m2*g/(m1 + m2)"
+tension_forms = [
+    "m1 m2 g/(m1 + m2)", "m1*m2*g/(m2 + m1)", "g/(1/m1 + 1/m2)", "m1*g/(1 + m1/m2)",
+    "m2*g/(1 + m2/m1)", "m2*(g - m2*g/(m1 + m2))", "m1*(m2*g/(m1 + m2))", "m2*g - m2^2*g/(m1 + m2)",
+    "m2*g*(1 - m2/(m1 + m2))", "m1*g - m1^2*g/(m1 + m2)", "(m1*m2*g)/(m1+m2)", "\\frac{m_1 m_2 g}{m_1 + m_2}",
+    "m₁m₂g/(m₁+m₂)", "g*m1*m2*(m1+m2)^-1", "m1*m2*g*(m1 - m2)/(m1^2 - m2^2)", "m1 m2 g / (m1 + m2)",
+    "2*m1*m2*g/(2*m1 + 2*m2)", "(m1+m2)^2*m1*m2*g/(m1+m2)^3",
+]
+add("half_atwood", "tension", T_ATWOOD, ATWOOD,
+    [(t, EQ, "typical") for t in tension_forms]
+    + [(t, EQ, ["float64_hostile"]) for t in ("m2*(g - m2*g/(m1 + m2))", "m2*g - m2^2*g/(m1 + m2)",
+                                               "m1*g - m1^2*g/(m1 + m2)")]
+    + [
+        ("m2*g", NE, ["typical", "slip"], "instructor"),
+        ("m1*g", NE, "typical"),
+        ("m1*m2*g/(m1 - m2)", NE, "typical"),
+        ("m2*g/(m1 + m2)", NE, ["dimension"], "dimension"),
+        ("m1*m2*g/(m1 + m2)^2", NE, ["dimension"], "dimension"),
+        ("m1*m2*g/(m1 + m2 + g)", NE, ["dimension"], "dimension"),
+        ("2*m1*m2*g/(m1 + m2)", NE, ["typical", "slip"], "factor"),
+        ("m1*m2*g/(2*(m1 + m2))", NE, ["typical", "slip"], "factor"),
+        ("-m1*m2*g/(m1 + m2)", NE, ["typical", "slip"], "sign"),
+        ("m2*(g + m2*g/(m1 + m2))", NE, "typical"),
+        ("m1*m2*g/(m1 + m2)*(1 + 10^-9)", NE, "near_miss"),
+        ("m1*m2*g/(m1 + m2 + m1/10^9)", NE, "near_miss"),
+        ("m1*m2*g/(m1 + m2) + m1*g/10^9", NE, "near_miss"),
+        ("m1*m2*9.81/(m1 + m2)", NE, ["dimension"], "dimension"),
+        ("m1*m2*g/(m1 + m2", INV, "syntax"),
+        ("m1*m2*g/(m1 + m3)", INV, "syntax"),
+        ("m1*m2*g/(m1 + m2) = T", INV, "syntax"),
+    ], feedback=ATWOOD_FEEDBACK)
+add("half_atwood", "tension_extreme_masses", T_ATWOOD, ATWOOD_EXTREME, [
+    ("m2*(g - m2*g/(m1 + m2))", EQ, ["float64_hostile"]),
+    ("m2*g - m2^2*g/(m1 + m2)", EQ, ["float64_hostile"]),
+    ("m2*g*(1 - m2/(m1 + m2))", EQ, ["float64_hostile"]),
+    ("m1*m2*g/(m1 + m2)", EQ, "typical"),
+    ("m1*g", NE, ["near_miss"]),  # off by the relative term m1/(m1+m2) ~ 1e-12
+    ("m1*g*(1 - m1/m2)", NE, ["near_miss"]),  # the first-order expansion, off by ~1e-24
+    ("m2*g - m2^2*g/(m1 + m2) + m1*g/10^9", NE, ["near_miss"]),
+])
+
+A_ATWOOD = "m2*g/(m1 + m2)"
+add("half_atwood", "acceleration", A_ATWOOD, ATWOOD, [
+    ("m2 g/(m1+m2)", EQ, "typical"),
+    ("g/(1 + m1/m2)", EQ, "typical"),
+    ("g - m1*g/(m1 + m2)", EQ, ["typical", "float64_hostile"]),
+    ("g*(1 - m1/(m1 + m2))", EQ, ["typical", "float64_hostile"]),
+    ("m2*g*(m1 + m2)^(-1)", EQ, "typical"),
+    ("g*m2/(m2 + m1)", EQ, "typical"),
+    ("(m2*g)/(m1+m2)", EQ, "typical"),
+    ("g", NE, ["typical", "slip"], "instructor"),
+    ("m2*g/m1", NE, ["typical", "slip"], "instructor"),
+    ("m1*g/(m1 + m2)", NE, "typical"),
+    ("m2*g/(m1 - m2)", NE, "typical"),
+    ("(m2 - m1)*g/(m1 + m2)", NE, "typical"),
+    ("m2*g/(m1 + m2)*(1 + 10^-9)", NE, "near_miss"),
+    ("m2*g/(m1 + m2)^2", NE, ["dimension"], "dimension"),
+    ("m2*g", NE, ["dimension"], "dimension"),
+    ("-m2*g/(m1 + m2)", NE, ["typical", "slip"], "sign"),
+    ("m2*g/(2*(m1 + m2))", NE, ["typical", "slip"], "factor"),
+], feedback=[{"expr": "g", "message": "m2 does not fall freely."},
+             {"expr": "m2*g/m1", "message": "The total mass belongs in the denominator."}])
+add("half_atwood", "acceleration_m1", A_ATWOOD, ATWOOD, [
+    ("m2*g/(m1 + m2)", EQ, "typical"),
+    ("g - g*m1/(m2 + m1)", EQ, ["typical", "float64_hostile"]),
+    ("m1*g/(m1 + m2)", NE, "typical"),
+])
+add("half_atwood", "normal_force", "m1*g", ATWOOD, [
+    ("m1 g", EQ, "typical"), ("g*m1", EQ, "typical"), ("m1*g*(m1 + m2)/(m1 + m2)", EQ, "typical"),
+    ("m2*g", NE, "typical"), ("(m1 + m2)*g", NE, "typical"), ("m1*g - m1*m2*g/(m1 + m2)", NE, "typical"),
+    ("m1", NE, ["dimension"], "dimension"),
+])
+
+# -- yo-yo ------------------------------------------------------------------------------------
+add("yoyo", "tension", "m*g/3", YOYO, [
+    ("mg/3", EQ, "typical"), ("m g / 3", EQ, "typical"), ("(1/3) m g", EQ, "typical"), ("m*g*3^-1", EQ, "typical"),
+    ("m*g - 2*m*g/3", EQ, "typical"), ("m*(g - 2*g/3)", EQ, "typical"), ("\\frac{mg}{3}", EQ, "typical"),
+    ("\\frac{1}{3}mg", EQ, "typical"), ("m*g/(1 + 2)", EQ, "typical"), ("m*g*(1/2)/(3/2)", EQ, "typical"),
+    ("0.5*m*g/1.5", EQ, "typical"), ("m*(g - 2/3*g)", EQ, "typical"),
+    ("m g (1 - 2/3)", EQ, "typical"), ("g*m/3", EQ, "typical"), ("m*g/3*(R/R)", EQ, "typical"),
+    ("m*g*(sin(R/R)^2 + cos(1)^2)/3", EQ, "typical"),
+    ("m*g", NE, ["typical", "slip"], "instructor"),
+    ("2*m*g/3", NE, ["typical", "slip"], "factor"),
+    ("m*g/2", NE, "typical"), ("m*g/6", NE, ["typical", "slip"], "factor"),
+    ("-m*g/3", NE, ["typical", "slip"], "sign"),
+    ("m*g/3 + m*g/10^9", NE, ["near_miss"]), ("0.333333333*m*g", NE, ["near_miss"], "close"),
+    ("0.3333333333333333*m*g", NE, ["near_miss"], "close"),
+    ("m*g*0.33", NE, "near_miss"),
+    ("m*g*R/3", NE, ["dimension"], "dimension"), ("g/3", NE, ["dimension"], "dimension"),
+    ("m/3", NE, ["dimension"], "dimension"), ("m*g/3 + R", NE, ["dimension"], "dimension"),
+    ("m*g/3 + m", NE, ["dimension"], "dimension"), ("m*g^2/3", NE, ["dimension"], "dimension"),
+    ("m*g/3 +", INV, "syntax"), ("m*g/0", INV, "syntax"), ("mg/3 m", NE, ["dimension"], "dimension"),
+    ("m*g/3 + x", INV, "syntax"), ("T", INV, "syntax"),
+], feedback=[{"expr": "m*g", "message": "The yo-yo accelerates, so the tension is less than its weight."}])
+add("yoyo", "acceleration", "2*g/3", YOYO, [
+    ("2g/3", EQ, "typical"), ("g - g/3", EQ, "typical"), ("g/(1 + 1/2)", EQ, "typical"),
+    ("(2/3)*g", EQ, "typical"), ("g/1.5", EQ, "typical"), ("g*m/(m + m/2)", EQ, "typical"),
+    ("g", NE, "typical"), ("g/3", NE, ["typical", "slip"], "factor"), ("g/2", NE, "typical"),
+    ("-2*g/3", NE, ["typical", "slip"], "sign"), ("0.667*g", NE, ["near_miss"], "close"),
+    ("2*g/3*(1 - 10^-9)", NE, "near_miss"), ("2*m*g/3", NE, ["dimension"], "dimension"),
+])
+add("yoyo", "angular_acceleration", "2*g/(3*R)", YOYO, [
+    ("2g/(3R)", EQ, "typical"), ("(2/3)*g/R", EQ, "typical"), ("2*g*R^-1/3", EQ, "typical"),
+    ("g/(3*R/2)", EQ, "typical"), ("2*g/3/R", EQ, "typical"),
+    ("2*g*R/3", NE, ["dimension"], "dimension"), ("2*g/3", NE, ["dimension"], "dimension"),
+    ("g/(3*R)", NE, ["typical", "slip"], "factor"), ("2*g/(3*R) + 10^-9*g/R", NE, "near_miss"),
+])
+
+# -- sphere: normal force -----------------------------------------------------------------------
+N_SPHERE = "m*g*(3*cos(theta) - 2)"
+add("sphere", "normal_force", N_SPHERE, SPHERE, [
+    ("mg(3cos θ - 2)", EQ, "typical"), ("3 m g cos(theta) - 2 m g", EQ, "typical"),
+    ("m*g*(3*cos(theta) - 2)", EQ, "typical"), ("3mg\\cos\\theta - 2mg", EQ, "typical"),
+    ("m*g*cos(theta) - 2*m*g*(1 - cos(theta))", EQ, "typical"),
+    ("m*g*(1 - 6*sin(theta/2)^2)", EQ, ["typical", "float64_hostile"]),
+    ("m*g*(3*cos(theta) - 2*sin(theta)^2 - 2*cos(theta)^2)", EQ, "typical"),
+    ("m*g*(3*sin(pi/2 - theta) - 2)", EQ, "typical"),
+    ("m*g*(6*cos(theta/2)^2 - 5)", EQ, "typical"),
+    ("-m*g*(2 - 3*cos(theta))", EQ, "typical"),
+    ("m*g*(3*cos(-theta) - 2)", EQ, "typical"),
+    ("3*m*g*(cos(theta) - 2/3)", EQ, "typical"),
+    ("m*g*(3*cos(theta) - 2)*(sin(theta)^2 + cos(theta)^2)", EQ, "typical"),
+    ("m g cos(theta) - 2 m g + 2 m g cos(theta)", EQ, "typical"),
+    ("m*g*(3*sqrt(1 - sin(theta)^2) - 2)", NE, ["domain"]),
+    ("m*g*(3*abs(cos(theta)) - 2)", NE, ["domain"]),
+    ("m*g*cos(theta)", NE, ["typical", "slip"], "instructor"),
+    ("m*g*(3*cos(theta) + 2)", NE, ["typical", "slip"], "term_sign"),
+    ("m*g*(2 - 3*cos(theta))", NE, ["typical", "slip"], "sign"),
+    ("3*m*g*cos(theta)", NE, ["typical", "slip"], "missing_term"),
+    ("m*g*(3*sin(theta) - 2)", NE, ["typical", "slip"], "sin_cos"),
+    ("m*g*(2*cos(theta) - 2)", NE, "typical"),
+    ("m*g*(3*cos(theta) - 1)", NE, "typical"),
+    ("2*m*g*(3*cos(theta) - 2)", NE, ["typical", "slip"], "factor"),
+    ("m*g*(3*cos(theta) - 2) + 10^-9*m*g", NE, "near_miss"),
+    ("m*g*(3*cos(theta) - 2.000000001)", NE, "near_miss"),
+    ("m*g*(3*cos(theta) - 2)*R", NE, ["dimension"], "dimension"),
+    ("g*(3*cos(theta) - 2)", NE, ["dimension"], "dimension"),
+    ("m*g*(3*cos(theta) - 2*R)", NE, ["dimension"], "dimension"),
+    ("m*g*(3*cos(theta*m) - 2)", NE, ["dimension"], "dimension"),
+    ("m*g*(3*cos(theta) - 2", INV, "syntax"), ("m*g*(3*cos(phi) - 2)", INV, "syntax"),
+    ("m*g*(3*cos() - 2)", INV, "syntax"),
+], feedback=[{"expr": "m*g*cos(theta)", "message": "The particle moves on a circle: it needs a centripetal force."}])
+add("sphere", "separation_cos", "2/3", {"m": var("mass", POS)}, [
+    ("2/3", EQ, "typical"), ("0.6666666666666666666666666666666666666666666666666667", NE, "near_miss"),
+    ("1 - 1/3", EQ, "typical"), ("4/6", EQ, "typical"), ("0.667", NE, ["near_miss"], "close"),
+    ("1/3", NE, "typical"), ("cos(2/3)", NE, "typical"), ("sqrt(4/9)", EQ, "typical"),
+    ("acos(2/3)", NE, "typical"), ("2/3*m", NE, ["dimension"], "dimension"),
+])
+add("sphere", "separation_drop", "R/3", {"R": var("length", POS)}, [
+    ("R/3", EQ, "typical"), ("R - 2R/3", EQ, "typical"), ("R*(1 - 2/3)", EQ, "typical"),
+    ("R - R*2/3", EQ, "typical"), ("2R/3", NE, "typical"), ("R/3 + 1", NE, ["dimension"], "dimension"),
+])
+# Small angles near the top: R(1 - cos theta) against forms that float64 cannot evaluate there.
+add("sphere", "drop_small_angle", "R*(1 - cos(theta))", SPHERE_SMALL, [
+    ("2*R*sin(theta/2)^2", EQ, ["float64_hostile"]),
+    ("R - R*cos(theta)", EQ, ["float64_hostile"]),
+    ("R*sin(theta)^2/(1 + cos(theta))", EQ, ["float64_hostile"]),
+    ("R*(1 - cos(theta))", EQ, "typical"),
+    ("R*theta^2/2", NE, ["near_miss"]),  # the small-angle approximation: off by ~theta^2/12 relative
+    ("R*(1 - cos(theta)) + R*theta^3", NE, ["near_miss"]),
+    ("R*theta", NE, "typical"),
+    ("R*(1 - cos(theta))*(1 + 10^-9)", NE, "near_miss"),
+])
+
+# -- rolling down an incline, I = beta m R^2 -----------------------------------------------------
+add("incline_general", "acceleration", "g*sin(alpha)/(1 + beta)", ROLLING, [
+    ("g sin(alpha)/(1 + beta)", EQ, "typical"), ("g*sin(alpha)/(beta + 1)", EQ, "typical"),
+    ("\\frac{g\\sin\\alpha}{1+\\beta}", EQ, "typical"), ("g sin α/(1+β)", EQ, "typical"),
+    ("g*sin(alpha) - beta*g*sin(alpha)/(1 + beta)", EQ, "typical"),
+    ("m*g*R^2*sin(alpha)/(m*R^2 + beta*m*R^2)", EQ, "typical"),
+    ("g*sqrt(1 - cos(alpha)^2)/(1 + beta)", EQ, ["domain"]),  # alpha in [0, pi/2]: sin >= 0
+    ("g*tan(alpha)*cos(alpha)/(1 + beta)", EQ, "typical"),
+    ("2*g*sin(alpha/2)*cos(alpha/2)/(1 + beta)", EQ, "typical"),
+    ("g*cos(pi/2 - alpha)/(1+beta)", EQ, "typical"),
+    ("g*sin(alpha)", NE, ["typical", "slip"], "instructor"),
+    ("g*cos(alpha)/(1 + beta)", NE, ["typical", "slip"], "sin_cos"),
+    ("g*sin(alpha)/(1 - beta)", NE, "typical"),
+    ("g*sin(alpha)*(1 + beta)", NE, "typical"),
+    ("g*sin(alpha)/beta", NE, "typical"),
+    ("g*sin(alpha)/(1 + beta)*(1 + 10^-9)", NE, "near_miss"),
+    ("g*sin(alpha)/(1 + beta + 10^-9)", NE, "near_miss"),
+    ("m*g*sin(alpha)/(1 + beta)", NE, ["dimension"], "dimension"),
+    ("g*sin(alpha)/(1 + R)", NE, ["dimension"], "dimension"),
+    ("g*sin(alpha)/(1 + beta", INV, "syntax"),
+], feedback=[{"expr": "g*sin(alpha)", "message": "That is the acceleration of a body sliding without friction."}])
+add("incline_general", "friction_force", "beta*m*g*sin(alpha)/(1 + beta)", ROLLING, [
+    ("beta m g sin(alpha)/(1+beta)", EQ, "typical"),
+    ("m*g*sin(alpha) - m*g*sin(alpha)/(1 + beta)", EQ, ["typical", "float64_hostile"]),
+    ("m*g*sin(alpha)*(1 - 1/(1 + beta))", EQ, ["typical", "float64_hostile"]),
+    ("m*g*sin(alpha)/(1 + 1/beta)", EQ, "typical"),
+    ("β m g sin α/(1+β)", EQ, "typical"),
+    ("m*(g*sin(alpha) - g*sin(alpha)/(1 + beta))", EQ, "typical"),
+    ("m*g*sin(alpha)/(1 + beta)", NE, ["typical"], "instructor"),
+    ("beta*m*g*cos(alpha)/(1 + beta)", NE, ["typical", "slip"], "sin_cos"),
+    ("-beta*m*g*sin(alpha)/(1 + beta)", NE, ["typical", "slip"], "sign"),
+    ("beta*m*g*sin(alpha)", NE, "typical"),
+    ("beta*m*g*sin(alpha)/(1 + beta) + m*g/10^9", NE, "near_miss"),
+    ("beta*g*sin(alpha)/(1 + beta)", NE, ["dimension"], "dimension"),
+], feedback=[{"expr": "m*g*sin(alpha)/(1 + beta)", "message": "That is m times the acceleration."}])
+add("incline_general", "normal_force", "m*g*cos(alpha)", ROLLING, [
+    ("m g cos(alpha)", EQ, "typical"), ("m*g*sqrt(1 - sin(alpha)^2)", EQ, ["domain"]),
+    ("m*g*sin(pi/2 - alpha)", EQ, "typical"), ("m*g/sec(alpha)", EQ, "typical"),
+    ("m*g*(1 - 2*sin(alpha/2)^2)", EQ, "typical"),
+    ("m*g*sin(alpha)", NE, ["typical", "slip"], "sin_cos"), ("m*g", NE, "typical"),
+    ("m*g*cos(alpha)/(1 + beta)", NE, "typical"), ("-m*g*cos(alpha)", NE, ["typical", "slip"], "sign"),
+    ("m*g*cos(alpha) + 10^-9*m*g", NE, "near_miss"), ("m*cos(alpha)", NE, ["dimension"], "dimension"),
+    ("m*g*cos(alpha*R)", NE, ["dimension"], "dimension"),
+])
+# the specific bodies: disk beta = 1/2, ring beta = 1, solid sphere 2/5, spherical shell 2/3
+for body, beta in (("disk", "1/2"), ("ring", "1"), ("solid_sphere", "2/5"), ("spherical_shell", "2/3")):
+    variables = {k: v for k, v in ROLLING.items() if k != "beta"}
+    a = f"g*sin(alpha)/(1 + {beta})"
+    add(f"incline_{body}", "acceleration", a, variables, [
+        (a, EQ, "typical"),
+        (f"g*sin(alpha)*(1 - {beta}/(1 + {beta}))", EQ, "typical"),
+        ("g*sin(alpha)", NE, "typical"),
+        (f"g*cos(alpha)/(1 + {beta})", NE, ["typical", "slip"], "sin_cos"),
+        (f"g*sin(alpha)/(1 + {beta})*(1 + 10^-9)", NE, "near_miss"),
+    ])
+add("incline_disk", "acceleration_value", "2*g*sin(alpha)/3", {k: v for k, v in ROLLING.items() if k != "beta"}, [
+    ("2g sin(alpha)/3", EQ, "typical"), ("g*sin(alpha)/1.5", EQ, "typical"),
+    ("g*sin(alpha)/(1 + 1/2)", EQ, "typical"), ("0.6667*g*sin(alpha)", NE, ["near_miss"], "close"),
+    ("g*sin(alpha)/2", NE, "typical"),
+])
+
+# -- equations of motion ------------------------------------------------------------------------
+add("pendulum", "equation_of_motion", "thetaddot = -g/l*sin(theta)", PENDULUM_EOM, [
+    ("thetaddot = -g/l*sin(theta)", EQ, "typical"),
+    ("thetaddot + (g/l) sin(theta) = 0", EQ, "typical"),
+    ("l thetaddot = -g sin theta", EQ, "typical"),
+    ("m l^2 thetaddot + m g l sin(theta) = 0", EQ, "typical"),
+    ("l*thetaddot + g*sin(theta) = 0", EQ, "typical"),
+    ("-l*thetaddot = g*sin(theta)", EQ, "typical"),
+    ("\\ddot\\theta = -\\frac{g}{l}\\sin\\theta", EQ, "typical"),
+    ("θ̈ + g/l sin θ = 0", EQ, "typical"),
+    ("2*m*l*thetaddot = -2*m*g*sin(theta)", EQ, "typical"),
+    ("m*l^2*thetaddot = -m*g*l*sin(theta)", EQ, "typical"),
+    ("thetaddot + g/l*sin(theta)", EQ, "typical"),  # read as "... = 0"
+    ("g*sin(theta) = -l*thetaddot", EQ, "typical"),
+    ("thetaddot = -g/l*2*sin(theta/2)*cos(theta/2)", EQ, "typical"),
+    ("thetaddot = g/l*sin(theta)", NE, ["typical", "slip"], "term_sign"),
+    ("thetaddot = -g/l*cos(theta)", NE, ["typical", "slip"], "sin_cos"),
+    ("thetaddot = -g/l*theta", NE, ["typical"]),
+    ("thetaddot = -l/g*sin(theta)", NE, ["dimension"], "dimension"),
+    ("thetaddot = -g*sin(theta)", NE, ["dimension"], "dimension"),
+    ("thetaddot*cos(theta) = -g/l*sin(theta)*cos(theta)", NE, ["typical"]),  # factor depends on the state
+    ("thetaddot*thetadot = -g/l*sin(theta)*thetadot", NE, ["typical"]),
+    ("thetaddot = -g/l*sin(theta) + thetadot^2", NE, ["typical", "slip"], "extra_term"),
+    ("thetaddot = 0", NE, ["typical", "slip"], "missing_term"),
+    ("thetaddot = -g/l*sin(theta)*(1 + 10^-9)", NE, "near_miss"),
+    ("thetaddot*(1 + 10^-9) = -g/l*sin(theta)", NE, "near_miss"),
+    ("thetaddot = -g/l*sin(theta", INV, "syntax"),
+    ("thetaddot == -g/l*sin(theta) = 0", INV, "syntax"),
+], kind="equation")
+add("pendulum", "equation_of_motion_by_name", "thetaddot = -g/l*sin(theta)",
+    {k: {kk: vv for kk, vv in v.items() if kk != "kind"} for k, v in PENDULUM_EOM.items()}, [
+    ("m l^2 thetaddot + m g l sin(theta) = 0", EQ, "typical"),
+    ("thetaddot*cos(theta) = -g/l*sin(theta)*cos(theta)", NE, "typical"),
+    ("l thetaddot = g sin theta", NE, "typical"),
+], kind="equation")
+add("half_atwood", "equation_of_motion", "(m1 + m2)*yddot = m2*g",
+    {**ATWOOD, "yddot": var("acceleration", "real", "acceleration")}, [
+    ("(m1+m2) yddot = m2 g", EQ, "typical"), ("yddot = m2*g/(m1 + m2)", EQ, "typical"),
+    ("m1*yddot + m2*yddot - m2*g = 0", EQ, "typical"), ("m2*(g - yddot) = m1*yddot", EQ, "typical"),
+    ("yddot/g = m2/(m1 + m2)", EQ, "typical"),
+    ("m2*yddot = m2*g", NE, "typical"), ("(m1 + m2)*yddot = m1*g", NE, "typical"),
+    ("(m1 - m2)*yddot = m2*g", NE, "typical"), ("(m1 + m2)*yddot = -m2*g", NE, ["typical", "slip"], "term_sign"),
+    ("(m1 + m2)*yddot = m2*g*(1 + 10^-9)", NE, "near_miss"),
+    ("(m1 + m2)*yddot = m2", NE, ["dimension"], "dimension"),
+], kind="equation")
+add("half_atwood", "equations_with_tension",
+    "m1*xddot = -T; m2*yddot = m2*g - T; xddot + yddot = 0", ATWOOD_SYSTEM, [
+    ("m1*xddot = -T; m2*yddot = m2*g - T; xddot + yddot = 0", EQ, "typical"),
+    ("xddot = -yddot; m2*yddot = m2*g - T; m1*xddot + T = 0", EQ, "typical"),
+    ("m1*xddot + T = 0\nm2*yddot + T = m2*g\nyddot = -xddot", EQ, "typical"),
+    ("m1*xddot - m2*yddot = -m2*g; m2*yddot = m2*g - T; xddot + yddot = 0", EQ, "typical"),
+    ("T = -m1*xddot; T = m2*(g - yddot); xddot = -yddot", EQ, "typical"),
+    ("m1*xddot = T; m2*yddot = m2*g - T; xddot + yddot = 0", NE, "typical"),
+    ("m1*xddot = -T; m2*yddot = m2*g + T; xddot + yddot = 0", NE, "typical"),
+    ("m1*xddot = -T; m2*yddot = m2*g - T", NE, "typical"),
+    ("m1*xddot = -T; m2*yddot = m2*g - T; xddot = yddot", NE, "typical"),
+    ("m1*xddot = -T; m2*yddot = m2*g - T; m1*xddot - m2*yddot = -m2*g", NE, "typical"),
+    ("m1*xddot = -T; m2*yddot = m2*g - T*(1 + 10^-9); xddot + yddot = 0", NE, "near_miss"),
+    ("m1*xddot = -T; m2*yddot = m2*g - T; xddot + yddot = g", NE, ["dimension"]),
+], kind="equation")
+add("yoyo", "equation_of_motion", "3*sddot = 2*g", YOYO_EOM, [
+    ("sddot = 2g/3", EQ, "typical"), ("3/2 m sddot = m g", EQ, "typical"),
+    ("m*sddot + m*sddot/2 = m*g", EQ, "typical"), ("sddot - 2*g/3 = 0", EQ, "typical"),
+    ("sddot = g", NE, "typical"), ("sddot = g/3", NE, "typical"), ("sddot = 2*g/3*(1 + 10^-9)", NE, "near_miss"),
+    ("sddot = 2*g/3*R", NE, ["dimension"], "dimension"),
+], kind="equation")
+add("incline_general", "equation_of_motion", "(1 + beta)*sddot = g*sin(alpha)", ROLLING_EOM, [
+    ("sddot = g sin(alpha)/(1+beta)", EQ, "typical"), ("m*(1 + beta)*sddot = m*g*sin(alpha)", EQ, "typical"),
+    ("m*sddot + beta*m*R^2*sddot/R^2 = m*g*sin(alpha)", EQ, "typical"),
+    ("sddot + beta*sddot - g*sin(alpha) = 0", EQ, "typical"),
+    ("sddot = g*sin(alpha)", NE, "typical"), ("(1 + beta)*sddot = g*cos(alpha)", NE, ["typical", "slip"], "sin_cos"),
+    ("(1 - beta)*sddot = g*sin(alpha)", NE, "typical"),
+    ("(1 + beta)*sddot = g*sin(alpha) + 10^-9*g", NE, "near_miss"),
+    ("(1 + beta)*sddot = m*g*sin(alpha)", NE, ["dimension"], "dimension"),
+], kind="equation")
+
+# -- hostile input: must be rejected cleanly (fast, no crash, nothing executed) -----------------
+HOSTILE = [
+    ("__import__('os').system('echo pwned')", INV),
+    ("exec('import os')", INV),
+    ("eval('1+1')", INV),
+    ("lambda: m", INV),
+    ("m.__class__.__mro__", INV),
+    ("globals()", INV),
+    ("open('/etc/passwd').read()", INV),
+    ("9^9^9^9", INV),
+    ("9**9**9", INV),
+    ("10^10^10", INV),
+    ("2^2^2^2^2^2", INV),
+    ("m^(10^100)", INV),
+    ("(m*g)^(10^9)", INV),
+    ("10^1000000*m*g", INV),
+    ("1" * 1500 + "*m*g", INV),
+    ("(" * 5000 + "m*g" + ")" * 5000, INV),
+    ("((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((m*g))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))))", INV),
+    ("m*g/3 + " * 400 + "0", INV),
+    ("sin(" * 300 + "m" + ")" * 300, INV),
+    ("-" * 1000 + "m*g", INV),
+    ("m" * 100000, INV),
+    ("m*g\x00/3", INV),
+    ("m*g/3; import os", INV),
+    ("m*g/3 # comment", INV),
+    ("factorial(10^6)", INV),
+    ("gamma(m)", INV),
+    ("Integral(m, m)", INV),
+    ("m*g/3 if 1 else 0", INV),
+    ("[m*g/3]", EQ),  # square brackets group, like parentheses
+    ("{m: g}", INV),
+    ("'m*g/3'", INV),
+    ("\\input{/etc/passwd}", INV),
+    ("\\def\\x{m}", INV),
+    ("m*g/3 \u202e", INV),
+    ("ｍ*g/3", INV),
+    ("1/0", INV),
+    ("0^(-1)*m*g", INV),
+    ("m*g*log(0)", INV),
+    ("\ud800", INV),
+    ("m*g/3" + " " * 3000, INV),
+    ("exp(exp(exp(exp(exp(m/m)))))*m*g", INV),  # too large for any finite evaluation: undecided
+    ("m*g/3*exp(exp(exp(exp(R/R))))", NE),
+    ("(m*g/3)^1000/(m*g/3)^999", EQ),
+    ("sin(sin(sin(sin(sin(sin(sin(sin(sin(sin(R/R))))))))))*m*g", NE),
+    ("m*g*sqrt(-1)", INV),  # the parser refuses non-real numbers
+    ("m*g*log(-R/R)", INV),
+    ("m*g/(R - R)", INV),
+    ("m*g*(R/R)^(10^6)", INV),
+    ("m*g/3 + 0*(R/R)^999", EQ),
+    ("m*g/3*(1 + (R/R - 1)^999)", EQ),
+]
+add("yoyo", "tension_hostile", "m*g/3", YOYO, [(answer, expected, "hostile") for answer, expected in HOSTILE])
+
+
+def build() -> dict[str, int]:
+    by_problem: dict[str, list[dict]] = {}
+    for n, item in enumerate(items):
+        item = {"id": f"{item['problem']}/{item['question']}/{n:04d}", **item}
+        by_problem.setdefault(item["problem"], []).append(item)
+    for old in HERE.glob("*.jsonl"):
+        old.unlink()
+    for problem, rows in by_problem.items():
+        with open(HERE / f"{problem}.jsonl", "w", encoding="utf-8") as f:
+            for row in rows:
+                f.write(json.dumps(row) + "\n")
+    return {problem: len(rows) for problem, rows in by_problem.items()}
+
+
+if __name__ == "__main__":
+    counts = build()
+    print(json.dumps(counts), sum(counts.values()), "items")

@@ -1,0 +1,81 @@
+"""check(): the verdict contract, dimensions in words, and no input that crashes it."""
+
+import pytest
+
+from grader.answers import Verdict, check
+
+YOYO = {"m": {"dimension": "mass", "domain": "positive"},
+        "g": {"dimension": "acceleration", "domain": "positive"},
+        "R": {"dimension": "length", "domain": "positive"}}
+SPHERE = {"m": {"dimension": "mass", "domain": "positive"},
+          "g": {"dimension": "acceleration", "domain": "positive"},
+          "theta": {"dimension": "angle", "domain": [-3.1416, 3.1416]}}
+KEYS = {"verdict", "certainty", "reason", "parsed", "counterexample", "feedback", "ms"}
+
+
+def test_verdict_json_has_the_contract_keys():
+    v = check("m*g/3", "mg/3", YOYO)
+    data = v.to_json()
+    assert KEYS <= set(data) and set(data["parsed"]) == {"text", "latex", "notes"}
+    assert data["verdict"] == "equivalent" and data["parsed"]["text"] == "g*m/3"
+    assert Verdict.from_json(data).verdict == "equivalent"
+
+
+@pytest.mark.parametrize("answer", ["mg(3cos θ - 2)", "3 m g cos(theta) - 2 m g", "m*g*(1 - 6*sin(theta/2)^2)"])
+def test_sphere_normal_force_forms_are_accepted(answer):
+    assert check("m*g*(3*cos(theta) - 2)", answer, SPHERE).verdict == "equivalent"
+
+
+def test_a_wrong_sphere_answer_has_a_counterexample_with_both_values():
+    v = check("m*g*(3*cos(theta) - 2)", "m*g*(3*cos(theta) - 1)", SPHERE)
+    assert v.verdict == "not_equivalent" and v.certainty == "proved"
+    example = v.counterexample
+    assert set(example["values"]) == {"m", "g", "theta"}
+    assert example["answer"] - example["reference"] == pytest.approx(example["values"]["m"] * example["values"]["g"])
+
+
+@pytest.mark.parametrize("answer, words", [
+    ("m*g/3 + R", "adds a length"),
+    ("g/3", "should be a force"),
+    ("m*g*R/3", "should be a force"),
+    ("m*g*cos(R)", "dimensionless argument"),
+])
+def test_dimension_errors_are_wrong_and_said_in_words(answer, words):
+    v = check("m*g/3", answer, YOYO)
+    assert v.verdict == "not_equivalent" and v.certainty == "proved"
+    assert words in v.reason and v.feedback[0]["code"] == "dimension"
+
+
+@pytest.mark.parametrize("answer", ["m*g/", "M*g/3", "x", "", "m*g/3 = 0", "1/0", "factorial(3)"])
+def test_unreadable_answers_are_invalid_with_a_reason(answer):
+    v = check("m*g/3", answer, YOYO)
+    assert v.verdict == "invalid" and v.certainty == "none" and v.reason
+
+
+@pytest.mark.parametrize("answer", ["m*g*sqrt(-1)", "sqrt(-m)*sqrt(m)*g/3", "m*g*log(-1)"])
+def test_non_real_answers_are_never_accepted(answer):
+    assert check("m*g/3", answer, YOYO).verdict in ("not_equivalent", "invalid")
+
+
+@pytest.mark.parametrize("reference, variables, kind", [
+    (None, YOYO, "expression"),
+    ("m*g/3", "not a dict", "expression"),
+    ("m*g/3", {"m": {"dimension": "wibble"}}, "expression"),
+    ("m*g/(", YOYO, "expression"),
+    ("m*g/3", YOYO, "poem"),
+])
+def test_bad_requests_give_invalid_verdicts_not_exceptions(reference, variables, kind):
+    v = check(reference, "m*g/3", variables, kind=kind)
+    assert v.verdict == "invalid"
+
+
+def test_an_inconsistent_reference_does_not_blame_the_student():
+    v = check("m*g + m", "m*(g + 1)", YOYO)
+    assert v.verdict == "not_equivalent" or v.verdict == "equivalent"
+    assert any("dimensions not checked" in n for n in v.parsed["notes"])
+
+
+def test_typical_check_takes_milliseconds():
+    check("m*g/3", "mg/3", YOYO)
+    v = check("m*g*(3*cos(theta) - 2)", "m*g*(1 - 6*sin(theta/2)^2)", SPHERE)
+    assert v.ms < 100

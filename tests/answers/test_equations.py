@@ -1,0 +1,73 @@
+"""Equations of motion: the reference times a nonzero factor free of the state, and systems that span it."""
+
+import pytest
+
+from grader.answers import check
+
+PENDULUM_EOM = "thetaddot = -g/l*sin(theta)"
+
+
+@pytest.mark.parametrize("answer", [
+    "thetaddot + (g/l) sin(theta) = 0",
+    "l thetaddot = -g sin theta",
+    "m l^2 thetaddot + m g l sin(theta) = 0",   # multiplied by m l^2, free of the state
+    "g*sin(theta) = -l*thetaddot",
+])
+def test_pendulum_equation_in_any_scaled_form_is_right(pendulum, answer):
+    v = check(PENDULUM_EOM, answer, pendulum, kind="equation")
+    assert v.verdict == "equivalent", v.reason
+
+
+@pytest.mark.parametrize("answer, why", [
+    ("thetaddot*cos(theta) = -g/l*sin(theta)*cos(theta)", "factor cos(theta) depends on the state"),
+    ("thetaddot*thetadot = -g/l*sin(theta)*thetadot", "factor thetadot depends on the state"),
+    ("thetaddot = -g/l*theta", "the small-angle equation is another equation"),
+    ("thetaddot = -g/l*sin(theta)*(1 + 10^-9)", "off by 1e-9"),
+])
+def test_state_dependent_factors_and_near_misses_are_wrong(pendulum, answer, why):
+    v = check(PENDULUM_EOM, answer, pendulum, kind="equation")
+    assert v.verdict == "not_equivalent", why
+    assert v.certainty == "proved" and v.counterexample is not None
+
+
+def test_state_is_inferred_from_dot_names_or_given_explicitly(pendulum):
+    # without kinds, theta/thetadot/thetaddot are the state because their names say so
+    v = check(PENDULUM_EOM, "thetaddot*cos(theta) = -g/l*sin(theta)*cos(theta)", pendulum, kind="equation")
+    assert v.verdict == "not_equivalent"
+    # declaring only thetaddot as state makes a cos(theta) factor acceptable
+    v = check(PENDULUM_EOM, "thetaddot*cos(theta) = -g/l*sin(theta)*cos(theta)", pendulum, kind="equation",
+              state=["thetaddot"])
+    assert v.verdict == "equivalent"
+
+
+ATWOOD_SYSTEM = {
+    "m1": {"dimension": "mass", "domain": "positive"},
+    "m2": {"dimension": "mass", "domain": "positive"},
+    "g": {"dimension": "acceleration", "domain": "positive"},
+    "xddot": {"dimension": "acceleration", "kind": "acceleration"},
+    "yddot": {"dimension": "acceleration", "kind": "acceleration"},
+    "T": {"dimension": "force", "kind": "force"},
+}
+SYSTEM = "m1*xddot = -T; m2*yddot = m2*g - T; xddot + yddot = 0"
+
+
+@pytest.mark.parametrize("answer, expected", [
+    ("xddot = -yddot; m2*yddot = m2*g - T; m1*xddot + T = 0", "equivalent"),       # reordered
+    ("m1*xddot - m2*yddot = -m2*g; m2*yddot = m2*g - T; xddot + yddot = 0", "equivalent"),  # combined
+    ("m1*xddot = T; m2*yddot = m2*g - T; xddot + yddot = 0", "not_equivalent"),    # a sign
+    ("m1*xddot = -T; m2*yddot = m2*g - T", "not_equivalent"),                      # one missing
+    ("m1*xddot = -T; m2*yddot = m2*g - T; m1*xddot - m2*yddot = -m2*g", "not_equivalent"),  # dependent
+])
+def test_half_atwood_systems_must_span_the_same_equations(answer, expected):
+    assert check(SYSTEM, answer, ATWOOD_SYSTEM, kind="equation").verdict == expected
+
+
+def test_an_expression_alone_is_read_as_equal_to_zero(pendulum):
+    v = check(PENDULUM_EOM, "thetaddot + g/l*sin(theta)", pendulum, kind="equation")
+    assert v.verdict == "equivalent" and any("= 0" in n for n in v.parsed["notes"])
+
+
+def test_an_equation_whose_sides_differ_in_dimension_is_rejected_in_words(pendulum):
+    v = check(PENDULUM_EOM, "thetaddot = -g*sin(theta)", pendulum, kind="equation")
+    assert v.verdict == "not_equivalent" and v.feedback[0]["code"] == "dimension"
+    assert "acceleration" in v.reason

@@ -1,0 +1,98 @@
+"""Expression equivalence: never fooled by cancellation, tiny terms or the domain."""
+
+import pytest
+import sympy
+
+from grader.answers.equivalence import Options, compare_expressions, symbolic_zero
+from grader.answers.sampling import Sampler, seed_for
+from grader.expressions import parse_domain
+
+m, g, l, R, m1, m2 = sympy.symbols("m g l R m1 m2", positive=True)
+theta = sympy.Symbol("theta", real=True)
+alpha = sympy.Symbol("alpha", nonnegative=True)
+POS = parse_domain("positive")
+
+
+def sampler(**domains):
+    symbols = {s.name: s for s in (m, g, l, R, m1, m2, theta, alpha)}
+    return Sampler({symbols[n]: parse_domain(d) for n, d in domains.items()}, seed_for(sorted(domains)))
+
+
+ATWOOD = sampler(m1="positive", m2="positive", g="positive")
+T = m1 * m2 * g / (m1 + m2)
+a = m2 * g / (m1 + m2)
+
+
+@pytest.mark.parametrize("answer", [
+    m2 * (g - a),                       # cancels badly in float64 when m2 >> m1
+    m2 * g - m2**2 * g / (m1 + m2),
+    g / (1 / m1 + 1 / m2),
+    m1 * g - m1**2 * g / (m1 + m2),
+])
+def test_half_atwood_tension_forms_are_equivalent(answer):
+    c = compare_expressions(T, answer, ATWOOD, Options(symbolic=False))
+    assert c.equivalent is True and c.certainty == "numeric" and c.evidence["digits"] >= 30
+
+
+@pytest.mark.parametrize("answer", [
+    T * (1 + sympy.Rational(1, 10**9)),   # off by a relative 1e-9
+    T + m1 * g / 10**12,
+    m1 * g * (1 - m1 / m2),               # a truncated series
+])
+def test_near_misses_are_proved_wrong_with_a_counterexample(answer):
+    c = compare_expressions(T, answer, ATWOOD, Options(symbolic=False))
+    assert c.equivalent is False and c.certainty == "proved"
+    assert set(c.counterexample["values"]) >= {"m1", "m2", "g"}
+    assert c.counterexample["answer"] != c.counterexample["reference"]
+
+
+def test_small_angle_cancellation_is_decided_in_balls():
+    # the sphere near its top: R(1 - cos theta) at theta ~ 1e-8, where float64 returns 0
+    s = sampler(R="positive", theta=[1e-9, 1e-7])
+    exact = R * (1 - sympy.cos(theta))
+    assert compare_expressions(exact, 2 * R * sympy.sin(theta / 2) ** 2, s, Options(symbolic=False)).equivalent
+    approx = compare_expressions(exact, R * theta**2 / 2, s, Options(symbolic=False))
+    assert approx.equivalent is False and approx.certainty == "proved"
+
+
+@pytest.mark.parametrize("domain, expected", [([-1.5, 1.5], True), ([-3.1416, 3.1416], False)])
+def test_sqrt_one_minus_sin_squared_is_cos_only_where_cos_is_nonnegative(domain, expected):
+    s = sampler(theta=domain)
+    c = compare_expressions(sympy.cos(theta), sympy.sqrt(1 - sympy.sin(theta) ** 2), s)
+    assert c.equivalent is expected
+
+
+def test_positivity_makes_sqrt_of_a_square_the_variable():
+    assert compare_expressions(m * g, sympy.sqrt(m**2) * g, sampler(m="positive", g="positive")).certainty == "proved"
+
+
+def test_an_answer_undefined_where_the_reference_is_defined_is_wrong():
+    c = compare_expressions(m * g, m * g * sympy.log(g - 100), sampler(m="positive", g="positive"))
+    assert c.equivalent is False and c.counterexample["answer"] == "undefined"
+
+
+def test_differing_constants_are_decided_exactly():
+    c = compare_expressions(sympy.Rational(2, 3), sympy.Rational(6666666666666666666666666667, 10**28), ATWOOD)
+    assert c.equivalent is False and c.certainty == "proved"
+
+
+@pytest.mark.parametrize("diff, proved", [
+    (m * g * (3 * sympy.cos(theta) - 2) - (3 * m * g * sympy.cos(theta) - 2 * m * g), True),
+    (sympy.sin(theta) ** 2 + sympy.cos(theta) ** 2 - 1, False),  # true, but left to the numeric judge
+    ((m + g) ** 40 - (g + m) ** 40, True),
+])
+def test_symbolic_step_is_cheap_and_only_claims_proofs(diff, proved):
+    assert symbolic_zero(diff) is proved
+
+
+def test_budget_exhaustion_is_reported_not_guessed():
+    c = compare_expressions(T, m2 * (g - a), ATWOOD, Options(symbolic=False), deadline=0.0)
+    assert c.equivalent in (True, None)
+    if c.equivalent is None:
+        assert c.budget_exceeded
+
+
+@pytest.mark.parametrize("method, tolerance", [("float64", 1e-3), ("mpmath", 1e-20)])
+def test_fixed_precision_methods_exist_for_the_benchmark(method, tolerance):
+    c = compare_expressions(T, g / (1 / m1 + 1 / m2), ATWOOD, Options(method=method, tolerance=tolerance, symbolic=False))
+    assert c.equivalent is True and c.certainty == "numeric"
