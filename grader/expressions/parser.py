@@ -27,6 +27,8 @@ from dataclasses import dataclass, field
 
 import sympy
 
+from .printing import to_latex, to_text
+
 from .errors import ExpressionError
 from .functions import FUNCTIONS, INVERSES
 from .magnitudes import checked, guarded_pow, not_real
@@ -515,8 +517,8 @@ def _flat(expr: sympy.Expr) -> sympy.Expr:
 
 def _finish(parser: _Parser, expr: sympy.Expr) -> Parsed:
     expr = _flat(_real(expr, 0))
-    latex = sympy.latex(expr, symbol_names=parser.ns.latex_names())
-    return Parsed(expr, str(expr), latex, list(parser.notes))
+    latex = to_latex(expr, parser.ns.latex_names())
+    return Parsed(expr, to_text(expr), latex, list(parser.notes))
 
 
 def parse_expression(text: str, namespace: Namespace) -> Parsed:

@@ -73,7 +73,8 @@ def test_decimal_half_equals_exact_half(ns):
 
 def test_parsed_has_canonical_text_and_latex(ns):
     parsed = parse_expression("m/2*(rdot^2 + r^2*thetadot^2)", ns)
-    assert parsed.text == str(parsed.expr)
+    assert parsed.text == "m*(rdot**2 + r**2*thetadot**2)/2"
+    assert parse_expression(parsed.text, ns).expr == parsed.expr  # canonical text reads back
     assert r"\dot{\theta}" in parsed.latex and r"\dot{r}" in parsed.latex
     assert parsed.notes == []
 

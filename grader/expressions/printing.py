@@ -1,0 +1,219 @@
+"""Fast text and LaTeX for the expressions our grammar builds.
+
+sympy's printers are general and slow (most of their time goes into ordering terms); on the
+checker's hot path they cost more than parsing and checking together. These printers cover the
+trees :mod:`grader.expressions.parser` builds (sums, products, powers, the whitelisted functions,
+symbols, integers, rationals, floats, pi and E) and fall back to sympy for anything else. The text
+is in sympy's ``str`` syntax, so our parser reads it back to the same expression.
+
+Examples
+--------
+>>> import sympy
+>>> m, g, theta = sympy.symbols("m g theta", positive=True)
+>>> e = m*g*(3*sympy.cos(theta) - 2)
+>>> to_text(e)
+'g*m*(3*cos(theta) - 2)'
+>>> to_latex(e, {theta: r"\\theta"})
+'g m \\\\left(3 \\\\cos{\\\\left(\\\\theta \\\\right)} - 2\\\\right)'
+"""
+
+from __future__ import annotations
+
+import sympy
+from sympy.core.function import AppliedUndef
+
+__all__ = ["to_latex", "to_text"]
+
+# Precedence: higher binds tighter.
+_ADD, _MUL, _POW, _ATOM = 10, 20, 30, 40
+
+_TEXT_NAMES = {sympy.Abs: "Abs"}
+_LATEX_FUNCTIONS = {
+    "sin": r"\sin", "cos": r"\cos", "tan": r"\tan", "cot": r"\cot", "sec": r"\sec", "csc": r"\csc",
+    "asin": r"\operatorname{asin}", "acos": r"\operatorname{acos}", "atan": r"\operatorname{atan}",
+    "atan2": r"\operatorname{atan_{2}}", "sinh": r"\sinh", "cosh": r"\cosh", "tanh": r"\tanh",
+    "exp": r"\exp", "log": r"\log",
+}
+
+
+def _sorted_terms(expr: sympy.Add) -> list[sympy.Expr]:
+    # Positive terms first, in sympy's canonical argument order: stable, and reads naturally.
+    terms = list(expr.args)
+    return sorted(terms, key=lambda t: t.could_extract_minus_sign())
+
+
+def _split_fraction(expr: sympy.Mul) -> tuple[sympy.Expr, list, list]:
+    """(numeric coefficient, numerator factors, denominator factors) of a product."""
+    coefficient, rest = expr.as_coeff_Mul()
+    numerator, denominator = [], []
+    for factor in sympy.Mul.make_args(rest):
+        if factor.is_Pow and factor.exp.is_Rational and factor.exp.is_negative:
+            denominator.append(factor.base if factor.exp == -1 else sympy.Pow(factor.base, -factor.exp))
+        else:
+            numerator.append(factor)
+    return coefficient, numerator, denominator
+
+
+def _precedence(expr: sympy.Expr) -> int:
+    if expr.is_Add:
+        return _ADD
+    if expr.is_Mul or (expr.is_Rational and not expr.is_Integer):
+        return _MUL
+    if expr.is_Pow:
+        return _POW
+    if expr.is_Number and expr.is_negative:
+        return _ADD
+    return _ATOM
+
+
+# -- text ----------------------------------------------------------------------------------------
+def to_text(expr: sympy.Expr) -> str:
+    """sympy-``str``-compatible text of an expression (see the module example)."""
+    try:
+        return _text(expr)
+    except _Unsupported:
+        return sympy.sstr(expr)
+
+
+class _Unsupported(Exception):
+    pass
+
+
+def _text_wrapped(expr: sympy.Expr, level: int) -> str:
+    text = _text(expr)
+    return f"({text})" if _precedence(expr) < level else text
+
+
+def _text(expr: sympy.Expr) -> str:
+    if expr.is_Symbol:
+        return expr.name
+    if expr.is_Integer:
+        return str(int(expr))
+    if expr.is_Rational:
+        return f"{expr.p}/{expr.q}"
+    if expr.is_Float:
+        return sympy.sstr(expr)
+    if expr is sympy.pi:
+        return "pi"
+    if expr is sympy.E:
+        return "E"
+    if expr.is_Add:
+        out = ""
+        for i, term in enumerate(_sorted_terms(expr)):
+            if term.could_extract_minus_sign():
+                body = _text_wrapped(-term, _MUL)
+                out += f" - {body}" if i else f"-{body}"
+            else:
+                out += f" + {_text(term)}" if i else _text(term)
+        return out
+    if expr.is_Mul:
+        if expr.could_extract_minus_sign():
+            return "-" + _text_wrapped(-expr, _MUL + 1)
+        coefficient, numerator, denominator = _split_fraction(expr)
+        parts = [] if coefficient == 1 else [str(coefficient.p)] if coefficient.q == 1 else None
+        if parts is None:
+            numerator = [sympy.Integer(coefficient.p)] + numerator if coefficient.p != 1 else numerator
+            denominator = [sympy.Integer(coefficient.q)] + denominator
+            parts = []
+        parts += [_text_wrapped(f, _MUL) for f in sorted(numerator, key=sympy.default_sort_key)
+                  if not (f.is_Integer and f == 1 and numerator)]
+        top = "*".join(parts) or "1"
+        if not denominator:
+            return top
+        bottom = [_text_wrapped(f, _MUL) for f in denominator]
+        bottom_text = bottom[0] if len(bottom) == 1 else "(" + "*".join(bottom) + ")"
+        return f"{top}/{bottom_text}"
+    if expr.is_Pow:
+        base, exp = expr.args
+        if exp == sympy.S.Half:
+            return f"sqrt({_text(base)})"
+        if exp == -sympy.S.Half:
+            return f"1/sqrt({_text(base)})"
+        if exp.is_Rational and exp.is_negative:
+            return f"1/{_text_wrapped(sympy.Pow(base, -exp), _POW)}"
+        exp_text = _text(exp) if exp.is_Symbol or (exp.is_Integer and exp >= 0) else f"({_text(exp)})"
+        return f"{_text_wrapped(base, _POW + 1)}**{exp_text}"
+    if isinstance(expr, sympy.Function) and not isinstance(expr, AppliedUndef):
+        name = _TEXT_NAMES.get(expr.func, expr.func.__name__)
+        return f"{name}({', '.join(_text(a) for a in expr.args)})"
+    raise _Unsupported
+
+
+# -- LaTeX ---------------------------------------------------------------------------------------
+def to_latex(expr: sympy.Expr, names: dict | None = None) -> str:
+    """LaTeX of an expression; ``names`` maps symbols to their LaTeX (see the module example)."""
+    try:
+        return _Latex(names or {}).print(expr)
+    except _Unsupported:
+        return sympy.latex(expr, symbol_names=names or {})
+
+
+class _Latex:
+    def __init__(self, names: dict):
+        self.names = names
+
+    def wrapped(self, expr: sympy.Expr, level: int) -> str:
+        text = self.print(expr)
+        return rf"\left({text}\right)" if _precedence(expr) < level else text
+
+    def factors(self, factors: list, bare: bool) -> str:
+        # Inside \frac a lone sum needs no parentheses: the bar groups it.
+        if bare and len(factors) == 1:
+            return self.print(factors[0])
+        return " ".join(self.wrapped(f, _MUL) for f in factors)
+
+    def print(self, expr: sympy.Expr) -> str:
+        if expr.is_Symbol:
+            return self.names.get(expr, expr.name)
+        if expr.is_Integer:
+            return str(int(expr))
+        if expr.is_Rational:
+            sign = "-" if expr.p < 0 else ""
+            return rf"{sign}\frac{{{abs(expr.p)}}}{{{expr.q}}}"
+        if expr.is_Float:
+            return sympy.latex(expr)
+        if expr is sympy.pi:
+            return r"\pi"
+        if expr is sympy.E:
+            return "e"
+        if expr.is_Add:
+            out = ""
+            for i, term in enumerate(_sorted_terms(expr)):
+                if term.could_extract_minus_sign():
+                    body = self.wrapped(-term, _MUL)
+                    out += f" - {body}" if i else f"- {body}"
+                else:
+                    out += f" + {self.print(term)}" if i else self.print(term)
+            return out
+        if expr.is_Mul:
+            if expr.could_extract_minus_sign():
+                return "- " + self.wrapped(-expr, _MUL)
+            coefficient, numerator, denominator = _split_fraction(expr)
+            if coefficient.q != 1:
+                denominator = [sympy.Integer(coefficient.q)] + denominator
+            if coefficient.p != 1:
+                numerator = [sympy.Integer(coefficient.p)] + numerator
+            top = self.factors(numerator, bare=bool(denominator)) or "1"
+            if not denominator:
+                return top
+            bottom = self.factors(denominator, bare=True)
+            return rf"\frac{{{top}}}{{{bottom}}}"
+        if expr.is_Pow:
+            base, exp = expr.args
+            if exp == sympy.S.Half:
+                return rf"\sqrt{{{self.print(base)}}}"
+            if exp.is_Rational and exp.is_negative:
+                return rf"\frac{{1}}{{{self.print(sympy.Pow(base, -exp))}}}"
+            if isinstance(base, sympy.Function) and not isinstance(base, AppliedUndef) and exp.is_Integer \
+                    and base.func.__name__ in _LATEX_FUNCTIONS and len(base.args) == 1:
+                # sin^2(theta), as people write it
+                return rf"{_LATEX_FUNCTIONS[base.func.__name__]}^{{{int(exp)}}}{{\left({self.print(base.args[0])} \right)}}"
+            return f"{self.wrapped(base, _POW + 1)}^{{{self.print(exp)}}}"
+        if isinstance(expr, sympy.Function) and not isinstance(expr, AppliedUndef):
+            name = expr.func.__name__
+            if expr.func is sympy.Abs:
+                return rf"\left|{self.print(expr.args[0])}\right|"
+            if name in _LATEX_FUNCTIONS:
+                args = ", ".join(self.print(a) for a in expr.args)
+                return rf"{_LATEX_FUNCTIONS[name]}{{\left({args} \right)}}"
+        raise _Unsupported
