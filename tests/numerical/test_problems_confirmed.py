@@ -1,0 +1,205 @@
+"""Every answer of every scene in ``problems/`` confirmed by a numerical experiment.
+
+For each scene file the engine derives its closed-form answers (``derive(scene).answers``). The
+motion from the scene's ``[initial]`` state is then integrated numerically
+(:mod:`grader.simulate`), which never sees the engine's results: it differentiates the scene's
+own T, V and f numerically and solves the KKT system for q̈ and λ at every instant. Along that
+motion each answer's *defining* expression (``expr = "lambda_surface"``, ``"-Q_roll_s"``, ...) is
+evaluated with the numerical multipliers, forces and accelerations, and must equal the engine's
+closed form evaluated at the same state, to 1e-6 relative. Values near zero (a normal force at the
+moment of release, θ̈ at the bottom of a swing) are compared against the largest value of that
+answer along the run instead of their own size.
+
+Answers with ``where = "..."`` are special values: the condition is located as an event along the
+motion (first crossing), and the answer's expression is evaluated there.
+
+A scene that starts at rest in an equilibrium (the top of the sphere) is given a push of 1e-7 in
+its first named velocity (see ``SceneModel.initial_state``). The energy this adds is checked to be
+below 1e-12 of the energy exchanged during the run, so energy-based closed forms are disturbed
+far below the tolerance.
+
+New files in ``problems/`` are picked up automatically. If there are none, or the engine cannot be
+imported, these tests fail: they never pass without having confirmed something.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from grader.simulate.constrained import Event, Snapshot, multiplier_zero, simulate
+from grader.simulate.scene_numeric import SceneModel
+
+PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
+SCENE_FILES = sorted(PROBLEMS.glob("*.toml"))
+
+RTOL = 1e-6
+PUSH = 1e-7            # rad/s or m/s: leaves an unstable equilibrium, adds ~push² energy
+CHUNK = 2.0            # s of motion per integration run
+SAMPLES_PER_CHUNK = 9
+T_MAX = 30.0           # s: give up looking for a `where` condition after this
+
+
+def _answer_ids() -> list[tuple[Path, str]]:
+    # Read names with tomllib, not the scene loader, so that collection works even when the
+    # loader or a file is broken (the test itself then fails with the loader's message).
+    cases = []
+    for path in SCENE_FILES:
+        try:
+            answers = tomllib.loads(path.read_text(encoding="utf-8")).get("answers", [])
+        except (tomllib.TOMLDecodeError, UnicodeDecodeError):
+            answers = [{"name": "<unreadable>"}]
+        cases += [(path, a.get("name", f"answers[{i}]")) for i, a in enumerate(answers)]
+    return cases
+
+
+def reasonable_value(parameter) -> float:
+    """A number for a parameter the scene leaves without ``value``."""
+    if parameter.name == "g":
+        return 9.81
+    domain = parameter.domain
+    if domain.kind == "interval":
+        return domain.lo + 0.37 * (domain.hi - domain.lo)
+    return 1.3
+
+
+@dataclass
+class Experiment:
+    """One scene's numerical run: states along the motion, and where its conditions hold."""
+
+    model: SceneModel
+    closed_forms: dict
+    samples: list[dict[str, float]] = field(default_factory=list)  # quantities by name
+    where: dict[str, dict[str, float] | None] = field(default_factory=dict)  # condition -> quantities
+    push_energy_ratio: float = 0.0
+
+
+def _condition_key(model: SceneModel, spec) -> str:
+    lhs, rhs = spec.where
+    return str(model.definition(lhs - rhs))
+
+
+def _where_events(model: SceneModel) -> list[Event]:
+    """One event per distinct ``where`` condition: lhs - rhs crossing zero."""
+    conditions = {}
+    for spec in model.scene.answers:
+        if spec.where is not None:
+            lhs, rhs = spec.where
+            conditions[_condition_key(model, spec)] = model.definition(lhs - rhs)
+    return [Event(key, lambda s, e=expr: model.evaluate(e, model.quantities(s)), terminal=False)
+            for key, expr in conditions.items()]
+
+
+def _follow_motion(model: SceneModel, start, conditions: list[Event]):
+    """Integrate chunk by chunk until every condition has occurred (or T_MAX).
+
+    Returns the sampled states up to the first release of a unilateral contact, that time, and
+    the first state where each condition holds.
+    """
+    # A unilateral contact holds while its multiplier keeps its starting sign.
+    releases = [multiplier_zero(k.name, terminal=False) for k in model.scene.constraints
+                if k.kind == "unilateral"]
+    t, q, qdot = start.t, start.q, start.qdot
+    states: list[Snapshot] = []
+    released_at = math.inf
+    found: dict[str, Snapshot] = {}
+    while True:
+        motion = simulate(model.numeric, q, qdot, t + CHUNK, t0=t, events=conditions + releases,
+                          sample_times=np.linspace(t, t + CHUNK, SAMPLES_PER_CHUNK))
+        hits = [motion.first(r.name) for r in releases if motion.first(r.name) is not None]
+        release = min(hits, key=lambda s: s.t, default=None)
+        if release is not None and release.t < released_at:
+            # Sample the stretch up to the release as densely as a whole chunk: a contact
+            # may let go long before the chunk ends.
+            dense = simulate(model.numeric, q, qdot, release.t, t0=t,
+                             sample_times=np.linspace(t, release.t, SAMPLES_PER_CHUNK))
+            states += list(dense.samples) + [release]
+            released_at = release.t
+        elif released_at == math.inf:
+            states += motion.samples
+        for event in conditions:
+            if event.name not in found and motion.first(event.name) is not None:
+                found[event.name] = motion.first(event.name)
+        t, q, qdot = motion.end.t, motion.end.q, motion.end.qdot
+        if len(found) == len(conditions) or t >= T_MAX:
+            return [s for s in states if s.t <= released_at], found
+
+
+def _push_energy_ratio(model: SceneModel, start, end: Snapshot) -> float:
+    """Energy the push added (at rest, all of its kinetic energy) over the energy exchanged."""
+    if not start.pushed:
+        return 0.0
+    added = float(model.numeric.kinetic(list(start.q), list(start.qdot), start.t))
+    exchanged = abs(float(model.numeric.potential(list(end.q), end.t))
+                    - float(model.numeric.potential(list(start.q), start.t)))
+    return added / exchanged if exchanged else math.inf
+
+
+@functools.lru_cache(maxsize=None)
+def run_experiment(path: Path) -> Experiment:
+    # Imported here so that a missing engine fails these tests instead of their collection.
+    from grader.mechanics.lagrange import derive
+    from grader.mechanics.scene import load_scene
+
+    scene = load_scene(path)
+    closed_forms = derive(scene).answers
+    fallback = {n: reasonable_value(p) for n, p in scene.parameters.items() if p.value is None}
+    model = SceneModel(scene, fallback)
+
+    start = model.initial_state(push=PUSH)
+    conditions = _where_events(model)
+    states, found = _follow_motion(model, start, conditions)
+    # Quantities in time order, so that parametrization angles follow the motion continuously.
+    states.sort(key=lambda s: s.t)
+    return Experiment(
+        model=model,
+        closed_forms=closed_forms,
+        samples=[model.quantities(s) for s in states],
+        where={e.name: (model.quantities(found[e.name]) if e.name in found else None) for e in conditions},
+        push_energy_ratio=_push_energy_ratio(model, start, states[-1]),
+    )
+
+
+def test_there_are_problems_to_confirm():
+    assert SCENE_FILES, f"no scene files in {PROBLEMS}: nothing would be confirmed"
+
+
+@pytest.mark.parametrize("path", SCENE_FILES, ids=lambda p: p.stem)
+def test_motion_is_long_enough_to_confirm_the_answers(path):
+    experiment = run_experiment(path)
+    assert len(experiment.samples) >= 5, "too little motion before a contact released to confirm anything"
+    assert experiment.samples[-1]["t"] > experiment.samples[0]["t"]
+
+
+@pytest.mark.parametrize("path", SCENE_FILES, ids=lambda p: p.stem)
+def test_starting_push_is_negligible(path):
+    assert run_experiment(path).push_energy_ratio < 1e-12
+
+
+@pytest.mark.parametrize("path, answer", _answer_ids(), ids=lambda v: v.stem if isinstance(v, Path) else v)
+def test_answer_agrees_with_the_numerical_experiment(path, answer):
+    experiment = run_experiment(path)
+    model = experiment.model
+    spec = model.scene.answer(answer)
+    closed_form = experiment.closed_forms[answer]
+
+    if spec.where is not None:
+        state = experiment.where[_condition_key(model, spec)]
+        lhs, rhs = spec.where
+        assert state is not None, f"the motion never reaches {lhs} = {rhs} within {T_MAX} s"
+        numeric, exact = model.evaluate(spec.expr, state), model.evaluate(closed_form, state)
+        assert abs(numeric - exact) <= RTOL * max(abs(exact), 1e-12), (
+            f"{answer} where {lhs} = {rhs}: numerical {numeric!r}, engine {closed_form} = {exact!r}")
+        return
+
+    pairs = [(model.evaluate(spec.expr, s), model.evaluate(closed_form, s), s) for s in experiment.samples]
+    scale = max(max(abs(exact) for _, exact, _ in pairs), 1e-12)
+    for numeric, exact, state in pairs:
+        assert abs(numeric - exact) <= RTOL * max(abs(exact), scale), (
+            f"{answer} at t = {state['t']:.6g}: numerical {numeric!r}, engine {closed_form} = {exact!r}")
