@@ -1,4 +1,4 @@
-"""Every answer of every scene in ``problems/`` confirmed by a numerical experiment.
+"""Every answer of every scene in ``problems/`` (and the textbook scenes) confirmed by a numerical experiment.
 
 For each scene file the engine derives its closed-form answers (``derive(scene).answers``). The
 motion from the scene's ``[initial]`` state is then integrated numerically
@@ -37,7 +37,10 @@ from grader.simulate.constrained import Event, Snapshot, multiplier_zero, simula
 from grader.simulate.scene_numeric import SceneModel
 
 PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
-SCENE_FILES = sorted(PROBLEMS.glob("*.toml"))
+# The textbook scenes the engine was not written for (bead on a rotating hoop, ladder, wedge,
+# Atwood with a massive pulley, double pendulum) are confirmed the same way.
+TEXTBOOK = Path(__file__).resolve().parents[1] / "mechanics" / "scenes"
+SCENE_FILES = sorted(PROBLEMS.glob("*.toml")) + sorted(TEXTBOOK.glob("*.toml"))
 
 RTOL = 1e-6
 PUSH = 1e-7            # rad/s or m/s: leaves an unstable equilibrium, adds ~push² energy
