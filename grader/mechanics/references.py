@@ -66,7 +66,10 @@ def reference_answers(derivation) -> list[ReferenceAnswer]:
     result = []
     for spec in scene.answers:
         value = derivation.answers[spec.name]
-        symbols = set(value.free_symbols)
+        # Every parameter is readable, so an answer may carry factors that cancel (an equation of
+        # motion multiplied by m, an acceleration written as a force over m); state variables are
+        # limited to what the answer is asked in.
+        symbols = set(value.free_symbols) | {p.symbol for p in scene.parameters.values()}
         if spec.in_terms_of is not None:
             symbols |= {scene.namespace.symbol(n) for n in spec.in_terms_of}
         if spec.kind == "equation":

@@ -278,7 +278,8 @@ class _SceneReader:
             return parse_expression(text, namespace).expr
         except ExpressionError as exc:
             column = f" at column {exc.position + 1}" if getattr(exc, "position", None) is not None else ""
-            raise self.fail(key, f"{exc.message}{column} in {text!r}") from None
+            hint = f" ({exc.hint})" if getattr(exc, "hint", None) else ""
+            raise self.fail(key, f"{exc.message}{column} in {text!r}{hint}") from None
 
     def dimension_of(self, key: str, expr: sympy.Expr) -> Dimension:
         try:

@@ -47,10 +47,12 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
                          "the condition must fix one coordinate; after eliminating velocities it depends on "
                          f"{', '.join(u.name for u in coordinates) or 'no coordinate'}")
     u = coordinates[0]
+    points = _parameter_points(scene)
+    # Follow the motion first: "never reached" is the more useful message when both fail.
+    numeric_roots = [_first_root_on_motion(evaluator, condition, u, point, key) for point in points]
     roots = _symbolic_roots(condition, u, scene.source, key)
     chosen = None
-    for point in _parameter_points(scene):
-        numeric_root = _first_root_on_motion(evaluator, condition, u, point, key)
+    for point, numeric_root in zip(points, numeric_roots):
         match = [r for r in roots if _close(r, numeric_root, point)]
         if not match:
             raise SceneError(scene.source, key,

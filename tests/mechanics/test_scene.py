@@ -1,0 +1,106 @@
+"""Scene files are untrusted input: bad ones get an error naming the file, the key and the problem,
+and nothing in them is ever executed."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from grader.mechanics.lagrange import derive
+from grader.mechanics.scene import SceneError, load_scene, parse_scene
+
+SPHERE = (Path(__file__).resolve().parents[2] / "problems" / "sphere.toml").read_text()
+
+
+def broken(old: str, new: str) -> str:
+    assert old in SPHERE, old
+    return SPHERE.replace(old, new, 1)
+
+
+@pytest.mark.parametrize(
+    "text, key, problem",
+    [
+        (broken('kinetic = "m/2*(rdot^2 + r^2*thetadot^2)"', 'kinetic = "m/2*(rdot^2 + r^2*tehtadot^2)"'),
+         "energy.kinetic", "did you mean 'thetadot'"),
+        (broken('kinetic = "m/2*(rdot^2 + r^2*thetadot^2)"', 'kinetic = "m/2*(rdot^2 + r^2*thetadot^2"'),
+         "energy.kinetic", "never closed"),
+        (broken('kinetic = "m/2*(rdot^2 + r^2*thetadot^2)"', 'kinetic = "m/2*(rdot^2 + r^2*thetadot)"'),
+         "energy.kinetic", "dimensionally inconsistent"),
+        (broken('potential = "m*g*r*cos(theta)"', 'potential = "m*g*cos(theta)"'),
+         "energy.potential", "not an energy"),
+        (broken('f = "r - R"', 'f = "r - theta"'), "constraints[0] (surface).f", "dimensionally inconsistent"),
+        (broken('f = "r - R"', 'f = "rdot - 1"'), "constraints[0] (surface).f", "holonomic"),
+        (broken('kind = "unilateral"', 'kind = "sometimes"'), "constraints[0] (surface).kind", "bilateral"),
+        (broken('dimension = "length", domain = "positive" }\ntheta',
+                'dimension = "lenght", domain = "positive" }\ntheta'), "coordinates.r.dimension", "unknown dimension"),
+        (broken('in_terms_of = ["m", "g", "theta"]', 'in_terms_of = ["m", "g", "phi"]'),
+         "answers[0] (normal_force).in_terms_of", "unknown"),
+        (broken('name = "separation_height"', 'name = "normal_force"'), "answers[2] (normal_force).name", "already"),
+        (broken('kinetic = "m/2*(rdot^2 + r^2*thetadot^2)"', 'kinetic = "__import__(\'os\').system(\'true\')"'),
+         "energy.kinetic", ""),
+        (broken('kinetic = "m/2*(rdot^2 + r^2*thetadot^2)"', 'kinetic = "m.__class__"'), "energy.kinetic", ""),
+        (broken('id = "sphere"', 'id = "Sphere Problem!"'), "id", "lowercase"),
+        (broken('[initial]\ntheta = 0', '[initial]\ntheta = "thetadot"'), "initial.theta", "parameters"),
+        (SPHERE + "\n[energy]\n", "", "not valid TOML"),
+    ],
+    ids=["unknown-name", "syntax", "kinetic-not-energy", "potential-not-energy", "constraint-dimensions",
+         "nonholonomic", "constraint-kind", "unknown-dimension", "in-terms-of-unknown", "duplicate-answer",
+         "import-attempt", "attribute-access", "bad-id", "initial-uses-state", "toml-syntax"],
+)
+def test_bad_scene_file_is_rejected_with_file_key_and_problem(text, key, problem):
+    with pytest.raises(SceneError) as caught:
+        parse_scene(text, source="upload.toml")
+    message = str(caught.value)
+    assert message.startswith("upload.toml: ")
+    assert caught.value.key == key
+    assert problem in message
+
+
+@pytest.mark.parametrize(
+    "text, key, problem",
+    [
+        # A second, equivalent constraint: the Jacobian of the constraints loses rank.
+        (broken('[initial]', '[[constraints]]\nname = "again"\nf = "2*r - 2*R"\n\n[initial]'),
+         "constraints", "redundant"),
+        # A coordinate with no kinetic energy: the mass matrix is singular.
+        (broken('kinetic = "m/2*(rdot^2 + r^2*thetadot^2)"', 'kinetic = "m/2*rdot^2"'),
+         "energy.kinetic", "singular"),
+        # N(theta) needs g: without it in in_terms_of the engine cannot reach the answer.
+        (broken('in_terms_of = ["m", "g", "theta"]', 'in_terms_of = ["m", "theta"]'),
+         "answers (normal_force)", "still depends on g"),
+        # The normal force never reaches 10 m g on the motion from the top.
+        (broken('where = "normal_force = 0"', 'where = "normal_force = 10*m*g"'),
+         "answers (separation_cos).where", "never reaches"),
+        # Energy conservation needs the initial angular velocity.
+        (broken('[initial]\ntheta = 0\nthetadot = 0', '[initial]\ntheta = 0'),
+         "answers (normal_force)", "[initial]"),
+    ],
+    ids=["redundant-constraints", "singular-mass-matrix", "in-terms-of-unreachable", "where-unreachable",
+         "initial-missing"],
+)
+def test_scene_the_engine_cannot_solve_gets_a_clear_error(text, key, problem):
+    with pytest.raises(SceneError) as caught:
+        derive(parse_scene(text, source="upload.toml"))
+    assert caught.value.key == key
+    assert problem in str(caught.value)
+
+
+def test_missing_file_is_a_scene_error(tmp_path):
+    with pytest.raises(SceneError, match="cannot read"):
+        load_scene(tmp_path / "nope.toml")
+
+
+def test_oversized_file_is_refused_before_parsing(tmp_path):
+    path = tmp_path / "big.toml"
+    path.write_text('id = "big"\n' + "# padding\n" * 40_000)
+    with pytest.raises(SceneError, match="larger than"):
+        load_scene(path)
+
+
+@pytest.mark.parametrize("path", sorted((Path(__file__).resolve().parents[2] / "problems").glob("*.toml")),
+                         ids=lambda p: p.stem)
+def test_every_problem_file_loads(path):
+    scene = load_scene(path)
+    assert scene.id == path.stem
+    assert scene.answers, "a problem without answers grades nothing"
