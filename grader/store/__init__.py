@@ -1,0 +1,30 @@
+"""Storage: typed SQLAlchemy 2 models, short sessions, Alembic migrations (``migrations/``)."""
+
+from grader.store.db import Database, db, default_url, make_engine
+from grader.store.models import (
+    ApiToken,
+    Base,
+    Course,
+    Enrolment,
+    Problem,
+    ProblemVersion,
+    Submission,
+    User,
+    Verdict,
+)
+
+__all__ = [
+    "ApiToken",
+    "Base",
+    "Course",
+    "Database",
+    "Enrolment",
+    "Problem",
+    "ProblemVersion",
+    "Submission",
+    "User",
+    "Verdict",
+    "db",
+    "default_url",
+    "make_engine",
+]

@@ -1,0 +1,75 @@
+"""Problems and their versions.
+
+A problem is identified by its scene ``id``. Storing a scene whose source differs from the latest
+version's adds a version; storing the same source again changes nothing, so loading ``problems/``
+at every start is idempotent.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from dataclasses import dataclass
+from typing import Any
+
+from sqlalchemy import select
+from sqlalchemy.orm import Session
+
+from grader.store.models import Problem, ProblemVersion
+
+__all__ = ["DerivedProblem", "latest_version", "problem_by_slug", "save_problem"]
+
+
+@dataclass(frozen=True)
+class DerivedProblem:
+    """What the engine made of one scene file: everything a version stores."""
+
+    slug: str
+    title: str
+    statement: str
+    source: str
+    derivation: dict[str, Any]
+    references: list[dict[str, Any]]
+    engine_version: str
+
+    @property
+    def source_sha256(self) -> str:
+        return hashlib.sha256(self.source.encode()).hexdigest()
+
+
+def problem_by_slug(session: Session, slug: str) -> Problem | None:
+    return session.scalar(select(Problem).where(Problem.slug == slug))
+
+
+def latest_version(session: Session, problem: Problem, *, published_only: bool = False) -> ProblemVersion | None:
+    """The newest version of ``problem`` (the newest published one if ``published_only``)."""
+    query = select(ProblemVersion).where(ProblemVersion.problem_id == problem.id)
+    if published_only:
+        query = query.where(ProblemVersion.published.is_(True))
+    return session.scalar(query.order_by(ProblemVersion.number.desc()).limit(1))
+
+
+def save_problem(session: Session, derived: DerivedProblem, *, published: bool = True) -> tuple[ProblemVersion, bool]:
+    """Store ``derived`` as a new version unless its source equals the latest; returns (version, created)."""
+    problem = problem_by_slug(session, derived.slug)
+    if problem is None:
+        problem = Problem(slug=derived.slug)
+        session.add(problem)
+        session.flush()
+    latest = latest_version(session, problem)
+    if latest is not None and latest.source_sha256 == derived.source_sha256 and latest.published == published:
+        return latest, False
+    version = ProblemVersion(
+        problem=problem,
+        number=(latest.number + 1) if latest else 1,
+        title=derived.title,
+        statement=derived.statement,
+        source=derived.source,
+        source_sha256=derived.source_sha256,
+        derivation=derived.derivation,
+        references=derived.references,
+        engine_version=derived.engine_version,
+        published=published,
+    )
+    session.add(version)
+    session.flush()
+    return version, True

@@ -1,0 +1,82 @@
+"""Users, passwords and API tokens.
+
+Passwords are hashed with werkzeug.security (salted, slow). API tokens are random secrets shown
+once; the database keeps only their sha256, so a leaked database gives no usable token.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import secrets
+
+from sqlalchemy import select
+from sqlalchemy.orm import Session
+from werkzeug.security import check_password_hash, generate_password_hash
+
+from grader.store.models import ROLES, ApiToken, User, utcnow
+
+__all__ = [
+    "TOKEN_PREFIX",
+    "authenticate",
+    "create_token",
+    "create_user",
+    "hash_secret",
+    "set_password",
+    "student_for_external_id",
+    "user_for_token",
+]
+
+TOKEN_PREFIX = "lg_"
+
+
+def hash_secret(secret: str) -> str:
+    return hashlib.sha256(secret.encode()).hexdigest()
+
+
+def create_user(session: Session, *, role: str, name: str, email: str | None = None,
+                password: str | None = None, external_id: str | None = None) -> User:
+    """Add a user (flushed, not committed); ``role`` is one of student, instructor, admin, lms."""
+    if role not in ROLES:
+        raise ValueError(f"unknown role {role!r}; expected one of {', '.join(ROLES)}")
+    user = User(role=role, name=name, email=email, external_id=external_id)
+    if password is not None:
+        set_password(user, password)
+    session.add(user)
+    session.flush()
+    return user
+
+
+def set_password(user: User, password: str) -> None:
+    user.password_hash = generate_password_hash(password)
+
+
+def authenticate(session: Session, email: str, password: str) -> User | None:
+    """The user with this email and password, or None (same answer for unknown email and wrong password)."""
+    user = session.scalar(select(User).where(User.email == email))
+    if user is None or user.password_hash is None:
+        return None
+    return user if check_password_hash(user.password_hash, password) else None
+
+
+def create_token(session: Session, user: User, name: str | None = None) -> str:
+    """A new bearer token for ``user`` with the user's role; returns the secret (shown only now)."""
+    secret = TOKEN_PREFIX + secrets.token_urlsafe(32)
+    session.add(ApiToken(user=user, role=user.role, name=name or user.name, secret_sha256=hash_secret(secret)))
+    session.flush()
+    return secret
+
+
+def user_for_token(session: Session, secret: str) -> tuple[User, ApiToken] | None:
+    """The user and token for a bearer secret, or None if unknown or revoked."""
+    token = session.scalar(select(ApiToken).where(ApiToken.secret_sha256 == hash_secret(secret)))
+    if token is None or token.revoked_at is not None:
+        return None
+    return token.user, token
+
+
+def student_for_external_id(session: Session, external_id: str) -> User:
+    """The student an LMS knows as ``external_id``, created on first sight."""
+    user = session.scalar(select(User).where(User.external_id == external_id))
+    if user is None:
+        user = create_user(session, role="student", name=external_id, external_id=external_id)
+    return user
