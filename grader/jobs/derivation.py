@@ -1,0 +1,123 @@
+"""Deriving uploaded scenes in a child process under a wall-clock and memory limit.
+
+Scene files come from instructors over the web, so the engine runs them where a pathological
+scene can only exhaust its own limits: a :class:`grader.answers.sandbox.Sandbox` child (an
+``RLIMIT_AS`` cap, killed with SIGKILL when it overruns its time) whose handler is
+:func:`derive_request`. The child stays warm between uploads, so only the first pays for importing
+sympy. The parent receives plain JSON and builds a :class:`grader.store.problems.DerivedProblem`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import logging
+import threading
+import traceback
+from pathlib import Path
+
+from sqlalchemy import func, select
+from sqlalchemy.orm import aliased
+
+from grader.answers.sandbox import Sandbox
+from grader.store.models import ProblemVersion
+from grader.store.problems import DerivedProblem, save_problem
+
+__all__ = ["DerivationError", "derive_request", "derive_source", "load_problem_files"]
+
+log = logging.getLogger(__name__)
+
+DERIVE_TIMEOUT_S = 60.0
+DERIVE_MEMORY_MB = 2048
+
+_sandboxes: dict[int, Sandbox] = {}  # one warm child per memory limit, made on first use
+_sandboxes_lock = threading.Lock()
+
+
+class DerivationError(ValueError):
+    """A scene that cannot be derived: invalid, too slow, too big. The message is for the instructor."""
+
+
+def derive_source(source: str, *, filename: str = "upload.toml", timeout_s: float = DERIVE_TIMEOUT_S,
+                  memory_mb: int = DERIVE_MEMORY_MB) -> DerivedProblem:
+    """Parse and derive the scene ``source`` in a limited child; raises :class:`DerivationError`."""
+    with _sandboxes_lock:
+        sandbox = _sandboxes.get(memory_mb)
+        if sandbox is None:
+            sandbox = _sandboxes[memory_mb] = Sandbox(budget_s=timeout_s, memory_mb=memory_mb,
+                                                      handler="grader.jobs.derivation:derive_request")
+    reply = sandbox.run({"source": source, "filename": filename}, budget_s=timeout_s)
+    outcome = reply.get("outcome")
+    if outcome == "ok":
+        return DerivedProblem(source=source, **reply["problem"])
+    if outcome == "error":
+        raise DerivationError(reply["message"])
+    if outcome == "internal":
+        log.error("deriving %s failed inside the engine:\n%s", filename, reply["trace"])
+        raise DerivationError(f"{filename}: the engine failed on this scene; the error was logged")
+    # No outcome: the sandbox stopped the child and answered for it.
+    if reply.get("budget_exceeded"):
+        raise DerivationError(f"{filename}: the derivation took longer than {timeout_s:g} s and was stopped")
+    raise DerivationError(f"{filename}: the derivation was stopped: it exceeded the memory limit "
+                          f"({memory_mb} MB) or crashed")
+
+
+def derive_request(request: dict) -> dict:
+    """The sandbox child's handler: ``{"source", "filename"}`` -> ``{"outcome", ...}`` (never raises)."""
+    filename = request.get("filename", "upload.toml")
+    try:
+        return {"outcome": "ok", "problem": _derive(request["source"], filename)}
+    except MemoryError:
+        raise  # the sandbox child answers for it and restarts
+    except ValueError as error:  # SceneError and the expression errors: a message for the instructor
+        return {"outcome": "error", "message": str(error)}
+    except Exception:  # an engine bug: the parent logs it, the client gets a generic message
+        return {"outcome": "internal", "trace": traceback.format_exc()}
+
+
+def _derive(source: str, filename: str) -> dict:
+    import sympy
+
+    import grader
+    from grader.mechanics.lagrange import derive
+    from grader.mechanics.scene import parse_scene
+
+    scene = parse_scene(source, source=filename)
+    derivation = derive(scene)
+    return {
+        "slug": scene.id,
+        "title": scene.title,
+        "statement": scene.statement,
+        "derivation": derivation.to_json(),
+        "references": [r.to_json() for r in derivation.references()],
+        "engine_version": f"{grader.__version__}+sympy{sympy.__version__}",
+    }
+
+
+def load_problem_files(database, paths, **limits) -> list[tuple[str, str]]:
+    """Store each scene file as a problem version when its source changed; returns (file, outcome) pairs.
+
+    Unchanged files are recognised by their source hash without running the engine, so a restart
+    costs nothing; a file that fails to derive is reported and skipped, not fatal.
+    """
+    outcomes = []
+    for path in map(Path, paths):
+        source = path.read_text(encoding="utf-8")
+        digest = hashlib.sha256(source.encode()).hexdigest()
+        newest = aliased(ProblemVersion)
+        with database.read() as session:
+            known = session.scalar(select(ProblemVersion.id).where(
+                ProblemVersion.source_sha256 == digest,
+                ProblemVersion.number == select(func.max(newest.number))
+                .where(newest.problem_id == ProblemVersion.problem_id).scalar_subquery()).limit(1))
+        if known is not None:
+            outcomes.append((path.name, "unchanged"))
+            continue
+        try:
+            derived = derive_source(source, filename=path.name, **limits)
+        except DerivationError as error:
+            outcomes.append((path.name, f"skipped: {error}"))
+            continue
+        with database.write() as session:
+            version, created = save_problem(session, derived)
+            outcomes.append((path.name, f"version {version.number} of {derived.slug!r}" if created else "unchanged"))
+    return outcomes

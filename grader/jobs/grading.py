@@ -1,0 +1,92 @@
+"""Grading one claimed task with a sandboxed checker, and the score a verdict is worth.
+
+A *checker* has ``run(request, budget_s) -> Verdict.to_json()`` and ``close()``: in production a
+:class:`grader.answers.sandbox.Sandbox`, a long-lived child process under a hard wall-clock and
+memory limit, so a runaway check is killed there, not here. Each worker owns one.
+"""
+
+from __future__ import annotations
+
+import queue
+import threading
+from contextlib import contextmanager
+from typing import Any, Callable, Iterator, Protocol
+
+from grader.answers.sandbox import DEFAULT_BUDGET_S, Sandbox
+from grader.jobs.queue import Task
+
+__all__ = ["CHECK_BUDGET_S", "Checker", "CheckerPool", "CheckersBusy", "check_task", "check_request", "sandbox_checker", "score"]
+
+CHECK_BUDGET_S = DEFAULT_BUDGET_S
+
+# Points per verdict; anything else (not_equivalent, invalid: unreadable or out of budget) earns 0.
+_SCORES = {"equivalent": 1.0}
+
+
+class Checker(Protocol):
+    def run(self, request: dict[str, Any], budget_s: float | None = None) -> dict[str, Any]: ...
+
+    def close(self) -> None: ...
+
+
+def sandbox_checker() -> Checker:
+    """A checker backed by its own sandbox child (the production checker)."""
+    return Sandbox(budget_s=CHECK_BUDGET_S)
+
+
+def check_request(reference: dict[str, Any], text: str) -> dict[str, Any]:
+    """The checker request for ``text`` against a stored reference answer (a ReferenceAnswer as dict)."""
+    return {"reference": reference["reference"], "answer": text, "variables": reference["variables"],
+            "kind": reference["kind"], "feedback": reference.get("feedback") or []}
+
+
+def check_task(checker: Checker, task: Task, *, budget_s: float = CHECK_BUDGET_S) -> dict[str, Any]:
+    """Check the task's answer text against its stored reference; returns ``Verdict.to_json()``."""
+    return checker.run(check_request(task.reference, task.text), budget_s)
+
+
+def score(result: dict[str, Any]) -> float:
+    """The points a checked answer earns (1 for an equivalent answer, else 0)."""
+    return _SCORES.get(result["verdict"], 0.0)
+
+
+class CheckersBusy(RuntimeError):
+    """Every checker of a pool stayed busy for the whole wait."""
+
+
+class CheckerPool:
+    """At most ``size`` checkers (sandbox children), each lent to one caller at a time.
+
+    Stateless ``POST /check`` requests borrow from it; a checker that raised is closed rather than
+    lent again.
+    """
+
+    def __init__(self, size: int, factory: Callable[[], Checker] = sandbox_checker):
+        self.factory = factory
+        self._slots = threading.BoundedSemaphore(size)
+        self._idle: queue.LifoQueue[Checker] = queue.LifoQueue()
+
+    @contextmanager
+    def borrow(self, timeout: float) -> Iterator[Checker]:
+        if not self._slots.acquire(timeout=timeout):
+            raise CheckersBusy(f"no checker became free within {timeout:g} s")
+        try:
+            try:
+                checker = self._idle.get_nowait()
+            except queue.Empty:
+                checker = self.factory()
+            try:
+                yield checker
+            except BaseException:
+                checker.close()
+                raise
+            self._idle.put(checker)
+        finally:
+            self._slots.release()
+
+    def close(self) -> None:
+        while True:
+            try:
+                self._idle.get_nowait().close()
+            except queue.Empty:
+                return

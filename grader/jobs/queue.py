@@ -1,0 +1,280 @@
+"""The grading queue, kept in the ``submissions`` table itself.
+
+A submission's life: ``submit`` commits it as ``queued`` (nothing is graded before it is stored);
+a worker ``claim``s it with a conditional UPDATE (``queued`` → ``running``, with its worker id and a
+lease); the worker grades it with no session open, then ``record`` inserts the verdict and sets
+``done`` in one transaction, but only if the row is still ``running`` under that worker and in the
+same grading round. ``UNIQUE(submission_id, grading_round)`` on verdicts guards the rest, so after any
+crash each submission has exactly one verdict in effect.
+
+After a crash, ``recover`` (run when the server starts) puts every ``running`` row back to
+``queued``; ``requeue_expired`` does the same for leases that ran out while the server runs. A
+submission that was claimed ``MAX_ATTEMPTS`` times in one round without a verdict is recorded as
+``failed`` with an ``error`` verdict, so a poisonous input cannot loop forever.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import threading
+from dataclasses import dataclass
+from datetime import datetime, timedelta
+from typing import Any
+
+from sqlalchemy import select, update
+from sqlalchemy.exc import IntegrityError
+from sqlalchemy.orm import Session
+
+from grader.store.db import Database
+from grader.store.models import ProblemVersion, Submission, User, Verdict, utcnow
+
+__all__ = [
+    "IdempotencyConflict",
+    "MAX_ANSWER_CHARS",
+    "MAX_ATTEMPTS",
+    "SubmissionRejected",
+    "Task",
+    "claim",
+    "record",
+    "recover",
+    "regrade",
+    "release",
+    "requeue_expired",
+    "submit",
+    "wake_workers",
+]
+
+MAX_ATTEMPTS = 3
+MAX_ANSWER_CHARS = 4000
+LEASE_S = 120.0
+
+# Set when new work is committed, so idle workers claim it at once instead of at their next poll.
+_new_work = threading.Event()
+
+
+def wake_workers() -> None:
+    _new_work.set()
+
+
+def wait_for_work(timeout: float) -> None:
+    if _new_work.wait(timeout):
+        _new_work.clear()
+
+
+class SubmissionRejected(ValueError):
+    """A submission that cannot be accepted (unknown answer, text too long); the message says why."""
+
+
+class IdempotencyConflict(ValueError):
+    """An Idempotency-Key reused with a different request."""
+
+    def __init__(self, submission_id: int):
+        super().__init__(f"this Idempotency-Key was already used for a different request (submission {submission_id})")
+        self.submission_id = submission_id
+
+
+def _fingerprint(version: ProblemVersion, user_id: int, answer: str, text: str) -> str:
+    body = {"problem": version.problem_id, "user": user_id, "answer": answer, "text": text}
+    return hashlib.sha256(json.dumps(body, sort_keys=True).encode()).hexdigest()
+
+
+def submit(database: Database, *, user: User, version: ProblemVersion, answer: str, text: str,
+           requester: User | None = None, idempotency_key: str | None = None) -> tuple[int, bool]:
+    """Store a submission as ``queued`` in its own short transaction; returns ``(submission id, created)``.
+
+    ``user`` (whose work it is), ``requester`` (who sent it: the student, or an LMS acting for one;
+    default ``user``) and ``version`` may be detached objects: only their ids and the version's
+    references are read. With an ``idempotency_key`` (scoped to the requester), a retry of the same
+    request returns the stored submission (``created`` False) and a different request with the same
+    key raises :class:`IdempotencyConflict`.
+    """
+    requester_id = (requester or user).id
+    if version.reference(answer) is None:
+        names = ", ".join(r["name"] for r in version.references)
+        raise SubmissionRejected(f"this problem has no answer {answer!r}; its answers: {names}")
+    if len(text) > MAX_ANSWER_CHARS:
+        raise SubmissionRejected(f"the answer is {len(text)} characters long; the limit is {MAX_ANSWER_CHARS}")
+    fingerprint = _fingerprint(version, user.id, answer, text)
+    try:
+        with database.write() as session:
+            if idempotency_key is not None:
+                existing = _by_key(session, requester_id, idempotency_key)
+                if existing is not None:
+                    return _replay(existing, fingerprint), False
+            submission = Submission(user_id=user.id, requester_id=requester_id, problem_version_id=version.id,
+                                    grading_version_id=version.id, answer_name=answer, text=text, status="queued",
+                                    idempotency_key=idempotency_key, request_sha256=fingerprint)
+            session.add(submission)
+            session.flush()
+            submission_id = submission.id
+    except IntegrityError:
+        # A concurrent retry with the same key won the insert: answer as for a retry.
+        with database.read() as session:
+            existing = _by_key(session, requester_id, idempotency_key) if idempotency_key else None
+            if existing is None:
+                raise
+            return _replay(existing, fingerprint), False
+    wake_workers()
+    return submission_id, True
+
+
+def _by_key(session: Session, requester_id: int, key: str) -> Submission | None:
+    return session.scalar(select(Submission).where(Submission.requester_id == requester_id,
+                                                   Submission.idempotency_key == key))
+
+
+def _replay(existing: Submission, fingerprint: str) -> int:
+    if existing.request_sha256 != fingerprint:
+        raise IdempotencyConflict(existing.id)
+    return existing.id
+
+
+def regrade(database: Database, version: ProblemVersion) -> int:
+    """Queue a new grading round for every submission to ``version``'s problem, in one transaction.
+
+    Each submission is graded against ``version`` when it still has that answer, else against the
+    version it was graded with before. Returns how many submissions were queued.
+    """
+    names = [r["name"] for r in version.references]
+    problem_versions = select(ProblemVersion.id).where(ProblemVersion.problem_id == version.problem_id)
+    queued = 0
+    with database.write() as session:
+        for moved in (True, False):
+            match = Submission.answer_name.in_(names) if moved else Submission.answer_name.not_in(names)
+            values: dict[str, Any] = dict(grading_round=Submission.grading_round + 1, status="queued", attempts=0,
+                                          worker_id=None, lease_until=None, updated_at=utcnow())
+            if moved:
+                values["grading_version_id"] = version.id
+            result = session.execute(update(Submission)
+                                     .where(Submission.problem_version_id.in_(problem_versions), match)
+                                     .values(**values))
+            queued += result.rowcount
+    wake_workers()
+    return queued
+
+
+@dataclass(frozen=True)
+class Task:
+    """What a worker needs to grade one submission, read in a short session and detached from it."""
+
+    submission_id: int
+    grading_round: int
+    version_id: int
+    attempts: int
+    answer: str
+    text: str
+    reference: dict[str, Any] | None
+    received_at: datetime
+
+
+def claim(db: Database, worker_id: str, *, lease_s: float = LEASE_S) -> Task | None:
+    """Take the oldest queued submission for ``worker_id``, or None if there is none.
+
+    The write transaction is only the conditional UPDATE; the task's data is read afterwards.
+    """
+    while True:
+        with db.write() as session:
+            submission_id = session.scalar(select(Submission.id).where(Submission.status == "queued")
+                                           .order_by(Submission.id).limit(1))
+            if submission_id is None:
+                return None
+            now = utcnow()
+            taken = session.execute(
+                update(Submission)
+                .where(Submission.id == submission_id, Submission.status == "queued")
+                .values(status="running", worker_id=worker_id, lease_until=now + timedelta(seconds=lease_s),
+                        attempts=Submission.attempts + 1, updated_at=now)
+            ).rowcount
+        if taken != 1:
+            continue  # another worker took it between our SELECT and UPDATE
+        with db.read() as session:
+            submission = session.get(Submission, submission_id)
+            version = submission.grading_version
+            task = Task(submission.id, submission.grading_round, version.id, submission.attempts,
+                        submission.answer_name, submission.text, version.reference(submission.answer_name),
+                        submission.received_at)
+        if task.reference is None:
+            _fail(db, task, worker_id, f"version {version.number} has no answer {task.answer!r}")
+        elif task.attempts > MAX_ATTEMPTS:
+            _fail(db, task, worker_id, f"grading was interrupted {MAX_ATTEMPTS} times")
+        else:
+            return task
+
+
+def _fail(db: Database, task: Task, worker_id: str, reason: str) -> None:
+    """Record that ``task`` cannot be graded: status failed, with an ``error`` verdict in effect."""
+    with db.write() as session:
+        ours = session.execute(
+            update(Submission)
+            .where(Submission.id == task.submission_id, Submission.status == "running",
+                   Submission.worker_id == worker_id, Submission.grading_round == task.grading_round)
+            .values(status="failed", worker_id=None, lease_until=None, updated_at=utcnow())).rowcount
+        if ours == 1:
+            session.add(Verdict(submission_id=task.submission_id, grading_round=task.grading_round,
+                                problem_version_id=task.version_id, verdict="error", score=0.0,
+                                reason=f"could not be graded: {reason}", worker_id=worker_id))
+
+
+def record(db: Database, task: Task, worker_id: str, result: dict[str, Any], *, score: float,
+           grade_ms: float, started_at: datetime) -> bool:
+    """Commit the verdict of ``task`` and mark it done, in one transaction.
+
+    Returns False (and writes nothing) when the claim is no longer ours: a regrade started a new
+    round, or the lease ran out and another worker took the submission.
+    """
+    try:
+        with db.write() as session:
+            ours = session.execute(
+                update(Submission)
+                .where(Submission.id == task.submission_id, Submission.status == "running",
+                       Submission.worker_id == worker_id, Submission.grading_round == task.grading_round)
+                .values(status="done", worker_id=None, lease_until=None, updated_at=utcnow())
+            ).rowcount
+            if ours != 1:
+                return False
+            session.add(Verdict(
+                submission_id=task.submission_id, grading_round=task.grading_round, problem_version_id=task.version_id,
+                verdict=result["verdict"], certainty=result.get("certainty"), score=score, reason=result.get("reason"),
+                feedback=result.get("feedback"), counterexample=result.get("counterexample"), parsed=result.get("parsed"),
+                check_ms=result.get("ms"), grade_ms=grade_ms, worker_id=worker_id,
+                wait_ms=(started_at - task.received_at).total_seconds() * 1000,
+            ))
+    except IntegrityError:  # a verdict for this round exists already: it stays the one in effect
+        return False
+    return True
+
+
+def release(db: Database, task: Task, worker_id: str) -> None:
+    """Give a claimed task back to the queue (the worker could not grade it this time)."""
+    with db.write() as session:
+        session.execute(update(Submission)
+                        .where(Submission.id == task.submission_id, Submission.worker_id == worker_id,
+                               Submission.status == "running", Submission.grading_round == task.grading_round)
+                        .values(status="queued", worker_id=None, lease_until=None, updated_at=utcnow()))
+    wake_workers()
+
+
+def recover(db: Database) -> int:
+    """At start-up: every ``running`` submission was interrupted by a crash; queue it again.
+
+    Assumes one ``grader serve`` per database (its workers are the only ones that can hold leases).
+    """
+    with db.write() as session:
+        count = session.execute(update(Submission).where(Submission.status == "running")
+                                .values(status="queued", worker_id=None, lease_until=None)).rowcount
+    if count:
+        wake_workers()
+    return count
+
+
+def requeue_expired(db: Database, now: datetime | None = None) -> int:
+    """Queue again the running submissions whose lease ran out (a stuck or vanished worker)."""
+    now = now or utcnow()
+    with db.write() as session:
+        count = session.execute(update(Submission)
+                                .where(Submission.status == "running", Submission.lease_until < now)
+                                .values(status="queued", worker_id=None, lease_until=None)).rowcount
+    if count:
+        wake_workers()
+    return count

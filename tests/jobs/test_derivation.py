@@ -1,0 +1,54 @@
+"""Deriving uploaded scenes in a limited child process, and loading problems/ at start."""
+
+from pathlib import Path
+
+import pytest
+from sqlalchemy import select
+
+from grader.jobs.derivation import DerivationError, derive_source, load_problem_files
+from grader.store.models import ProblemVersion
+
+PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
+
+
+def test_a_scene_is_derived_into_references_the_checker_takes():
+    derived = derive_source((PROBLEMS / "yoyo.toml").read_text(), filename="yoyo.toml")
+    references = {r["name"]: r for r in derived.references}
+    assert derived.slug == "yoyo" and derived.title.startswith("Yo-yo")
+    # The yo-yo falls with a = 2g/3 and the string pulls with T = mg/3.
+    assert references["acceleration"]["reference"] == "2*g/3"
+    assert references["tension"]["reference"] == "g*m/3"
+    assert set(references["tension"]) >= {"prompt", "kind", "variables", "dimension", "latex", "feedback"}
+
+
+@pytest.mark.parametrize("source, message", [
+    ("id = \"x\"\n[energy\n", "upload.toml"),
+    ("id = \"x\"\n[coordinates]\nq = { dimension = \"length\" }\n[energy]\nkinetic = \"qdot^2 + tehta\"\n", "tehta"),
+])
+def test_an_invalid_scene_is_refused_with_its_error(source, message):
+    with pytest.raises(DerivationError, match=message):
+        derive_source(source)
+
+
+def test_a_derivation_over_its_time_limit_is_stopped_and_the_next_one_works():
+    # The sphere on a hemisphere takes about a second to derive: far more than 0.2 s.
+    with pytest.raises(DerivationError, match="longer than 0.2 s"):
+        derive_source((PROBLEMS / "sphere.toml").read_text(), timeout_s=0.2)
+    assert derive_source((PROBLEMS / "yoyo.toml").read_text()).slug == "yoyo"
+
+
+def test_loading_problem_files_adds_versions_only_for_changed_sources(database, tmp_path):
+    scene = tmp_path / "yoyo.toml"
+    scene.write_text((PROBLEMS / "yoyo.toml").read_text())
+    assert load_problem_files(database, [scene]) == [("yoyo.toml", "version 1 of 'yoyo'")]
+    assert load_problem_files(database, [scene]) == [("yoyo.toml", "unchanged")]
+    scene.write_text(scene.read_text() + "\n# clarified\n")
+    assert load_problem_files(database, [scene]) == [("yoyo.toml", "version 2 of 'yoyo'")]
+    with database.read() as session:
+        assert session.scalars(select(ProblemVersion.number)).all() == [1, 2]
+
+
+def test_a_broken_problem_file_is_skipped_not_fatal(database, tmp_path):
+    (tmp_path / "bad.toml").write_text("not toml [")
+    [(name, outcome)] = load_problem_files(database, [tmp_path / "bad.toml"])
+    assert name == "bad.toml" and outcome.startswith("skipped:")
