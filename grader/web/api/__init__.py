@@ -1,0 +1,13 @@
+"""The REST API under ``/api/v1``: JSON in and out, bearer tokens, problem+json errors."""
+
+from flask import Blueprint
+
+import grader
+from grader.web.api.spec import ApiSpec
+
+bp = Blueprint("api", __name__, url_prefix="/api/v1")
+spec = ApiSpec(bp, title="lagrade API", version=grader.__version__,
+               description="Check answers to Lagrangian-mechanics problems, submit them for grading, "
+                           "manage problems and read grades.")
+
+from grader.web.api import check, docs, grades, problems, submissions  # noqa: E402,F401  (they register routes on bp)

@@ -1,0 +1,37 @@
+"""``POST /check``: a stateless check, exactly one line of ``grader check --jsonl``."""
+
+from __future__ import annotations
+
+from flask import current_app, g
+
+from grader.jobs.grading import CheckersBusy
+from grader.web.api import spec
+from grader.web.api.schemas import CHECK_REQUEST, CHECK_RESULT, read_json
+from grader.web.errors import ApiProblem
+from grader.web.security import limiter
+
+ANY_ROLE = {"student", "instructor", "admin", "lms"}
+
+
+@spec.route("/check", "POST", roles=ANY_ROLE, errors=(400, 415, 422, 429, 503),
+            request={"application/json": spec.schema("CheckRequest", CHECK_REQUEST)},
+            responses={200: ("The verdict.", {"application/json": spec.schema("CheckResult", CHECK_RESULT)})})
+def check_answer():
+    """Check an answer against a reference, without storing anything.
+
+    The check runs in a sandbox child with a hard time and memory limit; an answer that exhausts
+    them gets a verdict saying so, not an error.
+    """
+    limiter.hit("check", g.api_user.id)
+    body = read_json(CHECK_REQUEST)
+    checkers = current_app.extensions["lagrade.checkers"]
+    limit = current_app.config["CHECK_BUDGET_S"]
+    try:
+        with checkers.borrow(timeout=current_app.config["CHECK_QUEUE_TIMEOUT_S"]) as checker:
+            budget = min(float(body.get("budget_s") or limit), limit)
+            result = checker.run({"kind": "expression", **body, "budget_s": budget}, budget)
+    except CheckersBusy:
+        raise ApiProblem(503, "All checkers are busy; try again shortly.", kind="busy",
+                         headers={"Retry-After": "1"}) from None
+    return result
+

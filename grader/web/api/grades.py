@@ -1,0 +1,91 @@
+"""Grades of a problem (JSON or CSV) and regrading, for instructors."""
+
+from __future__ import annotations
+
+import csv
+import io
+from typing import Any
+
+from flask import Response, request, url_for
+from sqlalchemy import select
+from sqlalchemy.orm import joinedload, selectinload
+
+from grader import jobs
+from grader.store.db import db
+from grader.store.models import ProblemVersion, Submission
+from grader.web.api import spec
+from grader.web.api.problems import INSTRUCTORS, visible_version
+
+CSV_COLUMNS = ["user_id", "external_id", "name", "answer", "submissions", "latest_submission", "latest_status",
+               "latest_verdict", "latest_score", "best_score"]
+
+_COLUMN_TYPES = {"user_id": "integer", "external_id": "string", "name": "string", "answer": "string",
+                 "submissions": "integer", "latest_submission": "integer", "latest_status": "string",
+                 "latest_verdict": "string", "latest_score": "number", "best_score": "number"}
+GRADES = spec.schema("Grades", {"type": "object", "properties": {
+    "problem": {"type": "string"},
+    "grades": {"type": "array", "items": {"type": "object", "properties": {
+        name: {"type": _COLUMN_TYPES[name], "nullable": True} for name in CSV_COLUMNS}}}}})
+
+
+def grade_rows(slug: str) -> list[dict[str, Any]]:
+    """One row per (student, answer): submission count, the latest one's verdict, the best score."""
+    version = visible_version(slug)
+    submissions = db.session.scalars(
+        select(Submission)
+        .join(ProblemVersion, Submission.problem_version_id == ProblemVersion.id)
+        .where(ProblemVersion.problem_id == version.problem_id)
+        .options(joinedload(Submission.user), selectinload(Submission.verdicts))
+        .order_by(Submission.user_id, Submission.answer_name, Submission.id)
+    )
+    rows: dict[tuple[int, str], dict[str, Any]] = {}
+    for submission in submissions:
+        verdict = submission.verdict
+        row = rows.setdefault((submission.user_id, submission.answer_name), {
+            "user_id": submission.user_id, "external_id": submission.user.external_id,
+            "name": submission.user.name, "answer": submission.answer_name, "submissions": 0, "best_score": None})
+        row["submissions"] += 1
+        row.update(latest_submission=submission.id, latest_status=submission.status,
+                   latest_verdict=verdict.verdict if verdict else None, latest_score=verdict.score if verdict else None)
+        if verdict is not None:
+            row["best_score"] = max(row["best_score"] or 0.0, verdict.score)
+    return list(rows.values())
+
+
+@spec.route("/problems/<slug>/grades", "GET", roles=INSTRUCTORS, errors=(404,),
+            parameters=[{"name": "format", "in": "query", "schema": {"type": "string", "enum": ["json", "csv"]},
+                         "description": "csv for a spreadsheet (or send 'Accept: text/csv')."}],
+            responses={200: ("One row per student and answer.", {
+                "application/json": GRADES,
+                "text/csv": {"type": "string", "description": f"Columns: {', '.join(CSV_COLUMNS)}."}})})
+def get_grades(slug: str):
+    """Grades of every student on every answer of a problem, as JSON or CSV."""
+    rows = grade_rows(slug)
+    wants_csv = request.args.get("format") == "csv" or (
+        request.accept_mimetypes.best_match(["application/json", "text/csv"]) == "text/csv"
+        and request.accept_mimetypes["text/csv"] > request.accept_mimetypes["application/json"])
+    if wants_csv:
+        out = io.StringIO()
+        writer = csv.DictWriter(out, fieldnames=CSV_COLUMNS, lineterminator="\r\n")
+        writer.writeheader()
+        writer.writerows(rows)
+        return Response(out.getvalue(), mimetype="text/csv",
+                        headers={"Content-Disposition": f'attachment; filename="{slug}-grades.csv"'})
+    return {"problem": slug, "grades": rows}
+
+
+@spec.route("/problems/<slug>/regrade", "POST", roles=INSTRUCTORS, errors=(404,),
+            responses={202: ("Every submission of the problem is queued for a new grading round.", {
+                "application/json": {"type": "object", "properties": {
+                    "queued": {"type": "integer"}, "version": {"type": "integer"}, "links": {"type": "object"}}}})})
+def regrade(slug: str):
+    """Grade every submission of a problem again, against its newest version's references.
+
+    Each submission gets a new grading round; its earlier verdicts stay stored but only the new
+    one is in effect.
+    """
+    with db.read() as session:
+        version = visible_version(slug, session)
+    queued = jobs.regrade(db, version)
+    return {"queued": queued, "version": version.number,
+            "links": {"grades": url_for("api.get_grades", slug=slug)}}, 202

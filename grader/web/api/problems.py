@@ -1,0 +1,129 @@
+"""Problems: upload a scene (instructors), list and read problems (students never see references)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from flask import current_app, g, request, url_for
+from sqlalchemy import select
+from sqlalchemy.orm import Session
+
+from grader.jobs.derivation import DerivationError, derive_source
+from grader.store.db import db
+from grader.store.models import Problem, ProblemVersion
+from grader.store.problems import latest_version, problem_by_slug, save_problem
+from grader.web.api import spec
+from grader.web.errors import ApiProblem
+
+__all__ = ["INSTRUCTORS", "problem_json", "visible_version"]
+
+INSTRUCTORS = {"instructor", "admin"}
+EVERYONE = {"student", "instructor", "admin", "lms"}
+MAX_SCENE_BYTES = 256 * 1024
+
+_ANSWER = {"type": "object", "properties": {
+    "name": {"type": "string"}, "prompt": {"type": "string"}, "kind": {"type": "string"},
+    "dimension": {"type": "string"}, "variables": {"type": "object"},
+    "reference": {"type": "string", "description": "Instructors only."},
+    "latex": {"type": "string", "description": "Instructors only."},
+    "feedback": {"type": "array", "description": "Instructors only."}}}
+PROBLEM = spec.schema("ProblemDetail", {"type": "object", "properties": {
+    "id": {"type": "string"}, "version": {"type": "integer"}, "title": {"type": "string"},
+    "statement": {"type": "string"}, "answers": {"type": "array", "items": _ANSWER},
+    "published": {"type": "boolean"}, "links": {"type": "object"},
+    "engine_version": {"type": "string", "description": "Instructors only."},
+    "derivation": {"type": "object", "description": "Instructors only: Derivation.to_json()."}}})
+PROBLEM_LIST = spec.schema("ProblemList", {"type": "object", "properties": {"problems": {"type": "array", "items": {
+    "type": "object", "properties": {"id": {"type": "string"}, "title": {"type": "string"},
+                                     "version": {"type": "integer"}, "links": {"type": "object"}}}}}})
+_STUDENT_ANSWER_KEYS = ("name", "prompt", "kind", "dimension", "variables")
+
+
+def is_instructor() -> bool:
+    return g.api_role in INSTRUCTORS
+
+
+def visible_version(slug: str, session: Session | None = None) -> ProblemVersion:
+    """The version of problem ``slug`` the caller may see (students: the newest published), or 404."""
+    session = session or db.session
+    problem = problem_by_slug(session, slug)
+    version = latest_version(session, problem, published_only=not is_instructor()) if problem else None
+    if version is None:
+        raise ApiProblem(404, f"There is no problem {slug!r}.", kind="not-found")
+    return version
+
+
+def problem_json(version: ProblemVersion, *, full: bool) -> dict[str, Any]:
+    """A version as the API shows it; ``full`` (instructors) adds references and the derivation."""
+    slug = version.problem.slug
+    answers = version.references if full else [{k: r.get(k) for k in _STUDENT_ANSWER_KEYS} for r in version.references]
+    body: dict[str, Any] = {
+        "id": slug, "version": version.number, "title": version.title, "statement": version.statement,
+        "published": version.published, "answers": answers,
+        "links": {"self": url_for("api.get_problem", slug=slug),
+                  "submissions": url_for("api.create_submission", slug=slug)},
+    }
+    if full:
+        body.update(engine_version=version.engine_version, created_at=version.created_at.isoformat() + "Z",
+                    source_sha256=version.source_sha256, derivation=version.derivation)
+        body["links"].update(grades=url_for("api.get_grades", slug=slug), regrade=url_for("api.regrade", slug=slug))
+    return body
+
+
+@spec.route("/problems", "POST", roles=INSTRUCTORS, errors=(400, 413, 415, 422),
+            request={"application/toml": {"type": "string", "description": "A scene file (docs/scene-format.md)."}},
+            parameters=[{"name": "published", "in": "query", "schema": {"type": "boolean", "default": True},
+                         "description": "Whether students see this version."}],
+            responses={201: ("A new problem or a new version of it.", {"application/json": PROBLEM}),
+                       200: ("The source is the same as the latest version's; nothing changed.",
+                             {"application/json": PROBLEM})})
+def create_problem():
+    """Upload a scene file: derive its answers and store it as a problem version.
+
+    The scene's ``id`` names the problem; uploading the same id with a changed source adds a new
+    version. The derivation runs in a child process under a time and memory limit.
+    """
+    if request.mimetype != "application/toml":
+        raise ApiProblem(415, "Send the scene file with 'Content-Type: application/toml'.", kind="unsupported-media-type")
+    if (request.content_length or 0) > MAX_SCENE_BYTES:
+        raise ApiProblem(413, f"A scene file may be at most {MAX_SCENE_BYTES // 1024} KiB.", kind="too-large")
+    raw = request.get_data(cache=False)
+    if len(raw) > MAX_SCENE_BYTES:
+        raise ApiProblem(413, f"A scene file may be at most {MAX_SCENE_BYTES // 1024} KiB.", kind="too-large")
+    try:
+        source = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise ApiProblem(400, "The scene file is not UTF-8 text.", kind="invalid-scene") from None
+    config = current_app.config
+    try:
+        derived = derive_source(source, filename="upload.toml", timeout_s=config["DERIVE_TIMEOUT_S"],
+                                memory_mb=config["DERIVE_MEMORY_MB"])
+    except DerivationError as error:
+        raise ApiProblem(422, str(error), kind="invalid-scene") from None
+    published = request.args.get("published", "true").lower() not in ("false", "0", "no")
+    version, created = save_problem(db.session, derived, published=published)
+    db.session.commit()
+    location = url_for("api.get_problem", slug=version.problem.slug)
+    return problem_json(version, full=True), (201 if created else 200), {"Location": location}
+
+
+@spec.route("/problems", "GET", roles=EVERYONE,
+            responses={200: ("The problems this token may see.", {"application/json": PROBLEM_LIST})})
+def list_problems():
+    """List problems (students: only published ones)."""
+    query = select(ProblemVersion).join(Problem).order_by(Problem.slug, ProblemVersion.number.desc())
+    if not is_instructor():
+        query = query.where(ProblemVersion.published.is_(True))
+    newest: dict[int, ProblemVersion] = {}
+    for version in db.session.scalars(query):
+        newest.setdefault(version.problem_id, version)
+    return {"problems": [{"id": v.problem.slug, "title": v.title, "version": v.number,
+                          "links": {"self": url_for("api.get_problem", slug=v.problem.slug)}}
+                         for v in newest.values()]}
+
+
+@spec.route("/problems/<slug>", "GET", roles=EVERYONE, errors=(404,),
+            responses={200: ("The problem (students: statement and prompts only).", {"application/json": PROBLEM})})
+def get_problem(slug: str):
+    """Read a problem: statement and answer prompts; instructors also get references and the derivation."""
+    return problem_json(visible_version(slug), full=is_instructor())

@@ -1,0 +1,161 @@
+"""A route registry that is also the OpenAPI 3 document.
+
+Each API view is declared once with :meth:`ApiSpec.route`, carrying who may call it, its request
+and response schemas and (from its docstring) its summary and description. The decorator registers
+the Flask rule, checks the bearer token's role before the view runs, and records the operation, so
+``/api/v1/openapi.json`` is generated from the code and cannot drift from it.
+"""
+
+from __future__ import annotations
+
+import inspect
+import re
+from dataclasses import dataclass, field
+from functools import wraps
+from typing import Any, Callable
+
+from flask import Blueprint
+
+from grader.web.security import api_user
+
+__all__ = ["ApiSpec", "Operation"]
+
+_CONVERTER = re.compile(r"<(?:(\w+):)?(\w+)>")
+_TYPES = {"int": {"type": "integer"}, "string": {"type": "string"}, None: {"type": "string"}}
+_PROBLEM = {"$ref": "#/components/schemas/Problem"}
+
+
+@dataclass
+class Operation:
+    rule: str
+    method: str
+    view: Callable
+    roles: frozenset[str] | None
+    request: dict[str, dict] | None  # content type -> schema
+    responses: dict[int, tuple[str, dict[str, dict] | None]]  # status -> (description, content)
+    parameters: list[dict] = field(default_factory=list)
+    headers: dict[int, dict[str, dict]] = field(default_factory=dict)
+    errors: tuple[int, ...] = ()
+
+    @property
+    def path(self) -> str:
+        return _CONVERTER.sub(r"{\2}", self.rule)
+
+    def to_openapi(self, errors: tuple[int, ...]) -> dict[str, Any]:
+        doc = inspect.getdoc(self.view) or ""
+        summary, _, description = doc.partition("\n\n")
+        operation: dict[str, Any] = {"operationId": self.view.__name__, "summary": summary.strip()}
+        if description.strip():
+            operation["description"] = description.strip()
+        if self.roles is not None:
+            operation["description"] = (operation.get("description", "") +
+                                        f"\n\nRoles: {', '.join(sorted(self.roles))}.").strip()
+            operation["security"] = [{"bearer": []}]
+        else:
+            operation["security"] = []
+        parameters = [{"name": name, "in": "path", "required": True, "schema": _TYPES.get(converter, _TYPES[None])}
+                      for converter, name in _CONVERTER.findall(self.rule)]
+        parameters += self.parameters
+        if parameters:
+            operation["parameters"] = parameters
+        if self.request:
+            operation["requestBody"] = {"required": True, "content": {
+                content_type: {"schema": schema} for content_type, schema in self.request.items()}}
+        responses: dict[str, Any] = {}
+        for status, (description, content) in sorted(self.responses.items()):
+            response: dict[str, Any] = {"description": description}
+            if content:
+                response["content"] = {t: {"schema": s} for t, s in content.items()}
+            if status in self.headers:
+                response["headers"] = self.headers[status]
+            responses[str(status)] = response
+        for status in errors:
+            responses.setdefault(str(status), {"$ref": f"#/components/responses/{status}"})
+        operation["responses"] = responses
+        return operation
+
+
+class ApiSpec:
+    """The operations of one API blueprint and the OpenAPI document they make."""
+
+    def __init__(self, blueprint: Blueprint, *, title: str, version: str, description: str = ""):
+        self.blueprint, self.title, self.version, self.description = blueprint, title, version, description
+        self.operations: list[Operation] = []
+        self.schemas: dict[str, dict] = {}
+
+    def schema(self, name: str, schema: dict) -> dict:
+        """Name a component schema; returns a ``$ref`` to it."""
+        self.schemas[name] = schema
+        return {"$ref": f"#/components/schemas/{name}"}
+
+    def route(self, rule: str, method: str, *, roles: set[str] | None,
+              request: dict[str, dict] | None = None, responses: dict[int, tuple[str, dict | None]],
+              parameters: list[dict] | None = None, headers: dict[int, dict[str, dict]] | None = None,
+              errors: tuple[int, ...] = ()):
+        """Declare an API operation. ``roles=None`` means no token is needed; ``errors`` lists the
+        problem statuses it may answer besides 401/403 (implied by roles) and 500."""
+        allowed = frozenset(roles) if roles is not None else None
+
+        def decorator(view: Callable) -> Callable:
+            @wraps(view)
+            def guarded(**kwargs):
+                if allowed is not None:
+                    api_user(allowed)
+                return view(**kwargs)
+
+            self.blueprint.add_url_rule(rule, endpoint=view.__name__, view_func=guarded, methods=[method])
+            self.operations.append(Operation(rule, method, view, allowed, request, responses,
+                                             parameters or [], headers or {}, errors))
+            return view
+
+        return decorator
+
+    def openapi(self, server_url: str) -> dict[str, Any]:
+        paths: dict[str, dict] = {}
+        for op in self.operations:
+            errors = ((401, 403) if op.roles is not None else ()) + op.errors + (500,)
+            paths.setdefault(op.path, {})[op.method.lower()] = op.to_openapi(tuple(sorted(set(errors))))
+        problem_content = {"application/problem+json": {"schema": _PROBLEM}}
+        return {
+            "openapi": "3.0.3",
+            "info": {"title": self.title, "version": self.version, "description": self.description},
+            "servers": [{"url": server_url}],
+            "paths": paths,
+            "components": {
+                "securitySchemes": {"bearer": {"type": "http", "scheme": "bearer",
+                                               "description": "A token from `grader token create`."}},
+                "schemas": {"Problem": PROBLEM_DOCUMENT, **self.schemas},
+                "responses": {
+                    str(status): {"description": description, "content": problem_content}
+                    for status, description in _ERROR_RESPONSES.items()
+                },
+            },
+        }
+
+
+PROBLEM_DOCUMENT = {
+    "type": "object",
+    "description": "An error (RFC 9457 problem details).",
+    "required": ["type", "title", "status"],
+    "properties": {
+        "type": {"type": "string", "description": "urn:lagrade:error:<kind>, or about:blank"},
+        "title": {"type": "string"},
+        "status": {"type": "integer"},
+        "detail": {"type": "string"},
+        "instance": {"type": "string"},
+    },
+}
+
+_ERROR_RESPONSES = {
+    400: "The request is malformed (not JSON, wrong types).",
+    401: "No bearer token, or an unknown one.",
+    403: "The token's role may not do this.",
+    404: "No such resource (or not one this token may see).",
+    409: "The request conflicts with the resource's state.",
+    413: "The body is too large.",
+    415: "The body has the wrong content type.",
+    422: "The request is well-formed but cannot be accepted (e.g. an invalid scene or unknown answer).",
+    429: "Too many requests; see Retry-After.",
+    500: "The server failed; the error was logged (no details are given).",
+    503: "Every checker is busy; see Retry-After.",
+}

@@ -1,0 +1,147 @@
+"""Submissions: accepted at once (202, committed as queued), graded by the workers, polled by URL."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from flask import g, request, url_for
+from sqlalchemy import select
+from sqlalchemy.exc import IntegrityError
+from sqlalchemy.orm import Session
+
+from grader import jobs
+from grader.store.db import db
+from grader.store.models import Submission, User, Verdict
+from grader.store.users import student_for_external_id
+from grader.web.api import spec
+from grader.web.api.problems import EVERYONE, INSTRUCTORS, visible_version
+from grader.web.api.schemas import PARSED, SUBMISSION_REQUEST, read_json
+from grader.web.errors import ApiProblem
+from grader.web.security import limiter
+
+__all__ = ["submission_json"]
+
+MAX_KEY_CHARS = 200
+
+VERDICT = spec.schema("Verdict", {"type": "object", "nullable": True, "properties": {
+    "verdict": {"type": "string"}, "certainty": {"type": "string", "nullable": True},
+    "score": {"type": "number"}, "reason": {"type": "string", "nullable": True},
+    "feedback": {"nullable": True}, "counterexample": {"type": "object", "nullable": True},
+    "parsed": {**PARSED, "nullable": True}, "ms": {"type": "number", "nullable": True},
+    "graded_at": {"type": "string", "format": "date-time"},
+    "version": {"type": "integer", "description": "The problem version whose references graded it."}}})
+SUBMISSION = spec.schema("Submission", {"type": "object", "properties": {
+    "id": {"type": "integer"}, "problem": {"type": "string"}, "version": {"type": "integer"},
+    "answer": {"type": "string"}, "text": {"type": "string"},
+    "status": {"type": "string", "enum": ["queued", "running", "done", "failed"]},
+    "received_at": {"type": "string", "format": "date-time"}, "grading_round": {"type": "integer"},
+    "user": {"type": "object", "properties": {"id": {"type": "integer"},
+                                              "external_id": {"type": "string", "nullable": True}}},
+    "verdict": VERDICT, "links": {"type": "object"}}})
+_LOCATION = {"Location": {"schema": {"type": "string"}, "description": "Where to poll the submission."}}
+
+
+def _time(value) -> str:
+    return value.isoformat() + "Z"
+
+
+def verdict_json(verdict: Verdict | None) -> dict[str, Any] | None:
+    if verdict is None:
+        return None
+    return {"verdict": verdict.verdict, "certainty": verdict.certainty, "score": verdict.score,
+            "reason": verdict.reason, "feedback": verdict.feedback, "counterexample": verdict.counterexample,
+            "parsed": verdict.parsed, "ms": verdict.check_ms, "graded_at": _time(verdict.graded_at),
+            "version": verdict.problem_version.number}
+
+
+def submission_json(submission: Submission) -> dict[str, Any]:
+    slug = submission.problem_version.problem.slug
+    return {
+        "id": submission.id, "problem": slug, "version": submission.problem_version.number,
+        "answer": submission.answer_name, "text": submission.text, "status": submission.status,
+        "received_at": _time(submission.received_at), "grading_round": submission.grading_round,
+        "user": {"id": submission.user_id, "external_id": submission.user.external_id},
+        "verdict": verdict_json(submission.verdict),
+        "links": {"self": url_for("api.get_submission", submission_id=submission.id),
+                  "problem": url_for("api.get_problem", slug=slug)},
+    }
+
+
+def _whose(session: Session, requester: User, external_id: str | None) -> User:
+    """The student a submission is for: the caller, or (LMS, instructors) the one named by ``user``."""
+    if external_id is None:
+        if requester.role == "lms":
+            raise ApiProblem(422, "An LMS token must say which student this is for in 'user'.", kind="invalid-request")
+        return requester
+    if requester.role == "student":
+        if external_id != requester.external_id:
+            raise ApiProblem(403, "A student token can only submit for its own student.", kind="forbidden")
+        return requester
+    student = session.scalar(select(User).where(User.external_id == external_id))
+    if student is None:  # first sight of this student: create them in a transaction of its own
+        try:
+            with db.write() as writer:
+                student = student_for_external_id(writer, external_id)
+        except IntegrityError:  # created concurrently by another request: it exists now
+            student = session.scalar(select(User).where(User.external_id == external_id))
+    if student.role != "student":
+        raise ApiProblem(422, f"{external_id!r} is not a student.", kind="invalid-request")
+    return student
+
+
+@spec.route("/problems/<slug>/submissions", "POST", roles=EVERYONE, errors=(400, 404, 415, 422, 429),
+            request={"application/json": spec.schema("SubmissionRequest", SUBMISSION_REQUEST)},
+            parameters=[{"name": "Idempotency-Key", "in": "header", "required": False, "schema": {
+                "type": "string", "maxLength": MAX_KEY_CHARS},
+                "description": "Makes retries safe: the same key and body return the same submission; "
+                               "the same key with another body is refused (422)."}],
+            responses={202: ("Accepted: stored and queued for grading; poll the Location.",
+                             {"application/json": SUBMISSION}),
+                       200: ("A retry of a request already graded: the stored submission.",
+                             {"application/json": SUBMISSION})},
+            headers={202: _LOCATION, 200: _LOCATION})
+def create_submission(slug: str):
+    """Submit an answer for grading.
+
+    The submission is committed before this returns; a worker grades it in the background.
+    """
+    requester = g.api_user
+    limiter.hit("submit", requester.id)
+    body = read_json(SUBMISSION_REQUEST)
+    key = request.headers.get("Idempotency-Key")
+    if key is not None and not (0 < len(key) <= MAX_KEY_CHARS):
+        raise ApiProblem(422, f"An Idempotency-Key has 1 to {MAX_KEY_CHARS} characters.", kind="invalid-request")
+    # Reads in a deferred transaction, the insert in a short write transaction of its own: on
+    # SQLite the write lock is held only for the INSERT, not for this whole request.
+    with db.read() as session:
+        version = visible_version(slug, session)
+        user = _whose(session, requester, body.get("user"))
+    try:
+        submission_id, created = jobs.submit(db, user=user, requester=requester, version=version,
+                                             answer=body["answer"], text=body["text"], idempotency_key=key)
+    except jobs.SubmissionRejected as error:
+        raise ApiProblem(422, str(error), kind="invalid-submission") from None
+    except jobs.IdempotencyConflict as error:
+        raise ApiProblem(422, str(error), kind="idempotency-key-reused") from None
+    with db.read() as session:
+        submission = submission_json(session.get(Submission, submission_id))
+    pending = submission["status"] in ("queued", "running")
+    location = url_for("api.get_submission", submission_id=submission_id)
+    return submission, (202 if created or pending else 200), {"Location": location}
+
+
+@spec.route("/submissions/<int:submission_id>", "GET", roles=EVERYONE, errors=(404,),
+            responses={200: ("The submission, its status and its verdict once graded.",
+                             {"application/json": SUBMISSION})})
+def get_submission(submission_id: int):
+    """Poll a submission (students: only their own; an LMS: those it sent)."""
+    submission = db.session.get(Submission, submission_id)
+    me = g.api_user
+    visible = submission is not None and (
+        g.api_role in INSTRUCTORS
+        or (g.api_role == "lms" and submission.requester_id == me.id)
+        or submission.user_id == me.id
+    )
+    if not visible:
+        raise ApiProblem(404, f"There is no submission {submission_id}.", kind="not-found")
+    return submission_json(submission)

@@ -1,0 +1,126 @@
+"""Shared fixtures: a migrated temporary SQLite database, the app on it, clients and tokens.
+
+``yoyo_version`` stores a problem version whose references are written out by hand in the shape
+``grader.mechanics`` produces (the yo-yo of problems/yoyo.toml: a = 2g/3, T = mg/3), so the store,
+queue and API can be tested without running the engine; tests that need the engine derive for real.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from grader.store.db import Database
+from grader.store.migrate import upgrade
+from grader.store.problems import DerivedProblem, save_problem
+from grader.store.users import create_token, create_user
+
+_VARIABLES = {
+    "g": {"dimension": "m*s^-2", "domain": "positive", "kind": "parameter"},
+    "m": {"dimension": "kg", "domain": "positive", "kind": "parameter"},
+}
+YOYO = DerivedProblem(
+    slug="yoyo",
+    title="Yo-yo",
+    statement="A light string is wound around a solid cylinder of mass $m$ that falls, unwinding it.",
+    source='id = "yoyo"\n# hand-written test data\n',
+    derivation={"id": "yoyo", "answers": {"acceleration": "2*g/3", "tension": "g*m/3"}},
+    references=[
+        {"name": "acceleration", "prompt": "Acceleration of the axis", "kind": "expression", "reference": "2*g/3",
+         "variables": {"g": _VARIABLES["g"]}, "dimension": "m*s^-2", "latex": r"\frac{2 g}{3}", "feedback": []},
+        {"name": "tension", "prompt": "Tension in the string", "kind": "expression", "reference": "g*m/3",
+         "variables": _VARIABLES, "dimension": "kg*m*s^-2", "latex": r"\frac{g m}{3}",
+         "feedback": [{"expr": "m*g", "message": "The tension must be less than the weight."}]},
+    ],
+    engine_version="test",
+)
+
+
+@pytest.fixture
+def database_url(tmp_path) -> str:
+    url = f"sqlite:///{tmp_path / 'lagrade.sqlite'}"
+    upgrade(url)
+    return url
+
+
+@pytest.fixture
+def database(database_url):
+    database = Database(database_url)
+    yield database
+    database.dispose()
+
+
+@pytest.fixture
+def app(database_url, tmp_path, monkeypatch):
+    from grader.web import create_app
+
+    monkeypatch.chdir(tmp_path)  # the instance folder goes here
+    app = create_app({"TESTING": True, "DATABASE_URL": database_url, "SECRET_KEY": "test-secret"})
+    yield app
+    app.extensions["lagrade.checkers"].close()
+    app.extensions["lagrade.db"].dispose()
+
+
+@pytest.fixture
+def client(app):
+    return app.test_client()
+
+
+@pytest.fixture
+def runner(app):
+    return app.test_cli_runner()
+
+
+@pytest.fixture
+def make_token(app):
+    """``make_token(role, external_id=None) -> (user_id, headers)`` with an Authorization header."""
+
+    def make(role: str, external_id: str | None = None, name: str | None = None):
+        with app.extensions["lagrade.db"].write() as session:
+            user = create_user(session, role=role, name=name or f"{role} {external_id or ''}".strip(),
+                               external_id=external_id)
+            secret = create_token(session, user)
+            return user.id, {"Authorization": f"Bearer {secret}"}
+
+    return make
+
+
+@pytest.fixture
+def yoyo() -> DerivedProblem:
+    """The hand-written yo-yo problem (not stored)."""
+    return YOYO
+
+
+@pytest.fixture
+def yoyo_version(app):
+    """The hand-written yo-yo problem, stored as version 1 (published)."""
+    with app.extensions["lagrade.db"].write() as session:
+        version, _ = save_problem(session, YOYO)
+        return version.id
+
+
+
+@pytest.fixture
+def workers(app):
+    """Grading workers (real sandbox children) on the app's database, stopped after the test."""
+    from grader.jobs import WorkerPool
+
+    pool = WorkerPool(app.extensions["lagrade.db"], workers=2, poll_s=0.1).start()
+    yield pool
+    pool.stop()
+
+
+@pytest.fixture
+def poll(client):
+    """``poll(url, headers)``: GET until the submission is graded; returns its JSON."""
+    import time
+
+    def wait(url: str, headers: dict, timeout: float = 60.0) -> dict:
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            body = client.get(url, headers=headers).get_json()
+            if body["status"] in ("done", "failed"):
+                return body
+            time.sleep(0.05)
+        raise AssertionError(f"{url} not graded within {timeout} s: {body}")
+
+    return wait

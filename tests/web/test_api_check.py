@@ -1,0 +1,50 @@
+"""POST /check: a stateless check through the sandbox, answered exactly as `grader check --jsonl`."""
+
+import pytest
+
+VARIABLES = {"m": {"dimension": "mass", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"},
+             "theta": {"dimension": "angle", "domain": "real"}}
+CONTRACT = {"verdict", "certainty", "reason", "parsed", "counterexample", "feedback", "ms"}
+
+
+# The sphere on a hemisphere: the normal force is m g (3 cos θ - 2).
+@pytest.mark.parametrize("answer, verdict", [
+    ("mg(3cos θ - 2)", "equivalent"),
+    ("3*m*g*cos(theta) - 2*m*g", "equivalent"),
+    ("m*g*(2*cos(theta) - 3)", "not_equivalent"),
+    ("m*g*(3*cos(theta) - 2", "invalid"),
+])
+def test_check_answers_one_jsonl_line(client, make_token, answer, verdict):
+    _, student = make_token("student")
+    response = client.post("/api/v1/check", headers=student, json={
+        "reference": "m*g*(3*cos(theta) - 2)", "answer": answer, "variables": VARIABLES, "kind": "expression"})
+    assert response.status_code == 200
+    body = response.get_json()
+    assert CONTRACT <= set(body) and body["verdict"] == verdict
+    assert set(body["parsed"]) == {"text", "latex", "notes"}
+
+
+def test_check_answers_exactly_what_grader_check_jsonl_prints(client, make_token):
+    import json
+    import subprocess
+    import sys
+
+    line = {"reference": "m*g", "answer": "g m", "variables": VARIABLES, "kind": "expression"}
+    printed = subprocess.run([sys.executable, "-c", "from grader.cli import main; main()", "check", "--jsonl"],
+                             input=json.dumps(line) + "\n", capture_output=True, text=True, timeout=120, check=True)
+    from_cli = json.loads(printed.stdout.splitlines()[0])
+    _, lms = make_token("lms")
+    from_api = client.post("/api/v1/check", headers=lms, json=line).get_json()
+    assert set(from_api) == set(from_cli)
+    assert {k: v for k, v in from_api.items() if k != "ms"} == {k: v for k, v in from_cli.items() if k != "ms"}
+
+
+@pytest.mark.parametrize("body, detail", [
+    ({"answer": "m", "variables": {}}, "body.reference is required"),
+    ({"reference": "m", "answer": "m", "variables": {}, "kind": "poem"}, "body.kind must be one of"),
+    ({"reference": "m", "answer": ["m"], "variables": {}}, "body.answer must be of type string"),
+])
+def test_malformed_checks_are_422_problems(client, make_token, body, detail):
+    _, student = make_token("student")
+    response = client.post("/api/v1/check", headers=student, json=body)
+    assert response.status_code == 422 and detail in response.get_json()["detail"]

@@ -1,0 +1,91 @@
+"""Submitting over the API: 202 + Location at once, graded in the background, retries made safe."""
+
+import pytest
+
+
+def _submit(client, headers, text="m*g/3", answer="tension", key=None, **extra):
+    if key:
+        headers = {**headers, "Idempotency-Key": key}
+    return client.post("/api/v1/problems/yoyo/submissions", json={"answer": answer, "text": text, **extra},
+                       headers=headers)
+
+
+def test_a_submission_is_accepted_at_once_and_graded_in_the_background(client, make_token, yoyo_version, workers, poll):
+    _, student = make_token("student")
+    response = _submit(client, student)
+    assert response.status_code == 202
+    body = response.get_json()
+    assert response.headers["Location"] == body["links"]["self"] == f"/api/v1/submissions/{body['id']}"
+    assert body["status"] in ("queued", "running", "done") and body["answer"] == "tension"
+    graded = poll(response.headers["Location"], student)
+    # The yo-yo's string tension is mg/3.
+    assert graded["status"] == "done"
+    assert (graded["verdict"]["verdict"], graded["verdict"]["score"]) == ("equivalent", 1.0)
+
+
+@pytest.mark.parametrize("text, verdict", [("m*g", "not_equivalent"), ("m g /", "invalid")])
+def test_wrong_and_unreadable_answers_get_their_verdict(client, make_token, yoyo_version, workers, poll, text, verdict):
+    _, student = make_token("student")
+    graded = poll(_submit(client, student, text=text).headers["Location"], student)
+    assert graded["verdict"]["verdict"] == verdict and graded["verdict"]["score"] == 0.0
+
+
+def test_the_same_idempotency_key_and_body_return_the_same_submission(client, make_token, yoyo_version):
+    _, student = make_token("student")
+    first = _submit(client, student, key="attempt-1")
+    again = _submit(client, student, key="attempt-1")
+    assert first.status_code == 202 and again.status_code in (200, 202)
+    assert again.get_json()["id"] == first.get_json()["id"]
+    assert again.headers["Location"] == first.headers["Location"]
+
+
+def test_the_same_idempotency_key_with_another_body_is_refused(client, make_token, yoyo_version):
+    _, student = make_token("student")
+    _submit(client, student, key="attempt-1")
+    response = _submit(client, student, key="attempt-1", text="m*g")
+    assert response.status_code == 422
+    assert response.get_json()["type"] == "urn:lagrade:error:idempotency-key-reused"
+
+
+def test_an_lms_submits_for_a_student_by_external_id(client, make_token, yoyo_version):
+    _, lms = make_token("lms")
+    response = _submit(client, lms, user="canvas-1234")
+    assert response.status_code == 202
+    submission = response.get_json()
+    assert submission["user"]["external_id"] == "canvas-1234"
+    # The same student later gets a token of their own and sees that submission.
+    again = _submit(client, lms, user="canvas-1234", text="m*g")
+    assert again.get_json()["user"]["id"] == submission["user"]["id"]
+
+
+@pytest.mark.parametrize("body, status, kind", [
+    ({"answer": "speed", "text": "1"}, 422, "invalid-submission"),
+    ({"answer": "tension"}, 422, "invalid-request"),
+    ({"answer": "tension", "text": 3}, 422, "invalid-request"),
+    ({"answer": "tension", "text": "m" * 5000}, 422, "invalid-request"),
+    ({"answer": "tension", "text": "m", "extra": 1}, 422, "invalid-request"),
+])
+def test_bad_submissions_are_refused_with_a_problem_document(client, make_token, yoyo_version, body, status, kind):
+    _, student = make_token("student")
+    response = client.post("/api/v1/problems/yoyo/submissions", json=body, headers=student)
+    assert response.status_code == status
+    assert response.mimetype == "application/problem+json"
+    assert response.get_json()["type"] == f"urn:lagrade:error:{kind}"
+
+
+def test_a_body_that_is_not_json_is_refused(client, make_token, yoyo_version):
+    _, student = make_token("student")
+    response = client.post("/api/v1/problems/yoyo/submissions", data="answer=tension", headers=student,
+                           content_type="application/x-www-form-urlencoded")
+    assert response.status_code == 415
+
+
+def test_an_lms_must_name_the_student(client, make_token, yoyo_version):
+    _, lms = make_token("lms")
+    assert _submit(client, lms).status_code == 422
+
+
+def test_a_submission_to_an_unknown_problem_is_404(client, make_token, yoyo_version):
+    _, student = make_token("student")
+    response = client.post("/api/v1/problems/nope/submissions", json={"answer": "a", "text": "1"}, headers=student)
+    assert response.status_code == 404
