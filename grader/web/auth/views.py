@@ -1,0 +1,58 @@
+"""``/`` (a redirect to the right home), ``/login`` and ``/logout``."""
+
+from __future__ import annotations
+
+from flask import flash, g, redirect, render_template, request, url_for
+
+from grader.store.db import db
+from grader.store.users import authenticate
+from grader.web.auth import bp
+from grader.web.auth.session import home_for, sign_in, sign_out
+from grader.web.errors import ApiProblem
+from grader.web.security import limiter
+
+MAX_FIELD = 320
+
+
+def _safe_next(target: str | None) -> str | None:
+    """Only a path on this site: "//evil.example" and "https://..." would send the user away."""
+    if target and target.startswith("/") and not target.startswith("//") and "\\" not in target:
+        return target
+    return None
+
+
+@bp.get("/")
+def home():
+    return redirect(home_for(g.user))
+
+
+@bp.route("/login", methods=["GET", "POST"])
+def login():
+    next_url = _safe_next(request.args.get("next"))
+    if request.method == "GET":
+        if g.user is not None:
+            return redirect(next_url or home_for(g.user))
+        return render_template("auth/login.html", next=next_url)
+    username = request.form.get("username", "").strip()[:MAX_FIELD]
+    password = request.form.get("password", "")[:1024]
+    try:
+        limiter.hit("login", request.remote_addr)
+    except ApiProblem as problem:
+        return render_template("auth/login.html", next=next_url, username=username, error=problem.detail), 429
+    user = None
+    if username and password:
+        with db.read() as session:  # a short read: checking a password hash is slow on purpose
+            user = authenticate(session, username, password)
+    if user is None or user.role not in ("student", "instructor", "admin"):
+        # One message for an unknown user and a wrong password: no hint about which accounts exist.
+        return render_template("auth/login.html", next=next_url, username=username,
+                               error="That username and password do not match an account."), 401
+    sign_in(user)
+    return redirect(next_url or home_for(user))
+
+
+@bp.post("/logout")
+def logout():
+    sign_out()
+    flash("You are signed out.", "success")
+    return redirect(url_for("auth.login"))

@@ -1,0 +1,190 @@
+"""Instructor routes (all under ``/instructor``).
+
+``GET  /``                                       dashboard: the problems this instructor manages
+``GET  /problems/new``, ``POST``                 register a scene file (upload or paste) as a draft
+``GET  /problems/<slug>/review[?version=N]``     statement, reference answers and derivation of a version
+``POST /problems/<slug>/versions/<n>/publish``   let students see version n
+``GET  /problems/<slug>``                        results: scores, grouped wrong answers, submissions
+``GET  /problems/<slug>/submissions.csv``        every submission with its verdict in effect
+``POST /problems/<slug>/regrade``                grade every submission again against the newest version
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+
+from flask import Response, current_app, flash, g, redirect, render_template, request, url_for
+
+from grader.jobs import regrade as queue_regrade
+from grader.jobs.derivation import DerivationError, derive_source
+from grader.jobs.grading import check_request
+from grader.store.db import Database, db
+from grader.store.problems import latest_version, problem_by_slug, save_problem
+from grader.web.auth.session import INSTRUCTOR_ROLES, login_required
+from grader.web.instructor import bp
+from grader.web.instructor.access import managed_courses, managed_problem, managed_problems, may_manage, version_of
+from grader.web.instructor.grouping import GroupingCache, group_wrong_answers
+from grader.web.instructor.stats import csv_rows, per_answer, results, score_distribution, signature
+from grader.web.student.statement import statement_problems
+
+MAX_SCENE_BYTES = 256 * 1024
+SHOWN_GROUPS = 8
+SHOWN_SUBMISSIONS = 50
+GROUP_CHECK_BUDGET_S = 2.0
+
+
+
+def _grouping_cache() -> GroupingCache:
+    """The app's cache of wrong-answer groupings (one per app, so one per database)."""
+    return current_app.extensions.setdefault("lagrade.grouping", GroupingCache())
+
+
+@bp.get("/")
+@login_required(INSTRUCTOR_ROLES)
+def dashboard():
+    items = []
+    for problem in managed_problems(db.session, g.user):
+        if not problem.versions:
+            continue
+        newest = problem.versions[-1]
+        published = latest_version(db.session, problem, published_only=True)
+        rows = results(db.session, problem)
+        items.append({"problem": problem, "newest": newest, "published": published,
+                      "submissions": len(rows), "students": len({r.user_id for r in rows}),
+                      "pending": sum(1 for r in rows if r.status in ("queued", "running"))})
+    return render_template("instructor/dashboard.html", items=items)
+
+
+@bp.route("/problems/new", methods=["GET", "POST"])
+@login_required(INSTRUCTOR_ROLES)
+def new_problem():
+    with db.read() as session:  # not the request's writer: deriving below may take a minute
+        courses = managed_courses(session, g.user)
+    if request.method == "GET":
+        return render_template("instructor/new_problem.html", courses=courses, source="", course_id="")
+    upload = request.files.get("scene")
+    source, filename = request.form.get("source", ""), "pasted.toml"
+    if upload is not None and upload.filename:
+        filename = upload.filename.rsplit("/", 1)[-1][:100] or "upload.toml"
+        raw = upload.read(MAX_SCENE_BYTES + 1)
+        try:
+            source = raw.decode("utf-8")
+        except UnicodeDecodeError:
+            return _new_problem_error(courses, "", "The file is not UTF-8 text; save it as UTF-8 and try again.")
+    course_id = request.form.get("course", "")
+    if course_id and course_id not in {str(c.id) for c in courses}:
+        return _new_problem_error(courses, source, "Choose one of your courses.")
+    if not source.strip():
+        return _new_problem_error(courses, source, "Upload a scene file or paste one.")
+    if len(source.encode()) > MAX_SCENE_BYTES:
+        return _new_problem_error(courses, "", f"A scene file may be at most {MAX_SCENE_BYTES // 1024} KiB.")
+    try:
+        derived = derive_source(source, filename=filename, timeout_s=current_app.config["DERIVE_TIMEOUT_S"],
+                                memory_mb=current_app.config["DERIVE_MEMORY_MB"])
+    except DerivationError as error:
+        return _new_problem_error(courses, source, str(error), course_id)
+    existing = problem_by_slug(db.session, derived.slug)  # the write transaction starts here
+    if existing is not None and not may_manage(db.session, g.user, existing):
+        return _new_problem_error(courses, source, f"The problem id {derived.slug!r} is taken by another course; "
+                                                   "give the scene another id.", course_id)
+    version, created = save_problem(db.session, derived, published=False)
+    if version.number == 1 and created and course_id:
+        version.problem.course_id = int(course_id)
+    db.session.commit()
+    if created:
+        flash(f"Derived “{version.title}” as draft version {version.number}. Review it, then publish.", "success")
+    else:
+        flash("This scene is the same as the newest version; nothing changed.", "")
+    return redirect(url_for("instructor.review", slug=derived.slug, version=version.number))
+
+
+def _new_problem_error(courses, source: str, message: str, course_id: str = ""):
+    return render_template("instructor/new_problem.html", courses=courses, source=source, error=message,
+                           course_id=course_id), 422
+
+
+@bp.get("/problems/<slug>/review")
+@login_required(INSTRUCTOR_ROLES)
+def review(slug: str):
+    problem = managed_problem(db.session, g.user, slug)
+    version = version_of(problem, request.args.get("version", type=int))
+    published = latest_version(db.session, problem, published_only=True)
+    texts = [version.statement] + [r.get("prompt") or "" for r in version.references]
+    return render_template("instructor/review.html", problem=problem, version=version, published=published,
+                           math_problems=sorted({c for t in texts for c in statement_problems(t)}),
+                           steps=version.derivation.get("steps") or [])
+
+
+@bp.post("/problems/<slug>/versions/<int:number>/publish")
+@login_required(INSTRUCTOR_ROLES)
+def publish(slug: str, number: int):
+    problem = managed_problem(db.session, g.user, slug)
+    version = version_of(problem, number)
+    if version.published:
+        flash(f"Version {number} is already published.", "")
+    else:
+        version.published = True
+        db.session.commit()
+        flash(f"Published version {number}: students now see it.", "success")
+    return redirect(url_for("instructor.review", slug=slug, version=number))
+
+
+@bp.get("/problems/<slug>")
+@login_required(INSTRUCTOR_ROLES)
+def problem(slug: str):
+    found = managed_problem(db.session, g.user, slug)
+    version = latest_version(db.session, found, published_only=True) or found.versions[-1]
+    rows = results(db.session, found)
+    names = [r["name"] for r in version.references]
+    grouped, cache = {}, _grouping_cache()
+    for reference in version.references:
+        key = (found.id, reference["name"], version.id)
+        wrong = [(r.user_id, r.text) for r in rows if r.answer == reference["name"] and r.verdict == "not_equivalent"]
+        groups = cache.groups(key, signature(rows), lambda: group_wrong_answers(
+            reference, wrong, lambda a, b, ref=reference: cache.equivalent(ref, a, b, _checker_says(ref))))
+        grouped[reference["name"]] = {"groups": groups[:SHOWN_GROUPS], "more": max(0, len(groups) - SHOWN_GROUPS),
+                                      "wrong": len(wrong), "prompt": reference.get("prompt") or reference["name"]}
+    return render_template("instructor/problem.html", problem=found, version=version, grouped=grouped,
+                           distribution=score_distribution(rows, names), answers=per_answer(rows, names),
+                           recent=list(reversed(rows[-SHOWN_SUBMISSIONS:])), total=len(rows))
+
+
+def _checker_says(reference: dict):
+    """``equivalent(a, b)`` by the sandboxed checker, as grading decides it; "no" if it cannot answer."""
+    def equivalent(a: str, b: str) -> bool:
+        checkers = current_app.extensions["lagrade.checkers"]
+        try:
+            with checkers.borrow(timeout=current_app.config["CHECK_QUEUE_TIMEOUT_S"]) as checker:
+                verdict = checker.run(dict(check_request(reference, b), reference=a, feedback=[]), GROUP_CHECK_BUDGET_S)
+        except Exception:  # busy or broken checkers: keep the forms apart rather than fail the page
+            current_app.logger.exception("grouping check failed")
+            return False
+        return verdict.get("verdict") == "equivalent"
+
+    return equivalent
+
+
+@bp.get("/problems/<slug>/submissions.csv")
+@login_required(INSTRUCTOR_ROLES)
+def export_csv(slug: str):
+    found = managed_problem(db.session, g.user, slug)
+    buffer = io.StringIO()
+    csv.writer(buffer).writerows(csv_rows(results(db.session, found)))
+    return Response(buffer.getvalue(), mimetype="text/csv",
+                    headers={"Content-Disposition": f'attachment; filename="{found.slug}-submissions.csv"'})
+
+
+@bp.post("/problems/<slug>/regrade")
+@login_required(INSTRUCTOR_ROLES)
+def regrade(slug: str):
+    with db.read() as session:  # the queue writes in its own transaction
+        found = managed_problem(session, g.user, slug)
+        version = latest_version(session, found, published_only=True)
+    if version is None:
+        flash("Publish a version before regrading.", "error")
+        return redirect(url_for("instructor.problem", slug=slug))
+    queued = queue_regrade(Database.current(), version)
+    flash(f"Queued {queued} submission{'s' if queued != 1 else ''} for regrading against version "
+          f"{version.number}.", "success")
+    return redirect(url_for("instructor.problem", slug=slug))

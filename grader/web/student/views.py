@@ -1,0 +1,155 @@
+"""Student routes.
+
+``GET  /problems``                       the problems this student may do
+``GET  /problems/<slug>``                statement, one input per answer, latest verdicts, history
+``POST /problems/<slug>/preview``        the same page with a preview of each typed answer (no JavaScript)
+``POST /problems/<slug>/submit``         queue every non-empty answer for grading
+``POST /preview``                        JSON {problem, answer, text} -> how the text is read (live preview)
+``GET  /submissions/<id>``               one attempt and its verdict
+``GET  /submissions/<id>/status``        JSON status of an attempt, for polling
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from flask import abort, flash, g, jsonify, redirect, render_template, request, url_for
+
+from grader.jobs import SubmissionRejected, submit
+from grader.store.db import Database, db
+from grader.store.models import ProblemVersion, Submission
+from grader.web.auth.session import login_required
+from grader.web.errors import ApiProblem
+from grader.web.security import limiter
+from grader.web.student import bp
+from grader.web.student.access import history, own_submission, visible_problems, visible_version
+from grader.web.student.preview import allowed_names, expected_dimension, preview
+from grader.web.student.verdicts import verdict_view
+
+STUDENTS = frozenset({"student"})
+FIELD = "answer-"  # form field of answer NAME: "answer-NAME"
+
+
+def _answers(version: ProblemVersion, texts: dict[str, str], previews: dict[str, dict],
+             attempts: list[Submission]) -> list[dict[str, Any]]:
+    """One entry per answer of the version: what the student sees about it (never the reference)."""
+    latest: dict[str, Submission] = {}
+    for submission in attempts:  # newest first
+        latest.setdefault(submission.answer_name, submission)
+    answers = []
+    for reference in version.references:
+        name = reference["name"]
+        last = latest.get(name)
+        answers.append({
+            "name": name, "prompt": reference.get("prompt") or name, "kind": reference.get("kind", "expression"),
+            "dimension": expected_dimension(reference), "names": allowed_names(reference),
+            "text": texts.get(name, last.text if last is not None else ""),
+            "preview": previews.get(name), "latest": verdict_view(last) if last is not None else None,
+        })
+    return answers
+
+
+def _problem_page(version: ProblemVersion, texts: dict[str, str] | None = None,
+                  previews: dict[str, dict] | None = None, status: int = 200):
+    attempts = history(db.session, g.user, version.problem)
+    answers = _answers(version, texts or {}, previews or {}, attempts)
+    pending = any(a["latest"] and a["latest"]["pending"] for a in answers)
+    return render_template("student/problem.html", version=version, answers=answers, pending=pending,
+                           attempts=[dict(verdict_view(s), received_at=s.received_at) for s in attempts]), status
+
+
+def _typed(version: ProblemVersion) -> dict[str, str]:
+    return {r["name"]: request.form.get(FIELD + r["name"], "") for r in version.references}
+
+
+@bp.get("/problems")
+@login_required(STUDENTS)
+def problems():
+    versions = visible_problems(db.session, g.user)
+    progress = {}
+    for version in versions:
+        latest: dict[str, Submission] = {}
+        for submission in history(db.session, g.user, version.problem):
+            latest.setdefault(submission.answer_name, submission)
+        names = [r["name"] for r in version.references]
+        correct = sum(1 for n in names if n in latest and latest[n].verdict is not None
+                      and latest[n].status == "done" and latest[n].verdict.verdict == "equivalent")
+        progress[version.id] = {"answers": len(names), "correct": correct, "tried": sum(n in latest for n in names)}
+    return render_template("student/problems.html", versions=versions, progress=progress)
+
+
+@bp.get("/problems/<slug>")
+@login_required(STUDENTS)
+def problem(slug: str):
+    return _problem_page(visible_version(db.session, g.user, slug))
+
+
+@bp.post("/problems/<slug>/preview")
+@login_required(STUDENTS)
+def preview_page(slug: str):
+    version = visible_version(db.session, g.user, slug)
+    texts = _typed(version)
+    previews = {r["name"]: preview(r, texts[r["name"]]) for r in version.references if texts[r["name"]].strip()}
+    return _problem_page(version, texts, previews)
+
+
+@bp.post("/problems/<slug>/submit")
+@login_required(STUDENTS)
+def submit_answers(slug: str):
+    # Reads in a short session of their own: the queue commits each submission in its own transaction.
+    with db.read() as session:
+        version = visible_version(session, g.user, slug)
+    texts = {name: text for name, text in _typed(version).items() if text.strip()}
+    if not texts:
+        flash("Type at least one answer before submitting.", "error")
+        return _problem_page(visible_version(db.session, g.user, slug), status=422)
+    sent = 0
+    for name, text in texts.items():
+        try:
+            limiter.hit("submit", g.user.id)
+            submit(Database.current(), user=g.user, version=version, answer=name, text=text.strip())
+            sent += 1
+        except (SubmissionRejected, ApiProblem) as error:
+            flash(getattr(error, "detail", None) or str(error), "error")
+            break
+    if sent:
+        flash(f"Submitted {sent} answer{'s' if sent != 1 else ''} for grading.", "success")
+    return redirect(url_for("student.problem", slug=slug) + "#answers")
+
+
+@bp.post("/preview")
+@login_required(STUDENTS)
+def preview_json():
+    body = request.get_json(silent=True)
+    if not isinstance(body, dict) or not all(isinstance(body.get(k), str) for k in ("problem", "answer", "text")):
+        return jsonify(error="Send JSON {problem, answer, text}, all strings."), 400
+    try:
+        limiter.hit("preview", g.user.id)
+    except ApiProblem as problem:
+        return jsonify(error=problem.detail), 429, problem.headers
+    with db.read() as session:  # a POST, but it only reads: no write transaction for a keystroke
+        version = visible_version(session, g.user, body["problem"])
+    reference = version.reference(body["answer"])
+    if reference is None:
+        abort(404, "This problem has no such answer.")
+    result = preview(reference, body["text"])
+    result["html"] = render_template("student/_preview.html", p=result, answer=body["answer"])
+    return jsonify(result)
+
+
+@bp.get("/submissions/<int:submission_id>")
+@login_required(STUDENTS)
+def submission(submission_id: int):
+    found = own_submission(db.session, g.user, submission_id)
+    view = verdict_view(found)
+    return render_template("student/submission.html", submission=found, v=view,
+                           prompt=(found.problem_version.reference(found.answer_name) or {}).get("prompt"))
+
+
+@bp.get("/submissions/<int:submission_id>/status")
+@login_required(STUDENTS)
+def submission_status(submission_id: int):
+    view = verdict_view(own_submission(db.session, g.user, submission_id))
+    html = render_template("student/_verdict.html", v=view)
+    return jsonify(id=view["id"], status=view["status"], pending=view["pending"], label=view["label"],
+                   css=view["css"], html=html)

@@ -1,0 +1,155 @@
+"""Student pages: what a student sees, what they never see, and that every form needs its CSRF token."""
+
+import re
+
+import pytest
+from sqlalchemy import func, select
+
+from grader.store.models import Submission, Verdict
+from tests.web.conftest_pages import (  # noqa: F401  (fixtures)
+    accounts, as_instructor, as_other_student, as_student, checkers, csrf, form_token, grade_all, problems,
+    submit_answers,
+)
+
+# Every form of the yo-yo's references as stored: none may reach a student's page.
+REFERENCE_FORMS = ["g*m/3", "2*g/3", r"\frac{g m}{3}", r"\frac{2 g}{3}", "engine_version", "hand-written test data"]
+
+
+def assert_no_reference(html: str) -> None:
+    for form in REFERENCE_FORMS:
+        assert form not in html, f"a student page shows the reference form {form!r}"
+
+
+def submissions(app) -> int:
+    with app.extensions["lagrade.db"].read() as session:
+        return session.scalar(select(func.count(Submission.id)))
+
+
+def test_the_problem_list_shows_published_problems_of_my_courses_only(as_student, problems):
+    html = as_student.get("/problems").get_data(as_text=True)
+    assert "Yo-yo" in html and "Mech problem" in html
+    assert "Other problem" not in html and "Draft problem" not in html
+    assert_no_reference(html)
+
+
+def test_the_problem_page_has_the_statement_in_mathml_and_one_input_per_answer(as_student, problems):
+    page = as_student.get("/problems/yoyo")
+    html = page.get_data(as_text=True)
+    assert page.status_code == 200
+    assert "cylinder of mass <math" in html
+    assert 'name="answer-acceleration"' in html and 'name="answer-tension"' in html
+    assert 'formaction="/problems/yoyo/preview"' in html and form_token(html)
+    assert_no_reference(html)
+
+
+@pytest.mark.parametrize("slug", ["draft", "other", "nope"])
+def test_problems_i_may_not_see_are_not_found(as_student, problems, slug):
+    assert as_student.get(f"/problems/{slug}").status_code == 404
+    preview = as_student.post("/preview", json={"problem": slug, "answer": "tension", "text": "m"},
+                              headers={"X-CSRF-Token": csrf(as_student)})
+    assert preview.status_code == 404
+    assert submit_answers(as_student, slug, tension="m*g").status_code == 404
+
+
+@pytest.mark.parametrize("path", ["/problems", "/problems/yoyo", "/submissions/1", "/submissions/1/status"])
+def test_student_pages_are_for_students(as_instructor, client, problems, path):
+    assert as_instructor.get(path).status_code == 403
+    assert client.get(path).status_code == 302  # signed out: to the sign-in page
+
+
+def test_the_live_preview_reads_the_text_and_returns_its_html(as_student, problems):
+    reply = as_student.post("/preview", json={"problem": "yoyo", "answer": "tension", "text": "mg sin(0)+m g"},
+                            headers={"X-CSRF-Token": csrf(as_student)})
+    body = reply.get_json()
+    assert reply.status_code == 200 and body["ok"]
+    assert "read 'mg' as m·g" in body["notes"] and body["dimension"] == "a force (kg·m/s²)"
+    assert "<math" in body["html"] and "Read as" in body["html"]
+    assert_no_reference(reply.get_data(as_text=True))
+
+
+def test_the_live_preview_points_at_an_error(as_student, problems):
+    body = as_student.post("/preview", json={"problem": "yoyo", "answer": "tension", "text": "m*g*/3"},
+                           headers={"X-CSRF-Token": csrf(as_student)}).get_json()
+    assert not body["ok"] and body["error"]["position"] == 4
+    assert 'class="caret"' in body["html"] and "at character 5" in body["html"]
+
+
+def test_the_live_preview_needs_its_csrf_header_and_a_well_formed_body(as_student, problems):
+    assert as_student.post("/preview", json={"problem": "yoyo", "answer": "tension", "text": "m"}).status_code == 400
+    headers = {"X-CSRF-Token": csrf(as_student)}
+    assert as_student.post("/preview", json={"problem": "yoyo"}, headers=headers).status_code == 400
+    assert as_student.post("/preview", json={"problem": "yoyo", "answer": "nope", "text": "m"},
+                           headers=headers).status_code == 404
+
+
+def test_without_javascript_the_preview_button_renders_the_same_previews(app, as_student, problems):
+    page = as_student.post("/problems/yoyo/preview", data={"answer-tension": "mg/2", "answer-acceleration": "g*/2",
+                                                           "csrf_token": csrf(as_student)})
+    html = page.get_data(as_text=True)
+    assert page.status_code == 200
+    assert 'value="mg/2"' in html and "Read as" in html and "<mfrac><mrow><mi>g</mi><mi>m</mi></mrow><mn>2</mn>" in html
+    assert "Cannot read this yet" in html and 'class="caret"' in html
+    assert submissions(app) == 0  # a preview submits nothing
+    assert_no_reference(html)
+
+
+def test_forms_without_the_csrf_token_are_refused(app, as_student, problems):
+    assert as_student.post("/problems/yoyo/submit", data={"answer-tension": "m*g"}).status_code == 400
+    assert as_student.post("/problems/yoyo/preview", data={"answer-tension": "m*g"}).status_code == 400
+    assert as_student.post("/problems/yoyo/submit", data={"answer-tension": "m*g", "csrf_token": "forged"}).status_code == 400
+    assert submissions(app) == 0
+
+
+def test_an_empty_submission_is_sent_back(app, as_student, problems):
+    response = submit_answers(as_student, "yoyo", tension="  ", acceleration="")
+    assert response.status_code == 422 and "Type at least one answer" in response.get_data(as_text=True)
+    assert submissions(app) == 0
+
+
+def test_a_submitted_answer_is_queued_then_graded_with_feedback(app, as_student, problems):
+    response = submit_answers(as_student, "yoyo", tension="m g")
+    assert response.status_code == 302 and response.headers["Location"] == "/problems/yoyo#answers"
+    html = as_student.get("/problems/yoyo").get_data(as_text=True)
+    assert "queued" in html and 'data-poll="/submissions/1/status"' in html
+    assert '<noscript><meta http-equiv="refresh"' in html  # without JavaScript the page reloads itself
+    assert as_student.get("/submissions/1/status").get_json()["pending"] is True
+
+    assert grade_all(app) == 1
+    status = as_student.get("/submissions/1/status").get_json()
+    assert status["pending"] is False and status["label"] == "incorrect" and "badge incorrect" in status["html"]
+    page = as_student.get("/problems/yoyo").get_data(as_text=True)
+    assert "The tension must be less than the weight." in page and "data-poll" not in page
+    assert "http-equiv" not in page
+    detail = as_student.get("/submissions/1").get_data(as_text=True)
+    assert "The tension must be less than the weight." in detail and "where yours is" in detail
+    with app.extensions["lagrade.db"].read() as session:
+        reference_value = session.scalars(select(Verdict)).one().counterexample["reference"]
+    for page_html in (page, detail, status["html"]):
+        assert_no_reference(page_html)
+        assert f"{reference_value:.4g}" not in page_html and str(reference_value) not in page_html
+
+
+def test_a_correct_answer_reads_correct(app, as_student, problems):
+    submit_answers(as_student, "yoyo", acceleration="2g/3")
+    grade_all(app)
+    assert as_student.get("/submissions/1/status").get_json()["label"] == "correct"
+    assert "all correct" not in as_student.get("/problems").get_data(as_text=True)  # tension still open
+
+
+def test_other_students_work_is_not_found(app, as_student, as_other_student, problems):
+    submit_answers(as_other_student, "yoyo", tension="m*g*2")
+    grade_all(app)
+    assert as_student.get("/submissions/1").status_code == 404
+    assert as_student.get("/submissions/1/status").status_code == 404
+    assert "m*g*2" not in as_student.get("/problems/yoyo").get_data(as_text=True)
+    assert "m*g*2" in as_other_student.get("/problems/yoyo").get_data(as_text=True)
+
+
+def test_the_history_lists_my_attempts_newest_first(app, as_student, problems):
+    submit_answers(as_student, "yoyo", tension="m*g")
+    submit_answers(as_student, "yoyo", tension="m*g/2")
+    grade_all(app)
+    html = as_student.get("/problems/yoyo").get_data(as_text=True)
+    history = html[html.index('id="history"'):]
+    assert re.search(r"m\*g/2</code>.*m\*g</code>", history, re.S)
+    assert history.count("badge incorrect") == 2
