@@ -1,0 +1,88 @@
+"""``grader serve``: migrations, problems, demo accounts, grading workers and the waitress server."""
+
+from __future__ import annotations
+
+import logging
+import secrets
+import signal
+import sys
+from pathlib import Path
+
+import click
+
+
+@click.command()
+@click.option("--host", default="127.0.0.1", show_default=True, help="Address to listen on.")
+@click.option("--port", default=8000, show_default=True, type=int, help="Port (0: any free one).")
+@click.option("--workers", default=2, show_default=True, type=click.IntRange(1, 64), help="Grading workers.")
+@click.option("--threads", default=16, show_default=True, type=click.IntRange(1, 256), help="HTTP threads.")
+@click.option("--problems", "problems_dir", default="problems", show_default=True,
+              type=click.Path(file_okay=False, path_type=Path), help="Scene files to load at start.")
+@click.option("--demo/--no-demo", default=True, show_default=True,
+              help="Create a demo instructor and student on first start.")
+def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, demo: bool) -> None:
+    """Serve the web pages and the API, and grade submissions in the background."""
+    import waitress
+
+    from grader.jobs import WorkerPool
+    from grader.jobs.derivation import load_problem_files
+    from grader.store.db import Database, default_url
+    from grader.store.migrate import upgrade
+    from grader.web import create_app
+
+    logging.basicConfig(level=logging.INFO, format="%(asctime)s %(levelname)s %(name)s: %(message)s")
+    url = default_url()
+    click.echo(f"database: revision {upgrade(url)}")
+    app = create_app({"DATABASE_URL": url})
+    database: Database = app.extensions["lagrade.db"]
+
+    limits = {"timeout_s": app.config["DERIVE_TIMEOUT_S"], "memory_mb": app.config["DERIVE_MEMORY_MB"]}
+    for name, outcome in load_problem_files(database, sorted(problems_dir.glob("*.toml")), **limits):
+        click.echo(f"problem {name}: {outcome}")
+    if demo:
+        for line in _demo_accounts(database):
+            click.echo(line)
+
+    pool = WorkerPool(database, workers=workers, checker_factory=app.config["CHECKER_FACTORY"],
+                      budget_s=app.config["CHECK_BUDGET_S"]).start()
+    server = waitress.create_server(app, host=host, port=port, threads=threads, ident="lagrade")
+    base = f"http://{host}:{server.effective_port}"
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(0))
+    click.echo(f"sign in at {base}{_sign_in_path(app)}; API at {base}/api/v1 (see /api/v1/openapi.json)\n"
+               f"lagrade is serving on {base}/ with {workers} grading workers")
+    try:
+        server.run()
+    except (KeyboardInterrupt, SystemExit):
+        pass
+    finally:
+        server.close()
+        pool.stop()
+        app.extensions["lagrade.checkers"].close()
+        database.dispose()
+
+
+def _demo_accounts(database) -> list[str]:
+    """On a database with no web accounts, one instructor and one student, with printed passwords."""
+    from sqlalchemy import select
+
+    from grader.store.models import User
+    from grader.store.users import create_user
+
+    with database.write() as session:
+        if session.scalar(select(User.id).where(User.password_hash.is_not(None)).limit(1)) is not None:
+            return []
+        lines = ["first start: created demo accounts (change them, or make your own with `grader db create-user`):"]
+        for role in ("instructor", "student"):
+            password = secrets.token_urlsafe(9)
+            create_user(session, role=role, name=f"Demo {role}", email=f"{role}@example.org", password=password)
+            lines.append(f"  {role}: {role}@example.org  password: {password}")
+    return lines
+
+
+def _sign_in_path(app) -> str:
+    if "auth.login" not in app.view_functions:
+        return "/"
+    with app.test_request_context():
+        from flask import url_for
+
+        return url_for("auth.login")
