@@ -199,7 +199,7 @@ class Sandbox:
                 try:
                     self._ensure_ready()
                 except RuntimeError as error:
-                    return Verdict.invalid(f"checker unavailable: {error}", text).to_json()
+                    return Verdict.invalid(f"checker unavailable: {error}", text, checker_failure=True).to_json()
                 sent = time.monotonic()
                 try:
                     assert self._child is not None and self._child.stdin is not None
@@ -227,8 +227,9 @@ class Sandbox:
                     return json.loads(line)
                 except ValueError:
                     self._restart()
-                    return Verdict.invalid("the checker returned garbage; it has been restarted", text).to_json()
-            return Verdict.invalid("the checker process keeps dying", text).to_json()
+                    return Verdict.invalid("the checker returned garbage; it has been restarted", text,
+                                           checker_failure=True).to_json()
+            return Verdict.invalid("the checker process keeps dying", text, checker_failure=True).to_json()
 
     def _restart(self) -> None:
         """Kill the child and start a replacement now, so it is warm for the next request."""
@@ -272,7 +273,7 @@ def _child_main(handler: str, memory_mb: int) -> int:
             out.write(json.dumps(reply) + "\n")
             return 3  # the heap may be in a bad state: let the parent start a fresh child
         except Exception as error:  # the handler should not raise; never let the child die of it
-            reply = Verdict.invalid(f"internal error: {type(error).__name__}").to_json()
+            reply = Verdict.invalid(f"internal error: {type(error).__name__}", checker_failure=True).to_json()
         out.write(json.dumps(reply) + "\n")
     return 0
 

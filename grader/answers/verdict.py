@@ -58,6 +58,9 @@ class Verdict:
     ms: float = 0.0
     evidence: dict = field(default_factory=dict)
     budget_exceeded: bool = False
+    # True when the checker itself failed (not the answer): the grading queue retries such checks
+    # instead of storing them as the student's grade.
+    checker_failure: bool = False
 
     def __post_init__(self) -> None:
         if self.verdict not in VERDICTS:
@@ -81,6 +84,7 @@ class Verdict:
             "ms": round(self.ms, 3),
             "evidence": self.evidence,
             "budget_exceeded": self.budget_exceeded,
+            **({"checker_failure": True} if self.checker_failure else {}),
         }
 
     @classmethod
@@ -91,7 +95,7 @@ class Verdict:
         'proved'
         """
         keys = ("verdict", "certainty", "reason", "parsed", "counterexample", "feedback", "ms",
-                "evidence", "budget_exceeded")
+                "evidence", "budget_exceeded", "checker_failure")
         return cls(**{k: data[k] for k in keys if k in data and (data[k] is not None or k == "counterexample")})
 
     @classmethod

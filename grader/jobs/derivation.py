@@ -79,6 +79,7 @@ def _derive(source: str, filename: str) -> dict:
 
     import grader
     from grader.mechanics.lagrange import derive
+    from grader.mechanics.report import steps_json
     from grader.mechanics.scene import parse_scene
 
     scene = parse_scene(source, source=filename)
@@ -87,7 +88,8 @@ def _derive(source: str, filename: str) -> dict:
         "slug": scene.id,
         "title": scene.title,
         "statement": scene.statement,
-        "derivation": derivation.to_json(),
+        # The stored derivation adds the step-by-step working for the instructor's review page.
+        "derivation": {**derivation.to_json(), "steps": steps_json(derivation.steps)},
         "references": [r.to_json() for r in derivation.references()],
         "engine_version": f"{grader.__version__}+sympy{sympy.__version__}",
     }

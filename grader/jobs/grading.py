@@ -15,7 +15,7 @@ from typing import Any, Callable, Iterator, Protocol
 from grader.answers.sandbox import DEFAULT_BUDGET_S, Sandbox
 from grader.jobs.queue import Task
 
-__all__ = ["CHECK_BUDGET_S", "Checker", "CheckerPool", "CheckersBusy", "check_task", "check_request", "sandbox_checker", "score"]
+__all__ = ["CHECK_BUDGET_S", "Checker", "CheckerFailure", "CheckerPool", "CheckersBusy", "check_task", "check_request", "sandbox_checker", "score"]
 
 CHECK_BUDGET_S = DEFAULT_BUDGET_S
 
@@ -40,9 +40,20 @@ def check_request(reference: dict[str, Any], text: str) -> dict[str, Any]:
             "kind": reference["kind"], "feedback": reference.get("feedback") or []}
 
 
+class CheckerFailure(RuntimeError):
+    """The checker itself failed (it could not start, kept dying, answered garbage)."""
+
+
 def check_task(checker: Checker, task: Task, *, budget_s: float = CHECK_BUDGET_S) -> dict[str, Any]:
-    """Check the task's answer text against its stored reference; returns ``Verdict.to_json()``."""
-    return checker.run(check_request(task.reference, task.text), budget_s)
+    """Check the task's answer text against its stored reference; returns ``Verdict.to_json()``.
+
+    Raises :class:`CheckerFailure` when the checker, not the answer, failed: that is no grade, so
+    the worker gives the task back to the queue rather than recording it.
+    """
+    result = checker.run(check_request(task.reference, task.text), budget_s)
+    if result.get("checker_failure"):
+        raise CheckerFailure(result.get("reason", "checker failure"))
+    return result
 
 
 def score(result: dict[str, Any]) -> float:

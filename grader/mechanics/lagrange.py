@@ -85,6 +85,19 @@ class EquationsOfMotion:
     accelerations: dict[str, sympy.Expr]
     multipliers: dict[str, sympy.Expr]
     constraint_forces: dict[str, dict[str, sympy.Expr]]
+    _tidy: "EquationsOfMotion | None" = None
+
+    def tidy(self) -> "EquationsOfMotion":
+        """The same results, each cancelled and factored for people to read (computed once)."""
+        if self._tidy is None:
+            self._tidy = EquationsOfMotion(
+                self.lhs, self.rhs, self.partials,
+                {q: quick_form(v) for q, v in self.accelerations.items()},
+                {k: quick_form(v) for k, v in self.multipliers.items()},
+                {k: {q: quick_form(v) for q, v in forces.items()} for k, forces in self.constraint_forces.items()},
+            )
+            self._tidy._tidy = self._tidy
+        return self._tidy
 
 
 def equations_of_motion(scene: Scene) -> EquationsOfMotion:
@@ -111,9 +124,9 @@ def equations_of_motion(scene: Scene) -> EquationsOfMotion:
     A, b = sympy.linear_eq_to_matrix(rows, unknowns)
     _check_solvable(scene, A, len(coords))
     solution = _solve_linear(A, b)
-    accelerations = {c.name: quick_form(solution[i]) for i, c in enumerate(coords)}
-    multipliers = {k.name: quick_form(solution[len(coords) + i]) for i, k in enumerate(cons)}
-    forces = {k.name: {c.name: quick_form(multipliers[k.name] * sympy.diff(k.f, c.symbol)) for c in coords}
+    accelerations = {c.name: solution[i] for i, c in enumerate(coords)}
+    multipliers = {k.name: solution[len(coords) + i] for i, k in enumerate(cons)}
+    forces = {k.name: {c.name: multipliers[k.name] * sympy.diff(k.f, c.symbol) for c in coords}
               for k in cons}
     return EquationsOfMotion(lhs, rhs, partials, accelerations, multipliers, forces)
 

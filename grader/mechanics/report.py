@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import sympy
 
-__all__ = ["derivation_json", "derivation_text", "equation_text"]
+__all__ = ["derivation_json", "derivation_text", "equation_text", "steps_json"]
 
 
 def equation_text(lhs: sympy.Expr, rhs: sympy.Expr) -> str:
@@ -22,7 +22,7 @@ def equation_text(lhs: sympy.Expr, rhs: sympy.Expr) -> str:
 
 def derivation_json(derivation) -> dict:
     """The ``grader derive --json`` contract: every expression a string in the file's own names."""
-    scene, eom = derivation.scene, derivation.eom
+    scene, eom = derivation.scene, derivation.eom.tidy()
     answers = {}
     for spec in scene.answers:
         value = derivation.answers[spec.name]
@@ -37,6 +37,11 @@ def derivation_json(derivation) -> dict:
         "accelerations": {q: sympy.sstr(v) for q, v in eom.accelerations.items()},
         "answers": answers,
     }
+
+
+def steps_json(steps) -> list[dict]:
+    """The step-by-step derivation as JSON: ``[{"title", "text": [...], "latex": [...]}]``."""
+    return [{"title": s.title, "text": list(s.text), "latex": list(s.latex)} for s in steps]
 
 
 def derivation_text(derivation) -> str:

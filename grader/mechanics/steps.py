@@ -33,7 +33,7 @@ class Step:
 
 def derivation_steps(derivation) -> list[Step]:
     """The derivation of a scene as a list of steps (see the module docstring)."""
-    scene, eom = derivation.scene, derivation.eom
+    scene, eom = derivation.scene, derivation.eom.tidy()
     names = scene.namespace.latex_names()
 
     def tex(expr) -> str:

@@ -107,3 +107,29 @@ def test_a_broken_checker_is_replaced_and_the_submission_ends_failed_not_lost(da
         submission = session.get(Submission, submission_id)
         assert submission.status == "failed" and submission.verdict.verdict == "error"
     assert BrokenChecker.closed >= queue.MAX_ATTEMPTS
+
+
+class UnavailableChecker:
+    """A checker whose sandbox cannot start: it answers, but with a checker failure, not a grade."""
+
+    def run(self, request, budget_s):
+        return {"verdict": "invalid", "certainty": "none", "reason": "checker unavailable: no memory",
+                "parsed": {"text": "", "latex": "", "notes": []}, "counterexample": None, "feedback": [],
+                "ms": 0.0, "checker_failure": True}
+
+    def close(self):
+        pass
+
+
+def test_a_checker_failure_is_retried_and_never_stored_as_the_students_grade(database, setup):
+    [submission_id] = _submit_all(database, setup, ["m*g/3"])
+    pool = WorkerPool(database, workers=1, poll_s=0.05, checker_factory=UnavailableChecker).start()
+    try:
+        _wait_until_graded(database, [submission_id], timeout=20)
+    finally:
+        pool.stop()
+    with database.read() as session:
+        submission = session.get(Submission, submission_id)
+        # Retried up to the limit, then failed with an error verdict: never an "invalid" grade of 0.
+        assert submission.status == "failed" and submission.verdict.verdict == "error"
+        assert submission.attempts > queue.MAX_ATTEMPTS

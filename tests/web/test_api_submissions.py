@@ -89,3 +89,12 @@ def test_a_submission_to_an_unknown_problem_is_404(client, make_token, yoyo_vers
     _, student = make_token("student")
     response = client.post("/api/v1/problems/nope/submissions", json={"answer": "a", "text": "1"}, headers=student)
     assert response.status_code == 404
+
+
+def test_a_counterexample_never_shows_the_reference_value(client, make_token, yoyo_version, workers, poll):
+    _, student = make_token("student")
+    graded = poll(_submit(client, student, text="m*g/2").headers["Location"], student)
+    example = graded["verdict"]["counterexample"]
+    # Where the answer fails and what it gives there, but not the value of m g/3.
+    assert example["values"] and "answer" in example
+    assert "reference" not in example and "relative_difference" not in example

@@ -45,11 +45,20 @@ def _time(value) -> str:
     return value.isoformat() + "Z"
 
 
+def _student_counterexample(example: dict | None) -> dict | None:
+    # The reference's value at a point is part of the reference: students (and LMSs acting for
+    # them) see where their answer fails and what it gives there, never what it should give.
+    if not example:
+        return example
+    return {k: v for k, v in example.items() if k not in ("reference", "relative_difference")}
+
+
 def verdict_json(verdict: Verdict | None) -> dict[str, Any] | None:
     if verdict is None:
         return None
     return {"verdict": verdict.verdict, "certainty": verdict.certainty, "score": verdict.score,
-            "reason": verdict.reason, "feedback": verdict.feedback, "counterexample": verdict.counterexample,
+            "reason": verdict.reason, "feedback": verdict.feedback,
+            "counterexample": _student_counterexample(verdict.counterexample),
             "parsed": verdict.parsed, "ms": verdict.check_ms, "graded_at": _time(verdict.graded_at),
             "version": verdict.problem_version.number}
 
