@@ -14,8 +14,8 @@ Examples
 --------
 >>> from grader.mechanics.scene import load_scene
 >>> from grader.mechanics.lagrange import equations_of_motion
->>> scene = load_scene("problems/sphere.toml")   # doctest: +SKIP
->>> evaluate_answers(scene, equations_of_motion(scene))[0]["normal_force"]  # doctest: +SKIP
+>>> scene = load_scene("problems/sphere.toml") 
+>>> evaluate_answers(scene, equations_of_motion(scene))[0]["normal_force"]
 g*m*(3*cos(theta) - 2)
 """
 

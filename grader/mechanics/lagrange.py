@@ -56,9 +56,10 @@ def time_derivative(expr: sympy.Expr, scene: Scene, coordinates=None) -> sympy.E
 
     Examples
     --------
-    >>> from grader.mechanics.scene import parse_scene
-    >>> s = parse_scene('id = "x"\\n[coordinates]\\nx = { dimension = "length" }\\n'
-    ...                 '[energy]\\nkinetic = "0*x + xdot^2*1"\\n') # doctest: +SKIP
+    >>> from grader.mechanics.scene import load_scene
+    >>> sphere = load_scene("problems/sphere.toml")
+    >>> time_derivative(sphere.kinetic, sphere)
+    m*r**2*thetaddot*thetadot + m*r*rdot*thetadot**2 + m*rddot*rdot
     """
     coordinates = scene.coordinates.values() if coordinates is None else coordinates
     result = sympy.diff(expr, scene.time)

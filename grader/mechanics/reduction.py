@@ -10,8 +10,8 @@ depend on t (then it is the energy T + V for scleronomic constraints).
 Examples
 --------
 >>> from grader.mechanics.scene import load_scene
->>> r = Reduction(load_scene("problems/sphere.toml"))  # doctest: +SKIP
->>> r.phi  # doctest: +SKIP
+>>> r = Reduction(load_scene("problems/sphere.toml"))
+>>> r.phi
 {r: R, theta: theta}
 """
 

@@ -8,8 +8,8 @@ Examples
 --------
 >>> from grader.mechanics.scene import load_scene
 >>> from grader.mechanics.lagrange import derive
->>> [r.reference for r in derive(load_scene("problems/yoyo.toml")).references()]  # doctest: +SKIP
-['2*g/3', 'g*m/3']
+>>> [r.reference for r in derive(load_scene("problems/yoyo.toml")).references()]
+['2*g/3', '2*g/(3*R)', 'g*m/3']
 """
 
 from __future__ import annotations

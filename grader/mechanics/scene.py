@@ -179,7 +179,7 @@ def load_scene(path: str | Path) -> Scene:
 
     Examples
     --------
-    >>> load_scene("problems/sphere.toml").id  # doctest: +SKIP
+    >>> load_scene("problems/sphere.toml").id
     'sphere'
     """
     path = Path(path)

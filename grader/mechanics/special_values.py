@@ -14,7 +14,7 @@ Examples
 --------
 >>> from grader.mechanics.lagrange import derive
 >>> from grader.mechanics.scene import load_scene
->>> derive(load_scene("problems/sphere.toml")).answers["separation_cos"]  # doctest: +SKIP
+>>> derive(load_scene("problems/sphere.toml")).answers["separation_cos"]
 2/3
 """
 

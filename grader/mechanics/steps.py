@@ -7,7 +7,7 @@ Examples
 --------
 >>> from grader.mechanics.scene import load_scene
 >>> from grader.mechanics.lagrange import derive
->>> [s.title for s in derive(load_scene("problems/yoyo.toml")).steps][:2]  # doctest: +SKIP
+>>> [s.title for s in derive(load_scene("problems/yoyo.toml")).steps][:2]
 ['Lagrangian', 'Constraints and the extended Lagrangian']
 """
 
