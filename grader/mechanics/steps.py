@@ -107,4 +107,5 @@ def derivation_steps(derivation) -> list[Step]:
 
 
 def _tex_text(name: str) -> str:
-    return name.replace("_", r"\_")
+    # An answer's name as a label: underscores read as spaces ("angular acceleration").
+    return name.replace("_", " ")
