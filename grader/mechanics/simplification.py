@@ -52,7 +52,26 @@ def human_form(expr: sympy.Expr) -> sympy.Expr:
     if simplified.has(*_TRIG):
         expanded = sympy.expand_trig(simplified)
         candidates += [sympy.factor(sympy.cancel(expanded)), sympy.factor(sympy.trigsimp(expanded))]
+        candidates += [sympy.factor(sympy.cancel(_pythagorean(c, square))) for c in (expanded, simplified)
+                       for square in (sympy.sin, sympy.cos)]
     return min(candidates, key=lambda e: _weight(e, allowed))
+
+
+def _pythagorean(expr: sympy.Expr, square) -> sympy.Expr:
+    """Rewrite even powers of cos as 1 - sin² (square=sin) or of sin as 1 - cos² (square=cos).
+
+    simplify() picks neither: M + m sin²α reads better than M + m - m cos²α, and only one of the
+    two rewritings shows it.
+    """
+    other = sympy.cos if square is sympy.sin else sympy.sin
+
+    def rewrite(e):
+        return (1 - square(e.base.args[0]) ** 2) ** (e.exp // 2)
+
+    return expr.replace(
+        lambda e: e.is_Pow and isinstance(e.base, other) and e.exp.is_Integer and e.exp > 0 and e.exp % 2 == 0,
+        rewrite,
+    )
 
 
 def quick_form(expr: sympy.Expr) -> sympy.Expr:

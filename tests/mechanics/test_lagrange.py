@@ -127,3 +127,16 @@ def test_rheonomic_constraint_enters_the_constraint_acceleration(derived):
     d = derived("bead_rotating_hoop")
     assert d.scene.constraints[0].f.has(d.scene.time)
     assert "drive_torque" in d.answers
+
+
+@pytest.mark.parametrize(
+    "scene, answer, written",
+    [
+        # The forms a physicist writes: factored, single angles, sin² rather than 1 - cos².
+        ("problems/sphere.toml", "normal_force", "g*m*(3*cos(theta) - 2)"),
+        ("problems/incline_general.toml", "friction_force", "beta*g*m*sin(alpha)/(beta + 1)"),
+        ("wedge", "wedge_acceleration", "-g*m*sin(alpha)*cos(alpha)/(M + m*sin(alpha)**2)"),
+    ],
+)
+def test_answers_are_in_the_form_a_person_writes(derived, scene, answer, written):
+    assert sympy.sstr(derived(scene).answers[answer]) == written
