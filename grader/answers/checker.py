@@ -46,6 +46,9 @@ KINDS = ("expression", "equation")
 # is the margin before the hard kill).
 BUDGET_SHARE = 0.8
 _UNDEFINED = (sympy.zoo, sympy.nan, sympy.oo, -sympy.oo)
+_CANONICAL_JSON = json.JSONEncoder(sort_keys=True)  # what json.dumps(x, sort_keys=True) builds per call
+# All singletons, so a node is one of them exactly when it is identical to it.
+_SUSPICIOUS_IDS = frozenset(map(id, (*_UNDEFINED, sympy.I)))
 
 
 class _RequestError(ValueError):
@@ -67,6 +70,9 @@ class _Reference:
     instructor: list[tuple[Any, str]] = field(default_factory=list)
     compiled: dict = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
+    # Values of reference-side feedback candidates (the reference less a term, ...) at the first
+    # sample point, for the one-point screen: every wrong answer to this reference tries the same ones.
+    screen: dict = field(default_factory=dict)
 
     def compiled_for(self, options: Options):
         backend = options.backend()
@@ -87,17 +93,21 @@ def _namespace(variables: Mapping) -> Namespace:
         raise _RequestError(f"bad variables: {error}") from None
 
 
-def _read(text: str, namespace: Namespace, kind: str):
-    """(exprs, parsed-json) of a text: one expression, or the residuals of its equations."""
+def _read(text: str, namespace: Namespace, kind: str, printed: bool = True):
+    """(exprs, parsed-json) of a text: one expression, or the residuals of its equations.
+
+    ``printed=False`` skips the text and LaTeX, for texts nobody sees (the reference, the
+    instructor's feedback expressions).
+    """
     if kind == "expression":
-        p = parse_expression(text, namespace)
+        p = parse_expression(text, namespace, printed=printed)
         return [p.expr], {"text": p.text, "latex": p.latex, "notes": list(p.notes)}
     try:
-        equations = parse_system(text, namespace)
+        equations = parse_system(text, namespace, printed=printed)
     except ExpressionError as error:
         if "needs '='" not in error.message:
             raise
-        p = parse_expression(text, namespace)  # an expression alone is read as "... = 0"
+        p = parse_expression(text, namespace, printed=printed)  # an expression alone is read as "... = 0"
         return [p.expr], {"text": f"{p.text} = 0", "latex": f"{p.latex} = 0",
                           "notes": list(p.notes) + ["read as an equation '... = 0'"]}
     notes = [n for eq in equations for n in eq.notes]
@@ -113,7 +123,7 @@ def _prepare(reference: str, kind: str, variables_json: str, state_json: str, fe
     variables = json.loads(variables_json)
     namespace = _namespace(variables)
     try:
-        exprs, _ = _read(reference, namespace, kind)
+        exprs, _ = _read(reference, namespace, kind, printed=False)
     except ExpressionError as error:
         raise _RequestError(f"the reference does not parse: {error}") from None
     if any(e.has(*_UNDEFINED) for e in exprs):
@@ -140,12 +150,24 @@ def _prepare(reference: str, kind: str, variables_json: str, state_json: str, fe
     for entry in json.loads(feedback_json):
         try:
             expr_text, message = entry["expr"], entry["message"]
-            entry_exprs, _ = _read(expr_text, namespace, kind)
+            entry_exprs, _ = _read(expr_text, namespace, kind, printed=False)
         except (ExpressionError, KeyError, TypeError) as error:
             ref.notes.append(f"instructor feedback entry skipped: {error}")
             continue
         ref.instructor.append((entry_exprs if kind == "equation" else entry_exprs[0], str(message)))
     return ref
+
+
+def _contains(expr: sympy.Basic, ids: frozenset) -> bool:
+    """Whether a node of ``expr`` is one of the objects whose ``id`` is in ``ids`` (``has`` for
+    singletons, without its pattern set-up)."""
+    stack = [expr]
+    while stack:
+        node = stack.pop()
+        if id(node) in ids:
+            return True
+        stack.extend(node.args)
+    return False
 
 
 def _dimension_verdict(ref: _Reference, exprs: list[sympy.Expr], kind: str) -> tuple[str, str] | None:
@@ -188,30 +210,81 @@ def _compare(ref: _Reference, exprs: list[sympy.Expr], options: Options, deadlin
     return compare_equations(ref.exprs, exprs, ref.parameters, ref.states, options, deadline, compiled)
 
 
-def _could_be_same(r: sympy.Expr, a: sympy.Expr, point: dict) -> bool:
-    """A one-point screen for feedback candidates (most fail it): False only when proved different."""
+SCREEN_PREC = 64
+# Reference-side screen values kept per reference; the candidates are few (terms, small factors),
+# the bound only guards against a pathological stream of different factors.
+SCREEN_CACHE_SIZE = 256
+
+
+class _SinCosSwapped(ArbBackend):
+    """Ball arithmetic with sin and cos exchanged: compiling an expression with it evaluates the
+    expression with every sin written as cos and every cos as sin, without building that expression
+    in sympy (which costs far more than the one-point screen it is for)."""
+
+    _SWAP = {"sin": "cos", "cos": "sin"}
+
+    def function(self, name: str, fs):
+        return super().function(self._SWAP.get(name, name), fs)
+
+
+def _screen_value(expr: sympy.Expr, point: dict, cache: dict | None):
+    """``expr`` at ``point`` in 64-bit balls, or the exception that stopped it; remembered in ``cache``."""
+    if cache is not None and expr in cache:
+        return cache[expr]
     try:
-        backend = ArbBackend()
-        ra, _ = Compiled(r, backend).at(point, 64)
-        aa, _ = Compiled(a, backend).at(point, 64)
-    except (Undefined, Unresolved, Unsupported):
+        value, _ = Compiled(expr, ArbBackend()).at(point, SCREEN_PREC)
+    except (Undefined, Unresolved, Unsupported) as error:
+        value = error
+    if cache is not None and len(cache) < SCREEN_CACHE_SIZE:
+        cache[expr] = value
+    return value
+
+
+def _could_be_same(r: sympy.Expr, a: sympy.Expr, point: dict, r_cache: dict | None = None,
+                   a_cache: dict | None = None) -> bool:
+    """A one-point screen for feedback candidates (most fail it): False only when proved different.
+
+    ``r_cache`` and ``a_cache`` remember values of the two sides at this point between calls.
+    """
+    ra = _screen_value(r, point, r_cache)
+    if isinstance(ra, Exception):
+        return True
+    aa = _screen_value(a, point, a_cache)
+    if isinstance(aa, Exception):
         return True
     return (aa - ra).contains(0)
 
 
 def _feedback(ref: _Reference, exprs: list[sympy.Expr], comparison: Comparison, deadline: float) -> list[dict]:
     if ref.kind == "expression":
+        answer_values: dict = {}  # the answer itself is the right side of most candidates
+
         def same(r, a):
-            if not _could_be_same(r, a, ref.sampler.point(0)):
+            if r == a:  # what compare_expressions says first ("symbolically identical"), and the screen agrees
+                return True
+            if not _could_be_same(r, a, ref.sampler.point(0), ref.screen, answer_values):
                 return False
             return compare_expressions(r, a, ref.sampler, FEEDBACK_OPTIONS, deadline).equivalent is True
+
+        def swap_could_match():
+            # _could_be_same(reference, answer with sin and cos swapped), the swap done in the evaluator
+            point = ref.sampler.point(0)
+            r = _screen_value(ref.exprs[0], point, ref.screen)
+            if isinstance(r, Exception):
+                return True
+            try:
+                a, _ = Compiled(exprs[0], _SinCosSwapped()).at(point, SCREEN_PREC)
+            except (Undefined, Unresolved, Unsupported):
+                return True
+            return (a - r).contains(0)
 
         ratio = None
         if comparison.values is not None:
             a, r = comparison.values
             ratio = a / r if r else None
         rel = (comparison.counterexample or {}).get("relative_difference")
-        return diagnose(ref.exprs[0], exprs[0], same, ref.instructor, ratio, rel, deadline)
+        return diagnose(ref.exprs[0], exprs[0], same, ref.instructor, ratio, rel, deadline,
+                        swap_could_match=swap_could_match)
 
     def same_equation(r, a):
         r_list = r if isinstance(r, list) else [r]
@@ -309,9 +382,9 @@ def _check(reference, answer, variables, kind, feedback, budget_s, state, option
     deadline = started + max(budget, 0.01) * BUDGET_SHARE
     try:
         key = (
-            json.dumps(variables, sort_keys=True),
-            json.dumps(sorted(state) if state else []),
-            json.dumps([dict(e) if isinstance(e, Mapping) else e for e in feedback or []], sort_keys=True),
+            _CANONICAL_JSON.encode(variables),
+            json.dumps(sorted(state)) if state else "[]",  # "[]" is what json.dumps([]) gives
+            _CANONICAL_JSON.encode([dict(e) if isinstance(e, Mapping) else e for e in feedback]) if feedback else "[]",
         )
     except (TypeError, ValueError):
         raise _RequestError("'variables' and 'feedback' must be JSON data") from None
@@ -323,10 +396,12 @@ def _check(reference, answer, variables, kind, feedback, budget_s, state, option
         evidence = {"error": {"code": error.code, "position": error.position, "hint": error.hint}}
         return Verdict("invalid", "none", str(error), parsed={"text": answer, "latex": "", "notes": []},
                        evidence=evidence)
-    if any(e.has(*_UNDEFINED) for e in exprs):
+    # One quick walk over the answer for both checks below; it almost never finds anything.
+    suspicious = any(_contains(e, _SUSPICIOUS_IDS) for e in exprs)
+    if suspicious and any(e.has(*_UNDEFINED) for e in exprs):
         return Verdict("invalid", "none", "your answer is undefined (it divides by zero)", parsed=parsed)
     parsed["notes"] = parsed["notes"] + ref.notes
-    if any(e.has(sympy.I) for e in exprs):
+    if suspicious and any(e.has(sympy.I) for e in exprs):
         return Verdict("not_equivalent", "proved", "your answer is not a real number (it contains the square "
                        "root or logarithm of a negative number)", parsed=parsed, evidence={"method": "exact"},
                        feedback=[{"code": "not_real", "message": "Your answer is not a real number: check "
@@ -342,8 +417,10 @@ def _check(reference, answer, variables, kind, feedback, budget_s, state, option
         comparison = _compare(ref, exprs, options, deadline)
     except Unsupported as error:
         return Verdict("invalid", "none", f"the checker cannot evaluate {error}", parsed=parsed)
-    symbols = set().union(*(e.free_symbols for e in ref.exprs + exprs))
-    example = _filter_values(comparison.counterexample, symbols)
+    example = None
+    if comparison.counterexample is not None:  # the symbols are only needed to trim its values
+        symbols = set().union(*(e.free_symbols for e in ref.exprs + exprs))
+        example = _filter_values(comparison.counterexample, symbols)
     if comparison.equivalent is None:
         reason = comparison.reason
         if comparison.budget_exceeded:

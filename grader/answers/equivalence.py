@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field, replace
+from functools import lru_cache
 from typing import Any, Callable
 
 import flint
@@ -151,13 +152,20 @@ class Compiled:
     def _evaluate(self, point: dict, prec: int):
         backend = self.backend
         if backend.name == "arb":
-            with flint.ctx.workprec(prec):
+            # flint.ctx.workprec(prec) by hand: the context manager costs more than a small
+            # evaluation, and this runs for every point, precision and candidate.
+            ctx = flint.ctx
+            outer = ctx.prec
+            ctx.prec = prec
+            try:
                 env = {s: flint.arb(v) for s, v in point.items()}
                 env[SCALE] = -math.inf
                 value = self.f(env)
                 if not value.is_finite():
                     raise Unresolved
                 return value, env[SCALE]
+            finally:
+                ctx.prec = outer
         if backend.name == "mpmath":
             with mpmath.workprec(prec):
                 env = {s: mpmath.mpf(v) for s, v in point.items()}
@@ -362,13 +370,18 @@ SYMBOLIC_MAX_POWER = 6
 
 
 def _small(expr: sympy.Expr) -> bool:
+    # A plain stack walk (the order of the nodes does not matter here), quicker than
+    # sympy.preorder_traversal's nested generators.
     nodes = 0
-    for node in sympy.preorder_traversal(expr):
+    stack = [expr]
+    while stack:
+        node = stack.pop()
         nodes += 1
         if nodes > SYMBOLIC_MAX_NODES:
             return False
         if node.is_Pow and node.exp.is_Integer and abs(int(node.exp)) > SYMBOLIC_MAX_POWER:
             return False
+        stack.extend(node.args)
     return True
 
 
@@ -446,12 +459,17 @@ def compare_expressions(
     ans = Compiled(answer, backend)
     if options.symbolic:
         # One point first: most wrong answers differ there, and then expanding would be wasted.
-        first = compare_numeric(ref, ans, sampler, replace(options, points=1), deadline)
+        first = compare_numeric(ref, ans, sampler, _one_point(options), deadline)
         if first.equivalent is False or first.budget_exceeded:
             return first
         if symbolic_zero(diff):
             return Comparison(True, "proved", "symbolically identical", evidence={"method": "symbolic"})
     return compare_numeric(ref, ans, sampler, options, deadline)
+
+
+@lru_cache(maxsize=64)
+def _one_point(options: Options) -> Options:
+    return replace(options, points=1)  # the same few Options every time: build each copy once
 
 
 def with_points(options: Options, points: int) -> Options:

@@ -62,7 +62,7 @@ def _log2_mag(x: flint.arb) -> float:
         return -math.inf
     if not u.is_finite():
         return math.inf
-    man, exp = u.mid().man_exp()
+    man, exp = u.man_exp()  # u is exact (its own midpoint)
     return float(int(exp) + int(man).bit_length())
 
 
@@ -86,7 +86,8 @@ class ArbBackend:
         return flint.arb(value)
 
     def integer(self, n: int):
-        return lambda env: flint.arb(n)
+        value = flint.arb(n)  # exact at every precision, so built once
+        return lambda env: value
 
     def rational(self, p: int, q: int):
         return lambda env: flint.arb(flint.fmpq(p, q))

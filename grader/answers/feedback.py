@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import time
 from fractions import Fraction
-from typing import Callable, Sequence
+from functools import lru_cache
+from typing import Callable, Iterator, Sequence
 
 import sympy
 
@@ -42,6 +43,10 @@ def factor_message(q: Fraction) -> str:
 def _simple_ratio(value: float) -> Fraction | None:
     if not value or value != value or abs(value) > 1e3:
         return None
+    # Most ratios are not within 1e-9 of any p/d with d <= 12: say so without exact fractions. When
+    # one is, p = round(value*d) for it, so the looser float test below lets it through.
+    if not any(abs(round(value * d) / d - value) <= 2e-9 * abs(value) for d in range(1, 13)):
+        return None
     q = Fraction(value).limit_denominator(12)
     if q == 1 or q == 0 or abs(float(q) - value) > 1e-9 * abs(value):
         return None
@@ -57,14 +62,47 @@ def _swap_sin_cos(expr: sympy.Expr) -> sympy.Expr:
         return sympy.cos(*args)
     if expr.func is sympy.cos:
         return sympy.sin(*args)
+    if all(new is old for new, old in zip(args, expr.args)):
+        return expr  # no sin or cos below: rebuilding would only give the same expression back
     return expr.func(*args)
+
+
+def _one_term(expr: sympy.Expr) -> bool:
+    """True when ``expand(expr)`` is certainly a single term, found without expanding.
+
+    That is when ``expr`` has no sum anywhere and no function but sin and cos: expansion only
+    distributes products over sums (and powers of sums), splits exponentials and logarithms of
+    sums and products, and rearranges powers of products, so a product of powers of symbols,
+    numbers and sin/cos of such stays one term. Expanding a fresh product costs far more than
+    this walk (sympy rebuilds and re-derives every factor).
+    """
+    stack = [expr]
+    while stack:
+        node = stack.pop()
+        if node.is_Add or (node.is_Function and node.func not in (sympy.sin, sympy.cos)):
+            return False
+        stack.extend(node.args)
+    return True
 
 
 def _terms(expr: sympy.Expr) -> tuple[sympy.Expr, ...]:
     terms = sympy.Add.make_args(expr)
     if len(terms) < 2:
+        if _one_term(expr):
+            return ()
         terms = sympy.Add.make_args(sympy.expand(expr))
     return terms if 2 <= len(terms) <= MAX_TERMS else ()
+
+
+@lru_cache(maxsize=256)
+def _reference_candidates(reference: sympy.Expr) -> tuple[tuple[sympy.Expr, ...], tuple[sympy.Expr, ...]]:
+    """The reference without each of its terms, and with each term's sign flipped.
+
+    They depend on the reference alone, and every wrong answer to a question tries them, so they
+    are built (and the reference expanded) once per reference.
+    """
+    terms = _terms(reference)
+    return tuple(reference - t for t in terms), tuple(reference - 2 * t for t in terms)
 
 
 def diagnose(
@@ -76,6 +114,7 @@ def diagnose(
     relative_difference: float | None = None,
     deadline: float | None = None,
     equation: bool = False,
+    swap_could_match: Callable[[], bool] | None = None,
 ) -> list[dict]:
     """Feedback items ``{"code", "message"}`` for an answer known not to be equivalent.
 
@@ -93,6 +132,11 @@ def diagnose(
         At the counterexample; a tiny one earns a "close but not equal" note.
     deadline : float, optional
         ``time.monotonic()`` after which no more candidates are tried.
+    equation : bool
+        The expressions are residuals of equations (no constant-factor slip: any factor is fine).
+    swap_could_match : callable, optional
+        A cheap test that is False only when the answer with sin and cos swapped is provably not
+        the reference (the checker compares values at a point); then that candidate is not built.
 
     Examples
     --------
@@ -116,28 +160,32 @@ def diagnose(
             found.append({"code": "instructor", "message": message})
             break
 
-    slips: list[tuple[str, Callable[[], bool], str]] = []
-    if ratio is not None and not equation:
-        q = _simple_ratio(ratio)
-        if q is not None:
-            slips.append(("sign" if q == -1 else "factor",
-                          lambda q=q: same(sympy.Rational(q.numerator, q.denominator) * reference, answer),
-                          factor_message(q)))
-    if answer.has(sympy.sin, sympy.cos):
-        slips.append(("sin_cos", lambda: same(reference, _swap_sin_cos(answer)),
-                      "Check sin and cos: with them swapped, your answer would be right."))
-    ref_terms = _terms(reference)
-    for t in ref_terms:
-        slips.append(("missing_term", lambda t=t: same(reference - t, answer),
-                      "Your answer is missing a term: the rest of it is right."))
-    for t in ref_terms:
-        slips.append(("term_sign", lambda t=t: same(reference - 2 * t, answer),
-                      "One term of your answer has the wrong sign."))
-    for t in _terms(answer):
-        slips.append(("extra_term", lambda t=t: same(reference, answer - t),
-                      "Your answer has an extra term: without it, it would be right."))
+    def slips() -> Iterator[tuple[str, Callable[[], bool], str]]:
+        # Generated in order and only as far as needed: the first slip that fits is the one reported,
+        # so the answer is not expanded for the extra-term test when an earlier test already fits.
+        if ratio is not None and not equation:
+            q = _simple_ratio(ratio)
+            if q is not None:
+                yield ("sign" if q == -1 else "factor",
+                       lambda: same(sympy.Rational(q.numerator, q.denominator) * reference, answer),
+                       factor_message(q))
+        if answer.has(sympy.sin, sympy.cos):
+            yield ("sin_cos",
+                   lambda: (swap_could_match is None or swap_could_match())
+                   and same(reference, _swap_sin_cos(answer)),
+                   "Check sin and cos: with them swapped, your answer would be right.")
+        without_term, term_flipped = _reference_candidates(reference)
+        for candidate in without_term:
+            yield ("missing_term", lambda c=candidate: same(c, answer),
+                   "Your answer is missing a term: the rest of it is right.")
+        for candidate in term_flipped:
+            yield ("term_sign", lambda c=candidate: same(c, answer),
+                   "One term of your answer has the wrong sign.")
+        for t in _terms(answer):
+            yield ("extra_term", lambda t=t: same(reference, answer - t),
+                   "Your answer has an extra term: without it, it would be right.")
 
-    for code, test, message in slips:
+    for code, test, message in slips():
         if out_of_time():
             break
         if test():

@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 from fractions import Fraction
+from functools import lru_cache
 from typing import Mapping
 
 import sympy
@@ -30,6 +31,10 @@ def _as_fraction(value) -> Fraction:
     if isinstance(value, int):
         return Fraction(value)
     raise TypeError(f"dimension exponents must be rational, got {value!r}")
+
+
+def _whole(value: Fraction) -> "int | Fraction":
+    return value.numerator if value.denominator == 1 else value
 
 
 @dataclass(frozen=True)
@@ -54,6 +59,9 @@ class Dimension:
     def __post_init__(self) -> None:
         for field in ("mass", "length", "time"):
             object.__setattr__(self, field, _as_fraction(getattr(self, field)))
+        # The same exponents as plain ints where whole (not a dataclass field: no part of ==, hash or
+        # repr): dimension_of adds and compares these, which costs a fraction of Fraction arithmetic.
+        object.__setattr__(self, "_exponents", (_whole(self.mass), _whole(self.length), _whole(self.time)))
 
     # -- arithmetic -------------------------------------------------------
     def __mul__(self, other: "Dimension") -> "Dimension":
@@ -283,6 +291,23 @@ def _phrase(dim: Dimension) -> str:
     return "a dimensionless number" if dim.is_dimensionless else dim.describe()
 
 
+# The walker works on (mass, length, time) exponent tuples, ints where whole, and builds a
+# Dimension only for the result and for messages: its Fraction arithmetic dominated the walk.
+_Exponents = tuple
+_NONE: _Exponents = (0, 0, 0)
+
+
+@lru_cache(maxsize=256)
+def _dim(exponents: _Exponents) -> Dimension:
+    # Dimensions are immutable, and answers keep having the same few: build each one once.
+    return Dimension(*exponents)
+
+
+@lru_cache(maxsize=256)
+def _words(exponents: _Exponents) -> str:
+    return _phrase(_dim(exponents))
+
+
 def dimension_of(expr, dims: Mapping) -> Dimension:
     """The dimension of a sympy expression whose symbols have the given dimensions.
 
@@ -325,7 +350,7 @@ def dimension_of(expr, dims: Mapping) -> Dimension:
     if not isinstance(expr, sympy.Basic):
         # Text must go through parse_expression first; nothing here reads strings.
         raise TypeError(f"dimension_of takes a sympy expression, got {type(expr).__name__}")
-    return _DimensionWalker(dims, by_name).walk(expr)
+    return _dim(_DimensionWalker(dims, by_name).walk(expr))
 
 
 class _DimensionWalker:
@@ -333,84 +358,114 @@ class _DimensionWalker:
         self.dims = dims
         self.by_name = by_name
 
-    def lookup(self, node, name: str) -> Dimension:
+    def lookup(self, node, name: str) -> _Exponents:
         if node in self.dims:
-            return parse_dimension(self.dims[node])
+            return parse_dimension(self.dims[node])._exponents
         if name in self.by_name:
-            return self.by_name[name]
+            return self.by_name[name]._exponents
         if name == "t":
-            return _T  # time in dynamicsymbols-style expressions, unless declared otherwise
+            return _T._exponents  # time in dynamicsymbols-style expressions, unless declared otherwise
         raise DimensionError(f"'{name}' has no known dimension", node)
 
-    def walk(self, node) -> Dimension:
+    def walk(self, node) -> _Exponents:
+        if node.is_Symbol:
+            return self.lookup(node, node.name)
+        if node.is_Mul:
+            m = l = t = 0
+            for factor in node.args:
+                fm, fl, ft = self.walk(factor)
+                m, l, t = m + fm, l + fl, t + ft
+            return m, l, t
+        if node.is_Number or isinstance(node, sympy.NumberSymbol) or node is sympy.I:
+            return _NONE
+        if node.is_Add:
+            return self.add(node)
+        if node.is_Pow:
+            return self.power(node)
         if isinstance(node, sympy.Equality) or isinstance(node, sympy.core.relational.Relational):
             left, right = self.walk(node.lhs), self.walk(node.rhs)
             if left != right and not _is_zero(node.lhs) and not _is_zero(node.rhs):
-                raise DimensionError(f"equates {_phrase(left)} to {_phrase(right)}: {node}", node)
+                raise DimensionError(f"equates {_words(left)} to {_words(right)}: {node}", node)
             return right if _is_zero(node.lhs) else left
-        if node.is_Number or isinstance(node, sympy.NumberSymbol) or node is sympy.I:
-            return DIMENSIONLESS
-        if node.is_Symbol:
-            return self.lookup(node, node.name)
         if isinstance(node, AppliedUndef):
             return self.lookup(node, node.func.__name__)
-        if node.is_Add:
-            return self.add(node)
-        if node.is_Mul:
-            dim = DIMENSIONLESS
-            for factor in node.args:
-                dim = dim * self.walk(factor)
-            return dim
-        if node.is_Pow:
-            return self.power(node)
         if isinstance(node, sympy.Derivative):
-            dim = self.walk(node.expr)
+            m, l, t = self.walk(node.expr)
             for variable, count in node.variable_count:
-                dim = dim / self.walk(variable) ** int(count)
-            return dim
+                vm, vl, vt = self.walk(variable)
+                n = int(count)
+                m, l, t = m - vm * n, l - vl * n, t - vt * n
+            return m, l, t
         if isinstance(node, sympy.Abs):
             return self.walk(node.args[0])
         if isinstance(node, sympy.sign):
             self.walk(node.args[0])
-            return DIMENSIONLESS
+            return _NONE
         if isinstance(node, sympy.atan2):
             y, x = (self.walk(arg) for arg in node.args)
             if y != x:
                 raise DimensionError(f"atan2 needs two arguments of one dimension, got "
-                                     f"{_phrase(y)} and {_phrase(x)}: {node}", node)
-            return DIMENSIONLESS
+                                     f"{_words(y)} and {_words(x)}: {node}", node)
+            return _NONE
         if isinstance(node, _DIMENSIONLESS_FUNCTIONS):
             for arg in node.args:
                 dim = self.walk(arg)
-                if not dim.is_dimensionless:
+                if dim != _NONE:
                     raise DimensionError(f"{node.func.__name__} needs a dimensionless argument, "
-                                         f"got {dim.describe()}: {node}", node)
-            return DIMENSIONLESS
+                                         f"got {_dim(dim).describe()}: {node}", node)
+            return _NONE
         raise DimensionError(f"cannot work out the dimension of {node}", node)
 
-    def add(self, node) -> Dimension:
+    def add(self, node) -> _Exponents:
+        # Fast pass in argument order. Only when a term fails or the terms disagree is the sum put in
+        # printed order (slow), so that the message reads like str(expr) and names the same terms
+        # as always. A term is walked once: its dimension, or its error, is kept for the second
+        # pass (walking a failing term again at every level of nesting would take exponential time).
+        walked: dict = {}
+        first = None
+        for term in node.args:
+            if _is_zero(term):
+                continue
+            try:
+                dim = walked[term] = self.walk(term)
+            except Exception as error:
+                walked[term] = error
+                break
+            if first is None:
+                first = dim
+            elif dim != first:
+                break
+        else:
+            return first if first is not None else _NONE
         first_term, first_dim = None, None
         for term in node.as_ordered_terms():  # printed order, so messages read like str(expr)
             if _is_zero(term):
                 continue  # an exact 0 fits any sum
-            dim = self.walk(term)
+            dim = walked[term] if term in walked else self.walk(term)
+            if isinstance(dim, Exception):
+                raise dim
             if first_dim is None:
                 first_term, first_dim = term, dim
             elif dim != first_dim:
-                raise DimensionError(f"adds {_phrase(first_dim)} to {_phrase(dim)}: "
+                raise DimensionError(f"adds {_words(first_dim)} to {_words(dim)}: "
                                      f"{first_term} + {term}", node)
-        return first_dim if first_dim is not None else DIMENSIONLESS
+        return first_dim if first_dim is not None else _NONE
 
-    def power(self, node) -> Dimension:
+    def power(self, node) -> _Exponents:
         base, exponent = node.args
         base_dim, exp_dim = self.walk(base), self.walk(exponent)
-        if not exp_dim.is_dimensionless:
-            raise DimensionError(f"raises to a power that is {exp_dim.describe()}: {node}", node)
-        if base_dim.is_dimensionless:
-            return DIMENSIONLESS
+        if exp_dim != _NONE:
+            raise DimensionError(f"raises to a power that is {_dim(exp_dim).describe()}: {node}", node)
+        if base_dim == _NONE:
+            return _NONE
         if not exponent.is_Rational:
-            raise DimensionError(f"raises {base_dim.describe()} to the non-numeric power {exponent}: {node}", node)
-        return base_dim ** exponent
+            raise DimensionError(f"raises {_dim(base_dim).describe()} to the non-numeric power {exponent}: {node}",
+                                 node)
+        if exponent.is_Integer:
+            n = int(exponent)
+            return base_dim[0] * n, base_dim[1] * n, base_dim[2] * n
+        q = Fraction(int(exponent.p), int(exponent.q))
+        return tuple(_whole(Fraction(e) * q) for e in base_dim)
 
 
 def _is_zero(node) -> bool:

@@ -24,6 +24,11 @@ MAX_EXPONENT = 1000
 MAX_EXPONENT_DENOMINATOR = 10 ** 6
 
 _UNDEFINED = (sympy.zoo, sympy.nan, sympy.oo, -sympy.oo)
+# These four are singletons (sympy turns Float("inf") into oo itself), so identity is equality; testing
+# ``id`` skips sympy's ``__eq__``, which sympifies its argument, on every node the parser builds.
+_UNDEFINED_IDS = frozenset(map(id, _UNDEFINED))
+_I = sympy.I
+_SMALL = 10 ** 300
 
 
 def digits(number: sympy.Rational) -> float:
@@ -62,9 +67,11 @@ def guarded_pow(base: sympy.Expr, exponent: sympy.Expr, position: int | None) ->
     grader.expressions.errors.ExpressionError: exponent too large at position 1; no answer here needs numbers that size
     """
     if exponent.is_Rational:
-        if abs(exponent) > MAX_EXPONENT or exponent.q > MAX_EXPONENT_DENOMINATOR:
+        # |p/q| > MAX_EXPONENT in integers (q > 0): sympy's own comparison sympifies and is slower.
+        if abs(exponent.p) > MAX_EXPONENT * exponent.q or exponent.q > MAX_EXPONENT_DENOMINATOR:
             raise _too_large(position, "exponent too large")
-        if not base.free_symbols and _size(base) * abs(exponent) > MAX_DIGITS:
+        # In floats: float * Rational would make a sympy Float, rounded the same way but slower.
+        if not base.free_symbols and _size(base) * (abs(exponent.p) / exponent.q) > MAX_DIGITS:
             raise _too_large(position)
     elif exponent.is_number and _size(exponent) > 6:
         raise _too_large(position, "exponent too large")
@@ -91,10 +98,11 @@ def checked(expr: sympy.Expr, position: int | None) -> sympy.Expr:
     grader.expressions.errors.ExpressionError: this is undefined (a division by zero?) at position 4
     """
     for node in (expr, *expr.args):
-        if node in _UNDEFINED:
+        if id(node) in _UNDEFINED_IDS:
             raise ExpressionError("this is undefined (a division by zero?)", position, "syntax")
-        if node is sympy.I:
+        if node is _I:
             raise not_real(position)
-        if node.is_Rational and digits(node) > MAX_DIGITS:
+        # digits() only for numbers that could have that many (both parts below 10**300 cannot)
+        if node.is_Rational and (abs(node.p) > _SMALL or node.q > _SMALL) and digits(node) > MAX_DIGITS:
             raise _too_large(position)
     return expr

@@ -13,6 +13,7 @@ import difflib
 import keyword
 import re
 from dataclasses import dataclass, field
+from functools import lru_cache
 from typing import TYPE_CHECKING
 
 from .errors import ExpressionError
@@ -228,6 +229,19 @@ def _resolve_derivative(raw: str, ns: "Namespace", order: int, typed: str, posit
     return Resolved("symbol", symbol)
 
 
+@lru_cache(maxsize=64)
+def _split_words(ns: "Namespace") -> tuple[dict[str, str], int]:
+    """The names a glued name may be made of (``{spelling: name}``) and the longest spelling.
+
+    A namespace never changes, and every glued name typed against it needs the same table.
+    """
+    words = {k: names[0] for k, names in ns.names_by_key.items() if len(names) == 1}
+    words.setdefault("pi", "pi")
+    for name in FUNCTIONS:
+        words.setdefault(name, name)
+    return words, max(map(len, words))
+
+
 def _split(raw: str, ns: "Namespace", typed: str, position: int) -> list[str] | None:
     """The unique way to read ``raw`` as several known names glued together.
 
@@ -238,11 +252,7 @@ def _split(raw: str, ns: "Namespace", typed: str, position: int) -> list[str] | 
     grade the wrong expression.
     """
     key = raw.replace("_", "")
-    words = {k: names[0] for k, names in ns.names_by_key.items() if len(names) == 1}
-    words.setdefault("pi", "pi")
-    for name in FUNCTIONS:
-        words.setdefault(name, name)
-    longest = max(map(len, words))
+    words, longest = _split_words(ns)
     found: list[list[str]] = []
 
     # Iterative search so a long run of letters cannot exhaust the Python stack;

@@ -45,7 +45,12 @@ MAX_LENGTH = 2000
 MAX_RECURSION = 200
 
 _ADD, _MUL, _POW = 10, 20, 30
+_I = sympy.I
+_OPERATOR_POWER = {"+": _ADD, "-": _ADD, "*": _MUL, "/": _MUL, "^": _POW}
 _ATOM_STARTS = ("number", "name", "open", "root", "command")
+# Left binding power of the tokens that are not operators: a superscript is a power, an atom
+# starts an implicit product, a prime binds tightest (so the parser reaches it and complains).
+_KIND_POWER = {"sup": _POW, "prime": _POW + 10, **{kind: _MUL for kind in _ATOM_STARTS}}
 
 
 @dataclass(frozen=True)
@@ -102,11 +107,16 @@ class _Parser:
 
     # -- token access -----------------------------------------------------
     def peek(self, offset: int = 0) -> Token:
-        return self.tokens[min(self.i + offset, len(self.tokens) - 1)]
+        i = self.i + offset
+        tokens = self.tokens
+        return tokens[i] if i < len(tokens) else tokens[-1]
 
     def advance(self) -> Token:
-        token = self.peek()
-        self.i = min(self.i + 1, len(self.tokens) - 1)
+        # Stops at the end token, so self.i is always a valid index (peek() need not clamp it).
+        i = self.i
+        token = self.tokens[i]
+        if i + 1 < len(self.tokens):
+            self.i = i + 1
         return token
 
     def before(self, token: Token) -> Token | None:
@@ -168,8 +178,9 @@ class _Parser:
         factors: list[sympy.Expr] | None = None
         terms: list[sympy.Expr] | None = None  # likewise for sums: one Add, not n pairwise ones
         previous_op = None
+        tokens = self.tokens
         while True:
-            token = self.peek()
+            token = tokens[self.i]  # self.peek(), inlined (see advance)
             lbp = self.left_power(token)
             if lbp <= rbp:
                 break
@@ -228,14 +239,8 @@ class _Parser:
 
     def left_power(self, token: Token) -> int:
         if token.kind == "op":
-            return {"+": _ADD, "-": _ADD, "*": _MUL, "/": _MUL, "^": _POW}.get(token.value, 0)
-        if token.kind == "sup":
-            return _POW
-        if token.kind in _ATOM_STARTS:
-            return _MUL
-        if token.kind == "prime":
-            return _POW + 10
-        return 0
+            return _OPERATOR_POWER.get(token.value, 0)
+        return _KIND_POWER.get(token.kind, 0)
 
     def led(self, token: Token, left: sympy.Expr) -> tuple[sympy.Expr, str]:
         """Powers: ``^`` (right-associative) and superscripts."""
@@ -280,18 +285,22 @@ class _Parser:
             return self.function(token.value, token)
         if raw in ("dot", "ddot") and raw not in self.ns and following.kind == "open":
             return self.derivative_call(token, 1 if raw == "dot" else 2)
-        resolved = resolve_name(raw, self.ns, order=token.order, typed=token.text,
-                                position=token.pos, called=called)
-        for text in resolved.notes:
-            self.note(text)
-        if resolved.kind == "function":
-            return self.function(resolved.value, token)
-        if resolved.kind == "split":
-            self.splice(token, resolved.value)
-            return self.nud(self.advance(), rbp)
+        if not token.order and raw in self.ns.names:
+            value = self.ns.symbol(raw)  # what resolve_name answers for a declared name (no notes)
+        else:
+            resolved = resolve_name(raw, self.ns, order=token.order, typed=token.text,
+                                    position=token.pos, called=called)
+            for text in resolved.notes:
+                self.note(text)
+            if resolved.kind == "function":
+                return self.function(resolved.value, token)
+            if resolved.kind == "split":
+                self.splice(token, resolved.value)
+                return self.nud(self.advance(), rbp)
+            value = resolved.value
         if called and not following.space_before and not token.order:
             self.note(f"read '{token.text}(…)' as {token.text}·(…): {token.text} is a variable, not a function")
-        return resolved.value
+        return value
 
     def splice(self, token: Token, parts: list[str]) -> None:
         """Replace a glued name (``mg``, ``sin2x``) by one token per part, then parse on.
@@ -492,36 +501,44 @@ def _without_newlines(tokens: list[Token]) -> list[Token]:
     return kept
 
 
-def _real(expr: sympy.Expr, position: int) -> sympy.Expr:
-    # checked() sees I where it is built; sympy can also create it deeper in one step (atan2 of a complex).
-    if expr.has(sympy.I):
-        raise not_real(position)
-    return expr
+def _real_and_flat(expr: sympy.Expr, position: int) -> sympy.Expr:
+    """Refuse a non-real result and rebuild any Mul inside a Mul (or Add inside an Add) that sympy
+    left unflattened, in one walk over the tree.
 
-
-def _flat(expr: sympy.Expr) -> sympy.Expr:
-    """Rebuild any Mul inside a Mul (or Add inside an Add) that sympy left unflattened.
-
-    ``sqrt(-theta*l^4)`` evaluates to ``Mul(l**2, sqrt(-theta))`` built with
-    evaluate=False, and multiplying that by more factors can leave it nested;
-    its ``str`` would then read back as a different (flat) tree.
+    checked() sees I where it is built; sympy can also create it deeper in one step (atan2 of a
+    complex). ``sqrt(-theta*l^4)`` evaluates to ``Mul(l**2, sqrt(-theta))`` built with
+    evaluate=False, and multiplying that by more factors can leave it nested; its ``str`` would
+    then read back as a different (flat) tree.
     """
-    if expr.is_Atom or not expr.args:
+    if expr is _I:
+        raise not_real(position)
+    args = expr.args
+    if not args:
         return expr
-    args = [_flat(arg) for arg in expr.args]
-    nested = (expr.is_Mul or expr.is_Add) and any(arg.func is expr.func for arg in args)
-    if nested or any(new is not old for new, old in zip(args, expr.args)):
-        return expr.func(*args)
+    flat, changed = [], False
+    for arg in args:
+        if arg.args:
+            new = _real_and_flat(arg, position)
+            changed = changed or new is not arg
+            arg = new
+        elif arg is _I:
+            raise not_real(position)
+        flat.append(arg)
+    nested = (expr.is_Mul or expr.is_Add) and any(arg.func is expr.func for arg in flat)
+    if nested or changed:
+        return expr.func(*flat)
     return expr
 
 
-def _finish(parser: _Parser, expr: sympy.Expr) -> Parsed:
-    expr = _flat(_real(expr, 0))
+def _finish(parser: _Parser, expr: sympy.Expr, printed: bool = True) -> Parsed:
+    expr = _real_and_flat(expr, 0)
+    if not printed:
+        return Parsed(expr, "", "", list(parser.notes))
     latex = to_latex(expr, parser.ns.latex_names())
     return Parsed(expr, to_text(expr), latex, list(parser.notes))
 
 
-def parse_expression(text: str, namespace: Namespace) -> Parsed:
+def parse_expression(text: str, namespace: Namespace, *, printed: bool = True) -> Parsed:
     """Parse an expression over the namespace's variables.
 
     Parameters
@@ -530,6 +547,9 @@ def parse_expression(text: str, namespace: Namespace) -> Parsed:
         What an instructor or student typed.
     namespace : Namespace
         The only names the text may use (besides whitelisted functions and pi, e).
+    printed : bool
+        Compute ``text`` and ``latex`` (the default). Without, they are left empty, for callers
+        that only need the expression: printing costs about as much as parsing.
 
     Returns
     -------
@@ -562,10 +582,10 @@ def parse_expression(text: str, namespace: Namespace) -> Parsed:
                               "remove the '=' and everything on one side of it")
     if token.kind != "end":
         raise parser.unexpected(token)
-    return _finish(parser, expr)
+    return _finish(parser, expr, printed)
 
 
-def _equation(parser: _Parser) -> ParsedEquation:
+def _equation(parser: _Parser, printed: bool = True) -> ParsedEquation:
     lhs = parser.expression(0)
     token = parser.peek()
     if not (token.kind == "op" and token.value == "="):
@@ -579,15 +599,19 @@ def _equation(parser: _Parser) -> ParsedEquation:
         if token.kind == "op" and token.value == "=":
             raise ExpressionError("an equation has exactly one '='", token.pos, "syntax")
         raise parser.unexpected(token)
-    lhs, rhs = _flat(_real(lhs, 0)), _flat(_real(rhs, token.pos))
+    lhs, rhs = _real_and_flat(lhs, 0), _real_and_flat(rhs, token.pos)
+    if not printed:
+        return ParsedEquation(lhs, rhs, "", "", list(parser.notes))
     names = parser.ns.latex_names()
     return ParsedEquation(lhs, rhs, f"{lhs} = {rhs}",
                           f"{sympy.latex(lhs, symbol_names=names)} = {sympy.latex(rhs, symbol_names=names)}",
                           list(parser.notes))
 
 
-def parse_equation(text: str, namespace: Namespace) -> ParsedEquation:
+def parse_equation(text: str, namespace: Namespace, *, printed: bool = True) -> ParsedEquation:
     """Parse ``lhs = rhs`` (``==`` also accepted) with exactly one top-level ``=``.
+
+    ``printed`` as in `parse_expression`.
 
     Examples
     --------
@@ -599,11 +623,13 @@ def parse_equation(text: str, namespace: Namespace) -> ParsedEquation:
     """
     namespace = _namespace(namespace)
     tokens = _without_newlines(_prepare(text))
-    return _equation(_Parser(tokens, namespace, text))
+    return _equation(_Parser(tokens, namespace, text), printed)
 
 
-def parse_system(text: str, namespace: Namespace) -> list[ParsedEquation]:
+def parse_system(text: str, namespace: Namespace, *, printed: bool = True) -> list[ParsedEquation]:
     """Parse several equations separated by ``;``, ``,`` or new lines (at top level).
+
+    ``printed`` as in `parse_expression`.
 
     Examples
     --------
@@ -632,7 +658,7 @@ def parse_system(text: str, namespace: Namespace) -> list[ParsedEquation]:
             continue
         last = chunk[-1]
         end = Token("end", None, last.end, last.end, "")
-        equations.append(_equation(_Parser(_without_newlines(chunk) + [end], namespace, text)))
+        equations.append(_equation(_Parser(_without_newlines(chunk) + [end], namespace, text), printed))
     if not equations:
         raise ExpressionError("no equations found", 0, "empty")
     return equations

@@ -19,6 +19,9 @@ Examples
 
 from __future__ import annotations
 
+from fractions import Fraction
+from functools import lru_cache
+
 import sympy
 from sympy.core.function import AppliedUndef
 
@@ -36,22 +39,81 @@ _LATEX_FUNCTIONS = {
 }
 
 
-def _sorted_terms(expr: sympy.Add) -> list[sympy.Expr]:
-    # Positive terms first, in sympy's canonical argument order: stable, and reads naturally.
-    terms = list(expr.args)
-    return sorted(terms, key=lambda t: t.could_extract_minus_sign())
+def _minus(expr: sympy.Expr) -> bool:
+    """``expr.could_extract_minus_sign()``, without building ``-expr`` for a product.
+
+    sympy's product version negates the whole product first, only to catch ``-3*zoo`` (which equals
+    its negative); apart from that case the sign of the leading number decides, as it does there.
+    """
+    if expr.is_Mul:
+        args = expr.args
+        if len(args) > 1 and args[1] is not sympy.S.ComplexInfinity:
+            return _negative_number(args[0])
+    return expr.could_extract_minus_sign()
 
 
-def _split_fraction(expr: sympy.Mul) -> tuple[sympy.Expr, list, list]:
+def _negative_number(expr: sympy.Expr) -> bool:
+    # A rational's sign is that of its numerator: no need to go through sympy's assumptions system,
+    # which works out every other fact about a number the first time it is asked one.
+    if expr.is_Rational:
+        return expr.p < 0
+    return bool(expr.is_Number and expr.is_extended_negative)
+
+
+def _sorted_terms(expr: sympy.Add) -> list[tuple[sympy.Expr, bool]]:
+    """(term, whether it is written with a minus) pairs of a sum.
+
+    Positive terms first, in sympy's canonical argument order: stable, and reads naturally.
+    """
+    return sorted(((t, _minus(t)) for t in expr.args), key=lambda pair: pair[1])
+
+
+# The text and the LaTeX of an answer are printed one after the other, and both need the
+# negation of each negative term and the split of each product; so do answers sharing terms with
+# the reference. Both are pure functions of an immutable expression: remember the recent ones.
+@lru_cache(maxsize=1024)
+def _negated(expr: sympy.Expr) -> sympy.Expr:
+    return -expr
+
+
+@lru_cache(maxsize=1024)
+def _split_fraction(expr: sympy.Mul) -> tuple[sympy.Expr, tuple, tuple]:
     """(numeric coefficient, numerator factors, denominator factors) of a product."""
-    coefficient, rest = expr.as_coeff_Mul()
+    args = expr.args
+    if len(args) > 2 and args[0].is_Number:
+        # What as_coeff_Mul and make_args give here, without building the product of the rest.
+        coefficient, factors = args[0], args[1:]
+    else:
+        coefficient, rest = expr.as_coeff_Mul()
+        factors = sympy.Mul.make_args(rest)
     numerator, denominator = [], []
-    for factor in sympy.Mul.make_args(rest):
+    for factor in factors:
         if factor.is_Pow and factor.exp.is_Rational and factor.exp.is_negative:
             denominator.append(factor.base if factor.exp == -1 else sympy.Pow(factor.base, -factor.exp))
         else:
             numerator.append(factor)
-    return coefficient, numerator, denominator
+    return coefficient, tuple(numerator), tuple(denominator)
+
+
+def _printing_order(factors: list) -> list:
+    """Factors in the order sympy's str prints them: by ``sort_key`` (Mul stores another order).
+
+    For symbols and rational powers of symbols, the commonest factors, that order is by name and
+    then exponent, which is quick to compare; ``sort_key`` itself is slow to build for a new factor.
+    """
+    if all(f.is_Symbol or (f.is_Pow and f.base.is_Symbol and f.exp.is_Rational) for f in factors):
+        return sorted(factors, key=_symbol_power_key)
+    return sorted(factors, key=_sort_key)
+
+
+def _symbol_power_key(factor: sympy.Expr) -> tuple:
+    if factor.is_Symbol:
+        return factor.name, 1
+    return factor.base.name, Fraction(int(factor.exp.p), int(factor.exp.q))
+
+
+def _sort_key(expr: sympy.Basic):
+    return expr.sort_key()  # what default_sort_key returns for a sympy object, minus its overhead
 
 
 def _precedence(expr: sympy.Expr) -> int:
@@ -61,7 +123,7 @@ def _precedence(expr: sympy.Expr) -> int:
         return _MUL
     if expr.is_Pow:
         return _POW
-    if expr.is_Number and expr.is_negative:
+    if expr.is_Number and (expr.p < 0 if expr.is_Rational else expr.is_negative):
         return _ADD
     return _ATOM
 
@@ -99,24 +161,25 @@ def _text(expr: sympy.Expr) -> str:
         return "E"
     if expr.is_Add:
         out = ""
-        for i, term in enumerate(_sorted_terms(expr)):
-            if term.could_extract_minus_sign():
-                body = _text_wrapped(-term, _MUL)
+        for i, (term, negative) in enumerate(_sorted_terms(expr)):
+            if negative:
+                body = _text_wrapped(_negated(term), _MUL)
                 out += f" - {body}" if i else f"-{body}"
             else:
                 out += f" + {_text(term)}" if i else _text(term)
         return out
     if expr.is_Mul:
-        if expr.could_extract_minus_sign():
-            return "-" + _text_wrapped(-expr, _MUL + 1)
+        if _minus(expr):
+            return "-" + _text_wrapped(_negated(expr), _MUL + 1)
         coefficient, numerator, denominator = _split_fraction(expr)
+        numerator, denominator = list(numerator), list(denominator)
         parts = [] if coefficient == 1 else [str(coefficient.p)] if coefficient.q == 1 else None
         if parts is None:
             numerator = [sympy.Integer(coefficient.p)] + numerator if coefficient.p != 1 else numerator
             denominator = [sympy.Integer(coefficient.q)] + denominator
             parts = []
-        parts += [_text_wrapped(f, _MUL) for f in sorted(numerator, key=sympy.default_sort_key)
-                  if not (f.is_Integer and f == 1 and numerator)]
+        ordered = _printing_order(numerator) if len(numerator) > 1 else numerator
+        parts += [_text_wrapped(f, _MUL) for f in ordered if not (f.is_Integer and f == 1 and numerator)]
         top = "*".join(parts) or "1"
         if not denominator:
             return top
@@ -178,17 +241,18 @@ class _Latex:
             return "e"
         if expr.is_Add:
             out = ""
-            for i, term in enumerate(_sorted_terms(expr)):
-                if term.could_extract_minus_sign():
-                    body = self.wrapped(-term, _MUL)
+            for i, (term, negative) in enumerate(_sorted_terms(expr)):
+                if negative:
+                    body = self.wrapped(_negated(term), _MUL)
                     out += f" - {body}" if i else f"- {body}"
                 else:
                     out += f" + {self.print(term)}" if i else self.print(term)
             return out
         if expr.is_Mul:
-            if expr.could_extract_minus_sign():
-                return "- " + self.wrapped(-expr, _MUL)
+            if _minus(expr):
+                return "- " + self.wrapped(_negated(expr), _MUL)
             coefficient, numerator, denominator = _split_fraction(expr)
+            numerator, denominator = list(numerator), list(denominator)
             if coefficient.q != 1:
                 denominator = [sympy.Integer(coefficient.q)] + denominator
             if coefficient.p != 1:

@@ -20,6 +20,8 @@ student actually typed.  Token kinds:
 
 from __future__ import annotations
 
+import re
+import string
 from dataclasses import dataclass
 
 import sympy
@@ -38,8 +40,18 @@ MAX_NESTING = 50
 _PAIRS = {"(": ")", "[": "]", "{": "}"}
 _OPENERS = {v: k for k, v in _PAIRS.items()}
 
+# The characters most text is made of, tested first (see _Tokenizer.step).
+_DIGITS = frozenset("0123456789")
+_ASCII_ALNUM = frozenset(string.ascii_letters) | _DIGITS
+_ASCII_NAME_START = (_ASCII_ALNUM - _DIGITS) | {"_"}
+_ASCII_ALNUM_RUN = re.compile("[A-Za-z0-9]+")
+# What can continue a name or mark its derivative (see _Tokenizer.identifier and finish_name):
+# a plain ASCII name followed by none of these is emitted as it is.
+_NAME_GOES_ON = frozenset(_ASCII_ALNUM | {"_"} | set(GREEK_CHARS) | set(SUBSCRIPT_DIGITS)
+                          | set(COMBINING_DOTS) | set(PRIME_CHARS))
 
-@dataclass
+
+@dataclass(slots=True)  # slots: quicker to build and to read, and every answer makes many
 class Token:
     """One token; ``text`` is the slice of the original input it came from."""
 
@@ -103,7 +115,32 @@ class _Tokenizer:
 
     def step(self) -> None:
         ch, start = self.text[self.i], self.i
-        if ch == "\n":
+        # Letters, digits, spaces, ASCII operators and brackets first. Each class matches only one
+        # branch of the chain, so the order only decides how soon it is found: before the Unicode
+        # lookup of is_space.
+        if ch in _ASCII_NAME_START:
+            run = _ASCII_ALNUM_RUN.match(self.text, start) if ch != "_" else None
+            end = run.end() if run else start
+            if run and (end == self.n or self.text[end] not in _NAME_GOES_ON):
+                self.emit("name", run.group(), start, end)  # what identifier() makes of it, directly
+            else:
+                self.identifier(start, "", start)
+        elif ch in _DIGITS:
+            self.number()
+        elif ch == " ":
+            self.space = True
+            self.i += 1
+        elif ch == "*" and self.peek(1) == "*":
+            self.emit("op", "^", start, start + 2)
+        elif ch == "=" and self.peek(1) == "=":
+            self.emit("op", "=", start, start + 2)
+        elif ch in "+-*/^=,;":
+            self.emit("op", ch, start, start + 1)
+        elif ch in _PAIRS:
+            self.emit("open", ch, start, start + 1)
+        elif ch in _OPENERS:
+            self.emit("close", ch, start, start + 1)
+        elif ch == "\n":
             self.emit("newline", "\n", start, start + 1)
         elif is_space(ch) or ch == "$":  # $...$ around pasted LaTeX is only decoration
             self.space = True
@@ -119,16 +156,6 @@ class _Tokenizer:
             self.command()
         elif ch in OPERATOR_CHARS:
             self.emit("op", OPERATOR_CHARS[ch], start, start + 1)
-        elif ch == "*" and self.peek(1) == "*":
-            self.emit("op", "^", start, start + 2)
-        elif ch == "=" and self.peek(1) == "=":
-            self.emit("op", "=", start, start + 2)
-        elif ch in "+-*/^=,;":
-            self.emit("op", ch, start, start + 1)
-        elif ch in _PAIRS:
-            self.emit("open", ch, start, start + 1)
-        elif ch in _OPENERS:
-            self.emit("close", ch, start, start + 1)
         elif ch in SUPERSCRIPT_CHARS:
             self.superscript()
         elif ch in ROOT_CHARS:
@@ -183,7 +210,7 @@ class _Tokenizer:
         value = sympy.Integer(int(mantissa))
         if mantissa != "0" and scale:
             value = value * 10 ** scale if scale > 0 else sympy.Rational(int(mantissa), 10 ** -scale)
-        self.emit("number", sympy.Rational(value), start, j, decimal=decimal)
+        self.emit("number", value, start, j, decimal=decimal)  # an Integer or a Rational already
 
     # -- names ----------------------------------------------------------------
     def identifier(self, start: int, prefix: str, i: int) -> None:
@@ -191,6 +218,12 @@ class _Tokenizer:
         order = 0
         while i < self.n:
             c = text[i]
+            if c in _ASCII_ALNUM:  # the common case, as the isalnum branch below, a whole run at once
+                run = _ASCII_ALNUM_RUN.match(text, i)
+                parts.append(run.group())
+                i = run.end()
+                after_subscript_digit = False
+                continue
             subscript_digit = False
             if c == "_" and i + 1 < self.n and text[i + 1] == "{":
                 close = self.matching_brace(i + 1)

@@ -240,6 +240,10 @@ class Namespace:
         for name in self._variables:
             by_key.setdefault(name.replace("_", ""), []).append(name)
         self.names_by_key = {key: tuple(names) for key, names in by_key.items()}
+        # Built on first use and handed out as copies: every parse asks for the LaTeX names and every
+        # check for the dimensions, and the variables never change after construction.
+        self._dimensions: dict[sympy.Symbol, Dimension] | None = None
+        self._latex_names: dict[sympy.Symbol, str] | None = None
 
     @classmethod
     def from_spec(cls, spec: Mapping[str, Mapping]) -> "Namespace":
@@ -276,10 +280,14 @@ class Namespace:
         return resolve_name(name, self, order=order)
 
     def dimensions(self) -> dict[sympy.Symbol, Dimension]:
-        return {v.symbol: v.dimension for v in self._variables.values()}
+        if self._dimensions is None:
+            self._dimensions = {v.symbol: v.dimension for v in self._variables.values()}
+        return dict(self._dimensions)
 
     def latex_names(self) -> dict[sympy.Symbol, str]:
-        return {v.symbol: v.latex for v in self._variables.values()}
+        if self._latex_names is None:
+            self._latex_names = {v.symbol: v.latex for v in self._variables.values()}
+        return dict(self._latex_names)
 
     def __getitem__(self, name: str) -> Variable:
         return self._variables[name]

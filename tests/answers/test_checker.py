@@ -79,3 +79,19 @@ def test_typical_check_takes_milliseconds():
     check("m*g/3", "mg/3", YOYO)
     v = check("m*g*(3*cos(theta) - 2)", "m*g*(1 - 6*sin(theta/2)^2)", SPHERE)
     assert v.ms < 100
+
+
+def test_a_verdict_does_not_depend_on_the_answers_checked_before():
+    # Per-reference work (parsed reference, sample points, feedback candidates and their values)
+    # is cached; an answer checked after others must get exactly the verdict it gets first.
+    answers = ["m*g*(3*sin(theta) - 2)", "2*m*g*(3*cos(theta) - 2)", "m*g*(3*cos(theta) - 2) + m*g",
+               "mg(3cos θ - 2)", "m*g*(2 - 3*cos(theta))", "3*m*g*cos(theta)"]
+    reference = "m*g*(3*cos(theta) - 2)"
+
+    def verdict(answer):
+        data = check(reference, answer, SPHERE).to_json()
+        data.pop("ms")
+        return data
+
+    first = {a: verdict(a) for a in answers}
+    assert {a: verdict(a) for a in reversed(answers)} == first

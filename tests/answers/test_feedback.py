@@ -1,8 +1,12 @@
 """Feedback on wrong answers: instructor messages and common slips, each earned by an equivalence check."""
 
+import random
+
 import pytest
+import sympy
 
 from grader.answers import check
+from grader.answers.feedback import _terms
 
 TENSION = "m*l*thetadot^2 + m*g*cos(theta)"
 INSTRUCTOR = [{"expr": "m*g*cos(theta)", "message": "That is the tension of a bob at rest."}]
@@ -47,3 +51,42 @@ def test_rolling_friction_instructor_message(rolling):
     v = check("beta*m*g*sin(alpha)/(1 + beta)", "m g sin(alpha)/(1+beta)", rolling,
               feedback=[{"expr": "m*g*sin(alpha)/(1 + beta)", "message": "That is m times the acceleration."}])
     assert v.feedback[0]["message"] == "That is m times the acceleration."
+
+
+def _products_without_sums(seed, count):
+    rng = random.Random(seed)
+    syms = [sympy.Symbol("a", positive=True), sympy.Symbol("b", real=True), sympy.Symbol("c")]
+    atoms = syms + [sympy.Integer(2), sympy.Integer(-3), sympy.Rational(1, 3), sympy.pi, sympy.E, sympy.sqrt(2)]
+    exponents = [2, 3, -1, -2, sympy.Rational(1, 2), sympy.Rational(-3, 2), syms[0]]
+
+    def build(depth):
+        if depth == 0 or rng.random() < 0.3:
+            return rng.choice(atoms)
+        kind = rng.random()
+        if kind < 0.45:
+            return sympy.Mul(*[build(depth - 1) for _ in range(rng.randint(2, 4))])
+        if kind < 0.75:
+            return sympy.Pow(build(depth - 1), rng.choice(exponents))
+        return rng.choice([sympy.sin, sympy.cos])(build(depth - 1))
+
+    for _ in range(count):
+        yield build(rng.randint(1, 4))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_expanding_a_product_without_sums_never_gives_terms_to_remove(seed):
+    # The extra-term slip tries the terms of the expanded answer; for a product with no sum and no
+    # function but sin and cos, that expansion is one term, so it is not expanded at all.
+    for expr in _products_without_sums(seed, 150):
+        if expr.has(sympy.Add):
+            continue
+        assert len(sympy.Add.make_args(sympy.expand(expr))) == 1
+        assert _terms(expr) == ()
+
+
+def test_sin_cos_slip_is_found_when_only_the_swap_fits(rolling):
+    v = check("m*g*cos(alpha)", "m g sin(alpha)", rolling)
+    assert [f["code"] for f in v.feedback] == ["sin_cos"]
+    # ...and not offered when swapping would not help either
+    v = check("m*g*cos(alpha)", "m g sin(alpha)/2", rolling)
+    assert "sin_cos" not in [f["code"] for f in v.feedback]

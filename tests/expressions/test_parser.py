@@ -397,3 +397,18 @@ def test_str_of_a_parsed_expression_parses_back_to_it(ns, seed):
 def test_sympy_built_expressions_round_trip(ns, build):
     expr = build(ns.symbol)
     assert parse(str(expr), ns) == expr
+
+
+@pytest.mark.parametrize("text", ["mg(1 - cos θ)", "m l thetadot^2 + m g cos theta", "g/2l", "sin^2 x + 0.5"])
+def test_an_unprinted_parse_reads_the_same_expression_and_notes(ns, text):
+    # printed=False is for texts nobody sees (a reference): it skips only the text and LaTeX.
+    printed, bare = parse_expression(text, ns), parse_expression(text, ns, printed=False)
+    assert (bare.expr, bare.notes) == (printed.expr, printed.notes)
+    assert (bare.text, bare.latex) == ("", "")
+
+
+def test_an_unprinted_system_reads_the_same_equations(ns):
+    text = "x = l sin(theta); y = -l cos(theta)"
+    printed, bare = parse_system(text, ns), parse_system(text, ns, printed=False)
+    assert [(e.lhs, e.rhs) for e in bare] == [(e.lhs, e.rhs) for e in printed]
+    assert all(e.text == e.latex == "" for e in bare)

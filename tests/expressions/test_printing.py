@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import random
+
 import pytest
 import sympy
 
 from grader.expressions import Namespace, Variable, parse_expression
-from grader.expressions.printing import to_latex, to_text
+from grader.expressions.printing import _minus, to_latex, to_text
 
 NS = Namespace([
     Variable("m", "mass", "positive"), Variable("m1", "mass", "positive"), Variable("m2", "mass", "positive"),
@@ -53,3 +55,31 @@ def test_unknown_node_falls_back_to_sympy():
     x = sympy.Symbol("x")
     integral = sympy.Integral(x, x)
     assert to_text(integral) == sympy.sstr(integral)
+
+
+def _products(seed: int, count: int):
+    rng = random.Random(seed)
+    syms = [NS.symbol(n) for n in ("m", "m1", "m2", "g", "l", "theta", "thetadot", "alpha", "beta")]
+    for _ in range(count):
+        factors = [s ** rng.choice([1, 1, 2, 3, sympy.Rational(1, 2), sympy.Rational(3, 2)])
+                   for s in rng.sample(syms, rng.randint(2, 5))]
+        factors.append(rng.choice([1, 2, 3, sympy.Rational(1, 3), sympy.Rational(2, 3)]))
+        if rng.random() < 0.3:
+            factors.append(sympy.cos(rng.choice(syms)))
+        yield sympy.Mul(*factors)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_products_print_their_factors_in_sympys_order(seed):
+    # The text orders factors as sympy's str does (quickly for symbols and their powers).
+    for expr in _products(seed, 200):
+        assert to_text(expr) == str(expr)
+
+
+@pytest.mark.parametrize("factors", [
+    (-3, "x"), (sympy.Rational(-1, 2), "x", "y"), (2, "x"), ("x", "y"), (-1, sympy.zoo), (-3, sympy.zoo, "x"),
+    (sympy.Float(-1.5), "x"), (sympy.nan, "x"), (-1, sympy.oo, "x"),
+])
+def test_a_products_sign_is_read_as_sympy_reads_it(factors):
+    expr = sympy.Mul(*(sympy.Symbol(f) if isinstance(f, str) else f for f in factors), evaluate=False)
+    assert _minus(expr) == expr.could_extract_minus_sign()

@@ -114,3 +114,11 @@ def test_namespace_from_answer_checker_spec():
     ns = Namespace.from_spec({"m": {"dimension": "mass", "domain": "positive"},
                               "theta": {"dimension": "angle", "domain": [0, 1], "kind": "coordinate"}})
     assert ns.symbol("m").is_positive and ns["theta"].kind == "coordinate"
+
+
+def test_namespace_tables_are_handed_out_as_copies(ns):
+    # They are built once per namespace; a caller changing its copy must not change the namespace.
+    ns.dimensions().clear()
+    ns.latex_names()[ns.symbol("m")] = "M"
+    assert ns.dimensions()[ns.symbol("m")].describe() == "a mass (kg)"
+    assert ns.latex_names()[ns.symbol("m")] == "m"
