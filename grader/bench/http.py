@@ -1,8 +1,9 @@
 """``grader bench http``: throughput and latency of the HTTP API under concurrent clients.
 
 It starts its own ``grader serve`` on 127.0.0.1 (a free port, a temporary SQLite file, the yo-yo
-problem), makes one student token per client, then runs two phases, each for a bounded time and
-request count: ``POST /check`` and ``POST /problems/yoyo/submissions``. After the submission phase
+problem), makes one student token per client, then runs three phases, each for a bounded time and
+request count: ``GET /health`` (the same-run baseline: the server stack's floor under the same
+load), ``POST /check`` and ``POST /problems/yoyo/submissions``. After the submission phase
 it waits for the grading workers and checks that every accepted (202) submission has exactly one
 verdict in effect. It prints a table and writes ``bench-results/http.json``.
 
@@ -144,8 +145,9 @@ class LoadResult:
 
 
 def run_load(name: str, base_url: str, tokens: list[str], *, path: str, bodies: list[dict], ok: set[int],
-             duration_s: float, max_requests: int, stop: threading.Event | None = None) -> LoadResult:
-    """One client thread per token, each posting ``bodies`` in rotation until the time or count runs out."""
+             duration_s: float, max_requests: int, stop: threading.Event | None = None,
+             method: str = "POST") -> LoadResult:
+    """One client thread per token, each sending ``bodies`` in rotation until the time or count runs out."""
     import requests
 
     result = LoadResult(name, len(tokens))
@@ -166,7 +168,7 @@ def run_load(name: str, base_url: str, tokens: list[str], *, path: str, bodies: 
             sent += 1
             start = time.perf_counter()
             try:
-                response = http.post(base_url + path, json=body, headers=headers, timeout=60)
+                response = http.request(method, base_url + path, json=body, headers=headers, timeout=60)
             except requests.RequestException as error:
                 with lock:
                     result.errors.append(f"{type(error).__name__}: {error}"[:200])
@@ -249,6 +251,9 @@ def bench_http(clients: int, duration: float, max_requests: int, workers: int, t
                     env={"LAGRADE_RATE_LIMITS_ENABLED": "false"})
     click.echo(f"starting grader serve in {workdir} ...")
     with server:
+        # The same-run baseline: the cheapest request the server answers, under the same load.
+        floor = run_load("GET /health (baseline)", server.base_url, tokens, path="/api/v1/health",
+                         bodies=[None], ok={200}, duration_s=duration, max_requests=max_requests, method="GET")
         check = run_load("POST /check", server.base_url, tokens, path="/api/v1/check",
                          bodies=[dict(CHECK_BODY, answer=a) for a in CHECK_ANSWERS], ok={200},
                          duration_s=duration, max_requests=max_requests)
@@ -262,7 +267,7 @@ def bench_http(clients: int, duration: float, max_requests: int, workers: int, t
     report = {
         "machine": {"python": platform.python_version(), "cpus": os.cpu_count(), "platform": platform.platform()},
         "server": {"workers": workers, "threads": threads, "database": "sqlite (WAL)", "rate_limits": "off"},
-        "phases": [check.summary(), submit.summary()],
+        "phases": [floor.summary(), check.summary(), submit.summary()],
         "grading": {"accepted": grading["accepted"], "lost": lost, "without_exactly_one_verdict": not_one,
                     "drained_after_s": grading["drained_after_s"],
                     "graded_per_s": round(grading["accepted"] / (submit.seconds + grading["drained_after_s"]), 1)
@@ -273,16 +278,20 @@ def bench_http(clients: int, duration: float, max_requests: int, workers: int, t
     output.write_text(json.dumps(report, indent=2) + "\n")
     _print_table(report)
     click.echo(f"wrote {output}")
-    if lost or not_one or check.errors or submit.errors:
-        raise click.ClickException(f"{len(check.errors) + len(submit.errors)} errors, {lost} lost submissions, "
+    if lost or not_one or floor.errors or check.errors or submit.errors:
+        raise click.ClickException(f"{len(floor.errors) + len(check.errors) + len(submit.errors)} errors, "
+                                   f"{lost} lost submissions, "
                                    f"{not_one} without exactly one verdict")
 
 
 def _print_table(report: dict) -> None:
-    click.echo(f"\n{'phase':34} {'clients':>7} {'requests':>9} {'req/s':>8} {'p50 ms':>8} {'p99 ms':>8} {'errors':>7}")
+    click.echo(f"\n{'phase':34} {'clients':>7} {'requests':>9} {'req/s':>8} {'p50 ms':>8} {'p99 ms':>8} "
+               f"{'errors':>7} {'p50 / baseline':>15}")
+    floor = report["phases"][0]["p50_ms"]
     for p in report["phases"]:
+        ratio = f"{p['p50_ms'] / floor:.1f}x" if floor else "-"
         click.echo(f"{p['name']:34} {p['clients']:>7} {p['requests']:>9} {p['throughput_per_s']:>8} "
-                   f"{p['p50_ms']:>8} {p['p99_ms']:>8} {p['errors']:>7}")
+                   f"{p['p50_ms']:>8} {p['p99_ms']:>8} {p['errors']:>7} {ratio:>15}")
     g = report["grading"]
     click.echo(f"\ngrading: {g['accepted']} accepted, {g['lost']} lost, {g['without_exactly_one_verdict']} without "
                f"exactly one verdict; queue drained {g['drained_after_s']} s after the last submission "
