@@ -85,7 +85,7 @@ def test_start_queues_again_what_a_crash_left_running(database, setup):
 
 
 class BrokenChecker:
-    """A checker whose child cannot work at all (not an answer's fault)."""
+    """A checker whose child cannot work at all: it raises (not an answer's fault)."""
 
     closed = 0
 
@@ -96,40 +96,27 @@ class BrokenChecker:
         BrokenChecker.closed += 1
 
 
-def test_a_broken_checker_is_replaced_and_the_submission_ends_failed_not_lost(database, setup):
-    [submission_id] = _submit_all(database, setup, ["m*g/3"])
-    pool = WorkerPool(database, workers=1, poll_s=0.05, checker_factory=BrokenChecker).start()
-    try:
-        _wait_until_graded(database, [submission_id], timeout=20)
-    finally:
-        pool.stop()
-    with database.read() as session:
-        submission = session.get(Submission, submission_id)
-        assert submission.status == "failed" and submission.verdict.verdict == "error"
-    assert BrokenChecker.closed >= queue.MAX_ATTEMPTS
+class UnavailableChecker(BrokenChecker):
+    """A checker that answers, but with a checker failure rather than a grade."""
 
-
-class UnavailableChecker:
-    """A checker whose sandbox cannot start: it answers, but with a checker failure, not a grade."""
-
-    def run(self, request, budget_s):
+    def run(self, request, budget_s=None):
         return {"verdict": "invalid", "certainty": "none", "reason": "checker unavailable: no memory",
                 "parsed": {"text": "", "latex": "", "notes": []}, "counterexample": None, "feedback": [],
                 "ms": 0.0, "checker_failure": True}
 
-    def close(self):
-        pass
 
-
-def test_a_checker_failure_is_retried_and_never_stored_as_the_students_grade(database, setup):
+@pytest.mark.parametrize("checker", [BrokenChecker, UnavailableChecker], ids=["raises", "reports-failure"])
+def test_a_failing_checker_is_retried_and_the_submission_ends_failed_not_lost(database, setup, checker):
+    """Never stored as the student's grade (an "invalid" 0): retried, then failed with an error verdict."""
+    BrokenChecker.closed = 0
     [submission_id] = _submit_all(database, setup, ["m*g/3"])
-    pool = WorkerPool(database, workers=1, poll_s=0.05, checker_factory=UnavailableChecker).start()
+    pool = WorkerPool(database, workers=1, poll_s=0.05, checker_factory=checker).start()
     try:
         _wait_until_graded(database, [submission_id], timeout=20)
     finally:
         pool.stop()
     with database.read() as session:
         submission = session.get(Submission, submission_id)
-        # Retried up to the limit, then failed with an error verdict: never an "invalid" grade of 0.
         assert submission.status == "failed" and submission.verdict.verdict == "error"
         assert submission.attempts > queue.MAX_ATTEMPTS
+    assert BrokenChecker.closed >= queue.MAX_ATTEMPTS
