@@ -93,14 +93,12 @@ def compare_equations(
     Examples
     --------
     >>> import sympy
-    >>> class Positive:
-    ...     assumptions = {"positive": True}
-    ...     def sample(self, rng): return float(rng.uniform(0.5, 2))
-    ...     def contains(self, x): return x > 0
+    >>> from grader.expressions import parse_domain
+    >>> positive = parse_domain("positive")
     >>> g, l, m = sympy.symbols("g l m", positive=True)
     >>> th, thdd = sympy.symbols("theta thetaddot", real=True)
-    >>> P = Sampler({g: Positive(), l: Positive(), m: Positive()}, seed=1)
-    >>> S = Sampler({th: Positive(), thdd: Positive()}, seed=2)
+    >>> P = Sampler({g: positive, l: positive, m: positive}, seed=1)
+    >>> S = Sampler({th: positive, thdd: positive}, seed=2)
     >>> ref = [thdd + g / l * sympy.sin(th)]
     >>> compare_equations(ref, [m*l**2*thdd + m*g*l*sympy.sin(th)], P, S).equivalent
     True

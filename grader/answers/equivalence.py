@@ -430,12 +430,10 @@ def compare_expressions(
     Examples
     --------
     >>> import sympy
-    >>> class Positive:
-    ...     assumptions = {"positive": True}
-    ...     def sample(self, rng): return float(rng.uniform(0.5, 2))
-    ...     def contains(self, x): return x > 0
+    >>> from grader.expressions import parse_domain
+    >>> positive = parse_domain("positive")
     >>> m1, m2, g = sympy.symbols("m1 m2 g", positive=True)
-    >>> s = Sampler({m1: Positive(), m2: Positive(), g: Positive()}, seed=3)
+    >>> s = Sampler({m1: positive, m2: positive, g: positive}, seed=3)
     >>> a = m2 * g / (m1 + m2)
     >>> c = compare_expressions(m1*m2*g/(m1 + m2), m2*(g - a), s, Options(symbolic=False))
     >>> c.equivalent, c.certainty
