@@ -251,6 +251,14 @@ class _SceneReader:
         self.dimensions[variable.symbol] = variable.dimension
         return variable.symbol
 
+    def declared(self, key: str, name: str, spec: Any) -> tuple[Dimension, Domain]:
+        """The dimension and domain of a declared name: ``name = { dimension, domain }``."""
+        self.check_name(key, name)
+        if not isinstance(spec, dict):
+            raise self.fail(key, 'must be a table like { dimension = "length", domain = "positive" }')
+        return (self.dimension(f"{key}.dimension", spec.get("dimension")),
+                self.domain(f"{key}.domain", spec.get("domain")))
+
     def dimension(self, key: str, spec: Any, default: str | None = None) -> Dimension:
         if spec is None:
             if default is None:
@@ -318,11 +326,7 @@ class _SceneReader:
         parameters = {}
         for name, spec in self.table("parameters").items():
             key = f"parameters.{name}"
-            self.check_name(key, name)
-            if not isinstance(spec, dict):
-                raise self.fail(key, "must be a table like { dimension = \"mass\", domain = \"positive\" }")
-            dim = self.dimension(f"{key}.dimension", spec.get("dimension"))
-            dom = self.domain(f"{key}.domain", spec.get("domain"))
+            dim, dom = self.declared(key, name, spec)
             value = spec.get("value")
             if value is not None:
                 if isinstance(value, bool) or not isinstance(value, (int, float)):
@@ -338,11 +342,7 @@ class _SceneReader:
         coordinates = {}
         for name, spec in table.items():
             key = f"{where}.{name}"
-            self.check_name(key, name)
-            if not isinstance(spec, dict):
-                raise self.fail(key, "must be a table like { dimension = \"length\" }")
-            dim = self.dimension(f"{key}.dimension", spec.get("dimension"))
-            dom = self.domain(f"{key}.domain", spec.get("domain"))
+            dim, dom = self.declared(key, name, spec)
             real = parse_domain("real")
             q = self.add(Variable(name, dim, dom, "coordinate"))
             qd = self.add(Variable(f"{name}dot", dim / TIME, real, "velocity"))

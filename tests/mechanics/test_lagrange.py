@@ -122,13 +122,6 @@ def test_constraint_forces_follow_the_papers_convention(derived):
     assert sympy.simplify(forces["theta"] - R * lam) == 0
 
 
-def test_rheonomic_constraint_enters_the_constraint_acceleration(derived):
-    """phi = omega t: the multiplier is the torque keeping omega constant, d/dt(m a^2 sin^2 theta omega)."""
-    d = derived("bead_rotating_hoop")
-    assert d.scene.constraints[0].f.has(d.scene.time)
-    assert "drive_torque" in d.answers
-
-
 @pytest.mark.parametrize(
     "scene, answer, written",
     [
