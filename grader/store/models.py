@@ -14,6 +14,8 @@ One row per fact, nothing derived twice:
   grading_round)`` makes "exactly one verdict in effect" a property of the schema: the verdict in
   effect is the one whose round equals the submission's round.
 - ``ApiToken``: the sha256 of a bearer token's secret, never the secret itself.
+- ``DerivationJob``: an uploaded scene waiting for, undergoing or done with its derivation
+  (``queued`` → ``running`` → ``done`` | ``failed``), run by derivation workers off the request threads.
 """
 
 from __future__ import annotations
@@ -28,6 +30,7 @@ __all__ = [
     "ApiToken",
     "Base",
     "Course",
+    "DerivationJob",
     "Enrolment",
     "Problem",
     "ProblemVersion",
@@ -218,3 +221,34 @@ class ApiToken(Base):
     revoked_at: Mapped[datetime | None]
 
     user: Mapped[User] = relationship(back_populates="tokens")
+
+
+class DerivationJob(Base):
+    """One uploaded scene file and what became of it: a problem version, or the scene's error."""
+
+    __tablename__ = "derivation_jobs"
+    __table_args__ = (Index("ix_derivation_jobs_status_id", "status", "id"),)
+
+    id: Mapped[int] = mapped_column(primary_key=True)
+    requester_id: Mapped[int] = mapped_column(ForeignKey("users.id", ondelete="CASCADE"), index=True)
+    # The course a new problem joins (the upload page's choice); None: no course.
+    course_id: Mapped[int | None] = mapped_column(ForeignKey("courses.id", ondelete="SET NULL"))
+    filename: Mapped[str] = mapped_column(String(100))
+    source: Mapped[str] = mapped_column(Text)
+    source_sha256: Mapped[str] = mapped_column(String(64))
+    publish: Mapped[bool] = mapped_column(default=False)  # whether the new version is published at once
+    status: Mapped[str] = mapped_column(String(16), default="queued")
+    error: Mapped[str | None] = mapped_column(Text)  # failed: the scene's error, for the instructor
+    problem_version_id: Mapped[int | None] = mapped_column(ForeignKey("problem_versions.id", ondelete="SET NULL"))
+    new_version: Mapped[bool | None]  # done: False when the source equalled the newest version's
+    attempts: Mapped[int] = mapped_column(default=0)
+    worker_id: Mapped[str | None] = mapped_column(String(64))
+    lease_until: Mapped[datetime | None]
+    created_at: Mapped[datetime] = mapped_column(default=utcnow)
+    started_at: Mapped[datetime | None]
+    finished_at: Mapped[datetime | None]
+    updated_at: Mapped[datetime] = mapped_column(default=utcnow, server_default=func.current_timestamp())
+
+    requester: Mapped[User] = relationship()
+    course: Mapped[Course | None] = relationship()
+    problem_version: Mapped[ProblemVersion | None] = relationship()

@@ -53,3 +53,20 @@ def test_grader_db_create_user_makes_a_sign_in_account(url):
     with database.read() as session:
         assert authenticate(session, "prof@example.org", password).role == "instructor"
     database.dispose()
+
+
+def test_upgrading_a_database_in_use_keeps_its_rows_and_adds_the_derivation_jobs(url):
+    """A database made by revision 0001, with a user in it, gains the job table and loses nothing."""
+    upgrade(url, "0001")
+    engine = create_engine(url)
+    try:
+        with engine.begin() as connection:
+            connection.exec_driver_sql("INSERT INTO users (role, name, created_at) VALUES ('instructor', 'Ine', "
+                                       "'2026-11-21 00:00:00')")
+        assert "derivation_jobs" not in set(inspect(engine).get_table_names())
+        assert upgrade(url) == head_revision()
+        assert "derivation_jobs" in set(inspect(engine).get_table_names())
+        with engine.connect() as connection:
+            assert connection.exec_driver_sql("SELECT name FROM users").scalars().all() == ["Ine"]
+    finally:
+        engine.dispose()
