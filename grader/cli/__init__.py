@@ -22,6 +22,7 @@ _BENCHMARKS = {
     "derive": "grader.bench.derive:bench_derive",
     "check": "grader.bench.check:bench_check",
     "http": "grader.bench.http:bench_http",
+    "accuracy": "grader.bench.accuracy:bench_accuracy",
 }
 
 
