@@ -1,0 +1,343 @@
+"""Who may do what: the one access policy of the API, the pages, the CSV exports and the LMS.
+
+Every view asks this module; no view decides access on its own. Two layers:
+
+- a coarse role check at the door (``roles=`` of an API route, ``login_required`` of a page) says
+  which *kind* of account may call an endpoint at all;
+- :func:`allowed` decides about one *resource* (a problem, a version, a submission), from a
+  :class:`Principal`: who is asking, as which role, and the courses they take or teach.
+
+The rules (an admin may do everything; an anonymous caller nothing):
+
+=====================  =====================================================================
+action                 who, besides admins
+=====================  =====================================================================
+``see``                a problem's statement: everyone who manages it (drafts too); anyone
+                       else only a *published* version, and only of a problem in no course or
+                       in a course they are enrolled in (as student or instructor). An LMS is
+                       "enrolled" in the courses its account is linked to by an Enrolment.
+``submit``             the same as ``see``: whoever sees a version may answer it.
+``submit_for_others``  an LMS for a published problem it sees (its linked courses or no course);
+                       an instructor for a problem they manage. A student only ever for itself.
+``manage``             instructors, for problems of courses they teach (``Enrolment.role ==
+                       "instructor"``) and problems in no course: read references and drafts,
+                       publish, upload a new version over the problem's id.
+``read_grades``        those who manage the problem; an LMS for published problems of its
+                       linked courses (grade passback), never for problems in no course.
+``regrade``            those who manage the problem.
+``export``             those who manage the problem (CSV of grades or submissions).
+``view_submission``    its student; the LMS that sent it; instructors who manage its problem.
+``create``             (no resource) instructors: upload a scene under a new id.
+``check``              (no resource) any authenticated caller: the stateless ``POST /check``.
+=====================  =====================================================================
+
+Refusals are the same on every surface: a caller who may not even *see* a resource gets 404, as if
+it did not exist (a student cannot learn that a draft or another student's attempt exists); a
+caller who may see it but not do this gets 403. Under ``/api/`` both are problem documents.
+
+Examples
+--------
+>>> from grader.store.models import Problem, ProblemVersion
+>>> draft = ProblemVersion(published=False, problem=Problem(slug="mech", course_id=1))
+>>> teacher = Principal(user_id=7, role="instructor", taught=frozenset({1}), enrolled=frozenset({1}))
+>>> student = Principal(user_id=8, role="student", enrolled=frozenset({1}))
+>>> allowed(teacher, Action.SEE, draft), allowed(student, Action.SEE, draft)
+(True, False)
+>>> draft.published = True
+>>> allowed(student, Action.SUBMIT, draft), allowed(student, Action.READ_GRADES, draft)
+(True, False)
+"""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass
+from typing import NoReturn, Union
+
+from flask import abort, g
+from sqlalchemy import and_, func, select
+from sqlalchemy.orm import Session, selectinload
+
+from grader.store.db import db
+from grader.store.models import Course, Enrolment, Problem, ProblemVersion, Submission, User
+from grader.store.problems import latest_version, problem_by_slug
+from grader.web.errors import ApiProblem, wants_problem_json
+
+__all__ = [
+    "Action",
+    "Principal",
+    "allowed",
+    "current_principal",
+    "find_problem",
+    "find_submission",
+    "find_version",
+    "managed_courses",
+    "managed_problems",
+    "may_update",
+    "require",
+    "require_upload",
+    "visible_versions",
+]
+
+
+class Action(str, enum.Enum):
+    """What a principal wants to do with a resource (see the module's table)."""
+
+    SEE = "see"
+    SUBMIT = "submit"
+    SUBMIT_FOR_OTHERS = "submit_for_others"
+    MANAGE = "manage"
+    READ_GRADES = "read_grades"
+    REGRADE = "regrade"
+    EXPORT = "export"
+    VIEW_SUBMISSION = "view_submission"
+    CREATE = "create"
+    CHECK = "check"
+
+
+Resource = Union[Problem, ProblemVersion, Submission, None]
+
+INSTRUCTOR_ROLES = frozenset({"instructor", "admin"})
+_ROLE_ONLY = {Action.CREATE: INSTRUCTOR_ROLES, Action.CHECK: frozenset({"student", "instructor", "admin", "lms"})}
+
+
+@dataclass(frozen=True)
+class Principal:
+    """Who is asking: a user acting in a role (a page session's role or an API token's role).
+
+    ``enrolled`` holds every course the user is enrolled in, in any role; ``taught`` the courses
+    they are an instructor of. An anonymous caller has ``role`` None and may do nothing.
+    """
+
+    user_id: int | None = None
+    role: str | None = None
+    enrolled: frozenset[int] = frozenset()
+    taught: frozenset[int] = frozenset()
+
+    @classmethod
+    def of(cls, session: Session, user: User | None, role: str | None = None) -> Principal:
+        """The principal of ``user`` acting as ``role`` (default: the user's own role)."""
+        if user is None:
+            return ANONYMOUS
+        rows = session.execute(select(Enrolment.course_id, Enrolment.role).where(Enrolment.user_id == user.id)).all()
+        return cls(user_id=user.id, role=role or user.role, enrolled=frozenset(c for c, _ in rows),
+                   taught=frozenset(c for c, r in rows if r == "instructor"))
+
+    @property
+    def is_admin(self) -> bool:
+        return self.role == "admin"
+
+    def manages_course(self, course_id: int | None) -> bool:
+        """Whether this principal manages problems of ``course_id`` (None: problems in no course)."""
+        if self.is_admin:
+            return True
+        return self.role == "instructor" and (course_id is None or course_id in self.taught)
+
+    def in_scope(self, course_id: int | None) -> bool:
+        """Whether published problems of ``course_id`` are open to this principal."""
+        return self.role is not None and (course_id is None or course_id in self.enrolled)
+
+
+ANONYMOUS = Principal()
+
+
+def _problem(resource: Problem | ProblemVersion) -> Problem:
+    return resource.problem if isinstance(resource, ProblemVersion) else resource
+
+
+def _published(resource: Problem | ProblemVersion) -> bool:
+    if isinstance(resource, ProblemVersion):
+        return bool(resource.published)
+    return any(v.published for v in resource.versions)
+
+
+def allowed(principal: Principal, action: Action, resource: Resource = None) -> bool:
+    """Whether ``principal`` may do ``action`` to ``resource`` (a problem, a version or a submission).
+
+    For a :class:`~grader.store.models.Problem`, "published" means "has a published version"; for a
+    :class:`~grader.store.models.ProblemVersion`, that version itself.
+    """
+    action = Action(action)
+    if principal.role is None:
+        return False
+    if action in _ROLE_ONLY:
+        return principal.role in _ROLE_ONLY[action]
+    if resource is None:
+        return False
+    if principal.is_admin:
+        return True
+    if isinstance(resource, Submission):
+        return action is Action.VIEW_SUBMISSION and _may_view_submission(principal, resource)
+    if action is Action.VIEW_SUBMISSION:
+        return False
+    course = _problem(resource).course_id
+    manages = principal.manages_course(course)
+    if action in (Action.MANAGE, Action.REGRADE, Action.EXPORT):
+        return manages
+    open_to_me = manages or (_published(resource) and principal.in_scope(course))
+    if action in (Action.SEE, Action.SUBMIT):
+        return open_to_me
+    if action is Action.SUBMIT_FOR_OTHERS:
+        return manages or (principal.role == "lms" and open_to_me)
+    if action is Action.READ_GRADES:
+        # An LMS reads grades only of its own (linked) courses: a problem in no course is open to
+        # every student of every LMS, and its grades are none of one LMS's business.
+        return manages or (principal.role == "lms" and course is not None and open_to_me)
+    return False
+
+
+def _may_view_submission(principal: Principal, submission: Submission) -> bool:
+    if submission.user_id == principal.user_id:
+        return True
+    if principal.role == "lms":
+        return submission.requester_id == principal.user_id
+    return principal.role == "instructor" and principal.manages_course(submission.problem_version.problem.course_id)
+
+
+def may_update(session: Session, user: User, problem: Problem) -> bool:
+    """Whether ``user`` (in their own role) may add a version to the existing ``problem``.
+
+    The rule the derivation workers are handed (``grader.jobs`` must not import the web layer).
+    """
+    return allowed(Principal.of(session, user), Action.MANAGE, problem)
+
+
+# --- refusals: 404 hides what the caller may not see, 403 refuses what they may see ----------------
+
+def _not_found(detail: str) -> NoReturn:
+    if wants_problem_json():
+        raise ApiProblem(404, detail, kind="not-found")
+    abort(404, detail)
+
+
+def _forbidden(detail: str) -> NoReturn:
+    if wants_problem_json():
+        raise ApiProblem(403, detail, kind="forbidden")
+    abort(403, detail)
+
+
+_SEEING = {Submission: Action.VIEW_SUBMISSION, Problem: Action.SEE, ProblemVersion: Action.SEE}
+
+
+def _describe(resource: Resource) -> str:
+    if isinstance(resource, Submission):
+        return f"submission {resource.id}"
+    if resource is None:
+        return "resource"
+    return f"problem {_problem(resource).slug!r}"
+
+
+def require(principal: Principal, action: Action, resource: Resource) -> None:
+    """Return if ``allowed``; else raise 404 if the caller may not even see ``resource``, 403 if they may."""
+    if allowed(principal, action, resource):
+        return
+    if resource is not None and not allowed(principal, _SEEING[type(resource)], resource):
+        _not_found(f"There is no {_describe(resource)}.")
+    verb = Action(action).value.replace("_", " ")
+    _forbidden(f"Your account may not {verb} this {_describe(resource).split(' ')[0]}.")
+
+
+# --- lookups: the resource if the principal may act on it, else the refusal above ------------------
+
+def find_problem(session: Session, principal: Principal, slug: str, action: Action = Action.SEE) -> Problem:
+    """Problem ``slug`` if ``principal`` may ``action`` it; 404 if unknown, versionless or not visible."""
+    problem = problem_by_slug(session, slug)
+    if problem is None or not problem.versions:
+        _not_found(f"There is no problem {slug!r}.")
+    require(principal, action, problem)
+    return problem
+
+
+def find_version(session: Session, principal: Principal, slug: str, action: Action = Action.SEE) -> ProblemVersion:
+    """The version of ``slug`` the principal works with: the newest if they manage the problem (a
+    draft, maybe), else the newest published one; 404/403 as :func:`require` says."""
+    problem = problem_by_slug(session, slug)
+    version = None
+    if problem is not None:
+        version = latest_version(session, problem, published_only=not allowed(principal, Action.MANAGE, problem))
+    if version is None:
+        _not_found(f"There is no problem {slug!r}.")
+    require(principal, action, version)
+    return version
+
+
+def find_submission(session: Session, principal: Principal, submission_id: int) -> Submission:
+    """Submission ``submission_id`` if the principal may view it, else 404 (never 403: not even its existence)."""
+    submission = session.get(Submission, submission_id)
+    if submission is None or not allowed(principal, Action.VIEW_SUBMISSION, submission):
+        _not_found(f"There is no submission {submission_id}.")
+    return submission
+
+
+def require_upload(session: Session, principal: Principal, slug: str) -> Problem | None:
+    """Refuse (403) an upload under id ``slug`` unless it is new or names a problem the principal
+    manages; returns the existing problem, if any. Call it before deriving and again before saving."""
+    require(principal, Action.CREATE, None)
+    existing = problem_by_slug(session, slug)
+    if existing is not None and not allowed(principal, Action.MANAGE, existing):
+        # The id is taken whether or not we say so (ids are unique), so this is a 403, not a 404.
+        _forbidden(f"The problem id {slug!r} belongs to a course you do not teach; give the scene another id.")
+    return existing
+
+
+# --- lists ---------------------------------------------------------------------------------------
+
+def visible_versions(session: Session, principal: Principal) -> list[ProblemVersion]:
+    """The version of every problem the principal may see, as :func:`find_version` picks it, by title."""
+    if principal.role is None:
+        return []
+    newest_any = _newest(published_only=False)
+    newest_published = _newest(published_only=True)
+    chosen: dict[int, ProblemVersion] = {}
+    for query in (newest_any, newest_published):  # managed problems first: their newest, drafts too
+        for version in session.scalars(query):
+            if version.problem_id in chosen:
+                continue
+            if (query is newest_any and principal.manages_course(version.problem.course_id)) or (
+                    query is newest_published and allowed(principal, Action.SEE, version)):
+                chosen[version.problem_id] = version
+    return sorted(chosen.values(), key=lambda v: (v.title.lower(), v.id))
+
+
+def _newest(*, published_only: bool):
+    numbers = select(ProblemVersion.problem_id, func.max(ProblemVersion.number).label("number"))
+    if published_only:
+        numbers = numbers.where(ProblemVersion.published.is_(True))
+    newest = numbers.group_by(ProblemVersion.problem_id).subquery()
+    return (select(ProblemVersion).options(selectinload(ProblemVersion.problem))
+            .join(newest, and_(ProblemVersion.problem_id == newest.c.problem_id,
+                               ProblemVersion.number == newest.c.number)))
+
+
+def managed_courses(session: Session, principal: Principal) -> list[Course]:
+    """The courses whose problems the principal manages (every course for an admin), by code."""
+    courses = session.scalars(select(Course).order_by(Course.code))
+    return [c for c in courses if c.id is not None and principal.manages_course(c.id)]
+
+
+def managed_problems(session: Session, principal: Principal) -> list[Problem]:
+    """The problems the principal manages, by id."""
+    problems = session.scalars(select(Problem).order_by(Problem.slug))
+    return [p for p in problems if allowed(principal, Action.MANAGE, p)]
+
+
+# --- the principal of the current request -----------------------------------------------------------
+
+def current_principal() -> Principal:
+    """Who makes this request: the API token's user and role under ``/api/``, else the page session's
+    user; anonymous if neither. Computed once per request."""
+    cached = g.get("_principal")
+    if cached is not None:
+        return cached
+    if wants_problem_json():
+        user, role = g.get("api_user"), g.get("api_role")
+    else:
+        user = g.get("user")
+        role = user.role if user is not None else None
+    if user is None:
+        principal = ANONYMOUS
+    else:
+        with db.read() as session:  # a short read of its own, like the token and session lookups
+            principal = Principal.of(session, user, role)
+    g._principal = principal
+    return principal
