@@ -23,6 +23,8 @@ import flint
 import mpmath
 import sympy
 
+from grader.expressions.functions import BY_SYMPY, REGISTRY, Undefined, Unresolved
+
 __all__ = [
     "Undefined",
     "Unresolved",
@@ -37,18 +39,6 @@ __all__ = [
 # Key under which an evaluation records the largest magnitude (log2) of any term it added: the
 # scale against which cancellation is measured.
 SCALE = "__scale__"
-
-
-class Undefined(ArithmeticError):
-    """The expression has no real value at this point; ``reason`` says why, in words."""
-
-    def __init__(self, reason: str):
-        super().__init__(reason)
-        self.reason = reason
-
-
-class Unresolved(ArithmeticError):
-    """The working precision is too low to tell whether the expression is defined here."""
 
 
 class Unsupported(ValueError):
@@ -168,77 +158,14 @@ class ArbBackend:
         return sqrt
 
     def function(self, name: str, fs):
-        unary = _ARB_UNARY.get(name)
-        if unary is not None:
+        spec = REGISTRY.get(name)
+        if spec is None or spec.arb is None:
+            raise Unsupported(name)
+        evaluate = spec.arb
+        if len(fs) == 1:
             (f,) = fs
-            return lambda env: unary(f(env))
-        if name == "atan2":
-            fy, fx = fs
-
-            def atan2(env):
-                y, x = fy(env), fx(env)
-                if x > 0 or y != 0:
-                    return flint.arb.atan2(y, x)
-                if x == 0 and y == 0:
-                    raise Undefined("atan2(0, 0)")
-                raise Unresolved
-
-            return atan2
-        raise Unsupported(name)
-
-
-def _arb_log(x):
-    if x > 0:
-        return x.log()
-    if x <= 0:
-        raise Undefined("the logarithm of a number that is not positive")
-    raise Unresolved
-
-
-def _arb_inverse(x, reason="division by zero"):
-    if x == 0:
-        raise Undefined(reason)
-    if x.contains(0):
-        raise Unresolved
-    return 1 / x
-
-
-def _arb_unit_interval(x, name):
-    if x.abs_upper() <= 1:
-        return x
-    if x.abs_lower() > 1:
-        raise Undefined(f"{name} of a number outside [-1, 1]")
-    raise Unresolved
-
-
-def _arb_sign(x):
-    if x > 0:
-        return flint.arb(1)
-    if x < 0:
-        return flint.arb(-1)
-    if x == 0:
-        return flint.arb(0)
-    raise Unresolved
-
-
-_ARB_UNARY: dict[str, Callable[[Any], Any]] = {
-    "sin": lambda x: x.sin(),
-    "cos": lambda x: x.cos(),
-    "tan": lambda x: x.sin() * _arb_inverse(x.cos(), "tan at an odd multiple of pi/2"),
-    "cot": lambda x: x.cos() * _arb_inverse(x.sin(), "cot at a multiple of pi"),
-    "sec": lambda x: _arb_inverse(x.cos(), "sec at an odd multiple of pi/2"),
-    "csc": lambda x: _arb_inverse(x.sin(), "csc at a multiple of pi"),
-    "asin": lambda x: _arb_unit_interval(x, "asin").asin(),
-    "acos": lambda x: _arb_unit_interval(x, "acos").acos(),
-    "atan": lambda x: x.atan(),
-    "sinh": lambda x: x.sinh(),
-    "cosh": lambda x: x.cosh(),
-    "tanh": lambda x: x.tanh(),
-    "exp": lambda x: x.exp(),
-    "log": _arb_log,
-    "Abs": lambda x: abs(x),
-    "sign": _arb_sign,
-}
+            return lambda env: evaluate(f(env))
+        return lambda env: evaluate(*(f(env) for f in fs))
 
 
 class _ScalarBackend:
@@ -305,64 +232,19 @@ class _ScalarBackend:
         return sqrt
 
     def function(self, name: str, fs):
-        lib = self.lib
-        check = self.check
+        spec = REGISTRY.get(name)
+        if spec is None or spec.real is None:
+            raise Unsupported(name)
+        lib, check, evaluate = self.lib, self.check, spec.real
 
-        def inverse(x, reason):
-            if x == 0:
-                raise Undefined(reason)
-            return 1 / x
+        def apply(env):
+            args = [f(env) for f in fs]
+            try:
+                return check(evaluate(lib, *args))
+            except (OverflowError, ValueError, ZeroDivisionError) as error:
+                raise Undefined(f"{name} overflows in {self.name}") from error
 
-        def log(x):
-            if x <= 0:
-                raise Undefined("the logarithm of a number that is not positive")
-            return lib.log(x)
-
-        def unit(x, name):
-            if abs(x) > 1:
-                raise Undefined(f"{name} of a number outside [-1, 1]")
-            return x
-
-        table = {
-            "sin": lib.sin,
-            "cos": lib.cos,
-            "tan": lambda x: lib.sin(x) * inverse(lib.cos(x), "tan at an odd multiple of pi/2"),
-            "cot": lambda x: lib.cos(x) * inverse(lib.sin(x), "cot at a multiple of pi"),
-            "sec": lambda x: inverse(lib.cos(x), "sec at an odd multiple of pi/2"),
-            "csc": lambda x: inverse(lib.sin(x), "csc at a multiple of pi"),
-            "asin": lambda x: lib.asin(unit(x, "asin")),
-            "acos": lambda x: lib.acos(unit(x, "acos")),
-            "atan": lib.atan,
-            "sinh": lib.sinh,
-            "cosh": lib.cosh,
-            "tanh": lib.tanh,
-            "exp": lib.exp,
-            "log": log,
-            "Abs": abs,
-            "sign": lambda x: self.convert((x > 0) - (x < 0)),
-        }
-        if name in table:
-            (f,) = fs
-            g = table[name]
-
-            def apply(env):
-                try:
-                    return check(g(f(env)))
-                except (OverflowError, ValueError, ZeroDivisionError) as error:
-                    raise Undefined(f"{name} overflows in {self.name}") from error
-
-            return apply
-        if name == "atan2":
-            fy, fx = fs
-
-            def atan2(env):
-                y, x = fy(env), fx(env)
-                if x == 0 and y == 0:
-                    raise Undefined("atan2(0, 0)")
-                return lib.atan2(y, x)
-
-            return atan2
-        raise Unsupported(name)
+        return apply
 
 
 class FloatBackend(_ScalarBackend):
@@ -430,27 +312,6 @@ class MpmathBackend(_ScalarBackend):
         return x
 
 
-_FUNCTIONS = {
-    sympy.sin: "sin",
-    sympy.cos: "cos",
-    sympy.tan: "tan",
-    sympy.cot: "cot",
-    sympy.sec: "sec",
-    sympy.csc: "csc",
-    sympy.asin: "asin",
-    sympy.acos: "acos",
-    sympy.atan: "atan",
-    sympy.atan2: "atan2",
-    sympy.sinh: "sinh",
-    sympy.cosh: "cosh",
-    sympy.tanh: "tanh",
-    sympy.exp: "exp",
-    sympy.log: "log",
-    sympy.Abs: "Abs",
-    sympy.sign: "sign",
-}
-
-
 def compile_expr(expr: sympy.Expr, backend) -> Callable[[dict], Any]:
     """Compile ``expr`` into a function of a point ``{Symbol: backend value, SCALE: float}``.
 
@@ -491,8 +352,9 @@ def compile_expr(expr: sympy.Expr, backend) -> Callable[[dict], Any]:
         if exponent == -sympy.S.Half:
             return backend.pow_int(backend.sqrt(f), -1)
         return backend.pow_real(f, compile_expr(exponent, backend))
-    if isinstance(expr, sympy.Function) and expr.func in _FUNCTIONS:
-        return backend.function(_FUNCTIONS[expr.func], [compile_expr(a, backend) for a in expr.args])
+    spec = BY_SYMPY.get(expr.func)
+    if spec is not None:
+        return backend.function(spec.name, [compile_expr(a, backend) for a in expr.args])
     raise Unsupported(_describe(expr))
 
 

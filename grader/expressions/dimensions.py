@@ -17,6 +17,7 @@ import sympy
 from sympy.core.function import AppliedUndef
 
 from .errors import DimensionError
+from .functions import BY_SYMPY
 
 __all__ = ["Dimension", "parse_dimension", "dimension_of", "NAMED_DIMENSIONS"]
 
@@ -279,12 +280,8 @@ class _UnitParser:
 
 # -- dimension of an expression --------------------------------------------
 
-_DIMENSIONLESS_FUNCTIONS = (
-    sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc,
-    sympy.asin, sympy.acos, sympy.atan, sympy.acot, sympy.asec, sympy.acsc,
-    sympy.sinh, sympy.cosh, sympy.tanh, sympy.coth, sympy.asinh, sympy.acosh, sympy.atanh,
-    sympy.exp, sympy.log,
-)
+# sympy functions outside the registry that an engine derivation can still produce.
+_OTHER_DIMENSIONLESS = (sympy.acot, sympy.asec, sympy.acsc)
 
 
 def _phrase(dim: Dimension) -> str:
@@ -396,25 +393,31 @@ class _DimensionWalker:
                 n = int(count)
                 m, l, t = m - vm * n, l - vl * n, t - vt * n
             return m, l, t
-        if isinstance(node, sympy.Abs):
-            return self.walk(node.args[0])
-        if isinstance(node, sympy.sign):
-            self.walk(node.args[0])
-            return _NONE
-        if isinstance(node, sympy.atan2):
-            y, x = (self.walk(arg) for arg in node.args)
-            if y != x:
-                raise DimensionError(f"atan2 needs two arguments of one dimension, got "
-                                     f"{_words(y)} and {_words(x)}: {node}", node)
-            return _NONE
-        if isinstance(node, _DIMENSIONLESS_FUNCTIONS):
-            for arg in node.args:
-                dim = self.walk(arg)
-                if dim != _NONE:
-                    raise DimensionError(f"{node.func.__name__} needs a dimensionless argument, "
-                                         f"got {_dim(dim).describe()}: {node}", node)
-            return _NONE
+        spec = BY_SYMPY.get(node.func)
+        if spec is not None:
+            return self.function(node, spec.dimension)
+        if isinstance(node, _OTHER_DIMENSIONLESS):  # engine output may hold these; no text can
+            return self.function(node, "dimensionless")
         raise DimensionError(f"cannot work out the dimension of {node}", node)
+
+    def function(self, node, rule: str) -> _Exponents:
+        """A registered function's dimension rule (see :class:`.functions.Function`)."""
+        dims = [self.walk(arg) for arg in node.args]
+        if rule == "same":
+            return dims[0]
+        if rule == "any":
+            return _NONE
+        name = node.func.__name__
+        if rule == "same_args":
+            if any(d != dims[0] for d in dims):
+                raise DimensionError(f"{name} needs two arguments of one dimension, got "
+                                     f"{_words(dims[0])} and {_words(dims[1])}: {node}", node)
+            return _NONE
+        for dim in dims:
+            if dim != _NONE:
+                raise DimensionError(f"{name} needs a dimensionless argument, "
+                                     f"got {_dim(dim).describe()}: {node}", node)
+        return _NONE
 
     def add(self, node) -> _Exponents:
         # Fast pass in argument order. Only when a term fails or the terms disagree is the sum put in

@@ -12,6 +12,7 @@ from __future__ import annotations
 import re
 
 from .errors import ExpressionError
+from .functions import latex_commands
 from .names import GREEK_LETTERS
 
 __all__ = ["classify_command", "subscript_text", "GREEK_COMMANDS", "FUNCTION_COMMANDS"]
@@ -21,10 +22,8 @@ GREEK_COMMANDS = {name: name for name, latex in GREEK_LETTERS.items() if latex.s
 GREEK_COMMANDS.update({"varphi": "phi", "vartheta": "theta", "varepsilon": "epsilon",
                        "varrho": "rho", "varsigma": "sigma", "varpi": "pi"})
 
-#: \sin -> sin, \arcsin -> asin.
-FUNCTION_COMMANDS = {name: name for name in
-                     "sin cos tan cot sec csc sinh cosh tanh exp log ln".split()}
-FUNCTION_COMMANDS.update({"arcsin": "asin", "arccos": "acos", "arctan": "atan"})
+#: \sin -> sin, \arcsin -> asin (from the function registry).
+FUNCTION_COMMANDS = latex_commands()
 
 _OPERATORS = {"cdot": "*", "times": "*", "ast": "*", "div": "/"}
 _SPACING = {"quad", "qquad", "displaystyle", "textstyle", "limits"}

@@ -344,6 +344,9 @@ class _Parser:
         following = self.peek()
         if following.kind == "open" and following.value in "({":
             args = self.call_arguments(token, spec)
+        elif spec.min_args > 1:
+            raise ExpressionError(f"{token.text} takes {spec.min_args} arguments in parentheses, "
+                                  f"as in {name}(y, x)", token.pos, "syntax")
         elif following.kind in _ATOM_STARTS or (following.kind == "op" and following.value == "-"):
             args = [self.function_argument(token, name)]
         else:
@@ -368,8 +371,9 @@ class _Parser:
         if not spec.min_args <= len(args) <= spec.max_args:
             wanted = (f"{spec.min_args}" if spec.min_args == spec.max_args
                       else f"{spec.min_args} or {spec.max_args}")
+            example = f"{spec.name}(" + ", ".join("yxz"[:spec.min_args] if spec.min_args > 1 else "x") + ")"
             raise ExpressionError(f"{token.text} takes {wanted} argument{'s' if spec.max_args > 1 else ''}, "
-                                  f"got {len(args)}", token.pos, "syntax")
+                                  f"got {len(args)}", token.pos, "syntax", f"write it as {example}")
         return args
 
     def function_argument(self, token: Token, name: str) -> sympy.Expr:

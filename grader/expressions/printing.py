@@ -25,18 +25,15 @@ from functools import lru_cache
 import sympy
 from sympy.core.function import AppliedUndef
 
+from .functions import BY_SYMPY
+
 __all__ = ["to_latex", "to_text"]
 
 # Precedence: higher binds tighter.
 _ADD, _MUL, _POW, _ATOM = 10, 20, 30, 40
 
-_TEXT_NAMES = {sympy.Abs: "Abs"}
-_LATEX_FUNCTIONS = {
-    "sin": r"\sin", "cos": r"\cos", "tan": r"\tan", "cot": r"\cot", "sec": r"\sec", "csc": r"\csc",
-    "asin": r"\operatorname{asin}", "acos": r"\operatorname{acos}", "atan": r"\operatorname{atan}",
-    "atan2": r"\operatorname{atan_{2}}", "sinh": r"\sinh", "cosh": r"\cosh", "tanh": r"\tanh",
-    "exp": r"\exp", "log": r"\log",
-}
+# sympy function class name -> LaTeX of the function's name, from the one registry.
+_LATEX_FUNCTIONS = {f.sympy_func.__name__: f.latex for f in BY_SYMPY.values() if f.latex}
 
 
 def _minus(expr: sympy.Expr) -> bool:
@@ -197,7 +194,8 @@ def _text(expr: sympy.Expr) -> str:
         exp_text = _text(exp) if exp.is_Symbol or (exp.is_Integer and exp >= 0) else f"({_text(exp)})"
         return f"{_text_wrapped(base, _POW + 1)}**{exp_text}"
     if isinstance(expr, sympy.Function) and not isinstance(expr, AppliedUndef):
-        name = _TEXT_NAMES.get(expr.func, expr.func.__name__)
+        spec = BY_SYMPY.get(expr.func)
+        name = spec.text if spec is not None else expr.func.__name__
         return f"{name}({', '.join(_text(a) for a in expr.args)})"
     raise _Unsupported
 

@@ -28,7 +28,7 @@ def test_aliases_build_the_same_function():
 
 
 def test_inverse_table_and_constants():
-    assert INVERSES == {"sin": "asin", "cos": "acos", "tan": "atan"}
+    assert INVERSES == {"sin": "asin", "cos": "acos", "tan": "atan", "sinh": "asinh", "cosh": "acosh", "tanh": "atanh"}
     assert CONSTANTS["pi"] is sympy.pi and CONSTANTS["E"] is sympy.E
 
 
