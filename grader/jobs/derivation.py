@@ -1,10 +1,15 @@
 """Deriving uploaded scenes in a child process under a wall-clock and memory limit.
 
 Scene files come from instructors over the web, so the engine runs them where a pathological
-scene can only exhaust its own limits: a :class:`grader.answers.sandbox.Sandbox` child (an
+scene can only exhaust its own limits: a :class:`grader.sandbox.Sandbox` child (an
 ``RLIMIT_AS`` cap, killed with SIGKILL when it overruns its time) whose handler is
 :func:`derive_request`. The child stays warm between uploads, so only the first pays for importing
 sympy. The parent receives plain JSON and builds a :class:`grader.store.problems.DerivedProblem`.
+
+Uploads are derived by the workers of :mod:`grader.jobs.derivation_workers`, each with its own
+child from :func:`derivation_sandbox`; the shared child below serves ``grader serve``'s start-up
+(loading ``problems/``) and the tests. The child lowers its own CPU priority, so a slow scene only
+takes the processor time that checks and requests leave over.
 """
 
 from __future__ import annotations
@@ -18,16 +23,20 @@ from pathlib import Path
 from sqlalchemy import func, select
 from sqlalchemy.orm import aliased
 
-from grader.answers.sandbox import Sandbox
+from grader.sandbox import Sandbox
 from grader.store.models import ProblemVersion
 from grader.store.problems import DerivedProblem, save_problem
 
-__all__ = ["DerivationError", "derive_request", "derive_source", "load_problem_files"]
+__all__ = ["DERIVE_MEMORY_MB", "DERIVE_TIMEOUT_S", "DerivationError", "SandboxUnavailable", "derivation_sandbox", "derive_request",
+           "close_shared_sandboxes", "derive_source", "load_problem_files"]
 
 log = logging.getLogger(__name__)
 
-DERIVE_TIMEOUT_S = 60.0
+# Every textbook scene derives in a few seconds; a scene that needs more is refused, not waited for.
+DERIVE_TIMEOUT_S = 20.0
 DERIVE_MEMORY_MB = 2048
+# The child's entry point, which first lowers its CPU priority (see grader.jobs.derivation_child).
+HANDLER = "grader.jobs.derivation_child:derive_request"
 
 _sandboxes: dict[int, Sandbox] = {}  # one warm child per memory limit, made on first use
 _sandboxes_lock = threading.Lock()
@@ -37,28 +46,45 @@ class DerivationError(ValueError):
     """A scene that cannot be derived: invalid, too slow, too big. The message is for the instructor."""
 
 
+class SandboxUnavailable(RuntimeError):
+    """The derivation child could not be started; the scene was not tried."""
+
+
+def derivation_sandbox(timeout_s: float = DERIVE_TIMEOUT_S, memory_mb: int = DERIVE_MEMORY_MB) -> Sandbox:
+    """A sandbox child of its own for deriving scenes (started on its first request)."""
+    return Sandbox(HANDLER, budget_s=timeout_s, memory_mb=memory_mb)
+
+
 def derive_source(source: str, *, filename: str = "upload.toml", timeout_s: float = DERIVE_TIMEOUT_S,
-                  memory_mb: int = DERIVE_MEMORY_MB) -> DerivedProblem:
-    """Parse and derive the scene ``source`` in a limited child; raises :class:`DerivationError`."""
-    with _sandboxes_lock:
-        sandbox = _sandboxes.get(memory_mb)
-        if sandbox is None:
-            sandbox = _sandboxes[memory_mb] = Sandbox(budget_s=timeout_s, memory_mb=memory_mb,
-                                                      handler="grader.jobs.derivation:derive_request")
-    reply = sandbox.run({"source": source, "filename": filename}, budget_s=timeout_s)
-    outcome = reply.get("outcome")
-    if outcome == "ok":
-        return DerivedProblem(source=source, **reply["problem"])
-    if outcome == "error":
-        raise DerivationError(reply["message"])
-    if outcome == "internal":
-        log.error("deriving %s failed inside the engine:\n%s", filename, reply["trace"])
-        raise DerivationError(f"{filename}: the engine failed on this scene; the error was logged")
-    # No outcome: the sandbox stopped the child and answered for it.
-    if reply.get("budget_exceeded"):
+                  memory_mb: int = DERIVE_MEMORY_MB, sandbox: Sandbox | None = None) -> DerivedProblem:
+    """Parse and derive the scene ``source`` in a limited child; raises :class:`DerivationError`.
+
+    ``sandbox`` is the child to use (a worker's own); by default a child shared by the process.
+    """
+    if sandbox is None:
+        with _sandboxes_lock:
+            sandbox = _sandboxes.get(memory_mb)
+            if sandbox is None:
+                sandbox = _sandboxes[memory_mb] = derivation_sandbox(timeout_s, memory_mb)
+    ran = sandbox.run({"source": source, "filename": filename}, budget_s=timeout_s)
+    if ran.during_start:
+        # The child could not even start: not the scene's fault (a worker retries the job later).
+        raise SandboxUnavailable(f"the derivation sandbox is unavailable: {ran.detail}")
+    if ran.status == "timeout":
         raise DerivationError(f"{filename}: the derivation took longer than {timeout_s:g} s and was stopped")
-    raise DerivationError(f"{filename}: the derivation was stopped: it exceeded the memory limit "
-                          f"({memory_mb} MB) or crashed")
+    if ran.status == "out_of_memory":
+        raise DerivationError(f"{filename}: the derivation was stopped: it needed more than {memory_mb} MB of memory")
+    reply = ran.reply if ran.ok and isinstance(ran.reply, dict) else {}
+    kind = reply.get("outcome")
+    if kind == "ok":
+        return DerivedProblem(source=source, **reply["problem"])
+    if kind == "error":
+        raise DerivationError(reply["message"])
+    if kind == "internal":
+        log.error("deriving %s failed inside the engine:\n%s", filename, reply["trace"])
+    else:
+        log.error("deriving %s: the sandbox child crashed: %s", filename, ran.detail)
+    raise DerivationError(f"{filename}: the engine failed on this scene; the error was logged")
 
 
 def derive_request(request: dict) -> dict:
@@ -123,3 +149,11 @@ def load_problem_files(database, paths, **limits) -> list[tuple[str, str]]:
             version, created = save_problem(session, derived)
             outcomes.append((path.name, f"version {version.number} of {derived.slug!r}" if created else "unchanged"))
     return outcomes
+
+
+def close_shared_sandboxes() -> None:
+    """Stop the shared children (after start-up: the derivation workers have their own)."""
+    with _sandboxes_lock:
+        for sandbox in _sandboxes.values():
+            sandbox.close()
+        _sandboxes.clear()

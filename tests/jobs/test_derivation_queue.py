@@ -1,0 +1,140 @@
+"""The derivation queue: uploads are stored as jobs, claimed once, finished or failed with a message."""
+
+from datetime import timedelta
+
+import pytest
+from sqlalchemy import select
+
+from grader.jobs import derivation_queue as queue
+from grader.store.models import Course, DerivationJob, Problem, utcnow
+from grader.store.users import create_user
+
+SOURCE = 'id = "yoyo"\n'
+
+
+def anyone_may_update(session, requester, problem):
+    return True
+
+
+def nobody_may_update(session, requester, problem):
+    return False
+
+
+@pytest.fixture
+def people(database):
+    with database.write() as session:
+        ids = {name: create_user(session, role="instructor", name=name).id for name in ("ine", "oth")}
+        course = Course(code="MECH", title="Mechanics")
+        session.add(course)
+        session.flush()
+        ids["course"] = course.id
+        return ids
+
+
+def _job(database, job_id) -> DerivationJob:
+    with database.read() as session:
+        return session.get(DerivationJob, job_id)
+
+
+def test_an_upload_is_stored_queued_with_its_source_hash(database, people):
+    job_id = queue.enqueue(database, requester_id=people["ine"], source=SOURCE, filename="yoyo.toml")
+    job = _job(database, job_id)
+    assert (job.status, job.filename, job.source, job.attempts) == ("queued", "yoyo.toml", SOURCE, 0)
+    assert len(job.source_sha256) == 64 and job.problem_version_id is None
+
+
+@pytest.mark.parametrize("limit", [1, 2, 3])
+def test_a_requester_has_at_most_the_limit_of_jobs_queued_or_running(database, people, limit):
+    for _ in range(limit):
+        queue.enqueue(database, requester_id=people["ine"], source=SOURCE, max_active=limit)
+    with pytest.raises(queue.TooManyDerivations, match=f"You have {limit} scene") as refused:
+        queue.enqueue(database, requester_id=people["ine"], source=SOURCE, max_active=limit)
+    assert refused.value.retry_after_s > 0
+    # Another instructor is not held up by the first one's uploads.
+    queue.enqueue(database, requester_id=people["oth"], source=SOURCE, max_active=limit)
+
+
+def test_a_finished_job_frees_its_place_under_the_limit(database, people, yoyo):
+    queue.enqueue(database, requester_id=people["ine"], source=SOURCE, max_active=1)
+    task = queue.claim(database, "w", lease_s=60)
+    assert queue.finish(database, task, "w", yoyo, anyone_may_update)
+    queue.enqueue(database, requester_id=people["ine"], source=SOURCE, max_active=1)
+
+
+def test_a_job_is_claimed_once_then_finished_as_a_problem_version(database, people, yoyo):
+    job_id = queue.enqueue(database, requester_id=people["ine"], source=SOURCE, course_id=people["course"],
+                           publish=True)
+    task = queue.claim(database, "w1", lease_s=60)
+    assert task.job_id == job_id and task.attempts == 1 and task.publish
+    assert _job(database, job_id).status == "running"
+    assert queue.claim(database, "w2", lease_s=60) is None
+    assert queue.finish(database, task, "w1", yoyo, anyone_may_update)
+    job = _job(database, job_id)
+    assert (job.status, job.new_version, job.error) == ("done", True, None)
+    with database.read() as session:
+        version = session.get(DerivationJob, job_id).problem_version
+        assert (version.problem.slug, version.number, version.published) == ("yoyo", 1, True)
+        assert version.problem.course_id == people["course"]  # a new problem joins the chosen course
+
+
+def test_the_same_scene_again_is_done_without_a_new_version(database, people, yoyo):
+    for expected in (True, False):
+        queue.enqueue(database, requester_id=people["ine"], source=SOURCE, publish=True)
+        task = queue.claim(database, "w", lease_s=60)
+        queue.finish(database, task, "w", yoyo, anyone_may_update)
+        assert _job(database, task.job_id).new_version is expected
+
+
+def test_a_failed_job_keeps_the_scenes_message(database, people):
+    job_id = queue.enqueue(database, requester_id=people["ine"], source=SOURCE)
+    task = queue.claim(database, "w", lease_s=60)
+    assert queue.fail(database, task, "w", "upload.toml: unknown name 'tehta'")
+    job = _job(database, job_id)
+    assert (job.status, job.error) == ("failed", "upload.toml: unknown name 'tehta'")
+    assert job.finished_at is not None
+
+
+def test_a_problem_id_the_requester_may_not_change_fails_the_job(database, people, yoyo):
+    with database.write() as session:
+        session.add(Problem(slug="yoyo", course_id=people["course"]))
+    queue.enqueue(database, requester_id=people["oth"], source=SOURCE)
+    task = queue.claim(database, "w", lease_s=60)
+    assert queue.finish(database, task, "w", yoyo, nobody_may_update)
+    job = _job(database, task.job_id)
+    assert job.status == "failed" and "taken by another course" in job.error and job.problem_version_id is None
+
+
+def test_an_outcome_from_a_worker_that_lost_its_claim_is_dropped(database, people, yoyo):
+    queue.enqueue(database, requester_id=people["ine"], source=SOURCE)
+    task = queue.claim(database, "w1", lease_s=60)
+    assert queue.recover(database) == 1  # a restart: the job is queued again
+    again = queue.claim(database, "w2", lease_s=60)
+    assert not queue.finish(database, task, "w1", yoyo, anyone_may_update)
+    assert not queue.fail(database, task, "w1", "too late")
+    assert _job(database, task.job_id).status == "running" and again.attempts == 2
+
+
+def test_running_jobs_are_queued_again_after_a_restart_and_fail_after_max_attempts(database, people):
+    job_id = queue.enqueue(database, requester_id=people["ine"], source=SOURCE, filename="chain.toml")
+    for attempt in range(1, queue.MAX_ATTEMPTS + 1):
+        assert queue.claim(database, f"boot{attempt}", lease_s=60).attempts == attempt
+        assert queue.recover(database) == 1
+        assert _job(database, job_id).status == "queued"
+    assert queue.claim(database, "last", lease_s=60) is None  # the scene that keeps stopping servers
+    job = _job(database, job_id)
+    assert job.status == "failed" and "interrupted" in job.error and job.error.startswith("chain.toml")
+
+
+def test_an_expired_lease_is_queued_again(database, people):
+    job_id = queue.enqueue(database, requester_id=people["ine"], source=SOURCE)
+    queue.claim(database, "w", lease_s=60)
+    assert queue.requeue_expired(database) == 0
+    assert queue.requeue_expired(database, now=utcnow() + timedelta(seconds=61)) == 1
+    assert _job(database, job_id).status == "queued"
+
+
+def test_jobs_are_claimed_oldest_first(database, people):
+    ids = [queue.enqueue(database, requester_id=people[who], source=SOURCE) for who in ("ine", "oth", "ine")]
+    assert [queue.claim(database, "w", lease_s=60).job_id for _ in ids] == ids
+    with database.read() as session:
+        assert set(session.scalars(select(DerivationJob.status))) == {"running"}
