@@ -49,6 +49,7 @@ from grader.expressions import (
     parse_domain,
     parse_expression,
 )
+from grader.mechanics.scene_schema import structure_problems
 
 __all__ = [
     "AnswerSpec",
@@ -105,9 +106,15 @@ class Constraint:
 
     name: str
     f: sympy.Expr
-    kind: str  # "bilateral" | "unilateral"
+    kind: str  # "bilateral" | "unilateral" | "rolling" (the engine treats all three alike)
     multiplier: sympy.Symbol
     dimension: Dimension
+    # Effects, read only by grader.simulate (see docs/scene-format.md, "Effects"): expressions in
+    # the parameters, so that a simulation with other parameter values uses them too.
+    restitution: sympy.Expr = sympy.Integer(0)  # unilateral: Newton's impact law, 0 = inelastic
+    mu_s: sympy.Expr | None = None  # rolling: static friction coefficient
+    mu_k: sympy.Expr | None = None  # rolling: kinetic friction coefficient
+    normal: str | None = None  # rolling: the constraint whose multiplier is the normal force
 
 
 @dataclass(frozen=True)
@@ -204,6 +211,10 @@ def parse_scene(text: str, source: str = "<scene>") -> Scene:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(source, "", f"not valid TOML: {exc}") from None
+    # The keys and their types first (scene_schema.py): a misspelt key is an error, not ignored.
+    problems = structure_problems(data)
+    if problems:
+        raise SceneError(source, *problems[0])
     return _SceneReader(data, source, text).read()
 
 
@@ -393,12 +404,45 @@ class _SceneReader:
             if not f.free_symbols & coordinate_symbols:
                 raise self.fail(f"{key}.f", "does not involve any coordinate")
             kind = spec.get("kind", "bilateral")
-            if kind not in ("bilateral", "unilateral"):
-                raise self.fail(f"{key}.kind", "must be \"bilateral\" or \"unilateral\"")
+            if kind not in ("bilateral", "unilateral", "rolling"):
+                raise self.fail(f"{key}.kind", "must be \"bilateral\", \"unilateral\" or \"rolling\"")
             dim = self.dimension_of(f"{key}.f", f)
+            effects = self.read_effects(key, spec, kind, dim)
             multiplier = self.add(Variable(f"lambda_{name}", ENERGY / dim, parse_domain("real"), "multiplier"))
-            constraints.append(Constraint(name, f, kind, multiplier, dim))
+            constraints.append(Constraint(name, f, kind, multiplier, dim, **effects))
+        for c in constraints:
+            if c.normal is not None:
+                normal = next((k for k in constraints if k.name == c.normal and k is not c), None)
+                if normal is None or normal.dimension != parse_dimension("length"):
+                    raise self.fail(f"constraints ({c.name}).normal", f"'{c.normal}' must name another "
+                                    "constraint whose f is a distance from the surface (a length)")
         return constraints
+
+    def read_effects(self, key: str, spec: Mapping[str, Any], kind: str, dim: Dimension) -> dict[str, Any]:
+        """The simulation's effect keys of one constraint (numbers or expressions in parameters)."""
+        allowed = {"unilateral": {"restitution"}, "rolling": {"mu_s", "mu_k", "normal"}}.get(kind, set())
+        stray = sorted({"restitution", "mu_s", "mu_k", "normal"} & set(spec) - allowed)
+        if stray:
+            raise self.fail(f"{key}.{stray[0]}", f"does not apply to a {kind} constraint")
+        parameters = Namespace(self._parameters())
+        effects: dict[str, Any] = {}
+        for name in sorted(allowed - {"normal"}):
+            if name not in spec:
+                if kind == "rolling":
+                    raise self.fail(f"{key}.{name}", "missing (required for a rolling constraint)")
+                continue
+            value = self.expression(f"{key}.{name}", spec[name], parameters)
+            if value.free_symbols and self.dimension_of(f"{key}.{name}", value) != parse_dimension("dimensionless"):
+                raise self.fail(f"{key}.{name}", "must be a dimensionless number")
+            if value.is_number and (value < 0 or (name == "restitution" and value > 1)):
+                raise self.fail(f"{key}.{name}", "must lie in [0, 1]" if name == "restitution" else "must be >= 0")
+            effects[name] = value
+        if kind == "rolling":
+            if dim != parse_dimension("length"):
+                raise self.fail(f"{key}.f", "a rolling constraint's f is the slip of the contact point "
+                                            "(a length), e.g. \"s - R*theta\"")
+            effects["normal"] = self.string(spec, "normal", key)
+        return effects
 
     def add_constraint_forces(self, constraints: list[Constraint],
                               coordinates: dict[str, Coordinate]) -> dict[tuple[str, str], sympy.Symbol]:
