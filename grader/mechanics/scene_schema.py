@@ -95,6 +95,7 @@ SCENE_SCHEMA: dict[str, Any] = {
                 "mu_s": _NUMBER_OR_EXPRESSION,  # rolling: static friction coefficient
                 "mu_k": _NUMBER_OR_EXPRESSION,  # rolling: kinetic friction coefficient
                 "normal": _string(MAX_NAME_CHARS),  # rolling: the constraint giving the normal force
+                "normal": _string(MAX_NAME_CHARS),  # rolling: the constraint giving the normal force
             },
         }),
         # coordinate or velocity name = number or expression in parameters
