@@ -232,7 +232,7 @@ def _plot(rows: list[dict], path: Path) -> None:
 @click.option("--no-sweep", is_flag=True, help="Skip the points x precision sweep.")
 def bench_check(corpus: Path, out: Path, baseline_timeout: float, no_baseline: bool, no_sweep: bool) -> None:
     """Accuracy and latency of `grader check` on the labelled corpus, against the naive baseline."""
-    from grader.answers.sandbox import Sandbox
+    from grader.answers.sandbox import SandboxedChecker
 
     items = load_corpus(corpus)
     if not items:
@@ -254,7 +254,7 @@ def bench_check(corpus: Path, out: Path, baseline_timeout: float, no_baseline: b
     missed = [i["id"] for i in expected_feedback if i["expect_feedback"] not in by_id[i["id"]]["codes"]]
     figures["feedback"] = {"expected": len(expected_feedback), "missed": len(missed), "missed_items": missed}
 
-    with Sandbox(budget_s=2.0) as box:
+    with SandboxedChecker(budget_s=2.0) as box:
         sandboxed = []
         for item in items:
             request = {k: item[k] for k in ("reference", "answer", "variables", "kind") if k in item}

@@ -25,7 +25,8 @@ def _variable(spec: str) -> tuple[str, dict]:
 
 @click.command()
 @click.option("--jsonl", is_flag=True, help="Read JSON requests, one per line, and write one verdict line each.")
-@click.argument("source", type=click.File("r", encoding="utf-8"), default="-")
+# Bytes, decoded line by line: a line that is not UTF-8 gets its own verdict instead of ending the batch.
+@click.argument("source", type=click.File("rb"), default="-")
 @click.option("--reference", help="Reference answer (without --jsonl).")
 @click.option("--answer", help="Student answer (without --jsonl).")
 @click.option("--var", "variables", multiple=True, help="A variable: name=dimension[:domain], e.g. m=mass:positive.")
@@ -54,7 +55,7 @@ def check(jsonl, source, reference, answer, variables, kind, budget, memory_mb, 
         request = {"reference": reference, "answer": answer, "kind": kind,
                    "variables": dict(_variable(v) for v in variables), "budget_s": budget}
         result = runner(request)
-        click.echo(json.dumps(result, ensure_ascii=False, indent=2))
+        click.echo(_dumps(result, indent=2))
         sys.exit(0 if result.get("verdict") == "equivalent" else 1)
     finally:
         close = getattr(runner, "close", None)
@@ -67,9 +68,9 @@ def _runner(budget: float, memory_mb: int, no_sandbox: bool):
         from grader.answers.checker import check_request
 
         return check_request
-    from grader.answers.sandbox import Sandbox
+    from grader.answers.sandbox import SandboxedChecker
 
-    box = Sandbox(budget_s=budget, memory_mb=memory_mb)
+    box = SandboxedChecker(budget_s=budget, memory_mb=memory_mb)
 
     def run(request):
         return box.run(request)
@@ -78,22 +79,40 @@ def _runner(budget: float, memory_mb: int, no_sandbox: bool):
     return run
 
 
+def _dumps(result: dict, indent: int | None = None) -> str:
+    """JSON for stdout: readable Unicode, but escapes where a text cannot be encoded (a lone surrogate)."""
+    text = json.dumps(result, ensure_ascii=False, indent=indent)
+    try:
+        text.encode(sys.stdout.encoding or "utf-8")
+    except (UnicodeEncodeError, LookupError):
+        text = json.dumps(result, indent=indent)
+    return text
+
+
 def _jsonl(source, runner, budget: float) -> None:
+    out = sys.stdout
+    for number, raw in enumerate(source, 1):
+        result = _line_result(number, raw, runner, budget)
+        if result is not None:
+            out.write(_dumps(result) + "\n")
+            out.flush()
+
+
+def _line_result(number: int, raw: bytes, runner, budget: float) -> dict | None:
+    """The verdict for one input line (None for a blank line); a bad line gets an ``invalid`` one."""
     from grader.answers.verdict import Verdict
 
-    out = sys.stdout
-    for number, line in enumerate(source, 1):
-        if not line.strip():
-            continue
-        try:
-            request = json.loads(line)
-        except ValueError as error:
-            result = Verdict.invalid(f"malformed input line {number}: not JSON ({error})").to_json()
-        else:
-            if isinstance(request, dict):
-                request.setdefault("budget_s", budget)
-                result = runner(request)
-            else:
-                result = Verdict.invalid(f"malformed input line {number}: expected a JSON object").to_json()
-        out.write(json.dumps(result, ensure_ascii=False) + "\n")
-        out.flush()
+    try:
+        line = raw.decode("utf-8")
+    except UnicodeDecodeError as error:
+        return Verdict.invalid(f"malformed input line {number}: not UTF-8 (byte {error.start})").to_json()
+    if not line.strip():
+        return None
+    try:
+        request = json.loads(line)
+    except ValueError as error:
+        return Verdict.invalid(f"malformed input line {number}: not JSON ({error})").to_json()
+    if not isinstance(request, dict):
+        return Verdict.invalid(f"malformed input line {number}: expected a JSON object").to_json()
+    request.setdefault("budget_s", budget)
+    return runner(request)

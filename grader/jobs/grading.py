@@ -1,8 +1,9 @@
 """Grading one claimed task with a sandboxed checker, and the score a verdict is worth.
 
 A *checker* has ``run(request, budget_s) -> Verdict.to_json()`` and ``close()``: in production a
-:class:`grader.answers.sandbox.Sandbox`, a long-lived child process under a hard wall-clock and
-memory limit, so a runaway check is killed there, not here. Each worker owns one.
+:class:`grader.answers.sandbox.SandboxedChecker`, a long-lived child process under a hard wall-clock
+and memory limit, so a runaway check is killed there, not here; it turns every way the child's run
+can end into a verdict. Each worker owns one.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ import threading
 from contextlib import contextmanager
 from typing import Any, Callable, Iterator, Protocol
 
-from grader.answers.sandbox import DEFAULT_BUDGET_S, Sandbox
+from grader.answers.sandbox import DEFAULT_BUDGET_S, SandboxedChecker
 from grader.jobs.queue import Task
 
 __all__ = ["CHECK_BUDGET_S", "Checker", "CheckerFailure", "CheckerPool", "CheckersBusy", "check_task", "check_request", "sandbox_checker", "score"]
@@ -31,7 +32,7 @@ class Checker(Protocol):
 
 def sandbox_checker() -> Checker:
     """A checker backed by its own sandbox child (the production checker)."""
-    return Sandbox(budget_s=CHECK_BUDGET_S)
+    return SandboxedChecker(budget_s=CHECK_BUDGET_S)
 
 
 def check_request(reference: dict[str, Any], text: str) -> dict[str, Any]:

@@ -7,7 +7,7 @@ from pathlib import Path
 import pytest
 
 from grader.answers import check
-from grader.answers.sandbox import Sandbox
+from grader.answers.sandbox import SandboxedChecker
 
 CORPUS = Path(__file__).parent / "corpus"
 ITEMS = [json.loads(line) for path in sorted(CORPUS.glob("*.jsonl")) for line in open(path, encoding="utf-8")]
@@ -35,7 +35,7 @@ def test_every_corpus_item_gets_its_labelled_verdict():
 
 @pytest.fixture(scope="module")
 def sandbox():
-    with Sandbox(budget_s=2.0) as box:
+    with SandboxedChecker(budget_s=2.0) as box:
         yield box
 
 

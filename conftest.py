@@ -1,0 +1,14 @@
+"""Repository-wide pytest set-up: docstring examples run from the repository root.
+
+``--doctest-modules`` (see ``pyproject.toml``) runs the examples in every module under ``grader/``;
+the engine's examples read ``problems/*.toml`` by relative path, as a user at the root would.
+"""
+
+import pytest
+from _pytest.doctest import DoctestItem
+
+
+@pytest.fixture(autouse=True)
+def _examples_run_from_the_repository_root(request, monkeypatch):
+    if isinstance(request.node, DoctestItem):
+        monkeypatch.chdir(request.config.rootpath)
