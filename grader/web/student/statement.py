@@ -2,7 +2,11 @@
 
 Math spans are cut out before Markdown sees them (so ``_`` and ``*`` inside math stay math), turned
 into MathML on the server (:mod:`grader.web.student.mathml`), and put back afterwards. Raw HTML in
-the statement is shown as text, not obeyed: scene files are uploaded and are untrusted.
+the statement is shown as text, not obeyed: scene files are uploaded and are untrusted. Markdown's
+output then goes through ``nh3`` (the Ammonia sanitizer) on an allow-list of tags, attributes and URL
+schemes; it parses the HTML first, so a scheme hidden in entities (``javascript&#58;``) or split by
+control characters is judged as the browser would read it. The MathML is put back only after that,
+and only into text: it comes from our own converter, which escapes everything it copies.
 
 >>> str(render_statement("Find $x^2$."))[:45]
 '<p>Find <math display="inline"><semantics><mr'
@@ -14,18 +18,27 @@ import re
 from functools import lru_cache
 
 import markdown
+import nh3
 from markupsafe import Markup
 
 from grader.web.student.mathml import to_mathml, unsupported
 
-__all__ = ["render_inline", "render_math", "render_statement", "statement_problems"]
+__all__ = ["render_inline", "render_math", "render_statement", "sanitize", "statement_problems"]
 
 # $$...$$ first, then $...$ that neither starts nor ends with a space (so "costs $5 or $6" is text);
 # a backslash-escaped \$ is a literal dollar.
 _MATH = re.compile(r"(?<!\\)\$\$(.+?)(?<!\\)\$\$|(?<![\\$])\$(?!\s)((?:\\\$|[^$])+?)(?<![\s\\])\$(?!\$)", re.S)
 _SLOT = "LAGRADEMATHSLOT{}X"
-# Links and images keep only harmless schemes: "javascript:" in a statement must not become a link.
-_URL_ATTRIBUTE = re.compile(r'(href|src)="(?!https?:|mailto:|#|/(?!/)|[^":]*(?:"|$))[^"]*"', re.I)
+_SLOT_PATTERN = re.compile(r"LAGRADEMATHSLOT(\d+)X")
+
+# What Markdown (with sane_lists) writes, and nothing else: no script, style, frame, form or SVG, no
+# event handler or style attribute. Links and images keep only these schemes or a relative URL.
+ALLOWED_TAGS = frozenset({
+    "p", "br", "hr", "em", "strong", "code", "pre", "blockquote", "ul", "ol", "li",
+    "h1", "h2", "h3", "h4", "h5", "h6", "a", "img",
+})
+ALLOWED_ATTRIBUTES = {"a": {"href", "title"}, "img": {"src", "alt", "title"}, "ol": {"start"}}
+ALLOWED_URL_SCHEMES = frozenset({"http", "https", "mailto"})
 
 
 def _markdown() -> markdown.Markdown:
@@ -47,10 +60,28 @@ def render_statement(text: str) -> Markup:
         spans.append(to_mathml(tex, display=display is not None))
         return _SLOT.format(len(spans) - 1)
 
-    html = _markdown().convert(_MATH.sub(cut, text or "").replace(r"\$", "$"))
-    html = _URL_ATTRIBUTE.sub(r'\1="#"', html)
-    html = re.sub(r"LAGRADEMATHSLOT(\d+)X", lambda m: spans[int(m.group(1))], html)
+    html = sanitize(_markdown().convert(_MATH.sub(cut, text or "").replace(r"\$", "$")))
+    # Slots left in the text become MathML; a slot the author typed that names no formula stays text.
+    html = _SLOT_PATTERN.sub(lambda m: spans[int(m.group(1))] if int(m.group(1)) < len(spans) else m.group(0),
+                             html)
     return Markup(html)
+
+
+def sanitize(html: str) -> str:
+    """``html`` reduced to the statement allow-list (tags, attributes, URL schemes).
+
+    >>> sanitize('<a href="javascript&#58;alert(1)" onclick="x()">x</a><img src=x onerror=alert(1)>')
+    '<a rel="noopener noreferrer">x</a><img src="x">'
+    """
+    return nh3.clean(html, tags=set(ALLOWED_TAGS), attributes={k: set(v) for k, v in ALLOWED_ATTRIBUTES.items()},
+                     url_schemes=set(ALLOWED_URL_SCHEMES), attribute_filter=_no_math_in_attributes,
+                     strip_comments=True, link_rel="noopener noreferrer")
+
+
+def _no_math_in_attributes(tag: str, attribute: str, value: str) -> str:
+    # Math put into an attribute (a link "($x$)", a title) would be markup inside quotes: keep the slot out
+    # of attributes, so only text nodes are filled with MathML.
+    return _SLOT_PATTERN.sub("", value)
 
 
 def render_inline(text: str) -> Markup:
