@@ -110,6 +110,27 @@ def workers(app):
 
 
 @pytest.fixture
+def derivers(app):
+    """Derivation workers on the app's database, running the real engine in this process (no child)."""
+    from grader.jobs.derivation import DerivationError, derive_request
+    from grader.jobs.derivation_workers import DerivationWorkerPool
+    from grader.web.policy import may_update
+
+    def in_process():
+        def derive(source: str, filename: str) -> DerivedProblem:
+            reply = derive_request({"source": source, "filename": filename})
+            if reply["outcome"] != "ok":
+                raise DerivationError(reply.get("message") or reply["trace"])
+            return DerivedProblem(source=source, **reply["problem"])
+        return derive
+
+    pool = DerivationWorkerPool(app.extensions["lagrade.db"], may_update=may_update, deriver_factory=in_process,
+                                poll_s=0.05).start()
+    yield pool
+    pool.stop()
+
+
+@pytest.fixture
 def poll(client):
     """``poll(url, headers)``: GET until the submission is graded; returns its JSON."""
     import time

@@ -11,6 +11,8 @@ from pathlib import Path
 
 from flask import Flask
 
+from grader.jobs.derivation import DERIVE_MEMORY_MB, DERIVE_TIMEOUT_S
+from grader.jobs.derivation_queue import MAX_ACTIVE_PER_REQUESTER
 from grader.jobs.grading import CHECK_BUDGET_S, CheckerPool, sandbox_checker
 from grader.store.db import db, default_url
 from grader.web import errors, security
@@ -38,8 +40,10 @@ def create_app(test_config: dict | None = None) -> Flask:
         CHECK_SANDBOXES=2,  # sandbox children serving POST /check
         CHECK_BUDGET_S=CHECK_BUDGET_S,
         CHECK_QUEUE_TIMEOUT_S=30.0,
-        DERIVE_TIMEOUT_S=60.0,
-        DERIVE_MEMORY_MB=2048,
+        DERIVE_TIMEOUT_S=DERIVE_TIMEOUT_S,  # one scene's derivation, in a derivation worker's child
+        DERIVE_MEMORY_MB=DERIVE_MEMORY_MB,
+        DERIVE_WORKERS=1,  # scenes derived at once (``grader serve``), apart from checks and requests
+        DERIVE_MAX_ACTIVE=MAX_ACTIVE_PER_REQUESTER,  # an instructor's derivations queued or running at once
         CHECKER_FACTORY=sandbox_checker,
     )
     app.config.from_prefixed_env("LAGRADE")

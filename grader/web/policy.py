@@ -27,6 +27,9 @@ action                 who, besides admins
 ``regrade``            those who manage the problem.
 ``export``             those who manage the problem (CSV of grades or submissions).
 ``view_submission``    its student; the LMS that sent it; instructors who manage its problem.
+``view_derivation``    an uploaded scene's derivation job: the instructor who uploaded it, and
+                       the instructors who teach its course (the course chosen at upload, or
+                       the course of the problem it made).
 ``create``             (no resource) instructors: upload a scene under a new id.
 ``check``              (no resource) any authenticated caller: the stateless ``POST /check``.
 =====================  =====================================================================
@@ -59,7 +62,7 @@ from sqlalchemy import and_, func, select
 from sqlalchemy.orm import Session, selectinload
 
 from grader.store.db import db
-from grader.store.models import Course, Enrolment, Problem, ProblemVersion, Submission, User
+from grader.store.models import Course, DerivationJob, Enrolment, Problem, ProblemVersion, Submission, User
 from grader.store.problems import latest_version, problem_by_slug
 from grader.web.errors import ApiProblem, wants_problem_json
 
@@ -68,6 +71,7 @@ __all__ = [
     "Principal",
     "allowed",
     "current_principal",
+    "find_derivation",
     "find_problem",
     "find_submission",
     "find_version",
@@ -91,11 +95,12 @@ class Action(str, enum.Enum):
     REGRADE = "regrade"
     EXPORT = "export"
     VIEW_SUBMISSION = "view_submission"
+    VIEW_DERIVATION = "view_derivation"
     CREATE = "create"
     CHECK = "check"
 
 
-Resource = Union[Problem, ProblemVersion, Submission, None]
+Resource = Union[Problem, ProblemVersion, Submission, DerivationJob, None]
 
 INSTRUCTOR_ROLES = frozenset({"instructor", "admin"})
 _ROLE_ONLY = {Action.CREATE: INSTRUCTOR_ROLES, Action.CHECK: frozenset({"student", "instructor", "admin", "lms"})}
@@ -168,7 +173,9 @@ def allowed(principal: Principal, action: Action, resource: Resource = None) -> 
         return True
     if isinstance(resource, Submission):
         return action is Action.VIEW_SUBMISSION and _may_view_submission(principal, resource)
-    if action is Action.VIEW_SUBMISSION:
+    if isinstance(resource, DerivationJob):
+        return action is Action.VIEW_DERIVATION and _may_view_derivation(principal, resource)
+    if action in (Action.VIEW_SUBMISSION, Action.VIEW_DERIVATION):
         return False
     course = _problem(resource).course_id
     manages = principal.manages_course(course)
@@ -194,6 +201,13 @@ def _may_view_submission(principal: Principal, submission: Submission) -> bool:
     return principal.role == "instructor" and principal.manages_course(submission.problem_version.problem.course_id)
 
 
+def _may_view_derivation(principal: Principal, job: DerivationJob) -> bool:
+    if job.requester_id == principal.user_id:
+        return True
+    made = job.problem_version.problem.course_id if job.problem_version is not None else None
+    return principal.role == "instructor" and bool({job.course_id, made} & principal.taught)
+
+
 def may_update(session: Session, user: User, problem: Problem) -> bool:
     """Whether ``user`` (in their own role) may add a version to the existing ``problem``.
 
@@ -216,7 +230,8 @@ def _forbidden(detail: str) -> NoReturn:
     abort(403, detail)
 
 
-_SEEING = {Submission: Action.VIEW_SUBMISSION, Problem: Action.SEE, ProblemVersion: Action.SEE}
+_SEEING = {Submission: Action.VIEW_SUBMISSION, Problem: Action.SEE, ProblemVersion: Action.SEE,
+           DerivationJob: Action.VIEW_DERIVATION}
 
 
 def _describe(resource: Resource) -> str:
@@ -267,6 +282,14 @@ def find_submission(session: Session, principal: Principal, submission_id: int) 
     if submission is None or not allowed(principal, Action.VIEW_SUBMISSION, submission):
         _not_found(f"There is no submission {submission_id}.")
     return submission
+
+
+def find_derivation(session: Session, principal: Principal, job_id: int) -> DerivationJob:
+    """Derivation job ``job_id`` if the principal may view it, else 404 (never 403)."""
+    job = session.get(DerivationJob, job_id)
+    if job is None or not allowed(principal, Action.VIEW_DERIVATION, job):
+        _not_found(f"There is no derivation {job_id}.")
+    return job
 
 
 def require_upload(session: Session, principal: Principal, slug: str) -> Problem | None:
