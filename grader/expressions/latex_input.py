@@ -20,7 +20,8 @@ __all__ = ["classify_command", "subscript_text", "GREEK_COMMANDS", "FUNCTION_COM
 #: \theta -> theta; the var- forms are the same letters to a grader.
 GREEK_COMMANDS = {name: name for name, latex in GREEK_LETTERS.items() if latex.startswith("\\")}
 GREEK_COMMANDS.update({"varphi": "phi", "vartheta": "theta", "varepsilon": "epsilon",
-                       "varrho": "rho", "varsigma": "sigma", "varpi": "pi"})
+                       "varrho": "rho", "varsigma": "sigma", "varpi": "pi",
+                       "ell": "l"})  # \ell is how statements write a length l
 
 #: \sin -> sin, \arcsin -> asin (from the function registry).
 FUNCTION_COMMANDS = latex_commands()

@@ -81,7 +81,8 @@ def guarded_pow(base: sympy.Expr, exponent: sympy.Expr, position: int | None) ->
 def not_real(position: int | None) -> ExpressionError:
     """Answers are real: sqrt(-1) or asin(2) is a mistake, not an imaginary unit."""
     return ExpressionError("this is not a real number (a square root or logarithm of a negative number?)",
-                           position, "syntax")
+                           position, "syntax", "check the sign of what is under the root or logarithm, "
+                           "and that asin/acos get a number in [-1, 1]")
 
 
 def checked(expr: sympy.Expr, position: int | None) -> sympy.Expr:
@@ -99,7 +100,8 @@ def checked(expr: sympy.Expr, position: int | None) -> sympy.Expr:
     """
     for node in (expr, *expr.args):
         if id(node) in _UNDEFINED_IDS:
-            raise ExpressionError("this is undefined (a division by zero?)", position, "syntax")
+            raise ExpressionError("this is undefined (a division by zero?)", position, "syntax",
+                                  "check what divides by zero here")
         if node is _I:
             raise not_real(position)
         # digits() only for numbers that could have that many (both parts below 10**300 cannot)

@@ -219,7 +219,7 @@ def _resolve_derivative(raw: str, ns: "Namespace", order: int, typed: str, posit
     base = base_symbol.name if base_symbol is not None else raw.replace("_", "")
     if order + (2 if base.endswith("ddot") else 1 if base.endswith("dot") else 0) > 2:
         raise ExpressionError(f"'{typed}' is a third or higher time derivative, which no answer here uses",
-                              position, "unknown_name")
+                              position, "unknown_name", "write at most two dots or primes")
     name = derivative_name(base, order)
     symbol = _lookup(name, ns)
     if symbol is None:
@@ -290,6 +290,8 @@ def _suggestion(name: str, ns: "Namespace", functions_only: bool = False) -> str
     close = difflib.get_close_matches(name, vocabulary, n=3, cutoff=0.6)
     if close:
         return "did you mean " + " or ".join(f"'{c}'" for c in close) + "?"
+    if functions_only:
+        return "allowed functions: " + ", ".join(function_names())
     if ns.names:
         return "the variables here are " + ", ".join(sorted(ns.names))
     return None
@@ -300,4 +302,5 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
         raise ExpressionError(f"'{typed}' is not a function you can use here", position,
                               "unsupported_function",
                               _suggestion(raw, ns, functions_only=True) or "allowed functions: " + ", ".join(function_names()))
-    raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name", _suggestion(raw, ns))
+    raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name",
+                          _suggestion(raw, ns) or "this answer uses no variables: write a number")

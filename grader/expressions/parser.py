@@ -136,13 +136,15 @@ class _Parser:
         before = self.before(token)
         if token.kind == "end":
             if before is not None and before.kind == "op":
-                return ExpressionError(f"'{before.text}' needs something after it", before.pos, "syntax")
-            return ExpressionError("the expression ends too early", token.pos, "syntax")
+                return ExpressionError(f"'{before.text}' needs something after it", before.pos, "syntax",
+                                       f"finish the expression after '{before.text}', or delete it")
+            return ExpressionError("the expression ends too early", token.pos, "syntax", "finish the expression")
         if token.kind == "close":
             if before is not None and before.kind == "op":
-                return ExpressionError(f"'{before.text}' needs something after it", before.pos, "syntax")
+                return ExpressionError(f"'{before.text}' needs something after it", before.pos, "syntax",
+                                       f"write something between '{before.text}' and '{token.text}'")
             if before is not None and before.kind == "open":
-                return ExpressionError("empty brackets", before.pos, "syntax")
+                return ExpressionError("empty brackets", before.pos, "syntax", "put an expression inside, or delete them")
         if token.kind == "op" and token.value == "=":
             return ExpressionError("'=' is only allowed once, between the two sides of an equation",
                                    token.pos, "syntax")
@@ -156,8 +158,10 @@ class _Parser:
             return ExpressionError("a prime (') can only follow a variable name, as in theta'",
                                    token.pos, "syntax")
         if token.kind == "sup":
-            return ExpressionError(f"superscript '{token.text}' has nothing to raise", token.pos, "syntax")
-        return ExpressionError(f"unexpected '{token.text}'", token.pos, "syntax")
+            return ExpressionError(f"superscript '{token.text}' has nothing to raise", token.pos, "syntax",
+                                   "put it right after what it raises, as in x²")
+        return ExpressionError(f"unexpected '{token.text}'", token.pos, "syntax",
+                               f"delete '{token.text}' or put an operator before it")
 
     def expect_close(self, opener: Token) -> Token:
         token = self.advance()
@@ -169,7 +173,8 @@ class _Parser:
     def expression(self, rbp: int = 0) -> sympy.Expr:
         self.depth += 1
         if self.depth > MAX_RECURSION:
-            raise ExpressionError("the expression is nested too deeply", self.peek().pos, "too_deep")
+            raise ExpressionError("the expression is nested too deeply", self.peek().pos, "too_deep",
+                                  "simplify the expression first")
         start = self.peek()
         left = self.nud(self.advance(), rbp)
         # Factors of a product are collected and multiplied once, as sympy's printer
@@ -266,7 +271,7 @@ class _Parser:
             return checked(-operand, token.pos) if token.value == "-" else operand
         if kind == "open":
             if self.peek().kind == "close":
-                raise ExpressionError("empty brackets", token.pos, "syntax")
+                raise ExpressionError("empty brackets", token.pos, "syntax", "put an expression inside, or delete them")
             inner = self.expression(0)
             self.expect_close(token)
             return inner
@@ -355,6 +360,9 @@ class _Parser:
             value = guarded_pow(args[0], sympy.Rational(1, 2), token.pos)
         else:
             value = checked(spec.build(*args), token.pos)
+            # asin(3/2), acosh(1/2), log(-2): a number with no real value, which is a slip.
+            if value.is_number and all(a.is_number for a in args) and value.is_extended_real is False:
+                raise not_real(token.pos)
         if token.text.lower() in ("log", "\\log"):
             self.note("log is the natural logarithm (ln)")
         return guarded_pow(value, power, token.pos) if power is not None else value
@@ -362,7 +370,8 @@ class _Parser:
     def call_arguments(self, token: Token, spec) -> list[sympy.Expr]:
         opener = self.advance()
         if self.peek().kind == "close":
-            raise ExpressionError(f"{token.text}() needs an argument", opener.pos, "syntax")
+            raise ExpressionError(f"{token.text}() needs an argument", opener.pos, "syntax",
+                                  f"write {spec.name}(x)")
         args = [self.expression(0)]
         while self.peek().kind == "op" and self.peek().value == "," and opener.value == "(":
             self.advance()
@@ -411,6 +420,12 @@ class _Parser:
         return self.derivative_of(inner, order)
 
     def derivative_of(self, inner: Token, order: int) -> sympy.Expr:
+        following = self.peek()
+        if following.kind == "name" and following.value.startswith("_") and not following.space_before:
+            # dot{θ}_1, \dot{\theta}_1, \ddot{x}_{2}: the subscript belongs to the variable.
+            self.advance()
+            inner = Token("name", inner.value + following.value, inner.pos, following.end,
+                          self.text[inner.pos:following.end], order=inner.order + following.order)
         resolved = resolve_name(inner.value, self.ns, order=order + inner.order, typed=inner.text,
                                 position=inner.pos)
         if resolved.kind != "symbol":
@@ -424,7 +439,7 @@ class _Parser:
         if opener.kind != "open" or opener.value != "{":
             raise ExpressionError(f"{command.text} needs braces, as in \\frac{{a}}{{b}}", opener.pos, "syntax")
         if self.peek().kind == "close":
-            raise ExpressionError("empty braces", opener.pos, "syntax")
+            raise ExpressionError("empty braces", opener.pos, "syntax", "put an expression inside the braces")
         inner = self.expression(0)
         self.expect_close(opener)
         return inner
@@ -457,7 +472,8 @@ class _Parser:
             if inner.kind == "command" and inner.value in ("dot", "ddot"):
                 raise ExpressionError("nested \\dot is not supported; write \\ddot{x}", inner.pos, "syntax")
             if inner.kind != "name":
-                raise ExpressionError(f"{token.text}{{…}} takes a variable name", inner.pos, "syntax")
+                raise ExpressionError(f"{token.text}{{…}} takes a variable name", inner.pos, "syntax",
+                                      f"write {token.text}{{x}} with a variable x")
             self.expect_close(opener)
             return self.derivative_of(inner, order)
         inner = self.advance()
@@ -601,7 +617,8 @@ def _equation(parser: _Parser, printed: bool = True) -> ParsedEquation:
     token = parser.peek()
     if token.kind != "end":
         if token.kind == "op" and token.value == "=":
-            raise ExpressionError("an equation has exactly one '='", token.pos, "syntax")
+            raise ExpressionError("an equation has exactly one '='", token.pos, "syntax",
+                                  "separate several equations with ';'")
         raise parser.unexpected(token)
     lhs, rhs = _real_and_flat(lhs, 0), _real_and_flat(rhs, token.pos)
     if not printed:
@@ -664,5 +681,5 @@ def parse_system(text: str, namespace: Namespace, *, printed: bool = True) -> li
         end = Token("end", None, last.end, last.end, "")
         equations.append(_equation(_Parser(_without_newlines(chunk) + [end], namespace, text), printed))
     if not equations:
-        raise ExpressionError("no equations found", 0, "empty")
+        raise ExpressionError("no equations found", 0, "empty", "write left side = right side")
     return equations

@@ -78,13 +78,13 @@ def _is_digit(ch: str) -> bool:
 
 # Printable ASCII the grammar does not use, and what to tell the student.
 _PUNCTUATION = {
-    "!": ("factorial (!) is not supported", "unsupported_function"),
-    ":": ("':' is not part of a formula", "syntax"),
-    "<": ("inequalities are not supported", "syntax"),
-    ">": ("inequalities are not supported", "syntax"),
-    "|": ("'|' is not supported; write abs(x) for an absolute value", "syntax"),
-    '"': ("quotes are not part of a formula", "syntax"),
-    "`": ("backquotes are not part of a formula", "syntax"),
+    "!": ("factorial (!) is not supported", "unsupported_function", "write the product out, as in 2*3"),
+    ":": ("':' is not part of a formula", "syntax", "write a ratio with /, as in a/b"),
+    "<": ("inequalities are not supported", "syntax", "give an expression, or an equation with ="),
+    ">": ("inequalities are not supported", "syntax", "give an expression, or an equation with ="),
+    "|": ("'|' is not supported", "syntax", "write abs(x) for an absolute value"),
+    '"': ("quotes are not part of a formula", "syntax", "delete the quotes"),
+    "`": ("backquotes are not part of a formula", "syntax", "delete the backquotes"),
 }
 
 
@@ -151,7 +151,8 @@ class _Tokenizer:
             self.identifier(start, "", start)
         elif ch in DOTTED_LETTERS:
             letter, order = DOTTED_LETTERS[ch]
-            self.finish_name(start, letter, start + 1, order)
+            suffix, end = self.subscript_after_accent(start + 1)
+            self.finish_name(start, letter + suffix, end, order)
         elif ch == "\\":
             self.command()
         elif ch in OPERATOR_CHARS:
@@ -167,13 +168,15 @@ class _Tokenizer:
             message = ("'.' (attribute access) is not allowed" if previous in ("name", "close")
                        else "a decimal point must be followed by digits, as in 0.5")
             code = "unsupported_function" if previous in ("name", "close") else "syntax"
-            self.emit("bad", ".", start, start + 1, error=ExpressionError(message, start, code))
+            hint = "use * for a product" if previous in ("name", "close") else "write 0.5, not .5. or 5."
+            self.emit("bad", ".", start, start + 1, error=ExpressionError(message, start, code, hint))
         elif ch in _PUNCTUATION:
-            message, code = _PUNCTUATION[ch]
-            self.emit("bad", ch, start, start + 1, error=ExpressionError(message, start, code))
+            message, code, hint = _PUNCTUATION[ch]
+            self.emit("bad", ch, start, start + 1, error=ExpressionError(message, start, code, hint))
         elif ch.isascii() and ch.isprintable():
             self.emit("bad", ch, start, start + 1,
-                      error=ExpressionError(f"'{ch}' is not allowed in a formula", start, "syntax"))
+                      error=ExpressionError(f"'{ch}' is not allowed in a formula", start, "syntax",
+                                            "use letters, digits, + - * / ^ and brackets"))
         else:
             raise bad_character(ch, start)
 
@@ -199,7 +202,8 @@ class _Tokenizer:
                     m += 1
                 # Check the exponent's size before building 10**exponent.
                 if m - k > 5:
-                    raise ExpressionError("number too large", start, "too_large")
+                    raise ExpressionError("number too large", start, "too_large",
+                                          "no answer here needs numbers that size")
                 exponent, j, decimal = int(text[j + 1:m]), m, True
         mantissa = (int_part + frac_part).lstrip("0") or "0"
         scale = exponent - len(frac_part)
@@ -246,15 +250,42 @@ class _Tokenizer:
                 subscript_digit = True
                 i += 1
             elif c in COMBINING_DOTS:
-                # An accent ends the name: θ̇ is the derivative of everything typed so far.
+                # An accent ends the name: θ̇ is the derivative of everything typed so far, and of
+                # the subscript that may follow it (θ̇₁ is θ₁̇).
                 while i < self.n and text[i] in COMBINING_DOTS:
                     order += COMBINING_DOTS[text[i]]
                     i += 1
+                suffix, i = self.subscript_after_accent(i)
+                parts.append(suffix)
                 break
             else:
                 break
             after_subscript_digit = subscript_digit
         self.finish_name(start, "".join(parts), i, order)
+
+    def subscript_after_accent(self, i: int) -> tuple[str, int]:
+        """A subscript typed after a derivative mark (``θ̇₁``, ``ẍ_2``, ``ẍ_{2}``, ``ẋ2``): its name text.
+
+        Only subscripts: letters after the mark start a new name (``ẋy`` is ẋ·y).
+        """
+        text, n = self.text, self.n
+        if i < n and text[i] in SUBSCRIPT_DIGITS:
+            j = i
+            while j < n and text[j] in SUBSCRIPT_DIGITS:
+                j += 1
+            return "_" + "".join(SUBSCRIPT_DIGITS[c] for c in text[i:j]), j
+        if i < n and _is_digit(text[i]):
+            j = i
+            while j < n and _is_digit(text[j]):
+                j += 1
+            return "_" + text[i:j], j
+        if i + 1 < n and text[i] == "_" and text[i + 1] == "{":
+            close = self.matching_brace(i + 1)
+            return "_" + subscript_text(text[i + 2:close], i + 2), close + 1
+        if i + 1 < n and text[i] == "_" and text[i + 1] in _ASCII_ALNUM:
+            run = _ASCII_ALNUM_RUN.match(text, i + 1)
+            return "_" + run.group(), run.end()
+        return "", i
 
     def finish_name(self, start: int, name: str, i: int, order: int, **extra) -> None:
         while i < self.n and self.text[i] in PRIME_CHARS:
@@ -271,7 +302,7 @@ class _Tokenizer:
                 depth -= 1
                 if depth == 0:
                     return j
-        raise ExpressionError("'{' is never closed", open_at, "unbalanced")
+        raise ExpressionError("'{' is never closed", open_at, "unbalanced", "add a '}'")
 
     # -- LaTeX ----------------------------------------------------------------
     def command(self) -> None:
@@ -315,7 +346,8 @@ class _Tokenizer:
         elif ch == "\\":
             self.emit("newline", "\n", start, start + 2)
         else:
-            raise ExpressionError("'\\' must start a LaTeX command such as \\frac", start, "syntax")
+            raise ExpressionError("'\\' must start a LaTeX command such as \\frac", start, "syntax",
+                                  "delete the backslash, or write a command such as \\frac{a}{b}")
 
     def delimiter(self, start: int, j: int, which: str) -> None:
         while j < self.n and is_space(self.text[j]):
@@ -342,7 +374,7 @@ class _Tokenizer:
             raise ExpressionError(f"cannot read the superscript '{self.text[start:j]}'", start, "syntax",
                                   "write the power with ^, as in x^-1")
         if len(body) > 4:
-            raise ExpressionError("exponent too large", start, "too_large")
+            raise ExpressionError("exponent too large", start, "too_large", "no answer here needs powers that high")
         self.emit("sup", int(digits), start, j)
 
 
@@ -377,11 +409,13 @@ def check_brackets(tokens: list[Token]) -> None:
         if token.kind == "open":
             stack.append(token)
             if len(stack) > MAX_NESTING:
-                raise ExpressionError(f"brackets nested more than {MAX_NESTING} deep", token.pos, "too_deep")
+                raise ExpressionError(f"brackets nested more than {MAX_NESTING} deep", token.pos, "too_deep",
+                                      "simplify the expression first")
         elif token.kind == "close":
             opener = _OPENERS[token.value]
             if not stack:
-                raise ExpressionError(f"'{token.value}' has no matching '{opener}'", token.pos, "unbalanced")
+                raise ExpressionError(f"'{token.value}' has no matching '{opener}'", token.pos, "unbalanced",
+                                      f"add a '{opener}' or delete this '{token.value}'")
             top = stack.pop()
             if top.value != opener:
                 raise ExpressionError(f"'{token.value}' does not match the '{top.value}' at position {top.pos}",

@@ -27,7 +27,10 @@ del GREEK_CHARS["ο"]
 GREEK_CHARS.update({"ς": "sigma", "ϑ": "theta", "ϕ": "phi", "ϵ": "epsilon", "ϱ": "rho",
                     "µ": "mu",  # MICRO SIGN, what many keyboards type for mu
                     "Γ": "Gamma", "Δ": "Delta", "Θ": "Theta", "Λ": "Lambda", "Ξ": "Xi",
-                    "Π": "Pi", "Σ": "Sigma", "Φ": "Phi", "Ψ": "Psi", "Ω": "Omega"})
+                    "Π": "Pi", "Σ": "Sigma", "Φ": "Phi", "Ψ": "Psi", "Ω": "Omega",
+                    # not Greek, but a letter of the same kind: statements write a length as ℓ
+                    # (\ell), and nobody means ℓ and l as two different variables.
+                    "ℓ": "l"})
 
 #: Operator look-alikes -> ASCII operator.
 OPERATOR_CHARS = {"·": "*", "⋅": "*", "×": "*", "∗": "*", "•": "*", "−": "-", "÷": "/", "∕": "/"}
@@ -42,12 +45,30 @@ SUBSCRIPT_DIGITS = {chr(0x2080 + i): str(i) for i in range(10)}
 #: Radical signs -> root index.
 ROOT_CHARS = {"√": 2, "∛": 3, "∜": 4}
 
-#: Combining accents after a letter: dot above = first, diaeresis = second time derivative.
-COMBINING_DOTS = {"\u0307": 1, "\u0308": 2}
+#: Accents after a letter: dot above = first, diaeresis = second time derivative (the combining
+#: marks, and the spacing ones a keyboard without combining input types: θ˙, θ¨).
+COMBINING_DOTS = {"\u0307": 1, "\u0308": 2, "\u02d9": 1, "\u00a8": 2}
 
-#: Precomposed dotted letters.
-DOTTED_LETTERS = {"ẋ": ("x", 1), "ẏ": ("y", 1), "ż": ("z", 1), "ṙ": ("r", 1), "ṡ": ("s", 1),
-                  "ẍ": ("x", 2), "ẗ": ("t", 2)}
+
+def _dotted_letters() -> dict[str, tuple[str, int]]:
+    """Every precomposed letter that is a Latin or Greek letter with dots above (ẋ, ÿ, ä, ϊ).
+
+    Found from Unicode's own decompositions, so none is missed: the letter and its derivative order.
+    """
+    found = {}
+    for code in [*range(0xC0, 0x250), *range(0x370, 0x400), *range(0x1E00, 0x1F00)]:
+        ch = chr(code)
+        base, *marks = unicodedata.normalize("NFD", ch)
+        if not marks or not all(m in ("\u0307", "\u0308") for m in marks):
+            continue
+        letter = base if base.isascii() and base.isalpha() else GREEK_CHARS.get(base)
+        if letter:
+            found[ch] = (letter, sum(COMBINING_DOTS[m] for m in marks))
+    return found
+
+
+#: Precomposed dotted letters -> (letter, derivative order): ẋ is xdot, ÿ is yddot.
+DOTTED_LETTERS = _dotted_letters()
 
 #: Prime marks after a name: theta' and theta'' are time derivatives.
 PRIME_CHARS = {"'": 1, "′": 1, "″": 2, "’": 1}
@@ -62,6 +83,22 @@ _LOOKALIKES = {
     "Т": "T", "Х": "X", "І": "I",
     "ο": "o", "Α": "A", "Β": "B", "Ε": "E", "Ζ": "Z", "Η": "H", "Ι": "I", "Κ": "K", "Μ": "M",
     "Ν": "N", "Ο": "O", "Ρ": "P", "Τ": "T", "Υ": "Y", "Χ": "X",
+}
+
+
+_SPACING_ACCENTS = {"\u02d9", "\u00a8"}
+_GENERIC_HINT = "use letters, digits, + - * / ^ and brackets (Greek letters and θ̇ are fine)"
+# What to type instead of symbols people paste from their notes.
+_SYMBOL_HINTS = {
+    "∂": "write a time derivative as a dotted variable (θ̇, theta_dot or theta')",
+    "∫": "give the result of the integral, not the integral",
+    "∑": "write the sum out term by term",
+    "≤": "give an expression, or an equation with =", "≥": "give an expression, or an equation with =",
+    "≠": "give an expression, or an equation with =", "≈": "use = for an equation",
+    "∞": "no answer here is infinite",
+    "°": "angles are in radians: write pi/180 times the number of degrees",
+    "±": "give one sign (the answer with + or the one with -)",
+    "∓": "give one sign (the answer with + or the one with -)",
 }
 
 
@@ -103,6 +140,9 @@ def bad_character(ch: str, position: int) -> ExpressionError:
     if unicodedata.combining(ch):
         return ExpressionError(f"accent {name} does not follow a variable name",
                                position, "bad_character", "a dot accent marks a time derivative, as in θ̇")
+    if ch in _SPACING_ACCENTS:
+        return ExpressionError(f"accent {name} does not follow a variable name", position, "bad_character",
+                               "put the dot right after the variable, as in θ˙ or theta_dot")
     shown = ch if ch.isprintable() else f"U+{ord(ch):04X}"
     return ExpressionError(f"character '{shown}' ({name}) is not allowed",
-                           position, "bad_character")
+                           position, "bad_character", _SYMBOL_HINTS.get(ch, _GENERIC_HINT))

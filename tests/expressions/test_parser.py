@@ -7,6 +7,7 @@ import pytest
 import sympy
 
 from grader.expressions import ExpressionError, Namespace, Variable, parse_equation, parse_expression
+from grader.expressions.functions import FUNCTIONS
 from grader.expressions.parser import parse_system
 
 
@@ -343,8 +344,8 @@ def test_equation_latex_uses_variable_latex(ns):
 # -- round trip: str(expr) reads back ----------------------------------------------
 
 _NAMES = ["m", "m1", "theta", "thetadot", "x", "l", "lambda_surface", "Q_roll_s", "phi", "pi", "E"]
-_FUNCTIONS = ["sin", "cos", "tan", "cot", "sec", "csc", "asin", "acos", "atan", "sinh", "cosh", "tanh",
-              "exp", "log", "ln", "abs", "Abs", "sign"]
+# Every one-argument function of the registry, by every spelling.
+_FUNCTIONS = sorted(name for name, f in FUNCTIONS.items() if f.max_args == 1 and name != "sqrt")
 
 
 def _random_text(rng, depth):
@@ -412,3 +413,72 @@ def test_an_unprinted_system_reads_the_same_equations(ns):
     printed, bare = parse_system(text, ns), parse_system(text, ns, printed=False)
     assert [(e.lhs, e.rhs) for e in bare] == [(e.lhs, e.rhs) for e in printed]
     assert all(e.text == e.latex == "" for e in bare)
+
+
+# -- notation: derivative marks in every order with subscripts, ℓ, the functions people type ----------
+
+@pytest.fixture
+def two_bodies():
+    names = "theta1 theta1dot theta1ddot x2 x2dot x2ddot y ydot yddot a addot m l".split()
+    return Namespace([Variable(n, "dimensionless", "real") for n in names])
+
+
+@pytest.mark.parametrize("text, name", [
+    ("θ̇₁", "theta1dot"), ("θ₁̇", "theta1dot"), ("θ_1dot", "theta1dot"), ("theta_1'", "theta1dot"),
+    ("θ₁′", "theta1dot"), ("dot{θ}_1", "theta1dot"), ("dot(θ)_1", "theta1dot"),
+    (r"\dot{\theta}_1", "theta1dot"), (r"\dot\theta_1", "theta1dot"), (r"\dot{\theta_1}", "theta1dot"),
+    (r"\ddot{x}_{2}", "x2ddot"), ("ẍ₂", "x2ddot"), ("ẍ_2", "x2ddot"), ("ẍ_{2}", "x2ddot"), ("ẍ2", "x2ddot"),
+    ("θ¨_1", "theta1ddot"), ("θ˙₁", "theta1dot"),          # spacing accents, as keyboards type them
+    ("ÿ", "yddot"), ("ẏ", "ydot"), ("ä", "addot"),          # precomposed letters with dots above
+    ("y\u0308", "yddot"), ("y\u0307", "ydot"),                # the same with combining marks
+    ("ℓ", "l"), (r"\ell", "l"),                             # the statement's script l is the variable l
+])
+def test_derivative_marks_and_subscripts_in_every_order(two_bodies, text, name):
+    assert parse(text, two_bodies) == two_bodies.symbol(name)
+
+
+def test_precomposed_dotted_letter_glued_to_a_factor_is_a_product(two_bodies):
+    assert parse("mÿ", two_bodies) == two_bodies.symbol("m") * two_bodies.symbol("yddot")
+    assert parse("mℓ", two_bodies) == two_bodies.symbol("m") * two_bodies.symbol("l")
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("asinh(x) + acosh(l) + atanh(y/l)", lambda s: sympy.asinh(s("x")) + sympy.acosh(s("l")) + sympy.atanh(s("y") / s("l"))),
+    ("arsinh(x) + arcosh(l)", lambda s: sympy.asinh(s("x")) + sympy.acosh(s("l"))),
+    ("sech(x) + csch(x) + coth(x)", lambda s: sympy.sech(s("x")) + sympy.csch(s("x")) + sympy.coth(s("x"))),
+    ("cosec(theta)", lambda s: sympy.csc(s("theta"))),
+    ("arcsin(x/l) + arccos(x/l) + arctan(x)", lambda s: sympy.asin(s("x") / s("l")) + sympy.acos(s("x") / s("l")) + sympy.atan(s("x"))),
+    ("arctan2(y, x)", lambda s: sympy.atan2(s("y"), s("x"))),
+    ("sgn(x) + sign(y)", lambda s: sympy.sign(s("x")) + sympy.sign(s("y"))),
+    ("ln(l)", lambda s: sympy.log(s("l"))),
+    ("log10(l)", lambda s: sympy.log(s("l")) / sympy.log(10)),
+    ("sinh^-1 x", lambda s: sympy.asinh(s("x"))),
+    (r"\coth x + \operatorname{asinh}(x) + \operatorname{sgn}(x)", lambda s: sympy.coth(s("x")) + sympy.asinh(s("x")) + sympy.sign(s("x"))),
+])
+def test_every_elementary_function_people_type(ns, text, expected):
+    assert parse(text, ns) == expected(lambda n: ns.symbol(n))
+
+
+@pytest.mark.parametrize("text, named, fix", [
+    ("atan2(x)", "atan2 takes 2 arguments, got 1", "atan2(y, x)"),
+    ("atan2 x", "atan2 takes 2 arguments in parentheses", "atan2(y, x)"),
+    ("sin(x, y)", "sin takes 1 argument, got 2", "sin(x)"),
+    ("log(x, y, l)", "log takes 1 or 2 arguments, got 3", "log(x)"),
+    ("asin(3/2)", "not a real number", "[-1, 1]"),
+    ("acosh(1/2)", "not a real number", "asin/acos"),
+    ("foo(x)", "'foo' is not a function", "allowed functions"),
+    ("acot(x)", "'acot' is not a function", "did you mean"),
+    ("θ̇̇̇", "third or higher time derivative", "at most two dots"),
+    ("∂x", "'∂' (PARTIAL DIFFERENTIAL)", "dotted variable"),
+    ("x°", "'°' (DEGREE SIGN)", "radians"),
+    ("x!", "factorial", "2*3"),
+    ("|x|", "'|'", "abs(x)"),
+    ("¨x", "DIAERESIS does not follow a variable name", "right after the variable"),
+    ("x @ y", "'@'", "letters, digits"),
+    ("(x", "'(' is never closed", "add a ')'"),
+    ("x)", "')' has no matching '('", "add a '('"),
+])
+def test_every_refusal_names_the_word_and_the_fix(ns, text, named, fix):
+    with pytest.raises(ExpressionError) as err:
+        parse(text, ns)
+    assert named in err.value.message and fix in f"{err.value.message} {err.value.hint or ''}"
