@@ -49,6 +49,7 @@ from grader.expressions import (
     parse_domain,
     parse_expression,
 )
+from grader.mechanics.geometry import Geometry, read_geometry
 from grader.mechanics.scene_schema import structure_problems
 
 __all__ = [
@@ -165,6 +166,7 @@ class Scene:
     time: sympy.Symbol
     namespace: Namespace
     forces: dict[tuple[str, str], sympy.Symbol] = field(default_factory=dict)
+    geometry: Geometry | None = None  # where to draw bodies (pictures only; see geometry.py)
 
     @property
     def lagrangian(self) -> sympy.Expr:
@@ -326,12 +328,26 @@ class _SceneReader:
         parametrization = self.read_parametrization(coordinates)
         initial = self.read_initial(Namespace(self.variables))
         answers = self.read_answers(coordinates, parametrization)
+        geometry = self.read_geometry()
         return Scene(
             id=scene_id, title=title, statement=statement, source=self.source, text=self.text,
             parameters=parameters, coordinates=coordinates, kinetic=kinetic, potential=potential,
             constraints=constraints, initial=initial, parametrization=parametrization,
             answers=answers, time=time, namespace=Namespace(self.variables), forces=forces,
+            geometry=geometry,
         )
+
+    def read_geometry(self) -> Geometry | None:
+        namespace = Namespace([v for v in self.variables if v.kind in ("parameter", "coordinate", "time")])
+        length = parse_dimension("length")
+
+        def is_length(key: str, expr: sympy.Expr) -> None:
+            found = self.dimension_of(key, expr)
+            if found != length:
+                raise self.fail(key, f"must be a length, not {found.describe()}")
+
+        return read_geometry(self.table("geometry"), lambda key, text: self.expression(key, text, namespace),
+                             is_length, self.fail)
 
     def read_parameters(self) -> dict[str, Parameter]:
         parameters = {}

@@ -100,6 +100,17 @@ SCENE_SCHEMA: dict[str, Any] = {
         }),
         # coordinate or velocity name = number or expression in parameters
         "initial": _table(_NUMBER_OR_EXPRESSION),
+        # where to draw bodies (pictures only, grader/mechanics/geometry.py): x right, y up
+        "geometry": {"type": "object", "additionalProperties": False, "properties": {
+            "points": _table({"type": "array", "minItems": 2, "maxItems": 2, "items": _NUMBER_OR_EXPRESSION}),
+            "bars": {"type": "array", "maxItems": MAX_ITEMS,
+                     "items": {"type": "array", "minItems": 2, "maxItems": 2, "items": _string(MAX_NAME_CHARS)}},
+            "circles": {"type": "array", "maxItems": MAX_ITEMS, "items": {
+                "type": "object", "additionalProperties": False, "required": ["radius"],
+                "properties": {"centre": {"type": "array", "minItems": 2, "maxItems": 2,
+                                          "items": _NUMBER_OR_EXPRESSION},
+                               "radius": _NUMBER_OR_EXPRESSION}}},
+        }},
         "parametrization": {"type": "object", "additionalProperties": False,
                             "properties": {"variables": _table(_COORDINATE), "map": _table(_NUMBER_OR_EXPRESSION)}},
         "answers": _list({
