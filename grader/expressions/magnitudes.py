@@ -96,7 +96,7 @@ def checked(expr: sympy.Expr, position: int | None) -> sympy.Expr:
     >>> checked(sympy.Integer(1) / 0, 4)
     Traceback (most recent call last):
     ...
-    grader.expressions.errors.ExpressionError: this is undefined (a division by zero?) at position 4
+    grader.expressions.errors.ExpressionError: this is undefined (a division by zero?) at position 4; check what divides by zero here
     """
     for node in (expr, *expr.args):
         if id(node) in _UNDEFINED_IDS:
