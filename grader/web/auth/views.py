@@ -7,18 +7,12 @@ from flask import flash, g, redirect, render_template, request, url_for
 from grader.store.db import db
 from grader.store.users import authenticate
 from grader.web.auth import bp
+from grader.web.auth.redirects import safe_next
 from grader.web.auth.session import home_for, sign_in, sign_out
 from grader.web.errors import ApiProblem
 from grader.web.security import limiter
 
 MAX_FIELD = 320
-
-
-def _safe_next(target: str | None) -> str | None:
-    """Only a path on this site: "//evil.example" and "https://..." would send the user away."""
-    if target and target.startswith("/") and not target.startswith("//") and "\\" not in target:
-        return target
-    return None
 
 
 @bp.get("/")
@@ -28,7 +22,7 @@ def home():
 
 @bp.route("/login", methods=["GET", "POST"])
 def login():
-    next_url = _safe_next(request.args.get("next"))
+    next_url = safe_next(request.args.get("next")) or None  # only a path on this site
     if request.method == "GET":
         if g.user is not None:
             return redirect(next_url or home_for(g.user))
