@@ -97,23 +97,28 @@ class RateLimiter:
     def init_app(self, app: Flask) -> None:
         app.extensions["lagrade.rate_buckets"] = {}
 
-    def hit(self, action: str, key: object) -> None:
-        """Take one token from ``key``'s bucket for ``action``, or raise a 429 problem."""
+    def hit(self, action: str, key: object, cost: float = 1.0) -> None:
+        """Take ``cost`` tokens from ``key``'s bucket for ``action``, or raise a 429 problem.
+
+        An expensive request (a check with many feedback items) costs more than one token; the
+        cost is capped at the burst, so that any single request can pass once the bucket is full.
+        """
         config = current_app.config
         if not config["RATE_LIMITS_ENABLED"] or action not in config["RATE_LIMITS"]:
             return
         per_minute, burst = config["RATE_LIMITS"][action]
         rate = per_minute / 60.0
+        cost = min(max(float(cost), 1.0), float(burst))
         now = time.monotonic()
         buckets: dict[tuple[str, object], _Bucket] = current_app.extensions["lagrade.rate_buckets"]
         with self._lock:
             bucket = buckets.setdefault((action, key), _Bucket(float(burst), now))
             bucket.tokens = min(float(burst), bucket.tokens + (now - bucket.updated) * rate)
             bucket.updated = now
-            if bucket.tokens >= 1.0:
-                bucket.tokens -= 1.0
+            if bucket.tokens >= cost:
+                bucket.tokens -= cost
                 return
-            wait = math.ceil((1.0 - bucket.tokens) / rate)
+            wait = math.ceil((cost - bucket.tokens) / rate)
         raise ApiProblem(429, f"Too many {action} requests: at most {per_minute} a minute (bursts of {burst}). "
                               f"Try again in {wait} s.", kind="rate-limited", headers={"Retry-After": str(wait)})
 

@@ -2,27 +2,27 @@
 
 from __future__ import annotations
 
-from flask import current_app, g
+from flask import current_app
 
 from grader.jobs.grading import CheckersBusy
 from grader.web.api import spec
-from grader.web.api.schemas import CHECK_REQUEST, CHECK_RESULT, read_json
+from grader.web.api.schemas import CHECK_REQUEST, CHECK_RESULT, check_cost, read_json
 from grader.web.errors import ApiProblem
-from grader.web.security import limiter
 
 ANY_ROLE = {"student", "instructor", "admin", "lms"}
 
 
-@spec.route("/check", "POST", roles=ANY_ROLE, errors=(400, 415, 422, 429, 503),
+@spec.route("/check", "POST", roles=ANY_ROLE, errors=(400, 413, 415, 422, 429, 503),
+            rate_limit="check", cost=check_cost,
             request={"application/json": spec.schema("CheckRequest", CHECK_REQUEST)},
             responses={200: ("The verdict.", {"application/json": spec.schema("CheckResult", CHECK_RESULT)})})
 def check_answer():
     """Check an answer against a reference, without storing anything.
 
     The check runs in a sandbox child with a hard time and memory limit; an answer that exhausts
-    them gets a verdict saying so, not an error.
+    them gets a verdict saying so, not an error. A check costs one request of the rate limit, plus
+    one per feedback item and a little for many variables or long texts.
     """
-    limiter.hit("check", g.api_user.id)
     body = read_json(CHECK_REQUEST)
     checkers = current_app.extensions["lagrade.checkers"]
     limit = current_app.config["CHECK_BUDGET_S"]

@@ -1,24 +1,40 @@
 """JSON schemas of the API, used twice: published in the OpenAPI document and enforced on requests.
 
-:func:`read_json` validates a request body against the small subset of JSON Schema used here
-(object, required, properties, string/integer/object/array, maxLength, enum, additionalProperties),
-so that what the document promises is what the server checks.
+Every string and list in a request has a limit here (``maxLength``, ``maxItems``, ``maxProperties``,
+``minimum``/``maximum``, ``pattern``); the route registry (:mod:`grader.web.api.spec`) validates
+each JSON body against its schema with ``jsonschema`` before the view runs (:mod:`.bodies`), so
+what the document says is what the server checks. Lengths match the database's columns.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from flask import request
+from flask import g
 
 from grader.jobs.queue import MAX_ANSWER_CHARS
-from grader.web.errors import ApiProblem
+from grader.web.api.bodies import validated_body
 
-__all__ = ["CHECK_REQUEST", "CHECK_RESULT", "SUBMISSION_REQUEST", "read_json"]
+__all__ = ["CHECK_REQUEST", "CHECK_RESULT", "SUBMISSION_REQUEST", "check_cost", "read_json"]
+
+MAX_REFERENCE_CHARS = 4000
+MAX_VARIABLES = 64
+MAX_FEEDBACK = 16
+MAX_MESSAGE_CHARS = 2000
+NAME_PATTERN = "^[A-Za-z][A-Za-z0-9_]*$"
 
 _VARIABLE = {
     "type": "object",
-    "properties": {"dimension": {"type": "string"}, "domain": {}},
+    "additionalProperties": False,
+    "properties": {
+        "dimension": {"type": "string", "maxLength": 100, "description": "e.g. 'mass', 'kg*m^2'"},
+        "domain": {"oneOf": [
+            {"type": "string", "maxLength": 32, "description": "'positive', 'nonnegative' or 'real'"},
+            {"type": "array", "minItems": 2, "maxItems": 2, "description": "[lo, hi]",
+             "items": {"oneOf": [{"type": "number"}, {"type": "string", "maxLength": 64}]}}]},
+        "kind": {"type": "string", "enum": ["parameter", "coordinate", "velocity", "acceleration", "multiplier",
+                                            "force", "time", "answer"]},
+    },
     "description": "A name the text may use: its dimension (e.g. 'mass') and domain ('positive', [lo, hi]).",
 }
 
@@ -33,17 +49,40 @@ CHECK_REQUEST = {
     "required": ["reference", "answer", "variables"],
     "additionalProperties": False,
     "properties": {
-        "reference": {"type": "string", "maxLength": 4000},
+        "reference": {"type": "string", "maxLength": MAX_REFERENCE_CHARS},
         "answer": {"type": "string", "maxLength": MAX_ANSWER_CHARS},
-        "variables": {"type": "object", "additionalProperties": _VARIABLE},
+        "variables": {"type": "object", "maxProperties": MAX_VARIABLES, "additionalProperties": _VARIABLE,
+                      "description": "The names the texts may use (keys: letters, digits and _)."},
         "kind": {"type": "string", "enum": ["expression", "equation"], "default": "expression"},
-        "feedback": {"type": "array", "items": {"type": "object", "properties": {
-            "expr": {"type": "string"}, "message": {"type": "string"}}}},
-        "state": {"type": "array", "items": {"type": "string"},
+        "feedback": {"type": "array", "maxItems": MAX_FEEDBACK, "items": {
+            "type": "object", "required": ["expr", "message"], "additionalProperties": False, "properties": {
+                "expr": {"type": "string", "maxLength": MAX_REFERENCE_CHARS},
+                "message": {"type": "string", "maxLength": MAX_MESSAGE_CHARS}}},
+            "description": "Known wrong answers and what to tell a student who gives one. Each item costs "
+                          "one more check against the rate limit."},
+        "state": {"type": "array", "maxItems": MAX_VARIABLES, "items": {"type": "string", "maxLength": 64},
                   "description": "Equations: the names that are state (coordinates, velocities)."},
-        "budget_s": {"type": "number", "description": "Time budget; capped by the server's own."},
+        "budget_s": {"type": "number", "minimum": 0.01, "maximum": 60,
+                     "description": "Time budget in seconds; capped by the server's own."},
     },
 }
+
+
+def check_cost(body: dict[str, Any]) -> float:
+    """Rate-limit tokens a ``POST /check`` costs: one, plus one per feedback item (each is a check
+    of its own), plus a little for many variables or long texts.
+
+    Examples
+    --------
+    >>> check_cost({"reference": "m*g", "answer": "m g", "variables": {"m": {}, "g": {}}})
+    1.0
+    >>> check_cost({"reference": "m*g", "answer": "m g", "variables": {}, "feedback": [{}] * 4})
+    5.0
+    """
+    chars = len(body.get("reference", "")) + len(body.get("answer", ""))
+    return (1.0 + len(body.get("feedback") or ()) + len(body.get("variables") or {}) // 16
+            + len(body.get("state") or ()) // 16 + chars // 2000)
+
 
 CHECK_RESULT = {
     "type": "object",
@@ -67,51 +106,20 @@ SUBMISSION_REQUEST = {
     "required": ["answer", "text"],
     "additionalProperties": False,
     "properties": {
-        "answer": {"type": "string", "maxLength": 64, "description": "The name of the problem's answer."},
+        "answer": {"type": "string", "maxLength": 64, "pattern": NAME_PATTERN,
+                   "description": "The name of the problem's answer."},
         "text": {"type": "string", "maxLength": MAX_ANSWER_CHARS, "description": "The student's answer."},
-        "user": {"type": "string", "maxLength": 200,
+        "user": {"type": "string", "minLength": 1, "maxLength": 200,
                  "description": "LMS tokens only: the external id of the student this is for."},
     },
 }
 
-_PY_TYPES = {"string": str, "object": dict, "array": list, "integer": int, "number": (int, float), "boolean": bool}
-
 
 def read_json(schema: dict) -> dict[str, Any]:
-    """The request's JSON body, checked against ``schema``; a 400/415/422 problem otherwise."""
-    if not request.is_json:
-        raise ApiProblem(415, "Send the body as JSON with 'Content-Type: application/json'.", kind="unsupported-media-type")
-    body = request.get_json(silent=True)
-    if body is None:
-        raise ApiProblem(400, "The body is not valid JSON.", kind="invalid-json")
-    errors = list(_errors(body, schema, "body"))
-    if errors:
-        raise ApiProblem(422, "; ".join(errors), kind="invalid-request", errors=errors)
-    return body
+    """The request's JSON body, valid against ``schema`` (a 400/413/415/422 problem otherwise).
 
-
-def _errors(value: Any, schema: dict, where: str):
-    expected = schema.get("type")
-    if expected and (not isinstance(value, _PY_TYPES[expected]) or (expected != "boolean" and isinstance(value, bool))):
-        yield f"{where} must be of type {expected}"
-        return
-    if "enum" in schema and value not in schema["enum"]:
-        yield f"{where} must be one of {', '.join(map(str, schema['enum']))}"
-    if "maxLength" in schema and len(value) > schema["maxLength"]:
-        yield f"{where} is {len(value)} characters long; the limit is {schema['maxLength']}"
-    if expected == "object":
-        properties = schema.get("properties", {})
-        for name in schema.get("required", []):
-            if name not in value:
-                yield f"{where}.{name} is required"
-        extra = schema.get("additionalProperties", True)
-        for name, item in value.items():
-            if name in properties:
-                yield from _errors(item, properties[name], f"{where}.{name}")
-            elif extra is False:
-                yield f"{where}.{name} is not a known field"
-            elif isinstance(extra, dict):
-                yield from _errors(item, extra, f"{where}.{name}")
-    if expected == "array" and "items" in schema:
-        for index, item in enumerate(value):
-            yield from _errors(item, schema["items"], f"{where}[{index}]")
+    The route registry has already validated it for operations that declare a JSON body; views
+    call this to get it.
+    """
+    body = getattr(g, "api_body", None)
+    return body if body is not None else validated_body(schema, {})

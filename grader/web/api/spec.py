@@ -14,9 +14,11 @@ from dataclasses import dataclass, field
 from functools import wraps
 from typing import Any, Callable
 
-from flask import Blueprint
+from flask import Blueprint, g
 
-from grader.web.security import api_user
+from grader.web.api.bodies import LIMITS_TEXT, validated_body
+from grader.web.errors import ApiProblem
+from grader.web.security import api_user, limiter
 
 __all__ = ["ApiSpec", "Operation"]
 
@@ -36,6 +38,8 @@ class Operation:
     parameters: list[dict] = field(default_factory=list)
     headers: dict[int, dict[str, dict]] = field(default_factory=dict)
     errors: tuple[int, ...] = ()
+    rate_limit: str | None = None  # the limiter's action charged for each call
+    cost: Callable[[Any], float] | None = None  # tokens a valid body costs (default 1)
 
     @property
     def path(self) -> str:
@@ -91,24 +95,52 @@ class ApiSpec:
     def route(self, rule: str, method: str, *, roles: set[str] | None,
               request: dict[str, dict] | None = None, responses: dict[int, tuple[str, dict | None]],
               parameters: list[dict] | None = None, headers: dict[int, dict[str, dict]] | None = None,
-              errors: tuple[int, ...] = ()):
+              errors: tuple[int, ...] = (), rate_limit: str | None = None,
+              cost: Callable[[Any], float] | None = None):
         """Declare an API operation. ``roles=None`` means no token is needed; ``errors`` lists the
-        problem statuses it may answer besides 401/403 (implied by roles) and 500."""
+        problem statuses it may answer besides 401/403 (implied by roles) and 500.
+
+        Before the view runs: the token's role is checked; an ``application/json`` request body is
+        parsed strictly and validated against its published schema (:mod:`.bodies`), and is then
+        ``g.api_body``; declared header parameters are validated too; ``rate_limit`` names the
+        limiter action charged, ``cost(body)`` tokens for a valid body, one for an invalid one.
+        """
         allowed = frozenset(roles) if roles is not None else None
 
         def decorator(view: Callable) -> Callable:
+            operation = Operation(rule, method, view, allowed, request, responses, parameters or [],
+                                  headers or {}, errors, rate_limit, cost)
+
             @wraps(view)
             def guarded(**kwargs):
                 if allowed is not None:
                     api_user(allowed)
+                self._validate(operation)
                 return view(**kwargs)
 
             self.blueprint.add_url_rule(rule, endpoint=view.__name__, view_func=guarded, methods=[method])
-            self.operations.append(Operation(rule, method, view, allowed, request, responses,
-                                             parameters or [], headers or {}, errors))
+            self.operations.append(operation)
             return view
 
         return decorator
+
+    def _validate(self, op: Operation) -> None:
+        """The registry's one validation step: headers, then the JSON body, then the rate limit."""
+        from flask import request
+
+        charge = 1.0
+        try:
+            for parameter in op.parameters:
+                value = request.headers.get(parameter["name"]) if parameter["in"] == "header" else None
+                if value is not None:
+                    _check_parameter(parameter, value)
+            g.api_body = None
+            if op.request and "application/json" in op.request:
+                g.api_body = validated_body(op.request["application/json"], self.schemas)
+                charge = float(op.cost(g.api_body)) if op.cost else 1.0
+        finally:  # an invalid request is charged too: a flood of them is limited like any other
+            if op.rate_limit is not None and getattr(g, "api_user", None) is not None:
+                limiter.hit(op.rate_limit, g.api_user.id, cost=charge)
 
     def openapi(self, server_url: str) -> dict[str, Any]:
         paths: dict[str, dict] = {}
@@ -118,7 +150,8 @@ class ApiSpec:
         problem_content = {"application/problem+json": {"schema": _PROBLEM}}
         return {
             "openapi": "3.0.3",
-            "info": {"title": self.title, "version": self.version, "description": self.description},
+            "info": {"title": self.title, "version": self.version,
+                     "description": f"{self.description}\n\n{LIMITS_TEXT}".strip()},
             "servers": [{"url": server_url}],
             "paths": paths,
             "components": {
@@ -131,6 +164,17 @@ class ApiSpec:
                 },
             },
         }
+
+
+def _check_parameter(parameter: dict, value: str) -> None:
+    """A header parameter against its (string) schema: its length, pattern and enum."""
+    from grader.web.api.bodies import problems_of
+
+    problems = problems_of(value, parameter.get("schema", {}))
+    if problems:
+        detail = problems[0]["detail"].replace("body", f"The {parameter['name']} header", 1)
+        raise ApiProblem(422, detail, kind="invalid-request",
+                         errors=[{"parameter": parameter["name"], "detail": detail}])
 
 
 PROBLEM_DOCUMENT = {

@@ -17,7 +17,6 @@ from grader.web.api import spec
 from grader.web.api.problems import EVERYONE, INSTRUCTORS, visible_version
 from grader.web.api.schemas import PARSED, SUBMISSION_REQUEST, read_json
 from grader.web.errors import ApiProblem
-from grader.web.security import limiter
 
 __all__ = ["submission_json"]
 
@@ -98,10 +97,11 @@ def _whose(session: Session, requester: User, external_id: str | None) -> User:
     return student
 
 
-@spec.route("/problems/<slug>/submissions", "POST", roles=EVERYONE, errors=(400, 404, 415, 422, 429),
+@spec.route("/problems/<slug>/submissions", "POST", roles=EVERYONE, errors=(400, 404, 413, 415, 422, 429),
+            rate_limit="submit",
             request={"application/json": spec.schema("SubmissionRequest", SUBMISSION_REQUEST)},
             parameters=[{"name": "Idempotency-Key", "in": "header", "required": False, "schema": {
-                "type": "string", "maxLength": MAX_KEY_CHARS},
+                "type": "string", "minLength": 1, "maxLength": MAX_KEY_CHARS},
                 "description": "Makes retries safe: the same key and body return the same submission; "
                                "the same key with another body is refused (422)."}],
             responses={202: ("Accepted: stored and queued for grading; poll the Location.",
@@ -115,7 +115,6 @@ def create_submission(slug: str):
     The submission is committed before this returns; a worker grades it in the background.
     """
     requester = g.api_user
-    limiter.hit("submit", requester.id)
     body = read_json(SUBMISSION_REQUEST)
     key = request.headers.get("Idempotency-Key")
     if key is not None and not (0 < len(key) <= MAX_KEY_CHARS):
