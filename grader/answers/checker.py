@@ -26,6 +26,7 @@ from grader.answers.equations import compare_equations, state_symbols
 from grader.answers.equivalence import Comparison, Compiled, Options, compare_expressions
 from grader.answers.evaluate import ArbBackend, Undefined, Unresolved, Unsupported
 from grader.answers.feedback import diagnose
+from grader.answers.reference import DETAILS, KINDS
 from grader.answers.sampling import Sampler, seed_for
 from grader.answers.verdict import Verdict
 from grader.expressions import (
@@ -41,7 +42,6 @@ __all__ = ["check", "check_request", "DEFAULT_OPTIONS"]
 
 DEFAULT_OPTIONS = Options()
 FEEDBACK_OPTIONS = Options(points=4, symbolic=False)
-KINDS = ("expression", "equation")
 # Share of the budget the mathematics may use; the rest is for the reply (and, in the sandbox,
 # is the margin before the hard kill).
 BUDGET_SHARE = 0.8
@@ -255,7 +255,8 @@ def _could_be_same(r: sympy.Expr, a: sympy.Expr, point: dict, r_cache: dict | No
     return (aa - ra).contains(0)
 
 
-def _feedback(ref: _Reference, exprs: list[sympy.Expr], comparison: Comparison, deadline: float) -> list[dict]:
+def _feedback(ref: _Reference, exprs: list[sympy.Expr], comparison: Comparison, deadline: float,
+              detail: str) -> list[dict]:
     if ref.kind == "expression":
         answer_values: dict = {}  # the answer itself is the right side of most candidates
 
@@ -284,7 +285,7 @@ def _feedback(ref: _Reference, exprs: list[sympy.Expr], comparison: Comparison, 
             ratio = a / r if r else None
         rel = (comparison.counterexample or {}).get("relative_difference")
         return diagnose(ref.exprs[0], exprs[0], same, ref.instructor, ratio, rel, deadline,
-                        swap_could_match=swap_could_match)
+                        swap_could_match=swap_could_match, detail=detail)
 
     def same_equation(r, a):
         r_list = r if isinstance(r, list) else [r]
@@ -295,7 +296,7 @@ def _feedback(ref: _Reference, exprs: list[sympy.Expr], comparison: Comparison, 
     found = [{"code": "instructor", "message": m} for e, m in ref.instructor if same_equation(e, exprs)][:1]
     if found or len(exprs) != 1 or len(ref.exprs) != 1:
         return found
-    return diagnose(ref.exprs[0], exprs[0], same_equation, (), None, None, deadline, equation=True)
+    return diagnose(ref.exprs[0], exprs[0], same_equation, (), None, None, deadline, equation=True, detail=detail)
 
 
 def check(
@@ -307,6 +308,7 @@ def check(
     budget_s: float = 2.0,
     state: Sequence[str] | None = None,
     options: Options = DEFAULT_OPTIONS,
+    feedback_detail: str = "kind",
 ) -> Verdict:
     """Check a student's answer against a reference answer.
 
@@ -330,6 +332,9 @@ def check(
         variable's ``kind``, else from names ending in ``dot``/``ddot``).
     options : Options
         How hard the numeric judge works (the benchmark varies this).
+    feedback_detail : {"kind", "full"}
+        ``"kind"``: slip messages name the kind of slip and no value that would reveal the
+        reference; ``"full"``: they also state the factor or difference (an instructor's opt-in).
 
     Returns
     -------
@@ -351,7 +356,8 @@ def check(
     started = time.monotonic()
     text = answer if isinstance(answer, str) else ""
     try:
-        verdict = _check(reference, answer, variables, kind, feedback, budget_s, state, options, started)
+        verdict = _check(reference, answer, variables, kind, feedback, budget_s, state, options, started,
+                         feedback_detail)
     except _RequestError as error:
         verdict = Verdict.invalid(str(error), text)
     except RecursionError:
@@ -359,12 +365,13 @@ def check(
     except MemoryError:
         raise  # the sandbox turns this into a verdict and a fresh process
     except Exception as error:  # a checker bug must not crash the caller; say so plainly
-        verdict = Verdict.invalid(f"internal error while checking ({type(error).__name__}: {error})", text)
+        # Only the type: a library's message may quote the reference.
+        verdict = Verdict.invalid(f"internal error while checking ({type(error).__name__})", text)
     verdict.ms = (time.monotonic() - started) * 1000
     return verdict
 
 
-def _check(reference, answer, variables, kind, feedback, budget_s, state, options, started) -> Verdict:
+def _check(reference, answer, variables, kind, feedback, budget_s, state, options, started, detail) -> Verdict:
     if not isinstance(reference, str) or not reference.strip():
         raise _RequestError("'reference' must be a non-empty string")
     if not isinstance(answer, str):
@@ -375,6 +382,8 @@ def _check(reference, answer, variables, kind, feedback, budget_s, state, option
         raise _RequestError("'state' must be a list of variable names")
     if feedback is not None and not isinstance(feedback, (list, tuple)):
         raise _RequestError("'feedback' must be a list of {expr, message}")
+    if detail not in DETAILS:
+        raise _RequestError(f"'feedback_detail' must be one of {', '.join(DETAILS)}")
     try:
         budget = float(budget_s)
     except (TypeError, ValueError):
@@ -430,7 +439,7 @@ def _check(reference, answer, variables, kind, feedback, budget_s, state, option
     if comparison.equivalent:
         return Verdict("equivalent", comparison.certainty, comparison.reason, parsed=parsed,
                        evidence=comparison.evidence)
-    items = _feedback(ref, exprs, comparison, deadline)
+    items = _feedback(ref, exprs, comparison, deadline, detail)
     return Verdict("not_equivalent", comparison.certainty, comparison.reason, parsed=parsed,
                    counterexample=example, feedback=items, evidence=comparison.evidence)
 
@@ -439,7 +448,8 @@ def check_request(request: Any) -> dict:
     """`check` for one decoded JSON request; returns the verdict's JSON (never raises).
 
     The request is ``{"reference", "answer", "variables", "kind"?, "feedback"?, "state"?,
-    "budget_s"?}``, as read by ``grader check --jsonl`` and sent by the grading worker.
+    "budget_s"?, "feedback_detail"?}``, as read by ``grader check --jsonl`` and sent by the grading
+    worker.
 
     Examples
     --------
@@ -467,6 +477,7 @@ def check_request(request: Any) -> dict:
                 feedback=request.get("feedback"),
                 budget_s=request.get("budget_s", 2.0),
                 state=request.get("state"),
+                feedback_detail=request.get("feedback_detail", "kind"),
             )
     verdict.ms = (time.monotonic() - started) * 1000
     return verdict.to_json()

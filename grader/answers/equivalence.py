@@ -445,13 +445,17 @@ def compare_expressions(
     diff = answer - reference
     if diff == 0:
         return Comparison(True, "proved", "symbolically identical", evidence={"method": "symbolic"})
-    if diff.is_Rational:  # two constants that differ, however little: exact arithmetic decides
+    if diff.is_Rational and answer.is_number and reference.is_number:
+        # Two constants that differ, however little: exact arithmetic decides. (x + 1 against x
+        # also differs by a rational, but has variables: the points below give its counterexample.)
         example = {"values": {}, "answer": as_float(answer), "reference": as_float(reference)}
-        if reference != 0:
-            example["relative_difference"] = abs(float(diff / reference))
-        return Comparison(False, "proved", f"your answer differs from the correct one by the constant {diff}",
+        relative = _to_float(abs(diff / reference)) if reference != 0 else math.nan
+        if math.isfinite(relative):
+            example["relative_difference"] = relative
+        # The reason never states the difference: with the answer, it would give the reference away.
+        return Comparison(False, "proved", "your answer differs from the correct one by a constant",
                           evidence={"method": "exact"}, counterexample=example,
-                          values=(float(answer), float(reference)))
+                          values=(_to_float(answer), _to_float(reference)))
     backend = options.backend()
     ref = compiled_reference if compiled_reference is not None else Compiled(reference, backend)
     ans = Compiled(answer, backend)

@@ -5,6 +5,13 @@ instructor's ``[[answers.feedback]]`` entry matches when the student's answer is
 ``expr``; "check the sign" appears only when the answer is equivalent to minus the reference; and
 so on for a constant factor, sin <-> cos, a missing term, an extra term and one term's sign.
 Feedback runs only when the answer is not equivalent, and stops when the time budget runs low.
+
+Feedback never gives the reference away. By default (``detail="kind"``) a message names the kind of
+slip ("off by a constant factor", "check the sign", "a term is missing") but no value: a student
+who read "3/2 times the correct one", or a relative difference at a point the counterexample shows,
+could compute the reference from their own answer. An instructor may opt in per problem
+(``[feedback] detail = "full"`` in the scene file) to messages that also state the factor and the
+relative difference.
 """
 
 from __future__ import annotations
@@ -21,14 +28,22 @@ __all__ = ["diagnose", "factor_message"]
 MAX_TERMS = 6
 
 
-def factor_message(q: Fraction) -> str:
+def factor_message(q: Fraction, detail: str = "kind") -> str:
     """What to tell a student whose answer is ``q`` times the correct one.
 
-    >>> factor_message(Fraction(-1)), factor_message(Fraction(1, 2))
+    With ``detail="kind"`` the factor itself is never said (it would give the reference away).
+
+    >>> factor_message(Fraction(3, 2))
+    'Your answer is off by a constant factor: check the numerical factors.'
+    >>> factor_message(Fraction(-1)), factor_message(Fraction(1, 2), detail="full")
     ('Check the sign: your answer is the negative of the correct one.', 'Your answer is half the correct one: check for a missing or extra factor of 2.')
     """
     if q == -1:
         return "Check the sign: your answer is the negative of the correct one."
+    if detail != "full":
+        if q < 0:
+            return "Check the sign and the numerical factors: your answer is off by a negative constant factor."
+        return "Your answer is off by a constant factor: check the numerical factors."
     sign = "" if q > 0 else "Check the sign, and: "
     q = abs(q)
     if q == 2:
@@ -115,6 +130,7 @@ def diagnose(
     deadline: float | None = None,
     equation: bool = False,
     swap_could_match: Callable[[], bool] | None = None,
+    detail: str = "kind",
 ) -> list[dict]:
     """Feedback items ``{"code", "message"}`` for an answer known not to be equivalent.
 
@@ -137,6 +153,9 @@ def diagnose(
     swap_could_match : callable, optional
         A cheap test that is False only when the answer with sin and cos swapped is provably not
         the reference (the checker compares values at a point); then that candidate is not built.
+    detail : {"kind", "full"}
+        ``"kind"`` (the default) names the slip without any value that would reveal the reference;
+        ``"full"`` also states the factor and the relative difference (the instructor's choice).
 
     Examples
     --------
@@ -168,7 +187,7 @@ def diagnose(
             if q is not None:
                 yield ("sign" if q == -1 else "factor",
                        lambda: same(sympy.Rational(q.numerator, q.denominator) * reference, answer),
-                       factor_message(q))
+                       factor_message(q, detail))
         if answer.has(sympy.sin, sympy.cos):
             yield ("sin_cos",
                    lambda: (swap_could_match is None or swap_could_match())
@@ -192,9 +211,10 @@ def diagnose(
             found.append({"code": code, "message": message})
             break
     if not found and relative_difference is not None and relative_difference < 1e-3:
+        how_close = f" (relative difference {relative_difference:.1g} at a test point)" if detail == "full" else ""
         found.append({
             "code": "close",
-            "message": f"Your answer is close to the correct one (relative difference {relative_difference:.1g} "
-                       "at a test point) but not equal: check for rounded numbers or a small extra term.",
+            "message": f"Your answer is close to the correct one{how_close} but not equal: check for rounded "
+                       "numbers or a small extra term.",
         })
     return found

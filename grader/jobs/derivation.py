@@ -104,6 +104,7 @@ def _derive(source: str, filename: str) -> dict:
     import sympy
 
     import grader
+    from grader.answers.reference import ReferenceAnswer
     from grader.mechanics.lagrange import derive
     from grader.mechanics.report import steps_json
     from grader.mechanics.scene import parse_scene
@@ -116,7 +117,8 @@ def _derive(source: str, filename: str) -> dict:
         "statement": scene.statement,
         # The stored derivation adds the step-by-step working for the instructor's review page.
         "derivation": {**derivation.to_json(), "steps": steps_json(derivation.steps)},
-        "references": [r.to_json() for r in derivation.references()],
+        # The engine emits plain data; the checker's typed contract validates it before it is stored.
+        "references": [ReferenceAnswer.from_json(r).to_json() for r in derivation.references()],
         "engine_version": f"{grader.__version__}+sympy{sympy.__version__}",
     }
 

@@ -13,6 +13,7 @@ import threading
 from contextlib import contextmanager
 from typing import Any, Callable, Iterator, Protocol
 
+from grader.answers.reference import ReferenceAnswer, ReferenceAnswerError
 from grader.answers.sandbox import DEFAULT_BUDGET_S, SandboxedChecker
 from grader.jobs.queue import Task
 
@@ -36,9 +37,12 @@ def sandbox_checker() -> Checker:
 
 
 def check_request(reference: dict[str, Any], text: str) -> dict[str, Any]:
-    """The checker request for ``text`` against a stored reference answer (a ReferenceAnswer as dict)."""
-    return {"reference": reference["reference"], "answer": text, "variables": reference["variables"],
-            "kind": reference["kind"], "feedback": reference.get("feedback") or []}
+    """The checker request for ``text`` against a stored reference answer.
+
+    The stored JSON is read through the contract, `grader.answers.reference.ReferenceAnswer`;
+    raises :class:`grader.answers.reference.ReferenceAnswerError` when it breaks it.
+    """
+    return ReferenceAnswer.from_json(reference).request(text)
 
 
 class CheckerFailure(RuntimeError):
@@ -51,7 +55,11 @@ def check_task(checker: Checker, task: Task, *, budget_s: float = CHECK_BUDGET_S
     Raises :class:`CheckerFailure` when the checker, not the answer, failed: that is no grade, so
     the worker gives the task back to the queue rather than recording it.
     """
-    result = checker.run(check_request(task.reference, task.text), budget_s)
+    try:
+        request = check_request(task.reference, task.text)
+    except ReferenceAnswerError as error:  # a stored reference that breaks the contract: no grade
+        raise CheckerFailure(str(error)) from None
+    result = checker.run(request, budget_s)
     if result.get("checker_failure"):
         raise CheckerFailure(result.get("reason", "checker failure"))
     return result

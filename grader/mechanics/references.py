@@ -1,20 +1,27 @@
 """Reference answers in the form the checker takes, so that the service never re-runs the engine.
 
-Each :class:`ReferenceAnswer` holds the reference in sympy's str() syntax (our parser reads it
-back exactly), the variables a student may use with their dimensions and domains, and the
-instructor's feedback for known wrong answers, already validated against those variables.
+Each reference answer holds the reference in sympy's str() syntax (our parser reads it back
+exactly), the variables a student may use with their dimensions and domains, the instructor's
+feedback for known wrong answers (already validated against those variables) and how much slip
+feedback may say.
+
+The contract is one typed definition, :class:`grader.answers.reference.ReferenceAnswer`, owned by
+the checker that consumes it. The engine comes before the checker in the one-way data flow and may
+not import it, so it emits plain JSON objects with exactly that class's keys; the layers after the
+engine read them with ``ReferenceAnswer.from_json``, which validates them (a test checks that every
+scene's output passes).
 
 Examples
 --------
 >>> from grader.mechanics.scene import load_scene
 >>> from grader.mechanics.lagrange import derive
->>> [r.reference for r in derive(load_scene("problems/yoyo.toml")).references()]
+>>> [r["reference"] for r in derive(load_scene("problems/yoyo.toml")).references()]
 ['2*g/3', '2*g/(3*R)', 'g*m/3']
 """
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, field
+from typing import Any
 
 import sympy
 
@@ -22,22 +29,7 @@ from grader.expressions import ExpressionError, Namespace, parse_expression
 from grader.mechanics.scene import SceneError
 from grader.mechanics.report import equation_text
 
-__all__ = ["ReferenceAnswer", "reference_answers", "dimension_text", "domain_json"]
-
-
-@dataclass(frozen=True)
-class ReferenceAnswer:
-    name: str
-    prompt: str
-    kind: str
-    reference: str
-    variables: dict[str, dict]
-    dimension: str
-    latex: str
-    feedback: list[dict] = field(default_factory=list)
-
-    def to_json(self) -> dict:
-        return asdict(self)
+__all__ = ["reference_answers", "dimension_text", "domain_json"]
 
 
 def dimension_text(dimension) -> str:
@@ -58,8 +50,8 @@ def domain_json(domain):
     return domain.to_json()
 
 
-def reference_answers(derivation) -> list[ReferenceAnswer]:
-    """One :class:`ReferenceAnswer` per answer of the derived scene."""
+def reference_answers(derivation) -> list[dict[str, Any]]:
+    """One reference answer (JSON data, see :class:`grader.answers.reference.ReferenceAnswer`) per answer."""
     scene = derivation.scene
     names = scene.namespace.latex_names()
     by_symbol = {v.symbol: v for v in scene.namespace.variables}
@@ -94,6 +86,7 @@ def reference_answers(derivation) -> list[ReferenceAnswer]:
                                  f"{exc.message} in {f.expr!r} (feedback may use only "
                                  f"{', '.join(variables) or 'numbers'})") from None
             feedback.append({"expr": f.expr, "message": f.message})
-        result.append(ReferenceAnswer(spec.name, spec.prompt, spec.kind, reference, variables,
-                                      dimension_text(spec.dimension), latex, feedback))
+        result.append({"name": spec.name, "prompt": spec.prompt, "kind": spec.kind, "reference": reference,
+                       "variables": variables, "dimension": dimension_text(spec.dimension), "latex": latex,
+                       "feedback": feedback, "feedback_detail": scene.feedback_detail})
     return result

@@ -166,6 +166,8 @@ class Scene:
     time: sympy.Symbol
     namespace: Namespace
     forces: dict[tuple[str, str], sympy.Symbol] = field(default_factory=dict)
+    # [feedback] detail: "kind" (slip messages state no value) or "full" (grader.answers.feedback)
+    feedback_detail: str = "kind"
     geometry: Geometry | None = None  # where to draw bodies (pictures only; see geometry.py)
 
     @property
@@ -334,7 +336,7 @@ class _SceneReader:
             parameters=parameters, coordinates=coordinates, kinetic=kinetic, potential=potential,
             constraints=constraints, initial=initial, parametrization=parametrization,
             answers=answers, time=time, namespace=Namespace(self.variables), forces=forces,
-            geometry=geometry,
+            geometry=geometry, feedback_detail=self.table("feedback").get("detail", "kind"),
         )
 
     def read_geometry(self) -> Geometry | None:

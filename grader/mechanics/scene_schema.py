@@ -113,6 +113,9 @@ SCENE_SCHEMA: dict[str, Any] = {
         }},
         "parametrization": {"type": "object", "additionalProperties": False,
                             "properties": {"variables": _table(_COORDINATE), "map": _table(_NUMBER_OR_EXPRESSION)}},
+        # How much automatic feedback on wrong answers may say (grader.answers.feedback).
+        "feedback": {"type": "object", "additionalProperties": False,
+                     "properties": {"detail": {"enum": ["kind", "full"]}}},
         "answers": _list({
             "type": "object", "additionalProperties": False, "required": ["name", "expr"],
             "properties": {

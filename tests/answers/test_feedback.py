@@ -1,6 +1,7 @@
 """Feedback on wrong answers: instructor messages and common slips, each earned by an equivalence check."""
 
 import random
+import re
 
 import pytest
 import sympy
@@ -12,19 +13,57 @@ TENSION = "m*l*thetadot^2 + m*g*cos(theta)"
 INSTRUCTOR = [{"expr": "m*g*cos(theta)", "message": "That is the tension of a bob at rest."}]
 
 
-@pytest.mark.parametrize("answer, code", [
+SLIPS = [
     ("-m*l*thetadot^2 - m*g*cos(theta)", "sign"),
     ("2*m*l*thetadot^2 + 2*m*g*cos(theta)", "factor"),
     ("m*l*thetadot^2/2 + m*g*cos(theta)/2", "factor"),
+    ("3*m*l*thetadot^2/2 + 3*m*g*cos(theta)/2", "factor"),
+    ("-3*m*l*thetadot^2 - 3*m*g*cos(theta)", "factor"),
     ("m*l*thetadot^2 + m*g*sin(theta)", "sin_cos"),
     ("m*l*thetadot^2", "missing_term"),
     ("m*l*thetadot^2 - m*g*cos(theta)", "term_sign"),
     ("m*l*thetadot^2 + m*g*cos(theta) + m*g", "extra_term"),
-])
+    ("1.00001*m*l*thetadot^2 + m*g*cos(theta)", "close"),
+]
+# A digit in a message is a value: a factor (3/2), a difference or a ratio from which a student
+# reads the reference off their own answer.
+NUMBER = re.compile(r"\d")
+
+
+@pytest.mark.parametrize("answer, code", SLIPS)
 def test_common_slips_in_the_pendulum_tension_are_named(pendulum, answer, code):
     v = check(TENSION, answer, pendulum)
     assert v.verdict == "not_equivalent"
-    assert code in [f["code"] for f in v.feedback]
+    assert [f["code"] for f in v.feedback] == [code]
+
+
+@pytest.mark.parametrize("answer, code", SLIPS)
+def test_by_default_feedback_names_the_slip_but_no_value_that_gives_the_reference_away(pendulum, answer, code):
+    v = check(TENSION, answer, pendulum)
+    said = [v.reason] + [f["message"] for f in v.feedback]
+    assert not [text for text in said if NUMBER.search(text)]
+
+
+@pytest.mark.parametrize("answer, says", [
+    ("3*m*l*thetadot^2/2 + 3*m*g*cos(theta)/2", "3/2 times the correct one"),
+    ("m*l*thetadot^2/2 + m*g*cos(theta)/2", "half the correct one"),
+    ("1.00001*m*l*thetadot^2 + m*g*cos(theta)", "(relative difference 6e-06 at a test point)"),
+])
+def test_an_instructor_may_opt_in_to_feedback_that_states_the_value(pendulum, answer, says):
+    v = check(TENSION, answer, pendulum, feedback_detail="full")
+    assert says in v.feedback[0]["message"]
+
+
+@pytest.mark.parametrize("reference, answer", [("x", "x + 1"), ("1/3", "0.3333"), ("2", "10^400")])
+def test_a_reference_plus_a_constant_is_wrong_without_saying_the_constant(reference, answer):
+    v = check(reference, answer, {"x": {"dimension": "dimensionless", "domain": "real"}})
+    assert v.verdict == "not_equivalent" and v.certainty == "proved"
+    assert not NUMBER.search(v.reason) and not [f for f in v.feedback if NUMBER.search(f["message"])]
+
+
+def test_an_unknown_feedback_detail_is_refused(pendulum):
+    v = check(TENSION, "m g", pendulum, feedback_detail="everything")
+    assert v.verdict == "invalid" and "feedback_detail" in v.reason
 
 
 def test_instructor_message_matches_by_equivalence_not_by_text(pendulum):

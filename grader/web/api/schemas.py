@@ -64,6 +64,9 @@ CHECK_REQUEST = {
                   "description": "Equations: the names that are state (coordinates, velocities)."},
         "budget_s": {"type": "number", "minimum": 0.01, "maximum": 60,
                      "description": "Time budget in seconds; capped by the server's own."},
+        "feedback_detail": {"type": "string", "enum": ["kind", "full"], "default": "kind",
+                            "description": "'kind': slip messages name the slip but no value that would "
+                                           "reveal the reference; 'full': they also state factors and differences."},
     },
 }
 
