@@ -17,12 +17,14 @@ _COMMANDS = {
     "serve": "grader.cli.serve:serve",
     "db": "grader.cli.db:db",
     "token": "grader.cli.token:token",
+    "simulate": "grader.cli.simulate:simulate",
 }
 _BENCHMARKS = {
     "derive": "grader.bench.derive:bench_derive",
     "check": "grader.bench.check:bench_check",
     "http": "grader.bench.http:bench_http",
     "accuracy": "grader.bench.accuracy:bench_accuracy",
+    "simulate": "grader.bench.simulate:bench_simulate",
 }
 
 
