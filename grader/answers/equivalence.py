@@ -32,6 +32,7 @@ from grader.answers.evaluate import (
     MpmathBackend,
     Undefined,
     Unresolved,
+    Unsupported,
     _log2_mag,
     compile_expr,
 )
@@ -126,10 +127,10 @@ class Compiled:
     True
     """
 
-    def __init__(self, expr: sympy.Expr, backend):
+    def __init__(self, expr: sympy.Expr, backend, conditions: tuple = ()):
         self.expr = expr
         self.backend = backend
-        self.f: Callable = compile_expr(expr, backend)
+        self.f: Callable = _with_conditions(compile_expr(expr, backend), conditions, backend)
         self._cache: dict = {}
 
     def at(self, point: dict, prec: int, key=None):
@@ -185,6 +186,28 @@ class Compiled:
         return value, env[SCALE]
 
 
+def _with_conditions(f: Callable, conditions: tuple, backend) -> Callable:
+    """``f``, undefined wherever one of ``conditions`` is (the typed text's real domain, see
+    `grader.expressions.Parsed.conditions`): ``sqrt(x)**2`` typed is ``x`` but only for x >= 0."""
+    checks = []
+    for condition in conditions:
+        try:
+            checks.append(compile_expr(condition, backend))
+        except Unsupported:
+            continue  # nothing the evaluator can test: the expression itself still decides
+    if not checks:
+        return f
+
+    def checked(env):
+        scale = env[SCALE]
+        for check in checks:
+            check(env)  # raises Undefined outside the domain
+        env[SCALE] = scale  # the conditions are not terms of the value
+        return f(env)
+
+    return checked
+
+
 def as_float(x) -> float | str:
     """A JSON-friendly number: a float when it is one, else a decimal string."""
     if isinstance(x, flint.arb):
@@ -210,7 +233,7 @@ def compare_at(ref: Compiled, ans: Compiled, point: dict, key, options: Options,
         try:
             r, r_scale = ref.at(point, prec, key)
         except Undefined as error:
-            return PointResult("reference_undefined", reason=error.reason)
+            return _where_reference_is_undefined(ans, point, prec, error)
         except Unresolved:
             r = None
         if r is not None:
@@ -237,6 +260,17 @@ def compare_at(ref: Compiled, ans: Compiled, point: dict, key, options: Options,
             return PointResult("budget")
 
 
+def _where_reference_is_undefined(ans: Compiled, point: dict, prec: int, error: Undefined) -> PointResult:
+    """A point of the declared domain where the reference is undefined: skipped when the answer is
+    undefined too, a difference when it is defined (``x`` is not ``(x**3)**(1/3)`` for real x: a
+    power law that holds only for nonnegative bases must not make them equal)."""
+    try:
+        a, _ = ans.at(point, prec)
+    except (Undefined, Unresolved):
+        return PointResult("reference_undefined", reason=error.reason)
+    return PointResult("answer_defined", answer=a, reason=error.reason)
+
+
 def _compare_fixed(ref: Compiled, ans: Compiled, point: dict, key, options: Options) -> PointResult:
     """float64 / mpmath: agreement within a relative tolerance (WeBWorK's rule)."""
     prec = 53 if options.method == "float64" else int(options.digits * LOG2_10) + 1
@@ -261,6 +295,10 @@ def counterexample(point: dict, result: PointResult) -> dict:
     """The counterexample record of a verdict: values, both results, and their difference."""
     values = {s.name: v for s, v in point.items()}
     record = {"values": values, "answer": None, "reference": as_float(result.reference)}
+    if result.kind == "answer_defined":
+        record["reference"] = "undefined"
+        record["answer"] = as_float(result.answer)
+        return record
     if result.kind == "answer_undefined":
         record["answer"] = "undefined"
         record["note"] = f"your answer is undefined here ({result.reason})"
@@ -310,11 +348,15 @@ def compare_numeric(
             digits = min(digits, result.digits)
             if agreed >= needed:
                 break
-        elif result.kind in ("differ", "answer_undefined"):
+        elif result.kind in ("differ", "answer_undefined", "answer_defined"):
             example = counterexample(point, result)
             if result.kind == "differ":
                 reason = "your answer and the correct one differ at the point in the counterexample"
                 values = (_to_float(result.answer), _to_float(result.reference))
+            elif result.kind == "answer_defined":
+                reason = ("your answer is defined at a point of the domain where the correct one is not "
+                          "(a power or logarithm law that holds only for positive numbers?)")
+                values = None
             else:
                 reason = f"your answer is undefined at a point where the correct one is defined ({result.reason})"
                 values = None
@@ -412,6 +454,8 @@ def compare_expressions(
     options: Options = Options(),
     deadline: float | None = None,
     compiled_reference: Compiled | None = None,
+    answer_conditions: tuple = (),
+    reference_conditions: tuple = (),
 ) -> Comparison:
     """Are ``answer`` and ``reference`` the same function on the sampler's domains?
 
@@ -426,6 +470,8 @@ def compare_expressions(
         ``time.monotonic()`` after which the judge gives up (``budget_exceeded``).
     compiled_reference : Compiled, optional
         The reference compiled for ``options.backend()``, to reuse its cached values.
+    answer_conditions, reference_conditions : tuple of sympy.Expr
+        The texts' real domains as typed (`grader.expressions.Parsed.conditions`).
 
     Examples
     --------
@@ -443,7 +489,7 @@ def compare_expressions(
     (False, 'proved')
     """
     diff = answer - reference
-    if diff == 0:
+    if diff == 0 and not answer_conditions and not reference_conditions:
         return Comparison(True, "proved", "symbolically identical", evidence={"method": "symbolic"})
     if diff.is_Rational and answer.is_number and reference.is_number:
         # Two constants that differ, however little: exact arithmetic decides. (x + 1 against x
@@ -457,14 +503,18 @@ def compare_expressions(
                           evidence={"method": "exact"}, counterexample=example,
                           values=(_to_float(answer), _to_float(reference)))
     backend = options.backend()
-    ref = compiled_reference if compiled_reference is not None else Compiled(reference, backend)
-    ans = Compiled(answer, backend)
+    try:
+        ref = compiled_reference if compiled_reference is not None else Compiled(reference, backend,
+                                                                                  reference_conditions)
+        ans = Compiled(answer, backend, answer_conditions)
+    except Unsupported as error:
+        return Comparison(None, "none", f"the checker cannot evaluate {error}")
     if options.symbolic:
         # One point first: most wrong answers differ there, and then expanding would be wasted.
         first = compare_numeric(ref, ans, sampler, _one_point(options), deadline)
         if first.equivalent is False or first.budget_exceeded:
             return first
-        if symbolic_zero(diff):
+        if not answer_conditions and not reference_conditions and symbolic_zero(diff):
             return Comparison(True, "proved", "symbolically identical", evidence={"method": "symbolic"})
     return compare_numeric(ref, ans, sampler, options, deadline)
 
