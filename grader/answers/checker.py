@@ -70,6 +70,7 @@ class _Reference:
     instructor: list[tuple[Any, str]] = field(default_factory=list)
     compiled: dict = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
+    conditions: tuple = ()  # the reference's real domain as typed (Parsed.conditions)
     # Values of reference-side feedback candidates (the reference less a term, ...) at the first
     # sample point, for the one-point screen: every wrong answer to this reference tries the same ones.
     screen: dict = field(default_factory=dict)
@@ -77,7 +78,7 @@ class _Reference:
     def compiled_for(self, options: Options):
         backend = options.backend()
         if backend.name not in self.compiled:
-            self.compiled[backend.name] = [Compiled(e, backend) for e in self.exprs]
+            self.compiled[backend.name] = [Compiled(e, backend, self.conditions) for e in self.exprs]
         return self.compiled[backend.name]
 
 
@@ -94,14 +95,15 @@ def _namespace(variables: Mapping) -> Namespace:
 
 
 def _read(text: str, namespace: Namespace, kind: str, printed: bool = True):
-    """(exprs, parsed-json) of a text: one expression, or the residuals of its equations.
+    """(exprs, parsed-json, conditions) of a text: one expression, or the residuals of its equations,
+    and the text's real domain as typed (`grader.expressions.Parsed.conditions`).
 
     ``printed=False`` skips the text and LaTeX, for texts nobody sees (the reference, the
     instructor's feedback expressions).
     """
     if kind == "expression":
         p = parse_expression(text, namespace, printed=printed)
-        return [p.expr], {"text": p.text, "latex": p.latex, "notes": list(p.notes)}
+        return [p.expr], {"text": p.text, "latex": p.latex, "notes": list(p.notes)}, p.conditions
     try:
         equations = parse_system(text, namespace, printed=printed)
     except ExpressionError as error:
@@ -109,13 +111,13 @@ def _read(text: str, namespace: Namespace, kind: str, printed: bool = True):
             raise
         p = parse_expression(text, namespace, printed=printed)  # an expression alone is read as "... = 0"
         return [p.expr], {"text": f"{p.text} = 0", "latex": f"{p.latex} = 0",
-                          "notes": list(p.notes) + ["read as an equation '... = 0'"]}
+                          "notes": list(p.notes) + ["read as an equation '... = 0'"]}, p.conditions
     notes = [n for eq in equations for n in eq.notes]
     return [eq.residual for eq in equations], {
         "text": "; ".join(eq.text for eq in equations),
         "latex": r" \\ ".join(eq.latex for eq in equations),
         "notes": notes,
-    }
+    }, tuple(c for eq in equations for c in eq.conditions)
 
 
 @lru_cache(maxsize=256)
@@ -123,7 +125,7 @@ def _prepare(reference: str, kind: str, variables_json: str, state_json: str, fe
     variables = json.loads(variables_json)
     namespace = _namespace(variables)
     try:
-        exprs, _ = _read(reference, namespace, kind, printed=False)
+        exprs, _, conditions = _read(reference, namespace, kind, printed=False)
     except ExpressionError as error:
         raise _RequestError(f"the reference does not parse: {error}") from None
     if any(e.has(*_UNDEFINED) for e in exprs):
@@ -140,7 +142,7 @@ def _prepare(reference: str, kind: str, variables_json: str, state_json: str, fe
     symbols = {v.name: v.symbol for v in namespace.variables}
     domains = {v.symbol: v.domain for v in namespace.variables}
     seed = seed_for(reference, kind, variables_json)
-    ref = _Reference(namespace, kind, exprs, dims, dimension, notes=notes)
+    ref = _Reference(namespace, kind, exprs, dims, dimension, notes=notes, conditions=conditions)
     if kind == "expression":
         ref.sampler = Sampler(domains, seed)
     else:
@@ -150,7 +152,7 @@ def _prepare(reference: str, kind: str, variables_json: str, state_json: str, fe
     for entry in json.loads(feedback_json):
         try:
             expr_text, message = entry["expr"], entry["message"]
-            entry_exprs, _ = _read(expr_text, namespace, kind, printed=False)
+            entry_exprs, _, _ = _read(expr_text, namespace, kind, printed=False)
         except (ExpressionError, KeyError, TypeError) as error:
             ref.notes.append(f"instructor feedback entry skipped: {error}")
             continue
@@ -203,11 +205,14 @@ def _filter_values(example: dict | None, symbols: set) -> dict | None:
     return example
 
 
-def _compare(ref: _Reference, exprs: list[sympy.Expr], options: Options, deadline: float) -> Comparison:
+def _compare(ref: _Reference, exprs: list[sympy.Expr], options: Options, deadline: float,
+             conditions: tuple = ()) -> Comparison:
     compiled = ref.compiled_for(options)
     if ref.kind == "expression":
-        return compare_expressions(ref.exprs[0], exprs[0], ref.sampler, options, deadline, compiled[0])
-    return compare_equations(ref.exprs, exprs, ref.parameters, ref.states, options, deadline, compiled)
+        return compare_expressions(ref.exprs[0], exprs[0], ref.sampler, options, deadline, compiled[0],
+                                   conditions, ref.conditions)
+    return compare_equations(ref.exprs, exprs, ref.parameters, ref.states, options, deadline, compiled,
+                             conditions)
 
 
 SCREEN_PREC = 64
@@ -400,7 +405,7 @@ def _check(reference, answer, variables, kind, feedback, budget_s, state, option
     ref = _prepare(reference, kind, *key)
 
     try:
-        exprs, parsed = _read(answer, ref.namespace, kind)
+        exprs, parsed, conditions = _read(answer, ref.namespace, kind)
     except ExpressionError as error:
         evidence = {"error": {"code": error.code, "position": error.position, "hint": error.hint}}
         return Verdict("invalid", "none", str(error), parsed={"text": answer, "latex": "", "notes": []},
@@ -423,7 +428,7 @@ def _check(reference, answer, variables, kind, feedback, budget_s, state, option
                        feedback=[{"code": "dimension", "message": message}], evidence={"method": "dimensions"})
 
     try:
-        comparison = _compare(ref, exprs, options, deadline)
+        comparison = _compare(ref, exprs, options, deadline, conditions)
     except Unsupported as error:
         return Verdict("invalid", "none", f"the checker cannot evaluate {error}", parsed=parsed)
     example = None

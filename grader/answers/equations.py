@@ -78,6 +78,7 @@ def compare_equations(
     options: Options = Options(),
     deadline: float | None = None,
     compiled_reference: list[Compiled] | None = None,
+    answer_conditions: tuple = (),
 ) -> Comparison:
     """Compare systems of equations given as residuals (``lhs - rhs``).
 
@@ -89,6 +90,8 @@ def compare_equations(
         Points for the parameters and, separately, for the state variables.
     options : Options
         ``options.points`` parameter points are used, each with ``k + 2`` states.
+    answer_conditions : tuple of sympy.Expr
+        The answer's real domain as typed (`grader.expressions.Parsed.conditions`).
 
     Examples
     --------
@@ -113,14 +116,14 @@ def compare_equations(
             f"expected {k} equation{'s' * (k != 1)}, got {len(answer)}",
             evidence={"method": "count"},
         )
-    if options.symbolic and _residuals_equal_symbolically(reference, answer):
+    if options.symbolic and not answer_conditions and _residuals_equal_symbolically(reference, answer):
         return Comparison(True, "proved", "the same equation, rearranged", evidence={"method": "symbolic"})
     if options.method != "arb":
         # the benchmark's fixed-precision methods only apply to single equations: compare the ratio
         return _compare_fixed_ratio(reference, answer, parameters, states, options)
     backend = options.backend()
     refs = compiled_reference or [Compiled(r, backend) for r in reference]
-    anss = [Compiled(a, backend) for a in answer]
+    anss = [Compiled(a, backend, answer_conditions) for a in answer]
     target = options.digits * LOG2_10
     agreed, digits_seen = 0, math.inf
     # each parameter point checks k + 2 states, so half as many parameter points as expression points
