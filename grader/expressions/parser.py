@@ -66,12 +66,16 @@ class Parsed:
         LaTeX with the namespace's variable LaTeX (``\\dot{\\theta}``).
     notes : list of str
         How ambiguous input was read ("read 'mg' as m·g").
+    conditions : tuple of sympy.Expr
+        The real domain of the text as typed, where sympy's simplification lost it: expressions that
+        must be defined wherever the text is (``sqrt(x)`` for ``sqrt(x)^2``, whose ``expr`` is ``x``).
     """
 
     expr: sympy.Expr
     text: str
     latex: str
     notes: list[str] = field(default_factory=list)
+    conditions: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -83,6 +87,7 @@ class ParsedEquation:
     text: str
     latex: str
     notes: list[str] = field(default_factory=list)
+    conditions: tuple = ()
 
     @property
     def residual(self) -> sympy.Expr:
@@ -92,6 +97,33 @@ class ParsedEquation:
     @property
     def equation(self) -> sympy.Equality:
         return sympy.Eq(self.lhs, self.rhs, evaluate=False)
+
+
+# Functions with a restricted real domain, whose argument the typed expression constrains even when
+# sympy simplifies the call away (exp(log(x)) is x).
+_RESTRICTED = frozenset({"log", "asin", "acos", "acosh", "atanh"})
+
+
+def _real_domain(expr: sympy.Expr, nodes: list[tuple[sympy.Expr, sympy.Expr]]) -> tuple[sympy.Expr, ...]:
+    """The conditions of ``expr``'s real domain that sympy's simplifications dropped.
+
+    Each is an expression that must be defined (real) where ``expr`` is: ``sqrt(x)`` for a
+    ``sqrt(x)**2`` typed, ``log(x)`` for ``exp(log(x))``. A node that is still in ``expr``, or whose
+    base is nonnegative by its symbols' assumptions, needs no condition.
+    """
+    if not nodes:
+        return ()
+    present = set(sympy.preorder_traversal(expr))
+    conditions = []
+    for node, condition in nodes:
+        if node in present or condition in conditions:
+            continue
+        if condition.is_Pow and condition.base.is_nonnegative:
+            continue
+        if isinstance(condition, sympy.log) and condition.args[0].is_positive:
+            continue
+        conditions.append(condition)
+    return tuple(conditions)
 
 
 class _Parser:
@@ -104,6 +136,8 @@ class _Parser:
         self.notes: list[str] = []
         # The last product built and its factors, so a/(b*c) can divide factor by factor.
         self.last_product: tuple[sympy.Expr, list[sympy.Expr]] | None = None
+        # (node as built, what must be defined for it to be): see _real_domain.
+        self.domain_nodes: list[tuple[sympy.Expr, sympy.Expr]] = []
 
     # -- token access -----------------------------------------------------
     def peek(self, offset: int = 0) -> Token:
@@ -251,11 +285,22 @@ class _Parser:
         """Powers: ``^`` (right-associative) and superscripts."""
         if token.kind == "op" and token.value == "^":
             self.advance()
-            return guarded_pow(left, self.expression(_POW - 1), token.pos), "^"
+            return self.power(left, self.expression(_POW - 1), token.pos), "^"
         if token.kind == "sup":
             self.advance()
             return guarded_pow(left, sympy.Integer(token.value), token.pos), "^"
         raise self.unexpected(token)
+
+    def power(self, base: sympy.Expr, exponent: sympy.Expr, position: int) -> sympy.Expr:
+        """``base ** exponent``, remembering that a fractional power needs ``base >= 0`` over the reals.
+
+        sympy combines powers by laws that hold for complex numbers (``sqrt(x)**2`` is ``x``), so
+        the typed expression's real domain is kept aside, before any law is applied.
+        """
+        value = guarded_pow(base, exponent, position)
+        if not exponent.is_Integer and not base.is_number:
+            self.domain_nodes.append((value, sympy.Pow(base, sympy.S.Half, evaluate=False)))
+        return value
 
     def nud(self, token: Token, rbp: int = 0) -> sympy.Expr:
         kind = token.kind
@@ -276,7 +321,7 @@ class _Parser:
             self.expect_close(token)
             return inner
         if kind == "root":
-            return guarded_pow(self.function_argument(token, "√"), sympy.Rational(1, token.value), token.pos)
+            return self.power(self.function_argument(token, "√"), sympy.Rational(1, token.value), token.pos)
         if kind == "command":
             return self.latex_command(token)
         raise self.unexpected(token)
@@ -357,9 +402,11 @@ class _Parser:
         else:
             raise ExpressionError(f"{token.text} needs an argument, as in {name}(x)", token.pos, "syntax")
         if name == "sqrt":
-            value = guarded_pow(args[0], sympy.Rational(1, 2), token.pos)
+            value = self.power(args[0], sympy.Rational(1, 2), token.pos)
         else:
             value = checked(spec.build(*args), token.pos)
+            if spec.name in _RESTRICTED:
+                self.domain_nodes.append((value, spec.sympy_func(args[0], evaluate=False)))
             # asin(3/2), acosh(1/2), log(-2): a number with no real value, which is a slip.
             if value.is_number and all(a.is_number for a in args) and value.is_extended_real is False:
                 raise not_real(token.pos)
@@ -462,7 +509,7 @@ class _Parser:
             following = self.peek()
             arg = self.braced(token) if following.kind == "open" and following.value == "{" \
                 else self.function_argument(token, "sqrt")
-            return guarded_pow(arg, 1 / index, token.pos)
+            return self.power(arg, 1 / index, token.pos)
         # \dot{x}, \ddot{x}, \dot x
         order = 1 if token.value == "dot" else 2
         following = self.peek()
@@ -552,10 +599,11 @@ def _real_and_flat(expr: sympy.Expr, position: int) -> sympy.Expr:
 
 def _finish(parser: _Parser, expr: sympy.Expr, printed: bool = True) -> Parsed:
     expr = _real_and_flat(expr, 0)
+    conditions = _real_domain(expr, parser.domain_nodes)
     if not printed:
-        return Parsed(expr, "", "", list(parser.notes))
+        return Parsed(expr, "", "", list(parser.notes), conditions)
     latex = to_latex(expr, parser.ns.latex_names())
-    return Parsed(expr, to_text(expr), latex, list(parser.notes))
+    return Parsed(expr, to_text(expr), latex, list(parser.notes), conditions)
 
 
 def parse_expression(text: str, namespace: Namespace, *, printed: bool = True) -> Parsed:
@@ -621,12 +669,13 @@ def _equation(parser: _Parser, printed: bool = True) -> ParsedEquation:
                                   "separate several equations with ';'")
         raise parser.unexpected(token)
     lhs, rhs = _real_and_flat(lhs, 0), _real_and_flat(rhs, token.pos)
+    conditions = _real_domain(lhs - rhs, parser.domain_nodes)
     if not printed:
-        return ParsedEquation(lhs, rhs, "", "", list(parser.notes))
+        return ParsedEquation(lhs, rhs, "", "", list(parser.notes), conditions)
     names = parser.ns.latex_names()
     return ParsedEquation(lhs, rhs, f"{lhs} = {rhs}",
                           f"{sympy.latex(lhs, symbol_names=names)} = {sympy.latex(rhs, symbol_names=names)}",
-                          list(parser.notes))
+                          list(parser.notes), conditions)
 
 
 def parse_equation(text: str, namespace: Namespace, *, printed: bool = True) -> ParsedEquation:
