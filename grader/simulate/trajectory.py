@@ -248,21 +248,24 @@ class Simulation:
             for e in self.effects:
                 i = e.index
                 if e.kind == "unilateral" and i in mode.active:
-                    if lam[i] < -force_tol[i] or (abs(lam[i]) <= force_tol[i] and self._flow_derivative(
-                            lambda tt, yy, i=i, md=mode: self.solve(tt, yy, md)[1][i], t, y, mode) < 0):
-                        change = ("release", i)
-                        break
+                    if lam[i] < -force_tol[i]:
+                        change = ("release", i, False)
+                    elif abs(lam[i]) <= force_tol[i] and self._flow_derivative(
+                            lambda tt, yy, i=i, md=mode: self.solve(tt, yy, md)[1][i], t, y, mode) < 0:
+                        change = ("release", i, True)
                 if e.kind == "rolling" and i in mode.active:
                     sign = 1.0 if lam[i] >= 0 else -1.0
                     margin = e.mu_s * lam[e.normal] - sign * lam[i]
-                    if margin < -force_tol[i] or (abs(margin) <= force_tol[i] and abs(lam[i]) > force_tol[i]
-                                                  and self._flow_derivative(self._margin(i, sign, mode),
-                                                                            t, y, mode) < 0):
-                        change = ("slip", i)
-                        break
+                    if margin < -force_tol[i]:
+                        change = ("slip", i, False)
+                    elif (abs(margin) <= force_tol[i] and abs(lam[i]) > force_tol[i]
+                          and self._flow_derivative(self._margin(i, sign, mode), t, y, mode) < 0):
+                        change = ("slip", i, True)
+                if change is not None:
+                    break
             if change is None:
                 return mode, switches
-            effect, i = change
+            effect, i, _ = change
             mode.active.discard(i)
             if effect == "slip":
                 mode.slipping[i] = -1.0 if lam[i] > 0 else 1.0
@@ -339,12 +342,12 @@ class Simulation:
         switches: list[tuple[str, int]] = []
         if effect == "release":
             mode.active.discard(i)
-            switches.append(("release", i))
+            switches.append(("release", i, False))
         elif effect == "slip":
             _, lam, _, _ = self.solve(t, y, mode)
             mode.active.discard(i)
             mode.slipping[i] = -1.0 if lam[i] > 0 else 1.0
-            switches.append(("slip", i))
+            switches.append(("slip", i, False))
         elif effect == "stick":
             f, _ = self.compiled.gaps(t, y[:self.n])
             mode.slipping.pop(i, None)
@@ -353,7 +356,7 @@ class Simulation:
             trial, later = self.settle(t, self.project(t, y, mode), mode)
             if i in trial.active:
                 y = self.project(t, y, mode)
-                switches.append(("stick", i))
+                switches.append(("stick", i, False))
             return trial, y, switches + later
         elif effect == "contact":
             q, v = y[:self.n], y[self.n:].copy()
@@ -364,10 +367,10 @@ class Simulation:
             target = np.zeros(len(rows))
             if bounce > v_tol[i]:
                 target[rows.index(i)] = bounce
-                switches.append(("bounce", i))
+                switches.append(("bounce", i, False))
             else:
                 mode.active.add(i)
-                switches.append(("contact", i))
+                switches.append(("contact", i, False))
             v += self._velocity_change(t, q, v, rows, target - self.compiled.rates(t, q, v)[rows])
             y = np.concatenate([q, v])
         mode, later = self.settle(t, self.project(t, y, mode), mode)
@@ -390,12 +393,15 @@ class Simulation:
 
         mode, switches = self.initial_mode(t0, y)
         y = self.project(t0, y, mode)
-        events += self._records(t0, y, switches)
+        # A force that is exactly zero at the start (a restart at an event) switches by the sign of
+        # its derivative: that is the event already reported, not a new one.
+        events += self._records(t0, y, [s for s in switches if not s[2]])
         t, done = float(t0), 0
         while True:
             evaluator = _Evaluator(self, mode)
             functions = self.event_functions(mode, evaluator)
-            solution = self._integrate(evaluator.rhs, t, t_end, y, [g for g, _, _ in functions])
+            guarded = [_guard_start(g, t, y) for g, _, _ in functions]
+            solution = self._integrate(evaluator.rhs, t, t_end, y, guarded)
             t_stop = solution.t[-1]
             inside = wanted[(wanted >= t) & (wanted <= t_stop)] if not rows else \
                 wanted[(wanted > rows[-1][0]) & (wanted <= t_stop)]
@@ -453,7 +459,7 @@ class Simulation:
         for j, name in enumerate(self.compiled.coordinates):
             state[name] = float(y[j])
             state[f"{name}dot"] = float(y[self.n + j])
-        return [EventRecord(float(t), effect, self.effects[i].name, dict(state)) for effect, i in switches]
+        return [EventRecord(float(t), s[0], self.effects[s[1]].name, dict(state)) for s in switches]
 
     def _trajectory(self, rows, events) -> Trajectory:
         n, m = self.n, self.m
@@ -464,6 +470,27 @@ class Simulation:
             lam, Q, active = np.zeros((0, m)), np.zeros((0, m, n)), np.zeros((0, m), dtype=bool)
         return Trajectory(self.compiled.coordinates, self.compiled.constraints, t, q, v,
                           lam.reshape(-1, m), Q.reshape(-1, m, n), active.reshape(-1, m), events)
+
+
+def _guard_start(g, t0: float, y0: np.ndarray):
+    """``g`` with its value at the segment's start moved to the side it leaves towards.
+
+    The mode was chosen (:meth:`Simulation.settle`) so that every event function of the new mode
+    starts on its non-firing side or at zero moving away from it (the gap just after a lift-off,
+    the slip velocity just after slipping starts). At exactly zero scipy would take the start of
+    the first step as a root (brentq returns an endpoint where the function is 0), and miss a
+    real crossing later in that step (a ball that bounces and lands within one step), so at the
+    start the function reports the side it moves into.
+    """
+    away = -g.direction
+    start = g(t0, y0)
+    start = start if start * away > 0 else away * 1e-300
+
+    def guarded(t, y):
+        return start if t == t0 else g(t, y)
+
+    guarded.terminal, guarded.direction = g.terminal, g.direction
+    return guarded
 
 
 def simulate_scene(scene, overrides: Mapping[str, float] | None = None, *, t_end: float,
