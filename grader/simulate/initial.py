@@ -14,7 +14,7 @@ Examples
 >>> scene = load_scene("problems/sphere.toml")
 >>> compiled = CompiledScene(scene, parameter_values(scene))
 >>> q, qdot = initial_state(scene, compiled)
->>> q.tolist(), qdot.tolist()
+>>> q.tolist(), (qdot + 0.0).tolist()
 ([0.8, 0.0], [0.0, 0.0])
 """
 

@@ -2,11 +2,9 @@
 
 from __future__ import annotations
 
-import csv
-import io
 from typing import Any
 
-from flask import Response, request, url_for
+from flask import request, url_for
 from sqlalchemy import select
 from sqlalchemy.orm import joinedload, selectinload
 
@@ -15,6 +13,7 @@ from grader.store.db import db
 from grader.store.models import ProblemVersion, Submission
 from grader.web.api import spec
 from grader.web.api.problems import INSTRUCTORS, visible_version
+from grader.web.csv_export import csv_response
 
 CSV_COLUMNS = ["user_id", "external_id", "name", "answer", "submissions", "latest_submission", "latest_status",
                "latest_verdict", "latest_score", "best_score"]
@@ -65,12 +64,7 @@ def get_grades(slug: str):
         request.accept_mimetypes.best_match(["application/json", "text/csv"]) == "text/csv"
         and request.accept_mimetypes["text/csv"] > request.accept_mimetypes["application/json"])
     if wants_csv:
-        out = io.StringIO()
-        writer = csv.DictWriter(out, fieldnames=CSV_COLUMNS, lineterminator="\r\n")
-        writer.writeheader()
-        writer.writerows(rows)
-        return Response(out.getvalue(), mimetype="text/csv",
-                        headers={"Content-Disposition": f'attachment; filename="{slug}-grades.csv"'})
+        return csv_response(rows, f"{slug}-grades.csv", header=CSV_COLUMNS)
     return {"problem": slug, "grades": rows}
 
 

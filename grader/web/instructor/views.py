@@ -11,10 +11,7 @@
 
 from __future__ import annotations
 
-import csv
-import io
-
-from flask import Response, current_app, flash, g, redirect, render_template, request, url_for
+from flask import current_app, flash, g, redirect, render_template, request, url_for
 
 from grader.jobs import regrade as queue_regrade
 from grader.jobs.derivation import DerivationError, derive_source
@@ -22,10 +19,11 @@ from grader.jobs.grading import check_request
 from grader.store.db import Database, db
 from grader.store.problems import latest_version, problem_by_slug, save_problem
 from grader.web.auth.session import INSTRUCTOR_ROLES, login_required
+from grader.web.csv_export import csv_response
 from grader.web.instructor import bp
 from grader.web.instructor.access import managed_courses, managed_problem, managed_problems, may_manage, version_of
 from grader.web.instructor.grouping import GroupingCache, group_wrong_answers
-from grader.web.instructor.stats import csv_rows, per_answer, results, score_distribution, signature
+from grader.web.instructor.stats import CSV_HEADER, csv_rows, per_answer, results, score_distribution, signature
 from grader.web.student.statement import statement_problems
 
 MAX_SCENE_BYTES = 256 * 1024
@@ -169,10 +167,7 @@ def _checker_says(reference: dict):
 @login_required(INSTRUCTOR_ROLES)
 def export_csv(slug: str):
     found = managed_problem(db.session, g.user, slug)
-    buffer = io.StringIO()
-    csv.writer(buffer).writerows(csv_rows(results(db.session, found)))
-    return Response(buffer.getvalue(), mimetype="text/csv",
-                    headers={"Content-Disposition": f'attachment; filename="{found.slug}-submissions.csv"'})
+    return csv_response(csv_rows(results(db.session, found)), f"{found.slug}-submissions.csv", header=CSV_HEADER)
 
 
 @bp.post("/problems/<slug>/regrade")
