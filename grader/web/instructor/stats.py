@@ -15,7 +15,7 @@ from sqlalchemy.orm import Session
 
 from grader.store.models import Problem, ProblemVersion, Submission, User, Verdict
 
-__all__ = ["Row", "csv_rows", "results", "score_distribution", "signature"]
+__all__ = ["CSV_HEADER", "Row", "csv_rows", "results", "score_distribution", "signature"]
 
 CSV_HEADER = ["submission", "student", "email", "external_id", "answer", "text", "received_at", "status",
               "verdict", "score", "grading_round", "problem_version"]
@@ -86,16 +86,9 @@ def per_answer(rows: list[Row], answers: list[str]) -> list[dict[str, Any]]:
     return summary
 
 
-def _cell(value: Any) -> Any:
-    """Neutralise spreadsheet formulas: a cell starting with = + - @ is read as text, not run."""
-    if isinstance(value, str) and value[:1] in ("=", "+", "-", "@", "\t", "\r"):
-        return "'" + value
-    return value
-
-
 def csv_rows(rows: list[Row]) -> Iterator[list[Any]]:
-    yield CSV_HEADER
+    """The export's rows, under ``CSV_HEADER``; :mod:`grader.web.csv_export` makes every cell safe to open."""
     for r in rows:
-        yield [r.submission, _cell(r.student), _cell(r.email or ""), _cell(r.external_id or ""), r.answer,
-               _cell(r.text), r.received_at.isoformat() + "Z", r.status, r.verdict or "",
+        yield [r.submission, r.student, r.email or "", r.external_id or "", r.answer,
+               r.text, r.received_at.isoformat() + "Z", r.status, r.verdict or "",
                "" if r.score is None else r.score, r.grading_round, r.version]
