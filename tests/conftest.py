@@ -7,7 +7,14 @@ queue and API can be tested without running the engine; tests that need the engi
 
 from __future__ import annotations
 
+import os
+import subprocess
+import uuid
+from pathlib import Path
+
 import pytest
+from sqlalchemy import create_engine
+from sqlalchemy.engine import make_url
 
 from grader.store.db import Database
 from grader.store.migrate import upgrade
@@ -35,11 +42,85 @@ YOYO = DerivedProblem(
 )
 
 
+# The store, the queues and the API run on both databases the service supports; the rest on SQLite.
+BOTH_DATABASES_DIRS = ("store", "jobs")
+BOTH_DATABASES_PREFIX = "test_api_"
+POSTGRES_SCRIPT = Path(__file__).resolve().parents[1] / ".ci" / "postgres"
+
+
+def pytest_configure(config):
+    config.addinivalue_line("markers", "sqlite_only: a fact about the SQLite set-up (not run on PostgreSQL)")
+    config.addinivalue_line("markers", "postgresql_only: a fact about the PostgreSQL set-up (not run on SQLite)")
+
+
+def pytest_generate_tests(metafunc):
+    if "database_kind" not in metafunc.fixturenames or metafunc.definition.get_closest_marker("sqlite_only"):
+        return
+    if metafunc.definition.get_closest_marker("postgresql_only"):
+        metafunc.parametrize("database_kind", ["postgresql"])
+        return
+    path = Path(str(metafunc.definition.path))
+    if path.parent.name in BOTH_DATABASES_DIRS or path.name.startswith(BOTH_DATABASES_PREFIX):
+        metafunc.parametrize("database_kind", ["sqlite", "postgresql"])
+
+
 @pytest.fixture
-def database_url(tmp_path) -> str:
-    url = f"sqlite:///{tmp_path / 'lagrade.sqlite'}"
-    upgrade(url)
-    return url
+def database_kind() -> str:
+    return "sqlite"
+
+
+@pytest.fixture(scope="session")
+def postgres_server():
+    """A PostgreSQL server: ``LAGRADE_TEST_POSTGRES_URL`` (``.ci/run`` starts one), else a throwaway
+    cluster started here by ``.ci/postgres``. Skipped without the server package, except under CI."""
+    url = os.environ.get("LAGRADE_TEST_POSTGRES_URL")
+    if url:
+        yield url
+        return
+    started = subprocess.run([str(POSTGRES_SCRIPT)], capture_output=True, text=True)
+    if started.returncode != 0:
+        reason = f"no PostgreSQL server for the tests: {started.stderr.strip()[-300:]}"
+        if os.environ.get("CI") == "true":
+            pytest.fail(reason)
+        pytest.skip(reason)
+    url, folder = started.stdout.split()
+    yield url
+    subprocess.run([str(POSTGRES_SCRIPT), "stop", folder], check=False)
+
+
+@pytest.fixture(scope="session")
+def postgres_template(postgres_server):
+    """An admin engine and a migrated template database; each test gets a copy of it."""
+    admin = create_engine(postgres_server, isolation_level="AUTOCOMMIT")
+    name = f"lagrade_template_{os.getpid()}"
+    with admin.connect() as connection:
+        connection.exec_driver_sql(f"DROP DATABASE IF EXISTS {name}")
+        connection.exec_driver_sql(f"CREATE DATABASE {name}")
+    upgrade(_with_database(postgres_server, name))
+    yield admin, name
+    with admin.connect() as connection:
+        connection.exec_driver_sql(f"DROP DATABASE IF EXISTS {name} WITH (FORCE)")
+    admin.dispose()
+
+
+def _with_database(url: str, name: str) -> str:
+    return make_url(url).set(database=name).render_as_string(hide_password=False)
+
+
+@pytest.fixture
+def database_url(request, database_kind, tmp_path):
+    if database_kind == "sqlite":
+        url = f"sqlite:///{tmp_path / 'lagrade.sqlite'}"
+        upgrade(url)
+        yield url
+        return
+    admin, template = request.getfixturevalue("postgres_template")
+    name = f"t_{uuid.uuid4().hex[:16]}"
+    with admin.connect() as connection:
+        connection.exec_driver_sql(f"CREATE DATABASE {name} TEMPLATE {template}")
+    yield _with_database(str(admin.url.render_as_string(hide_password=False)), name)
+    with admin.connect() as connection:
+        connection.exec_driver_sql(f"DROP DATABASE IF EXISTS {name} WITH (FORCE)")
 
 
 @pytest.fixture
@@ -112,20 +193,12 @@ def workers(app):
 @pytest.fixture
 def derivers(app):
     """Derivation workers on the app's database, running the real engine in this process (no child)."""
-    from grader.jobs.derivation import DerivationError, derive_request
     from grader.jobs.derivation_workers import DerivationWorkerPool
     from grader.web.policy import may_update
+    from tests.web.derive_in_process import derive_in_process
 
-    def in_process():
-        def derive(source: str, filename: str) -> DerivedProblem:
-            reply = derive_request({"source": source, "filename": filename})
-            if reply["outcome"] != "ok":
-                raise DerivationError(reply.get("message") or reply["trace"])
-            return DerivedProblem(source=source, **reply["problem"])
-        return derive
-
-    pool = DerivationWorkerPool(app.extensions["lagrade.db"], may_update=may_update, deriver_factory=in_process,
-                                poll_s=0.05).start()
+    pool = DerivationWorkerPool(app.extensions["lagrade.db"], may_update=may_update,
+                                deriver_factory=lambda: derive_in_process, poll_s=0.05).start()
     yield pool
     pool.stop()
 

@@ -25,10 +25,12 @@ def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, 
     import waitress
 
     from grader.jobs import WorkerPool
-    from grader.jobs.derivation import load_problem_files
+    from grader.jobs.derivation import close_shared_sandboxes, load_problem_files
+    from grader.jobs.derivation_workers import DerivationWorkerPool
     from grader.store.db import Database, default_url
     from grader.store.migrate import upgrade
     from grader.web import create_app
+    from grader.web.policy import may_update
 
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(levelname)s %(name)s: %(message)s")
     url = default_url()
@@ -37,14 +39,18 @@ def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, 
     database: Database = app.extensions["lagrade.db"]
 
     limits = {"timeout_s": app.config["DERIVE_TIMEOUT_S"], "memory_mb": app.config["DERIVE_MEMORY_MB"]}
+    # Before the server listens, so no request waits on it; unchanged files cost a hash each.
     for name, outcome in load_problem_files(database, sorted(problems_dir.glob("*.toml")), **limits):
         click.echo(f"problem {name}: {outcome}")
+    close_shared_sandboxes()  # uploads are derived by the derivation workers' own children
     if demo:
         for line in _demo_accounts(database):
             click.echo(line)
 
     pool = WorkerPool(database, workers=workers, checker_factory=app.config["CHECKER_FACTORY"],
                       budget_s=app.config["CHECK_BUDGET_S"]).start()
+    derivers = DerivationWorkerPool(database, may_update=may_update, workers=app.config["DERIVE_WORKERS"],
+                                    **limits).start()
     server = waitress.create_server(app, host=host, port=port, threads=threads, ident="lagrade")
     base = f"http://{host}:{server.effective_port}"
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(0))
@@ -56,6 +62,7 @@ def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, 
         pass
     finally:
         server.close()
+        derivers.stop()
         pool.stop()
         app.extensions["lagrade.checkers"].close()
         database.dispose()

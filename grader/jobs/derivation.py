@@ -17,6 +17,7 @@ from __future__ import annotations
 import hashlib
 import logging
 import threading
+import tomllib
 import traceback
 from pathlib import Path
 
@@ -28,7 +29,7 @@ from grader.store.models import ProblemVersion
 from grader.store.problems import DerivedProblem, save_problem
 
 __all__ = ["DERIVE_MEMORY_MB", "DERIVE_TIMEOUT_S", "DerivationError", "SandboxUnavailable", "derivation_sandbox", "derive_request",
-           "close_shared_sandboxes", "derive_source", "load_problem_files"]
+           "close_shared_sandboxes", "derive_source", "load_problem_files", "read_scene_id"]
 
 log = logging.getLogger(__name__)
 
@@ -48,6 +49,29 @@ class DerivationError(ValueError):
 
 class SandboxUnavailable(RuntimeError):
     """The derivation child could not be started; the scene was not tried."""
+
+
+def read_scene_id(source: str, filename: str = "upload.toml") -> str | None:
+    """The scene's ``id``, read without the engine, so an upload can be refused before it is queued.
+
+    Raises :class:`DerivationError` when ``source`` is not TOML at all; None when it has no string
+    ``id`` (the derivation reports that, with the scene's other problems).
+
+    Examples
+    --------
+    >>> read_scene_id('id = "yoyo"')
+    'yoyo'
+    >>> read_scene_id("id = ")
+    Traceback (most recent call last):
+    ...
+    grader.jobs.derivation.DerivationError: upload.toml: not valid TOML: Invalid value (at end of document)
+    """
+    try:
+        data = tomllib.loads(source)
+    except tomllib.TOMLDecodeError as error:
+        raise DerivationError(f"{filename}: not valid TOML: {error}") from None
+    slug = data.get("id")
+    return slug if isinstance(slug, str) else None
 
 
 def derivation_sandbox(timeout_s: float = DERIVE_TIMEOUT_S, memory_mb: int = DERIVE_MEMORY_MB) -> Sandbox:

@@ -38,6 +38,7 @@ __all__ = [
     "enqueue",
     "fail",
     "finish",
+    "queued_ahead",
     "recover",
     "release",
     "requeue_expired",
@@ -178,6 +179,14 @@ def _set_failed(session: Session, task: DerivationTask, worker_id: str, message:
     return session.execute(update(DerivationJob).where(*_ours(task, worker_id)).values(
         status="failed", error=message, worker_id=None, lease_until=None, finished_at=now,
         updated_at=now)).rowcount == 1
+
+
+def queued_ahead(session: Session, job: DerivationJob) -> int | None:
+    """How many queued jobs will be claimed before ``job`` (None unless it is queued)."""
+    if job.status != "queued":
+        return None
+    return session.scalar(select(func.count()).select_from(DerivationJob)
+                          .where(DerivationJob.status == "queued", DerivationJob.id < job.id))
 
 
 def release(db: Database, task: DerivationTask, worker_id: str) -> None:

@@ -11,51 +11,97 @@ def _upload(client, headers, source=YOYO_SOURCE, content_type="application/toml"
     return client.post(f"/api/v1/problems{query}", data=source.encode(), headers=headers, content_type=content_type)
 
 
-def test_an_uploaded_scene_becomes_a_problem_with_derived_answers(client, make_token):
+def _derived(client, poll, headers, source=YOYO_SOURCE, query="") -> dict:
+    """Upload, check the 202, and poll the job until it is done or failed."""
+    response = _upload(client, headers, source, query=query)
+    assert response.status_code == 202, response.get_data(as_text=True)
+    assert response.headers["Location"] == response.get_json()["links"]["self"]
+    return poll(response.headers["Location"], headers)
+
+
+def test_an_upload_is_accepted_at_once_and_queued_for_derivation(client, make_token):
     _, instructor = make_token("instructor")
-    response = _upload(client, instructor)
-    assert response.status_code == 201 and response.headers["Location"] == "/api/v1/problems/yoyo"
+    response = _upload(client, instructor)  # no derivation workers run: the job waits
     body = response.get_json()
+    assert response.status_code == 202 and response.headers["Location"] == f"/api/v1/derivations/{body['id']}"
+    assert (body["status"], body["queued_ahead"], body["problem"], body["error"]) == ("queued", 0, None, None)
+    assert client.get(response.headers["Location"], headers=instructor).get_json()["status"] == "queued"
+
+
+def test_an_uploaded_scene_becomes_a_problem_with_derived_answers(client, make_token, derivers, poll):
+    _, instructor = make_token("instructor")
+    job = _derived(client, poll, instructor)
+    assert job["status"] == "done" and job["problem"] == {"id": "yoyo", "version": 1, "new_version": True}
+    assert job["links"]["problem"] == "/api/v1/problems/yoyo" and job["finished_at"]
+    body = client.get(job["links"]["problem"], headers=instructor).get_json()
     # The engine derived the yo-yo: a = 2g/3, T = mg/3.
     references = {a["name"]: a["reference"] for a in body["answers"]}
     assert references["acceleration"] == "2*g/3" and references["tension"] == "g*m/3"
     assert body["version"] == 1 and body["derivation"]["id"] == "yoyo"
 
 
-def test_the_same_id_again_is_a_new_version_only_if_the_source_changed(client, make_token):
+def test_the_same_id_again_is_a_new_version_only_if_the_source_changed(client, make_token, derivers, poll):
     _, instructor = make_token("instructor")
-    assert _upload(client, instructor).status_code == 201
-    same = _upload(client, instructor)
-    assert same.status_code == 200 and same.get_json()["version"] == 1
-    edited = _upload(client, instructor, YOYO_SOURCE + "\n# a typo fixed\n")
-    assert edited.status_code == 201 and edited.get_json()["version"] == 2
+    assert _derived(client, poll, instructor)["problem"]["new_version"] is True
+    assert _derived(client, poll, instructor)["problem"] == {"id": "yoyo", "version": 1, "new_version": False}
+    edited = _derived(client, poll, instructor, YOYO_SOURCE + "\n# a typo fixed\n")
+    assert edited["problem"] == {"id": "yoyo", "version": 2, "new_version": True}
 
 
-def test_an_unpublished_upload_is_hidden_from_students(client, make_token):
+def test_an_unpublished_upload_is_hidden_from_students(client, make_token, derivers, poll):
     _, instructor = make_token("instructor")
     _, student = make_token("student")
-    assert _upload(client, instructor, query="?published=false").status_code == 201
+    assert _derived(client, poll, instructor, query="?published=false")["status"] == "done"
     assert client.get("/api/v1/problems/yoyo", headers=student).status_code == 404
 
 
 @pytest.mark.parametrize("source, content_type, status, kind", [
     ('id = "x"\n[energy\n', "application/toml", 422, "invalid-scene"),
-    (YOYO_SOURCE.replace("m*g*s", "m*g*sss"), "application/toml", 422, "invalid-scene"),
     (YOYO_SOURCE, "application/json", 415, "unsupported-media-type"),
     ("x" * (300 * 1024), "application/toml", 413, "too-large"),
+    (b"\xff\xfe".decode("latin-1"), "application/toml", 400, "invalid-scene"),
 ])
-def test_bad_uploads_are_refused_with_the_reason(client, make_token, source, content_type, status, kind):
+def test_uploads_that_are_not_scene_files_are_refused_at_once(client, make_token, source, content_type, status, kind):
     _, instructor = make_token("instructor")
-    response = _upload(client, instructor, source, content_type)
+    data = source.encode("latin-1") if status == 400 else source.encode()
+    response = client.post("/api/v1/problems", data=data, headers=instructor, content_type=content_type)
     assert response.status_code == status
     assert response.mimetype == "application/problem+json"
     assert response.get_json()["type"] == f"urn:lagrade:error:{kind}"
 
 
-def test_a_scene_error_names_the_problem(client, make_token):
+@pytest.mark.parametrize("source, message", [
+    (YOYO_SOURCE.replace('potential = "-m*g*s"', 'potential = "-m*g*tehta"'), "tehta"),
+    (YOYO_SOURCE.replace("m*g*s", "m*g*sss"), "not an energy"),
+])
+def test_a_scene_the_engine_refuses_fails_its_job_with_the_reason(client, make_token, derivers, poll, source, message):
     _, instructor = make_token("instructor")
-    response = _upload(client, instructor, YOYO_SOURCE.replace('potential = "-m*g*s"', 'potential = "-m*g*tehta"'))
-    assert response.status_code == 422 and "tehta" in response.get_json()["detail"]
+    job = _derived(client, poll, instructor, source)
+    assert job["status"] == "failed" and message in job["error"] and job["problem"] is None
+    assert "Traceback" not in job["error"]
+
+
+def test_an_instructor_has_at_most_two_derivations_waiting(client, make_token):
+    _, instructor = make_token("instructor")
+    _, colleague = make_token("instructor")
+    assert [_upload(client, instructor).status_code for _ in range(2)] == [202, 202]
+    refused = _upload(client, instructor)
+    assert refused.status_code == 429 and int(refused.headers["Retry-After"]) > 0
+    assert refused.get_json()["type"] == "urn:lagrade:error:too-many-derivations"
+    assert _upload(client, colleague).status_code == 202  # the limit is per instructor
+
+
+def test_a_job_is_seen_only_by_its_requester_and_admins(client, make_token):
+    _, instructor = make_token("instructor")
+    _, colleague = make_token("instructor")
+    _, admin = make_token("admin")
+    _, student = make_token("student")
+    location = _upload(client, instructor).headers["Location"]
+    assert client.get(location, headers=instructor).status_code == 200
+    assert client.get(location, headers=admin).status_code == 200
+    assert client.get(location, headers=colleague).status_code == 404  # no course shared: not even its existence
+    assert client.get(location, headers=student).status_code == 403  # the role may not follow derivations
+    assert client.get("/api/v1/derivations/999", headers=instructor).status_code == 404
 
 
 def test_students_read_statement_and_prompts(client, make_token, yoyo_version):

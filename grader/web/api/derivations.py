@@ -11,9 +11,9 @@ from __future__ import annotations
 from typing import Any
 
 from flask import url_for
-from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
+from grader.jobs.derivation_queue import queued_ahead
 from grader.store.db import db
 from grader.store.models import DerivationJob
 from grader.web.api import spec
@@ -41,14 +41,6 @@ DERIVATION = spec.schema("Derivation", {"type": "object", "required": ["id", "st
 
 def _time(value) -> str | None:
     return value.isoformat() + "Z" if value is not None else None
-
-
-def queued_ahead(session: Session, job: DerivationJob) -> int | None:
-    """How many queued jobs will be claimed before ``job`` (None unless it is queued)."""
-    if job.status != "queued":
-        return None
-    return session.scalar(select(func.count()).select_from(DerivationJob)
-                          .where(DerivationJob.status == "queued", DerivationJob.id < job.id))
 
 
 def derivation_json(session: Session, job: DerivationJob) -> dict[str, Any]:

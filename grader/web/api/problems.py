@@ -8,12 +8,15 @@ from flask import current_app, g, request, url_for
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
-from grader.jobs.derivation import DerivationError, derive_source
-from grader.store.db import db
-from grader.store.models import Problem, ProblemVersion
-from grader.store.problems import latest_version, problem_by_slug, save_problem
+from grader.jobs.derivation import DerivationError, read_scene_id
+from grader.jobs.derivation_queue import TooManyDerivations, enqueue
+from grader.store.db import Database, db
+from grader.store.models import DerivationJob, Problem, ProblemVersion
+from grader.store.problems import latest_version, problem_by_slug
 from grader.web.api import spec
+from grader.web.api.derivations import DERIVATION, derivation_json
 from grader.web.errors import ApiProblem
+from grader.web.policy import current_principal, require_upload
 
 __all__ = ["INSTRUCTORS", "problem_json", "visible_version"]
 
@@ -70,18 +73,20 @@ def problem_json(version: ProblemVersion, *, full: bool) -> dict[str, Any]:
     return body
 
 
-@spec.route("/problems", "POST", roles=INSTRUCTORS, errors=(400, 413, 415, 422),
+@spec.route("/problems", "POST", roles=INSTRUCTORS, errors=(400, 413, 415, 422, 429),
             request={"application/toml": {"type": "string", "description": "A scene file (docs/scene-format.md)."}},
             parameters=[{"name": "published", "in": "query", "schema": {"type": "boolean", "default": True},
                          "description": "Whether students see this version."}],
-            responses={201: ("A new problem or a new version of it.", {"application/json": PROBLEM}),
-                       200: ("The source is the same as the latest version's; nothing changed.",
-                             {"application/json": PROBLEM})})
+            responses={202: ("The scene is queued for derivation; follow Location until it is done or failed.",
+                             {"application/json": DERIVATION})},
+            headers={202: {"Location": {"description": "The derivation job to poll.", "schema": {"type": "string"}}}})
 def create_problem():
-    """Upload a scene file: derive its answers and store it as a problem version.
+    """Upload a scene file: it is derived in the background and stored as a problem version.
 
     The scene's ``id`` names the problem; uploading the same id with a changed source adds a new
-    version. The derivation runs in a child process under a time and memory limit.
+    version. The answer is ``202`` with the derivation job to poll (``GET /derivations/{id}``): the
+    engine runs in a child process under a time and memory limit, off the request threads. Each
+    instructor may have a few derivations queued or running at once; beyond that, ``429``.
     """
     if request.mimetype != "application/toml":
         raise ApiProblem(415, "Send the scene file with 'Content-Type: application/toml'.", kind="unsupported-media-type")
@@ -94,17 +99,25 @@ def create_problem():
         source = raw.decode("utf-8")
     except UnicodeDecodeError:
         raise ApiProblem(400, "The scene file is not UTF-8 text.", kind="invalid-scene") from None
-    config = current_app.config
+    principal = current_principal()
     try:
-        derived = derive_source(source, filename="upload.toml", timeout_s=config["DERIVE_TIMEOUT_S"],
-                                memory_mb=config["DERIVE_MEMORY_MB"])
+        slug = read_scene_id(source)  # a file that is not TOML at all is refused at once
     except DerivationError as error:
         raise ApiProblem(422, str(error), kind="invalid-scene") from None
+    if slug is not None:
+        with db.read() as session:  # another course's id: refused now (and again when the job saves it)
+            require_upload(session, principal, slug)
     published = request.args.get("published", "true").lower() not in ("false", "0", "no")
-    version, created = save_problem(db.session, derived, published=published)
-    db.session.commit()
-    location = url_for("api.get_problem", slug=version.problem.slug)
-    return problem_json(version, full=True), (201 if created else 200), {"Location": location}
+    database = Database.current()
+    try:
+        job_id = enqueue(database, requester_id=principal.user_id, source=source, filename="upload.toml",
+                         publish=published, max_active=current_app.config["DERIVE_MAX_ACTIVE"])
+    except TooManyDerivations as refused:
+        raise ApiProblem(429, str(refused), kind="too-many-derivations",
+                         headers={"Retry-After": str(refused.retry_after_s)}) from None
+    with database.read() as session:
+        body = derivation_json(session, session.get(DerivationJob, job_id))
+    return body, 202, {"Location": body["links"]["self"]}
 
 
 @spec.route("/problems", "GET", roles=EVERYONE,

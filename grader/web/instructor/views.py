@@ -1,7 +1,8 @@
 """Instructor routes (all under ``/instructor``).
 
 ``GET  /``                                       dashboard: the problems this instructor manages
-``GET  /problems/new``, ``POST``                 register a scene file (upload or paste) as a draft
+``GET  /problems/new``, ``POST``                 register a scene file (upload or paste): queued for derivation
+``GET  /derivations/<id>``                       its progress (queued, deriving), then a link to the review
 ``GET  /problems/<slug>/review[?version=N]``     statement, reference answers and derivation of a version
 ``POST /problems/<slug>/versions/<n>/publish``   let students see version n
 ``GET  /problems/<slug>``                        results: scores, grouped wrong answers, submissions
@@ -14,22 +15,25 @@ from __future__ import annotations
 from flask import current_app, flash, g, redirect, render_template, request, url_for
 
 from grader.jobs import regrade as queue_regrade
-from grader.jobs.derivation import DerivationError, derive_source
+from grader.jobs.derivation import DerivationError, read_scene_id
+from grader.jobs.derivation_queue import TooManyDerivations, enqueue, queued_ahead
 from grader.jobs.grading import check_request
 from grader.store.db import Database, db
-from grader.store.problems import latest_version, problem_by_slug, save_problem
+from grader.store.problems import latest_version, problem_by_slug
 from grader.web.auth.session import INSTRUCTOR_ROLES, login_required
 from grader.web.csv_export import csv_response
 from grader.web.instructor import bp
 from grader.web.instructor.access import managed_courses, managed_problem, managed_problems, may_manage, version_of
 from grader.web.instructor.grouping import GroupingCache, group_wrong_answers
 from grader.web.instructor.stats import CSV_HEADER, csv_rows, per_answer, results, score_distribution, signature
+from grader.web.policy import Action, allowed, current_principal, find_derivation
 from grader.web.student.statement import statement_problems
 
 MAX_SCENE_BYTES = 256 * 1024
 SHOWN_GROUPS = 8
 SHOWN_SUBMISSIONS = 50
 GROUP_CHECK_BUDGET_S = 2.0
+DERIVATION_REFRESH_S = 2  # how often the derivation page reloads itself while the scene waits or derives
 
 
 
@@ -57,7 +61,7 @@ def dashboard():
 @bp.route("/problems/new", methods=["GET", "POST"])
 @login_required(INSTRUCTOR_ROLES)
 def new_problem():
-    with db.read() as session:  # not the request's writer: deriving below may take a minute
+    with db.read() as session:  # not the request's writer: the queue writes in its own transaction
         courses = managed_courses(session, g.user)
     if request.method == "GET":
         return render_template("instructor/new_problem.html", courses=courses, source="", course_id="")
@@ -77,29 +81,46 @@ def new_problem():
         return _new_problem_error(courses, source, "Upload a scene file or paste one.")
     if len(source.encode()) > MAX_SCENE_BYTES:
         return _new_problem_error(courses, "", f"A scene file may be at most {MAX_SCENE_BYTES // 1024} KiB.")
+    # Refused at once what needs no engine: not TOML, or an id of a problem this instructor may not
+    # change; the derivation itself runs in a derivation worker, off this request thread.
     try:
-        derived = derive_source(source, filename=filename, timeout_s=current_app.config["DERIVE_TIMEOUT_S"],
-                                memory_mb=current_app.config["DERIVE_MEMORY_MB"])
+        slug = read_scene_id(source, filename)
     except DerivationError as error:
         return _new_problem_error(courses, source, str(error), course_id)
-    existing = problem_by_slug(db.session, derived.slug)  # the write transaction starts here
-    if existing is not None and not may_manage(db.session, g.user, existing):
-        return _new_problem_error(courses, source, f"The problem id {derived.slug!r} is taken by another course; "
-                                                   "give the scene another id.", course_id)
-    version, created = save_problem(db.session, derived, published=False)
-    if version.number == 1 and created and course_id:
-        version.problem.course_id = int(course_id)
-    db.session.commit()
-    if created:
-        flash(f"Derived “{version.title}” as draft version {version.number}. Review it, then publish.", "success")
-    else:
-        flash("This scene is the same as the newest version; nothing changed.", "")
-    return redirect(url_for("instructor.review", slug=derived.slug, version=version.number))
+    principal = current_principal()
+    with db.read() as session:
+        existing = problem_by_slug(session, slug) if slug else None
+        if existing is not None and not allowed(principal, Action.MANAGE, existing):
+            return _new_problem_error(courses, source, f"The problem id {slug!r} is taken by another course; "
+                                                       "give the scene another id.", course_id)
+    try:
+        job_id = enqueue(Database.current(), requester_id=g.user.id, source=source, filename=filename,
+                         course_id=int(course_id) if course_id else None, publish=False,
+                         max_active=current_app.config["DERIVE_MAX_ACTIVE"])
+    except TooManyDerivations as refused:
+        return _new_problem_error(courses, source, str(refused), course_id, status=429,
+                                  headers={"Retry-After": str(refused.retry_after_s)})
+    return redirect(url_for("instructor.derivation", job_id=job_id))
 
 
-def _new_problem_error(courses, source: str, message: str, course_id: str = ""):
+@bp.get("/derivations/<int:job_id>")
+@login_required(INSTRUCTOR_ROLES)
+def derivation(job_id: int):
+    """How far an uploaded scene got; reloads itself (a meta refresh, no script) until it is done."""
+    job = find_derivation(db.session, current_principal(), job_id)
+    if job.status == "failed":
+        with db.read() as session:
+            courses = managed_courses(session, g.user)
+        return render_template("instructor/new_problem.html", courses=courses, source=job.source, error=job.error,
+                               course_id=str(job.course_id or ""), job=job)
+    return render_template("instructor/derivation.html", job=job, queued_ahead=queued_ahead(db.session, job),
+                           refresh_s=DERIVATION_REFRESH_S)
+
+
+def _new_problem_error(courses, source: str, message: str, course_id: str = "", *, status: int = 422,
+                       headers: dict[str, str] | None = None):
     return render_template("instructor/new_problem.html", courses=courses, source=source, error=message,
-                           course_id=course_id), 422
+                           course_id=course_id), status, headers or {}
 
 
 @bp.get("/problems/<slug>/review")
