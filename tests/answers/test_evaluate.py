@@ -76,3 +76,76 @@ def test_scale_records_the_largest_term_added():
     # m*g*(sin^2 + cos^2 - 1) is zero, but its terms are of size 1: that is the cancellation scale
     env_value = arb_at(sympy.sin(theta) ** 2 + sympy.cos(theta) ** 2 - 1, {theta: 0.7})
     assert env_value.contains(0)
+
+
+# -- fuzzing: every registered function and number form, in every backend ------------------------
+from hypothesis import HealthCheck, given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from grader.answers.equivalence import Options, compare_expressions  # noqa: E402
+from grader.answers.sampling import Sampler  # noqa: E402
+from grader.expressions import ExpressionError, Namespace, parse_expression  # noqa: E402
+from grader.expressions.functions import FUNCTIONS  # noqa: E402
+
+FUZZ_NAMESPACE = Namespace.from_spec({"x": {"domain": "real"}, "y": {"domain": "positive"},
+                                      "z": {"domain": [-1, 1]}, "w": {"domain": [5, "inf"]}})
+NUMBERS = ["0", "1", "2", "-3", "0.5", "0.1", "2.75", "1.5e-3", "1e2", "3/4", "-0.25", "pi", "e", "E", "10^-3"]
+LEAVES = st.sampled_from(NUMBERS + ["x", "y", "z", "w"])
+
+
+def _call(name, args):
+    spec = FUNCTIONS[name]
+    if spec.min_args == 2:
+        return f"{name}({args[0]}, {args[1]})"
+    return f"{name}({args[0]})" if name != "sqrt" else f"sqrt({args[0]})"
+
+
+TEXTS = st.recursive(
+    LEAVES,
+    lambda inner: st.one_of(
+        st.builds(_call, st.sampled_from(sorted(FUNCTIONS)), st.lists(inner, min_size=2, max_size=2)),
+        st.builds(lambda a, op, b: f"({a}) {op} ({b})", inner, st.sampled_from("+-*/"), inner),
+        st.builds(lambda a, p: f"({a})^({p})", inner, st.sampled_from(["2", "-1", "0.5", "1/3", "1.5", "x", "-2"])),
+        st.builds(lambda a, offset: f"{a} + {offset}", inner, st.sampled_from(["0.5", "1e-3", "2.5", "-0.125"])),
+    ),
+    max_leaves=8,
+)
+FUZZ_SAMPLER = Sampler({v.symbol: v.domain for v in FUZZ_NAMESPACE.variables}, seed=11)
+BACKENDS = [ArbBackend(), FloatBackend(), MpmathBackend()]
+
+
+def _parse_or_none(text):
+    try:
+        return parse_expression(text, FUZZ_NAMESPACE)
+    except ExpressionError:
+        return None  # the parser's own fuzzer checks what it refuses
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(TEXTS)
+def test_every_parsed_expression_compiles_and_evaluates_or_is_undefined_in_every_backend(text):
+    """A valid text never makes the evaluator raise anything but Undefined/Unresolved (no TypeError)."""
+    parsed = _parse_or_none(text)
+    if parsed is None:
+        return
+    for backend in BACKENDS:
+        f = compile_expr(parsed.expr, backend)  # never Unsupported: the grammar builds only what it knows
+        for i in range(3):
+            env = {s: backend.point(v) for s, v in FUZZ_SAMPLER.point(i).items()}
+            env[SCALE] = -math.inf
+            try:
+                with flint.ctx.workprec(64):
+                    f(env)
+            except (Undefined, Unresolved):
+                pass
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(TEXTS, TEXTS)
+def test_comparing_any_two_valid_texts_gives_a_comparison(reference, answer):
+    r, a = _parse_or_none(reference), _parse_or_none(answer)
+    if r is None or a is None:
+        return
+    c = compare_expressions(r.expr, a.expr, FUZZ_SAMPLER, Options(points=3, max_bits=512),
+                            answer_conditions=a.conditions, reference_conditions=r.conditions)
+    assert c.equivalent in (True, False, None) and c.reason
