@@ -4,9 +4,10 @@ Three steps, cheapest first, so that a course of 300 stays fast:
 
 1. *Same reading*: texts that parse to the same sympy expression (``mg`` and ``m*g``) are one form,
    without any check.
-2. *Numeric fingerprint*: each form is evaluated in plain floats at a few fixed points of its
-   variables' domains (a bounded walk of the expression tree: no eval, no big numbers). Forms whose
-   values differ cannot be equivalent, so they are never sent to the checker.
+2. *Numeric fingerprint*: each form is evaluated in float64 at a few fixed points of its
+   variables' domains, by the checker's own evaluator (`grader.answers.evaluate`, compiled from the
+   tree: no eval, the same function registry). Forms whose values differ cannot be equivalent, so
+   they are never sent to the checker.
 3. *The checker decides*: a form whose fingerprint matches a group's joins it only if the sandboxed
    checker (``grader.answers.check``, the same one that grades) says it is equivalent to the
    group's representative. Forms without a fingerprint (equations, unusual functions) are compared
@@ -14,6 +15,9 @@ Three steps, cheapest first, so that a course of 300 stays fast:
 
 Results are cached per (problem, answer) until a new verdict appears, and checker answers per pair
 of forms for as long as the process lives, so a new wrong answer costs about one check.
+
+It lives with the checker, not with the instructor pages that show it: it is a judgement about
+answers, made with the checker's parser, evaluator and verdicts.
 """
 
 from __future__ import annotations
@@ -28,23 +32,14 @@ from typing import Any, Callable, Iterable
 
 import sympy
 
+from grader.answers.evaluate import SCALE, FloatBackend, Undefined, Unresolved, Unsupported, compile_expr
 from grader.expressions import ExpressionError, Namespace, parse_equation, parse_expression
 
 __all__ = ["Group", "GroupingCache", "fingerprint", "group_wrong_answers"]
 
 POINTS = 3
 REL_TOL = 1e-7
-_FUNCTIONS: dict[str, Callable[..., float]] = {
-    "sin": math.sin, "cos": math.cos, "tan": math.tan, "exp": math.exp, "log": math.log,
-    "asin": math.asin, "acos": math.acos, "atan": math.atan, "atan2": math.atan2, "sinh": math.sinh,
-    "cosh": math.cosh, "tanh": math.tanh, "Abs": abs, "sqrt": math.sqrt,
-    "cot": lambda x: 1 / math.tan(x), "sec": lambda x: 1 / math.cos(x), "csc": lambda x: 1 / math.sin(x),
-    "sign": lambda x: float((x > 0) - (x < 0)),
-}
-
-
-class _NoValue(Exception):
-    """The expression has no plain float value here (complex, overflow, unknown function)."""
+_FLOAT = FloatBackend()
 
 
 @dataclass
@@ -63,37 +58,6 @@ class Group:
                 "students": len(self.students), "forms": self.forms.most_common()}
 
 
-def _value(expr: sympy.Basic, env: dict[sympy.Symbol, float]) -> float:
-    if expr.is_Symbol:
-        if expr not in env:
-            raise _NoValue(str(expr))
-        return env[expr]
-    if expr.is_Integer or expr.is_Rational:
-        p, q = int(expr.p), int(expr.q)
-        if p.bit_length() > 1000 or q.bit_length() > 1000:
-            raise _NoValue("huge number")
-        return p / q
-    if expr.is_Float or expr.is_NumberSymbol:
-        return float(expr)
-    args = [_value(a, env) for a in expr.args]
-    try:
-        if expr.is_Add:
-            return math.fsum(args)
-        if expr.is_Mul:
-            return math.prod(args)
-        if expr.is_Pow:
-            result = args[0] ** args[1]
-            if isinstance(result, complex):
-                raise _NoValue("complex")
-            return float(result)
-        function = _FUNCTIONS.get(type(expr).__name__)
-        if function is None:
-            raise _NoValue(type(expr).__name__)
-        return float(function(*args))
-    except (ArithmeticError, ValueError, TypeError) as error:  # overflow, domain, 0**-1
-        raise _NoValue(str(error)) from None
-
-
 def _points(namespace: Namespace) -> list[dict[sympy.Symbol, float]]:
     rng = random.Random(20240607)  # the same points every time, so fingerprints can be cached
     points = []
@@ -110,10 +74,11 @@ def fingerprint(expr: sympy.Basic, namespace: Namespace) -> tuple[float, ...] | 
     True
     """
     try:
-        values = tuple(_value(expr, point) for point in _points(namespace))
-    except (_NoValue, RecursionError):
-        return None
-    return values if all(math.isfinite(v) for v in values) else None
+        function = compile_expr(expr, _FLOAT)
+        values = tuple(function({**point, SCALE: 0.0}) for point in _points(namespace))
+    except (Undefined, Unresolved, Unsupported, ValueError, ArithmeticError, RecursionError, KeyError):
+        return None  # no plain value somewhere (a pole, an overflow, a name without a point)
+    return values if all(isinstance(v, float) and math.isfinite(v) for v in values) else None
 
 
 def _close(a: tuple[float, ...], b: tuple[float, ...]) -> bool:

@@ -4,7 +4,7 @@ import random
 import time
 
 from grader.answers.checker import check_request
-from grader.web.instructor.grouping import GroupingCache, fingerprint, group_wrong_answers
+from grader.answers.grouping import GroupingCache, fingerprint, group_wrong_answers
 from grader.expressions import Namespace, parse_expression
 
 TENSION = {"name": "tension", "kind": "expression", "reference": "g*m/3",
@@ -44,7 +44,7 @@ def test_a_course_of_300_groups_in_well_under_a_second():
     calls = []
     started = time.perf_counter()
     groups = group_wrong_answers(TENSION, answers, checker(calls))
-    assert time.perf_counter() - started < 3.0
+    assert time.perf_counter() - started < 1.0  # about 0.15 s on one core
     assert len(calls) < 20
     assert groups[0].submissions >= groups[1].submissions
     assert sum(g.submissions for g in groups) == len(answers)

@@ -24,7 +24,7 @@ from grader.web.auth.session import INSTRUCTOR_ROLES, login_required
 from grader.web.csv_export import csv_response
 from grader.web.instructor import bp
 from grader.web.instructor.access import managed_courses, managed_problem, managed_problems, may_manage, version_of
-from grader.web.instructor.grouping import GroupingCache, group_wrong_answers
+from grader.answers.grouping import GroupingCache, group_wrong_answers
 from grader.web.instructor.stats import CSV_HEADER, csv_rows, per_answer, results, score_distribution, signature
 from grader.web.policy import Action, allowed, current_principal, find_derivation
 from grader.web.student.statement import statement_problems
