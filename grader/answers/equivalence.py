@@ -250,6 +250,8 @@ def compare_at(ref: Compiled, ans: Compiled, point: dict, key, options: Options,
                 if d.rad().is_zero():
                     return PointResult("agree", a, r, digits=math.inf)
                 scale = max(r_scale, a_scale, _log2_mag(a), _log2_mag(r))
+                if math.isinf(scale):  # values beyond any float's range: no precision will tell
+                    return PointResult("unresolved")
                 noise = _log2_mag(d.rad())
                 if noise <= scale - target:
                     return PointResult("agree", a, r, digits=(scale - noise) / LOG2_10)
@@ -333,16 +335,25 @@ def compare_numeric(
 ) -> Comparison:
     """Compare two compiled expressions at the sampler's points.
 
-    Points where the reference is undefined are skipped (as WeBWorK does); a point where the
-    answer is undefined but the reference is not is a counterexample.
+    Points where both are undefined are skipped (as WeBWorK does); a point where only one of them
+    is undefined is a counterexample. Once the reference is undefined somewhere, every other point
+    is drawn across the domains' whole scale (`Sampler.wide_point`), so that an expression defined
+    only for x >= 5 is still decided, and more points are tried.
     """
     needed = options.points
     agreed, unresolved, ref_undefined = 0, 0, 0
     digits = math.inf
     proved = options.method == "arb"
-    for i in range(needed * 3):
-        point = sampler.point(i)
-        result = compare_at(ref, ans, point, i, options, deadline)
+    regular = wide = attempt = 0
+    while attempt < (needed * 3 if not ref_undefined else needed * 6):
+        if ref_undefined and attempt % 2:
+            point, key = sampler.wide_point(wide), ("wide", wide)
+            wide += 1
+        else:
+            point, key = sampler.point(regular), regular
+            regular += 1
+        attempt += 1
+        result = compare_at(ref, ans, point, key, options, deadline)
         if result.kind == "agree":
             agreed += 1
             digits = min(digits, result.digits)
@@ -354,8 +365,7 @@ def compare_numeric(
                 reason = "your answer and the correct one differ at the point in the counterexample"
                 values = (_to_float(result.answer), _to_float(result.reference))
             elif result.kind == "answer_defined":
-                reason = ("your answer is defined at a point of the domain where the correct one is not "
-                          "(a power or logarithm law that holds only for positive numbers?)")
+                reason = "your answer is defined at a point of the domain where the correct one is not"
                 values = None
             else:
                 reason = f"your answer is undefined at a point where the correct one is defined ({result.reason})"
@@ -389,7 +399,9 @@ def compare_numeric(
             how += f" ({options.describe()})"
         return Comparison(True, "numeric", how, evidence=evidence)
     if agreed == 0 and ref_undefined and not unresolved:
-        return Comparison(None, "none", "the reference is undefined at every sample point of the domain")
+        return Comparison(None, "none", f"the reference is undefined at all {ref_undefined} sample points "
+                          "tried, across the whole scale of the declared domains (magnitudes 1e-3 to 1e6): "
+                          "check the reference and the variables' domains", evidence={"points": 0})
     return Comparison(
         None,
         "none",

@@ -53,7 +53,10 @@ def _log2_mag(x: flint.arb) -> float:
     if not u.is_finite():
         return math.inf
     man, exp = u.man_exp()  # u is exact (its own midpoint)
-    return float(int(exp) + int(man).bit_length())
+    try:
+        return float(int(exp) + int(man).bit_length())
+    except OverflowError:  # cosh(sinh(1000)): a ball whose exponent alone is beyond float range
+        return math.inf if exp > 0 else -math.inf
 
 
 class ArbBackend:

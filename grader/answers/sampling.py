@@ -22,6 +22,8 @@ __all__ = ["Sampler", "seed_for"]
 # (1e-6 .. 1e6), where float64 cancels badly and where an answer off by a small term shows.
 STRESS_EVERY = 4
 STRESS_DECADES = 6.0
+# Offset of the seed of the wide points' generator from the ordinary one's.
+WIDE_STREAM = 0x5EED
 
 
 def seed_for(*parts: Any) -> int:
@@ -72,7 +74,10 @@ class Sampler:
 
     def __init__(self, domains: Mapping[sympy.Symbol, Any], seed: int, stress: bool = True):
         self.domains = dict(sorted(domains.items(), key=lambda item: item[0].name))
+        self._seed = seed
         self._rng = np.random.default_rng(seed)
+        self._wide_rng = None
+        self._wide_points: list[dict[sympy.Symbol, float]] = []
         self._stress = {s for s, d in self.domains.items() if stress and _stressable(d)}
         self._points: list[dict[sympy.Symbol, float]] = []
 
@@ -80,6 +85,23 @@ class Sampler:
         while len(self._points) <= i:
             self._points.append(self._draw(len(self._points)))
         return self._points[i]
+
+    def wide_point(self, i: int) -> dict[sympy.Symbol, float]:
+        """The i-th point drawn across the domains' whole scale (``Domain.sample_wide``).
+
+        Used where the reference is undefined at the ordinary points (an expression defined only for
+        x >= 5, with x real): a stream of its own, so the ordinary points never change.
+        """
+        if self._wide_rng is None:
+            self._wide_rng = np.random.default_rng(self._seed + WIDE_STREAM)
+        while len(self._wide_points) <= i:
+            point = {}
+            for symbol, domain in self.domains.items():
+                wide = getattr(domain, "sample_wide", None)
+                value = float(wide(self._wide_rng)) if wide is not None else float(domain.sample(self._wide_rng))
+                point[symbol] = value if math.isfinite(value) else 1.0
+            self._wide_points.append(point)
+        return self._wide_points[i]
 
     def _draw(self, i: int) -> dict[sympy.Symbol, float]:
         stress = self._stress and i % STRESS_EVERY == STRESS_EVERY - 1

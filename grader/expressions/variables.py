@@ -109,6 +109,37 @@ class Domain:
             value = float(rng.uniform(lo, hi))
         return value
 
+    def sample_wide(self, rng, decades: tuple[float, float] = (-3.0, 6.0)) -> float:
+        """A random value across the whole domain's scale, not only near 1.
+
+        Unbounded domains give log-uniform magnitudes ``10**decades[0] .. 10**decades[1]`` (with a
+        random sign for ``real``; measured from the finite end of a half-line); a bounded interval is
+        sampled uniformly over its whole length, or log-uniformly when it spans decades on one side
+        of zero. An expression defined only for x >= 5 is found here, where `sample` never goes.
+
+        Examples
+        --------
+        >>> import random
+        >>> rng = random.Random(2)
+        >>> max(parse_domain("real").sample_wide(rng) for _ in range(50)) > 5
+        True
+        >>> all(1e-7 <= parse_domain([1e-7, 1e-5]).sample_wide(rng) <= 1e-5 for _ in range(50))
+        True
+        """
+        lo, hi = self.lo, self.hi
+        if self.kind in ("positive", "nonnegative", "real") or math.isinf(lo) or math.isinf(hi):
+            magnitude = 10.0 ** float(rng.uniform(*decades))
+            if self.kind in ("positive", "nonnegative"):
+                return magnitude
+            if self.kind == "real":
+                return -magnitude if float(rng.uniform(0, 1)) < 0.5 else magnitude
+            return hi - magnitude if math.isinf(lo) else lo + magnitude
+        if lo > 0 and hi / lo > 100:
+            return math.exp(float(rng.uniform(math.log(lo), math.log(hi))))
+        if hi < 0 and lo / hi > 100:
+            return -math.exp(float(rng.uniform(math.log(-hi), math.log(-lo))))
+        return float(rng.uniform(lo, hi))
+
     def to_json(self):
         """The scene-file form that :func:`parse_domain` reads back: a kind name or ``[lo, hi]``.
 

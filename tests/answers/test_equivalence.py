@@ -149,3 +149,34 @@ def test_power_laws_hold_only_where_the_domain_allows(reference, answer, expecte
     assert c.equivalent is expected
     if not expected:  # and it is shown at a point with a negative base, not guessed
         assert c.certainty == "proved" and c.counterexample["values"]["x"] < 0
+
+
+# -- the whole domain is sampled ----------------------------------------------------------------
+X_REAL = {"x": {"domain": "real"}}
+
+
+@pytest.mark.parametrize("reference, answer, expected", [
+    ("acosh(x/5)", "log(x/5 + sqrt(x^2/25 - 1))", True),   # both defined only for x >= 5
+    ("acosh(x/5)", "log(x/5 + sqrt(x^2/25 + 1))", False),  # asinh: defined where acosh is not
+    ("sqrt(x - 5)", "sqrt(x - 6)", False),
+    ("sqrt(x - 5)*sqrt(x + 5)", "sqrt(x^2 - 25)", False),  # the answer is defined for x <= -5 too
+])
+def test_an_expression_defined_only_far_from_zero_is_still_decided(reference, answer, expected):
+    from grader.answers import check
+
+    v = check(reference, answer, X_REAL)
+    assert v.verdict == ("equivalent" if expected else "not_equivalent")
+
+
+def test_undefined_at_every_point_is_a_last_resort_that_says_so():
+    from grader.answers import check
+
+    v = check("asin(x - 10)", "acos(x - 10)", X_REAL)  # defined only on [9, 11]
+    assert v.verdict == "invalid" and "undefined at all" in v.reason and "domains" in v.reason
+
+
+def test_values_beyond_float_range_give_a_verdict_not_an_internal_error():
+    from grader.answers import check
+
+    v = check("cosh(sinh(e/1.5e-3))", "100/cosec(x)", X_REAL)
+    assert "internal error" not in v.reason

@@ -27,3 +27,17 @@ def test_the_same_reference_is_probed_at_the_same_points():
     a = Sampler({m: parse_domain("positive")}, seed_for("m*g/3", "expression"))
     b = Sampler({m: parse_domain("positive")}, seed_for("m*g/3", "expression"))
     assert [a.point(i) for i in range(8)] == [b.point(i) for i in range(8)]
+
+
+def test_wide_points_span_the_whole_scale_of_a_real_domain():
+    x = sympy.Symbol("x", real=True)
+    s = Sampler({x: parse_domain("real")}, seed=4)
+    values = [s.wide_point(i)[x] for i in range(60)]
+    assert max(values) > 1e3 and min(values) < -1e3 and min(abs(v) for v in values) < 1e-1
+
+
+def test_wide_points_do_not_change_the_ordinary_points():
+    x = sympy.Symbol("x", real=True)
+    a, b = Sampler({x: parse_domain("real")}, seed=4), Sampler({x: parse_domain("real")}, seed=4)
+    b.wide_point(10)
+    assert [a.point(i) for i in range(8)] == [b.point(i) for i in range(8)]
