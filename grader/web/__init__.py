@@ -15,7 +15,7 @@ from grader.jobs.derivation import DERIVE_MEMORY_MB, DERIVE_TIMEOUT_S
 from grader.jobs.derivation_queue import MAX_ACTIVE_PER_REQUESTER
 from grader.jobs.grading import CHECK_BUDGET_S, CheckerPool, sandbox_checker
 from grader.store.db import db, default_url
-from grader.web import errors, security
+from grader.web import errors, headers, security
 
 __all__ = ["create_app"]
 
@@ -25,13 +25,14 @@ PAGE_BLUEPRINTS = ("auth", "student", "instructor")
 
 def create_app(test_config: dict | None = None) -> Flask:
     """Make the app. Settings: ``test_config``, else ``LAGRADE_*`` environment variables
-    (``LAGRADE_SESSION_COOKIE_SECURE=true``...), else the defaults below; ``DATABASE_URL`` as usual."""
+    (``LAGRADE_HTTPS=true``...), else the defaults below; ``DATABASE_URL`` as usual."""
     app = Flask(__name__, instance_path=str(Path.cwd() / "instance"))
     app.config.from_mapping(
         DATABASE_URL=None,
         SESSION_COOKIE_HTTPONLY=True,
         SESSION_COOKIE_SAMESITE="Lax",
-        SESSION_COOKIE_SECURE=False,  # set true behind HTTPS
+        SESSION_COOKIE_SECURE=False,  # made true by HTTPS
+        HTTPS=False,  # served over HTTPS (LAGRADE_HTTPS=true): HSTS and Secure cookies; see headers.py
         MAX_CONTENT_LENGTH=1024 * 1024,
         CSRF_ENABLED=True,
         RATE_LIMITS_ENABLED=True,
@@ -57,6 +58,7 @@ def create_app(test_config: dict | None = None) -> Flask:
     db.init_app(app)
     errors.init_app(app)
     security.init_app(app)
+    headers.init_app(app)
     app.extensions["lagrade.checkers"] = CheckerPool(app.config["CHECK_SANDBOXES"], app.config["CHECKER_FACTORY"])
 
     from grader.web.api import bp as api_bp

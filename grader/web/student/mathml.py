@@ -239,7 +239,8 @@ class _Parser:
             return f'<mspace width="{_SPACES[name]}"></mspace>'
         if name in _STYLES:
             body = self.argument()
-            style = ' style="font-weight:bold"' if _STYLES[name] == "bold" else ""
+            # A class, not style="": the Content-Security-Policy allows no inline style (lagrade.css has it).
+            style = ' class="bold"' if _STYLES[name] == "bold" else ""
             return f'<mstyle mathvariant="{_STYLES[name]}"{style}>{body}</mstyle>'
         if name in _TEXT:
             text = re.sub(r"^\s+|\s+$", "\u00a0", self.raw_group())  # keep edge spaces
