@@ -48,3 +48,38 @@ def test_malformed_checks_are_422_problems(client, make_token, body, detail):
     _, student = make_token("student")
     response = client.post("/api/v1/check", headers=student, json=body)
     assert response.status_code == 422 and detail in response.get_json()["detail"]
+
+
+DIMENSIONLESS = {"x": {"dimension": "dimensionless", "domain": "real"}}
+
+
+# Inputs that once answered 500 or an internal error: each now gets its verdict. (A lone surrogate
+# never reaches the checker here: the body validation refuses it with a 400.)
+@pytest.mark.parametrize("reference, answer, verdict", [
+    ("x", "x + 1", "not_equivalent"),      # a reference plus a constant
+    ("x", "atan2(x)", "invalid"),          # a function with too few arguments
+    ("atan2(x)", "x", "invalid"),          # ...in the reference
+])
+def test_inputs_that_used_to_break_the_checker_get_a_verdict(client, make_token, reference, answer, verdict):
+    _, student = make_token("student")
+    response = client.post("/api/v1/check", headers=student,
+                           json={"reference": reference, "answer": answer, "variables": DIMENSIONLESS})
+    assert response.status_code == 200
+    body = response.get_json()
+    assert body["verdict"] == verdict and "internal error" not in body["reason"]
+
+
+def test_a_checker_whose_child_dies_on_start_up_is_a_503_not_a_500(app, client, make_token, monkeypatch):
+    from pathlib import Path
+
+    from grader.answers.sandbox import SandboxedChecker
+    from grader.jobs.grading import CheckerPool
+
+    monkeypatch.setenv("PYTHONPATH", str(Path(__file__).parents[1]))  # tests/sandbox_handlers.py
+    app.extensions["lagrade.checkers"] = CheckerPool(
+        1, lambda: SandboxedChecker(budget_s=1.0, handler="sandbox_handlers:no_such_handler"))
+    _, student = make_token("student")
+    response = client.post("/api/v1/check", headers=student,
+                           json={"reference": "x", "answer": "x", "variables": DIMENSIONLESS})
+    assert response.status_code == 503 and response.headers["Retry-After"] == "1"
+    app.extensions["lagrade.checkers"].close()

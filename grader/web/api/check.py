@@ -33,5 +33,8 @@ def check_answer():
     except CheckersBusy:
         raise ApiProblem(503, "All checkers are busy; try again shortly.", kind="busy",
                          headers={"Retry-After": "1"}) from None
+    if result.get("checker_failure"):  # the checker, not the answer, failed (its child would not start)
+        raise ApiProblem(503, "The checker is unavailable; try again shortly.", kind="unavailable",
+                         headers={"Retry-After": "1"})
     return result
 
