@@ -23,6 +23,7 @@ _BENCHMARKS = {
     "derive": "grader.bench.derive:bench_derive",
     "check": "grader.bench.check:bench_check",
     "http": "grader.bench.http:bench_http",
+    "isolation": "grader.bench.isolation:bench_isolation",
     "accuracy": "grader.bench.accuracy:bench_accuracy",
     "simulate": "grader.bench.simulate:bench_simulate",
 }

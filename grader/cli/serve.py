@@ -51,7 +51,10 @@ def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, 
                       budget_s=app.config["CHECK_BUDGET_S"]).start()
     derivers = DerivationWorkerPool(database, may_update=may_update, workers=app.config["DERIVE_WORKERS"],
                                     **limits).start()
-    server = waitress.create_server(app, host=host, port=port, threads=threads, ident="lagrade")
+    # A body over the app's cap is refused by waitress from its Content-Length, before it is read:
+    # a flood of oversized requests then costs the server a header each, not megabytes each.
+    server = waitress.create_server(app, host=host, port=port, threads=threads, ident="lagrade",
+                                    max_request_body_size=app.config["MAX_CONTENT_LENGTH"] + 1)
     base = f"http://{host}:{server.effective_port}"
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(0))
     click.echo(f"sign in at {base}{_sign_in_path(app)}; API at {base}/api/v1 (see /api/v1/openapi.json)\n"
