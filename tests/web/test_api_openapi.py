@@ -36,6 +36,11 @@ def test_operations_carry_their_docstring_roles_and_schemas(document):
     assert {p["name"] for p in submit["parameters"]} == {"slug", "Idempotency-Key"}
     upload = document["paths"]["/problems"]["post"]
     assert "application/toml" in upload["requestBody"]["content"]
+    # An upload is derived in the background: 202 with the job to poll, 429 beyond an instructor's limit.
+    assert set(upload["responses"]) >= {"202", "429"} and "Location" in upload["responses"]["202"]["headers"]
+    assert upload["responses"]["202"]["content"]["application/json"]["schema"] == {
+        "$ref": "#/components/schemas/Derivation"}
+    assert "404" in document["paths"]["/derivations/{job_id}"]["get"]["responses"]
     assert document["paths"]["/openapi.json"]["get"]["security"] == []
 
 
