@@ -58,6 +58,7 @@ __all__ = ["EventRecord", "Simulation", "SimulationError", "Trajectory", "simula
 _TOL = 1e-9          # relative: what counts as zero for a gap, a rate or a force at a mode decision
 _H = 1e-6            # s: step of the central differences along the flow (signs, Newton step)
 _MAX_EVENTS = 10_000
+_BAND = 1e-11        # relative: friction within this of μ_s N still holds (rounding, not physics)
 
 
 class SimulationError(RuntimeError):
@@ -192,9 +193,16 @@ class Simulation:
 
     # -- event functions of a mode ----------------------------------------------------------------
     def _friction_margin(self, r: int, sign: float, evaluator: _Evaluator):
+        # |f| > μ_s N is strict: a friction equal to the limit up to rounding (an incline exactly
+        # at the threshold) holds, so the margin gets a band of _BAND relative.
         effect = self.effects[r]
-        return lambda t, y: (effect.mu_s * evaluator.at(t, y)[1][effect.normal]
-                             - sign * evaluator.at(t, y)[1][r])
+
+        def margin(t, y):
+            lam = evaluator.at(t, y)[1]
+            limit = effect.mu_s * lam[effect.normal]
+            return limit - sign * lam[r] + _BAND * (abs(limit) + abs(lam[r]))
+
+        return margin
 
     def event_functions(self, mode: Mode, evaluator: _Evaluator) -> list[tuple[Callable, str, int]]:
         """(g, effect, constraint index) per event the mode can meet; g has its direction set."""
@@ -255,10 +263,11 @@ class Simulation:
                         change = ("release", i, True)
                 if e.kind == "rolling" and i in mode.active:
                     sign = 1.0 if lam[i] >= 0 else -1.0
-                    margin = e.mu_s * lam[e.normal] - sign * lam[i]
-                    if margin < -force_tol[i]:
+                    limit = e.mu_s * lam[e.normal]
+                    margin, band = limit - sign * lam[i], _BAND * (abs(limit) + abs(lam[i]))
+                    if margin < -band:
                         change = ("slip", i, False)
-                    elif (abs(margin) <= force_tol[i] and abs(lam[i]) > force_tol[i]
+                    elif (abs(margin) <= band and abs(lam[i]) > force_tol[i]
                           and self._flow_derivative(self._margin(i, sign, mode), t, y, mode) < 0):
                         change = ("slip", i, True)
                 if change is not None:
@@ -378,17 +387,26 @@ class Simulation:
 
     # -- integration ------------------------------------------------------------------------------
     def run(self, t0: float, q0, qdot0, t_end: float, sample_times: Sequence[float] = (), *,
-            max_events: int = _MAX_EVENTS) -> Trajectory:
-        """Integrate from (t0, q0, q̇0) to t_end; samples at ``sample_times`` (within [t0, t_end])."""
-        n = self.n
+            project_every: float | None = None, max_events: int = _MAX_EVENTS) -> Trajectory:
+        """Integrate from (t0, q0, q̇0) to t_end; samples at ``sample_times`` (within [t0, t_end]).
+
+        ``project_every`` (s): also put the state back onto the constraints that hold at these
+        intervals; the constraints enter only through the accelerations, so over long runs f
+        and ḟ drift with the integration error unless projected.
+        """
         y = np.concatenate([np.asarray(q0, float), np.asarray(qdot0, float)])
         wanted = np.array(sorted(float(s) for s in sample_times))
+        stops = [float(x) for x in np.arange(t0 + project_every, t_end, project_every)] if project_every else []
+        stops.append(float(t_end))
         events: list[EventRecord] = []
         rows: list[tuple] = []
         if not self.switching:
-            mode = Mode(set(range(self.m)))
-            solution = self._integrate(self.compiled.rhs, t0, t_end, y, [])
-            self._sample(solution, mode, wanted, rows)
+            # No effect declared: the plain compiled right-hand side, no event function.
+            mode, t = Mode(set(range(self.m))), float(t0)
+            for stop in stops:
+                solution = self._integrate(self.compiled.rhs, t, stop, y, [])
+                self._sample(solution, mode, self._inside(wanted, t, stop, rows), rows)
+                t, y = stop, self.project(stop, solution.y[:, -1], mode) if project_every else solution.y[:, -1]
             return self._trajectory(rows, events)
 
         mode, switches = self.initial_mode(t0, y)
@@ -397,17 +415,16 @@ class Simulation:
         # its derivative: that is the event already reported, not a new one.
         events += self._records(t0, y, [s for s in switches if not s[2]])
         t, done = float(t0), 0
-        while True:
+        while t < t_end:
+            stop = next(x for x in stops if x > t)
             evaluator = _Evaluator(self, mode)
             functions = self.event_functions(mode, evaluator)
             guarded = [_guard_start(g, t, y) for g, _, _ in functions]
-            solution = self._integrate(evaluator.rhs, t, t_end, y, guarded)
-            t_stop = solution.t[-1]
-            inside = wanted[(wanted >= t) & (wanted <= t_stop)] if not rows else \
-                wanted[(wanted > rows[-1][0]) & (wanted <= t_stop)]
-            self._sample(solution, mode, inside, rows)
+            solution = self._integrate(evaluator.rhs, t, stop, y, guarded)
+            self._sample(solution, mode, self._inside(wanted, t, solution.t[-1], rows), rows)
             if solution.status != 1:
-                break
+                t, y = stop, self.project(stop, solution.y[:, -1], mode)
+                continue
             hits = [(hit[0], k) for k, hit in enumerate(solution.t_events) if len(hit)]
             t_hit, k = min(hits)
             g, effect, i = functions[k]
@@ -418,9 +435,13 @@ class Simulation:
             if done > max_events:
                 raise SimulationError(f"more than {max_events} events by t = {t_hit:.9g} (chattering contact?)")
             t = t_hit
-            if t >= t_end:
-                break
         return self._trajectory(rows, events)
+
+    @staticmethod
+    def _inside(wanted: np.ndarray, start: float, stop: float, rows: list) -> np.ndarray:
+        """The sample times in this segment not sampled by an earlier one."""
+        after = wanted > rows[-1][0] if rows else wanted >= start
+        return wanted[after & (wanted <= stop)]
 
     def _integrate(self, rhs, t0, t_end, y, events):
         try:
@@ -495,7 +516,8 @@ def _guard_start(g, t0: float, y0: np.ndarray):
 
 def simulate_scene(scene, overrides: Mapping[str, float] | None = None, *, t_end: float,
                    samples: int = 201, initial: Mapping[str, float] | None = None,
-                   rtol: float = 1e-11, atol: float = 1e-12) -> Trajectory:
+                   rtol: float = 1e-11, atol: float | None = None,
+                   project_every: float | None = None) -> Trajectory:
     """Simulate a scene from its ``[initial]`` state with its declared effects.
 
     Parameters
@@ -509,6 +531,12 @@ def simulate_scene(scene, overrides: Mapping[str, float] | None = None, *, t_end
         Evenly spaced samples over [0, t_end].
     initial : mapping of str to float, optional
         Replaces ``[initial]`` entries (coordinates or velocities, or the parametrization's).
+    rtol, atol : float
+        DOP853 tolerances. The default ``atol`` is 1e-12 times the smallest nonzero initial
+        coordinate or velocity (at most 1e-12), so that a motion of amplitude 1e-8 is resolved
+        to the same relative accuracy as one of amplitude 1.
+    project_every : float, optional
+        See :meth:`Simulation.run`.
     """
     import sympy
 
@@ -517,9 +545,13 @@ def simulate_scene(scene, overrides: Mapping[str, float] | None = None, *, t_end
     if initial:
         scene = _with_initial(scene, {k: sympy.Float(v, 17) for k, v in initial.items()})
     compiled = CompiledScene(scene, parameter_values(scene, overrides))
-    simulation = Simulation(compiled, declared_effects(scene, compiled.values), rtol=rtol, atol=atol)
     q0, qdot0 = initial_state(scene, compiled)
-    return simulation.run(0.0, q0, qdot0, t_end, np.linspace(0.0, t_end, max(samples, 2)))
+    if atol is None:
+        sizes = np.abs(np.concatenate([q0, qdot0]))
+        atol = 1e-12 * min(1.0, max(sizes[sizes > 0].min(initial=1.0), 1e-200))
+    simulation = Simulation(compiled, declared_effects(scene, compiled.values), rtol=rtol, atol=atol)
+    return simulation.run(0.0, q0, qdot0, t_end, np.linspace(0.0, t_end, max(samples, 2)),
+                          project_every=project_every)
 
 
 def _with_initial(scene, initial):
