@@ -21,7 +21,7 @@ import time
 import flint
 import sympy
 
-from grader.answers.evaluate import Undefined, Unresolved, _log2_mag
+from grader.answers.evaluate import SCALE, ArbBackend, Undefined, Unresolved, Unsupported, _log2_mag, compile_expr
 from grader.answers.equivalence import (
     LOG2_10,
     Comparison,
@@ -137,6 +137,13 @@ def compare_equations(
             if agreed >= needed:
                 break
         elif kind == "differ":
+            if k == 1 and outcome[1].startswith(_NOT_A_MULTIPLE):
+                # Not a constant multiple; it may still be the reference times a factor that depends
+                # on the state and is nonzero on the whole domain (r**2 with r > 0, 1 + x**2).
+                factor = state_dependent_factor(reference[0], answer[0], {**parameters.domains, **states.domains},
+                                                (parameters, states), deadline)
+                if factor is not None:
+                    return factor
             return Comparison(
                 False,
                 outcome[3] if len(outcome) > 3 else "proved",
@@ -241,8 +248,7 @@ def _try_precision(refs, anss, params, states, p, k, prec, target):
 def _not_a_multiple(k, points, R, S, j, i):
     if k == 1:
         # No ratio in the reason: with the student's own equation it would give the reference's values.
-        reason = ("your equation is not the reference multiplied by a factor free of the state: the ratio "
-                  "changes between two states (see the counterexample)")
+        reason = (f"{_NOT_A_MULTIPLE}: the ratio changes between two states (see the counterexample)")
         example = {"values": _named(points[j]), "answer": as_float(S[j][0]), "reference": as_float(R[j][0]),
                    "other_state": _named(points[0]), "answer_there": as_float(S[0][0]),
                    "reference_there": as_float(R[0][0])}
@@ -252,6 +258,161 @@ def _not_a_multiple(k, points, R, S, j, i):
         example = {"values": _named(points[j]), "answer": [as_float(v) for v in S[j]],
                    "reference": [as_float(v) for v in R[j]]}
     return reason, example
+
+
+_NOT_A_MULTIPLE = "your equation is not the reference multiplied by a factor free of the state"
+# Largest residuals (in nodes) whose ratio is worth a symbolic cancellation.
+FACTOR_MAX_NODES = 200
+# Boxes the ball-arithmetic proof may split a bounded domain into.
+FACTOR_MAX_BOXES = 256
+
+
+def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: dict,
+                           samplers: tuple[Sampler, Sampler] | None = None,
+                           deadline: float | None = None) -> Comparison | None:
+    """Is ``answer`` the ``reference`` residual times a factor that is nonzero on the whole domain?
+
+    The ratio ``answer/reference`` is cancelled to ``n/d`` in lowest terms. When ``d`` is provably
+    nonzero on the declared domain, the answer is a multiple of the reference, and it is right
+    exactly when ``n`` is provably nonzero too (``r**2`` with r > 0, ``1 + x**2``, ``cos(theta)`` on
+    [-1.5, 1.5]); a factor that can vanish (``thetadot``, ``cos(theta)`` on (-pi, pi)) leaves an
+    equation that no longer determines the motion where it vanishes. A proof uses the symbols'
+    assumptions or ball arithmetic over the whole of bounded domains.
+
+    Returns a verdict, or None when the answer is not a multiple of that kind (the caller keeps
+    its own counterexample). ``samplers`` (parameters, states) give the states where a factor that
+    can vanish is shown to change sign.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from grader.expressions import parse_domain
+    >>> r = sympy.Symbol("r", positive=True)
+    >>> rddot, thetadot = sympy.symbols("rddot thetadot", real=True)
+    >>> ref = rddot - r*thetadot**2
+    >>> domains = {r: parse_domain("positive"), rddot: parse_domain("real"), thetadot: parse_domain("real")}
+    >>> state_dependent_factor(ref, r**2*ref, domains).equivalent
+    True
+    >>> state_dependent_factor(ref, thetadot*ref, domains).equivalent
+    False
+    """
+    if not (_nodes(reference) <= FACTOR_MAX_NODES and _nodes(answer) <= FACTOR_MAX_NODES):
+        return None
+    try:
+        ratio = sympy.cancel(sympy.together(answer / reference))
+    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+        return None
+    numerator, denominator = sympy.fraction(ratio)
+    if deadline is not None and time.monotonic() > deadline:
+        return None
+    if _nonzero_on(denominator, domains) is not True:
+        return None  # not a multiple of the reference at all
+    if _nonzero_on(numerator, domains) is True:
+        return Comparison(True, "proved", "the reference multiplied by a factor that depends on the state "
+                          "and is nonzero on the whole declared domain", evidence={"method": "symbolic"})
+    example = _sign_change(numerator, *samplers) if samplers is not None else None
+    if example is not None:
+        return Comparison(False, "proved", "your equation is the reference multiplied by a factor that depends "
+                          "on the state and is zero somewhere in the declared domain (it changes sign between "
+                          "the two states in the counterexample): there your equation no longer determines "
+                          "the motion", evidence={"method": "ball arithmetic"}, counterexample=example)
+    return Comparison(False, "numeric", "your equation is the reference multiplied by a factor that depends on "
+                      "the state and could not be shown to be nonzero on the whole declared domain",
+                      evidence={"method": "symbolic"})
+
+
+def _nodes(expr: sympy.Expr) -> int:
+    count, stack = 0, [expr]
+    while stack and count <= FACTOR_MAX_NODES:
+        node = stack.pop()
+        count += 1
+        stack.extend(node.args)
+    return count
+
+
+def _nonzero_on(expr: sympy.Expr, domains: dict) -> bool | None:
+    """True when ``expr`` is provably nonzero (and finite) on the whole declared domain, else None."""
+    for factor in sympy.Mul.make_args(sympy.factor_terms(expr)):
+        if factor.is_Pow and factor.exp.is_Integer:
+            factor = factor.base  # a power vanishes where its base does (and has poles where it has zeros)
+        if factor.is_number:
+            if factor.is_zero is False and factor.is_finite:
+                continue
+            return None
+        if factor.is_positive or factor.is_negative:
+            continue
+        if _nonzero_in_balls(factor, domains) is not True:
+            return None
+    return True
+
+
+def _nonzero_in_balls(expr: sympy.Expr, domains: dict) -> bool | None:
+    """Ball arithmetic over the whole box of bounded domains: True if ``expr`` provably excludes 0."""
+    symbols = sorted(expr.free_symbols, key=lambda s: s.name)
+    boxes = []
+    for s in symbols:
+        domain = domains.get(s)
+        lo, hi = getattr(domain, "lo", -math.inf), getattr(domain, "hi", math.inf)
+        if domain is None or not (math.isfinite(lo) and math.isfinite(hi)):
+            return None
+        boxes.append((lo, hi))
+    try:
+        f = compile_expr(expr, ArbBackend())
+    except Unsupported:
+        return None
+    pending, tried = [boxes], 0
+    with flint.ctx.workprec(64):
+        while pending:
+            box = pending.pop()
+            tried += 1
+            if tried > FACTOR_MAX_BOXES:
+                return None
+            env = {s: flint.arb((lo + hi) / 2, (hi - lo) / 2) for s, (lo, hi) in zip(symbols, box)}
+            env[SCALE] = -math.inf
+            try:
+                value = f(env)
+                if value.is_finite() and not value.contains(0):
+                    continue
+                if value.is_finite() and value == 0:
+                    return None
+            except Undefined:
+                return None
+            except Unresolved:
+                pass
+            widest = max(range(len(box)), key=lambda i: box[i][1] - box[i][0])
+            lo, hi = box[widest]
+            middle = (lo + hi) / 2
+            pending.append(box[:widest] + [(lo, middle)] + box[widest + 1:])
+            pending.append(box[:widest] + [(middle, hi)] + box[widest + 1:])
+    return True
+
+
+def _sign_change(expr: sympy.Expr, parameters: Sampler, states: Sampler) -> dict | None:
+    """Two sampled states where ``expr`` provably has opposite signs (so it vanishes in between)."""
+    try:
+        f = compile_expr(expr, ArbBackend())
+    except Unsupported:
+        return None
+    seen = {}
+    fixed = parameters.point(0)
+    points = [{**fixed, **states.point(i)} for i in range(12)] + [{**fixed, **states.wide_point(i)} for i in range(12)]
+    with flint.ctx.workprec(64):
+        for point in points:
+            env = {s: flint.arb(v) for s, v in point.items()}
+            env[SCALE] = -math.inf
+            try:
+                value = f(env)
+            except (Undefined, Unresolved, KeyError):
+                continue
+            sign = 1 if value > 0 else -1 if value < 0 else 0 if value == 0 else None
+            if sign is None or sign in seen:
+                continue
+            if sign == 0:
+                return {"values": _named(point)}
+            seen[sign] = point
+            if len(seen) == 2:
+                return {"values": _named(seen[1]), "other_state": _named(seen[-1])}
+    return None
 
 
 def _named(point: dict) -> dict:
