@@ -237,6 +237,8 @@ _SEEING = {Submission: Action.VIEW_SUBMISSION, Problem: Action.SEE, ProblemVersi
 def _describe(resource: Resource) -> str:
     if isinstance(resource, Submission):
         return f"submission {resource.id}"
+    if isinstance(resource, DerivationJob):
+        return f"derivation {resource.id}"
     if resource is None:
         return "resource"
     return f"problem {_problem(resource).slug!r}"

@@ -14,6 +14,7 @@ from grader.store.models import ProblemVersion, Submission
 from grader.web.api import spec
 from grader.web.api.problems import INSTRUCTORS, visible_version
 from grader.web.csv_export import csv_response
+from grader.web.policy import Action
 
 CSV_COLUMNS = ["user_id", "external_id", "name", "answer", "submissions", "latest_submission", "latest_status",
                "latest_verdict", "latest_score", "best_score"]
@@ -27,9 +28,10 @@ GRADES = spec.schema("Grades", {"type": "object", "properties": {
         name: {"type": _COLUMN_TYPES[name], "nullable": True} for name in CSV_COLUMNS}}}}})
 
 
-def grade_rows(slug: str) -> list[dict[str, Any]]:
-    """One row per (student, answer): submission count, the latest one's verdict, the best score."""
-    version = visible_version(slug)
+def grade_rows(slug: str, action: Action = Action.READ_GRADES) -> list[dict[str, Any]]:
+    """One row per (student, answer): submission count, the latest one's verdict, the best score,
+    if the access policy lets the caller ``action`` (read or export) the problem's grades."""
+    version = visible_version(slug, action=action)
     submissions = db.session.scalars(
         select(Submission)
         .join(ProblemVersion, Submission.problem_version_id == ProblemVersion.id)
@@ -51,18 +53,21 @@ def grade_rows(slug: str) -> list[dict[str, Any]]:
     return list(rows.values())
 
 
-@spec.route("/problems/<slug>/grades", "GET", roles=INSTRUCTORS, errors=(404,),
+@spec.route("/problems/<slug>/grades", "GET", roles=INSTRUCTORS | {"lms"}, errors=(404,),
             parameters=[{"name": "format", "in": "query", "schema": {"type": "string", "enum": ["json", "csv"]},
                          "description": "csv for a spreadsheet (or send 'Accept: text/csv')."}],
             responses={200: ("One row per student and answer.", {
                 "application/json": GRADES,
                 "text/csv": {"type": "string", "description": f"Columns: {', '.join(CSV_COLUMNS)}."}})})
 def get_grades(slug: str):
-    """Grades of every student on every answer of a problem, as JSON or CSV."""
-    rows = grade_rows(slug)
+    """Grades of every student on every answer of a problem, as JSON or CSV.
+
+    An LMS reads the JSON grades of problems in its own courses (not the CSV export).
+    """
     wants_csv = request.args.get("format") == "csv" or (
         request.accept_mimetypes.best_match(["application/json", "text/csv"]) == "text/csv"
         and request.accept_mimetypes["text/csv"] > request.accept_mimetypes["application/json"])
+    rows = grade_rows(slug, Action.EXPORT if wants_csv else Action.READ_GRADES)
     if wants_csv:
         return csv_response(rows, f"{slug}-grades.csv", header=CSV_COLUMNS)
     return {"problem": slug, "grades": rows}
@@ -79,7 +84,7 @@ def regrade(slug: str):
     one is in effect.
     """
     with db.read() as session:
-        version = visible_version(slug, session)
+        version = visible_version(slug, session, Action.REGRADE)
     queued = jobs.regrade(db, version)
     return {"queued": queued, "version": version.number,
             "links": {"grades": url_for("api.get_grades", slug=slug)}}, 202

@@ -4,19 +4,17 @@ from __future__ import annotations
 
 from typing import Any
 
-from flask import current_app, g, request, url_for
-from sqlalchemy import select
+from flask import current_app, request, url_for
 from sqlalchemy.orm import Session
 
 from grader.jobs.derivation import DerivationError, read_scene_id
 from grader.jobs.derivation_queue import TooManyDerivations, enqueue
 from grader.store.db import Database, db
-from grader.store.models import DerivationJob, Problem, ProblemVersion
-from grader.store.problems import latest_version, problem_by_slug
+from grader.store.models import DerivationJob, ProblemVersion
 from grader.web.api import spec
 from grader.web.api.derivations import DERIVATION, derivation_json
 from grader.web.errors import ApiProblem
-from grader.web.policy import current_principal, require_upload
+from grader.web.policy import Action, allowed, current_principal, find_version, require_upload, visible_versions
 
 __all__ = ["INSTRUCTORS", "problem_json", "visible_version"]
 
@@ -42,18 +40,10 @@ PROBLEM_LIST = spec.schema("ProblemList", {"type": "object", "properties": {"pro
 _STUDENT_ANSWER_KEYS = ("name", "prompt", "kind", "dimension", "variables")
 
 
-def is_instructor() -> bool:
-    return g.api_role in INSTRUCTORS
-
-
-def visible_version(slug: str, session: Session | None = None) -> ProblemVersion:
-    """The version of problem ``slug`` the caller may see (students: the newest published), or 404."""
-    session = session or db.session
-    problem = problem_by_slug(session, slug)
-    version = latest_version(session, problem, published_only=not is_instructor()) if problem else None
-    if version is None:
-        raise ApiProblem(404, f"There is no problem {slug!r}.", kind="not-found")
-    return version
+def visible_version(slug: str, session: Session | None = None, action: Action = Action.SEE) -> ProblemVersion:
+    """The version of problem ``slug`` the caller works with, if the access policy lets them ``action``
+    it (those who manage it: the newest, maybe a draft; others: the newest published); else 404/403."""
+    return find_version(session or db.session, current_principal(), slug, action)
 
 
 def problem_json(version: ProblemVersion, *, full: bool) -> dict[str, Any]:
@@ -123,20 +113,17 @@ def create_problem():
 @spec.route("/problems", "GET", roles=EVERYONE,
             responses={200: ("The problems this token may see.", {"application/json": PROBLEM_LIST})})
 def list_problems():
-    """List problems (students: only published ones)."""
-    query = select(ProblemVersion).join(Problem).order_by(Problem.slug, ProblemVersion.number.desc())
-    if not is_instructor():
-        query = query.where(ProblemVersion.published.is_(True))
-    newest: dict[int, ProblemVersion] = {}
-    for version in db.session.scalars(query):
-        newest.setdefault(version.problem_id, version)
+    """List the problems this token may see: published ones of its courses and of no course, and
+    (instructors) every version's newest of the problems they manage, drafts included."""
+    versions = sorted(visible_versions(db.session, current_principal()), key=lambda v: v.problem.slug)
     return {"problems": [{"id": v.problem.slug, "title": v.title, "version": v.number,
                           "links": {"self": url_for("api.get_problem", slug=v.problem.slug)}}
-                         for v in newest.values()]}
+                         for v in versions]}
 
 
 @spec.route("/problems/<slug>", "GET", roles=EVERYONE, errors=(404,),
             responses={200: ("The problem (students: statement and prompts only).", {"application/json": PROBLEM})})
 def get_problem(slug: str):
     """Read a problem: statement and answer prompts; instructors also get references and the derivation."""
-    return problem_json(visible_version(slug), full=is_instructor())
+    version = visible_version(slug)
+    return problem_json(version, full=allowed(current_principal(), Action.MANAGE, version))

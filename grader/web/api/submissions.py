@@ -11,12 +11,13 @@ from sqlalchemy.orm import Session
 
 from grader import jobs
 from grader.store.db import db
-from grader.store.models import Submission, User, Verdict
+from grader.store.models import ProblemVersion, Submission, User, Verdict
 from grader.store.users import student_for_external_id
 from grader.web.api import spec
-from grader.web.api.problems import EVERYONE, INSTRUCTORS, visible_version
+from grader.web.api.problems import EVERYONE, visible_version
 from grader.web.api.schemas import PARSED, SUBMISSION_REQUEST, read_json
 from grader.web.errors import ApiProblem
+from grader.web.policy import Action, current_principal, find_submission, require
 
 __all__ = ["submission_json"]
 
@@ -75,16 +76,17 @@ def submission_json(submission: Submission) -> dict[str, Any]:
     }
 
 
-def _whose(session: Session, requester: User, external_id: str | None) -> User:
-    """The student a submission is for: the caller, or (LMS, instructors) the one named by ``user``."""
+def _whose(session: Session, requester: User, version: ProblemVersion, external_id: str | None) -> User:
+    """The student a submission is for: the caller, or the one named by ``user`` if the access policy
+    lets the caller submit for others (an LMS, instructors of the problem)."""
+    principal = current_principal()
     if external_id is None:
-        if requester.role == "lms":
+        if principal.role == "lms":
             raise ApiProblem(422, "An LMS token must say which student this is for in 'user'.", kind="invalid-request")
         return requester
-    if requester.role == "student":
-        if external_id != requester.external_id:
-            raise ApiProblem(403, "A student token can only submit for its own student.", kind="forbidden")
+    if external_id == requester.external_id:
         return requester
+    require(principal, Action.SUBMIT_FOR_OTHERS, version)
     student = session.scalar(select(User).where(User.external_id == external_id))
     if student is None:  # first sight of this student: create them in a transaction of its own
         try:
@@ -122,8 +124,8 @@ def create_submission(slug: str):
     # Reads in a deferred transaction, the insert in a short write transaction of its own: on
     # SQLite the write lock is held only for the INSERT, not for this whole request.
     with db.read() as session:
-        version = visible_version(slug, session)
-        user = _whose(session, requester, body.get("user"))
+        version = visible_version(slug, session, Action.SUBMIT)
+        user = _whose(session, requester, version, body.get("user"))
     try:
         submission_id, created = jobs.submit(db, user=user, requester=requester, version=version,
                                              answer=body["answer"], text=body["text"], idempotency_key=key)
@@ -142,14 +144,6 @@ def create_submission(slug: str):
             responses={200: ("The submission, its status and its verdict once graded.",
                              {"application/json": SUBMISSION})})
 def get_submission(submission_id: int):
-    """Poll a submission (students: only their own; an LMS: those it sent)."""
-    submission = db.session.get(Submission, submission_id)
-    me = g.api_user
-    visible = submission is not None and (
-        g.api_role in INSTRUCTORS
-        or (g.api_role == "lms" and submission.requester_id == me.id)
-        or submission.user_id == me.id
-    )
-    if not visible:
-        raise ApiProblem(404, f"There is no submission {submission_id}.", kind="not-found")
-    return submission_json(submission)
+    """Poll a submission (students: only their own; an LMS: those it sent; instructors: those of
+    problems they manage)."""
+    return submission_json(find_submission(db.session, current_principal(), submission_id))

@@ -12,21 +12,22 @@
 
 from __future__ import annotations
 
-from flask import current_app, flash, g, redirect, render_template, request, url_for
+from flask import abort, current_app, flash, g, redirect, render_template, request, url_for
 
 from grader.jobs import regrade as queue_regrade
 from grader.jobs.derivation import DerivationError, read_scene_id
 from grader.jobs.derivation_queue import TooManyDerivations, enqueue, queued_ahead
 from grader.jobs.grading import check_request
 from grader.store.db import Database, db
+from grader.store.models import Problem, ProblemVersion
 from grader.store.problems import latest_version, problem_by_slug
 from grader.web.auth.session import INSTRUCTOR_ROLES, login_required
 from grader.web.csv_export import csv_response
 from grader.web.instructor import bp
-from grader.web.instructor.access import managed_courses, managed_problem, managed_problems, may_manage, version_of
 from grader.answers.grouping import GroupingCache, group_wrong_answers
 from grader.web.instructor.stats import CSV_HEADER, csv_rows, per_answer, results, score_distribution, signature
-from grader.web.policy import Action, allowed, current_principal, find_derivation
+from grader.web.policy import (Action, allowed, current_principal, find_derivation, find_problem, managed_courses,
+                               managed_problems)
 from grader.web.student.statement import statement_problems
 
 MAX_SCENE_BYTES = 256 * 1024
@@ -35,6 +36,16 @@ SHOWN_SUBMISSIONS = 50
 GROUP_CHECK_BUDGET_S = 2.0
 DERIVATION_REFRESH_S = 2  # how often the derivation page reloads itself while the scene waits or derives
 
+
+
+def version_of(problem: Problem, number: int | None) -> ProblemVersion:
+    """Version ``number`` of ``problem`` (the newest when None), else 404."""
+    if number is None:
+        return problem.versions[-1]
+    version = next((v for v in problem.versions if v.number == number), None)
+    if version is None:
+        abort(404, "There is no such version.")
+    return version
 
 
 def _grouping_cache() -> GroupingCache:
@@ -46,7 +57,7 @@ def _grouping_cache() -> GroupingCache:
 @login_required(INSTRUCTOR_ROLES)
 def dashboard():
     items = []
-    for problem in managed_problems(db.session, g.user):
+    for problem in managed_problems(db.session, current_principal()):
         if not problem.versions:
             continue
         newest = problem.versions[-1]
@@ -62,7 +73,7 @@ def dashboard():
 @login_required(INSTRUCTOR_ROLES)
 def new_problem():
     with db.read() as session:  # not the request's writer: the queue writes in its own transaction
-        courses = managed_courses(session, g.user)
+        courses = managed_courses(session, current_principal())
     if request.method == "GET":
         return render_template("instructor/new_problem.html", courses=courses, source="", course_id="")
     upload = request.files.get("scene")
@@ -110,7 +121,7 @@ def derivation(job_id: int):
     job = find_derivation(db.session, current_principal(), job_id)
     if job.status == "failed":
         with db.read() as session:
-            courses = managed_courses(session, g.user)
+            courses = managed_courses(session, current_principal())
         return render_template("instructor/new_problem.html", courses=courses, source=job.source, error=job.error,
                                course_id=str(job.course_id or ""), job=job)
     return render_template("instructor/derivation.html", job=job, queued_ahead=queued_ahead(db.session, job),
@@ -126,7 +137,7 @@ def _new_problem_error(courses, source: str, message: str, course_id: str = "", 
 @bp.get("/problems/<slug>/review")
 @login_required(INSTRUCTOR_ROLES)
 def review(slug: str):
-    problem = managed_problem(db.session, g.user, slug)
+    problem = find_problem(db.session, current_principal(), slug, Action.MANAGE)
     version = version_of(problem, request.args.get("version", type=int))
     published = latest_version(db.session, problem, published_only=True)
     texts = [version.statement] + [r.get("prompt") or "" for r in version.references]
@@ -138,7 +149,7 @@ def review(slug: str):
 @bp.post("/problems/<slug>/versions/<int:number>/publish")
 @login_required(INSTRUCTOR_ROLES)
 def publish(slug: str, number: int):
-    problem = managed_problem(db.session, g.user, slug)
+    problem = find_problem(db.session, current_principal(), slug, Action.MANAGE)
     version = version_of(problem, number)
     if version.published:
         flash(f"Version {number} is already published.", "")
@@ -152,7 +163,7 @@ def publish(slug: str, number: int):
 @bp.get("/problems/<slug>")
 @login_required(INSTRUCTOR_ROLES)
 def problem(slug: str):
-    found = managed_problem(db.session, g.user, slug)
+    found = find_problem(db.session, current_principal(), slug, Action.READ_GRADES)
     version = latest_version(db.session, found, published_only=True) or found.versions[-1]
     rows = results(db.session, found)
     names = [r["name"] for r in version.references]
@@ -187,15 +198,16 @@ def _checker_says(reference: dict):
 @bp.get("/problems/<slug>/submissions.csv")
 @login_required(INSTRUCTOR_ROLES)
 def export_csv(slug: str):
-    found = managed_problem(db.session, g.user, slug)
+    found = find_problem(db.session, current_principal(), slug, Action.EXPORT)
     return csv_response(csv_rows(results(db.session, found)), f"{found.slug}-submissions.csv", header=CSV_HEADER)
 
 
 @bp.post("/problems/<slug>/regrade")
 @login_required(INSTRUCTOR_ROLES)
 def regrade(slug: str):
+    me = current_principal()
     with db.read() as session:  # the queue writes in its own transaction
-        found = managed_problem(session, g.user, slug)
+        found = find_problem(session, me, slug, Action.REGRADE)
         version = latest_version(session, found, published_only=True)
     if version is None:
         flash("Publish a version before regrading.", "error")

@@ -22,7 +22,8 @@ from grader.web.auth.session import login_required
 from grader.web.errors import ApiProblem
 from grader.web.security import limiter
 from grader.web.student import bp
-from grader.web.student.access import history, own_submission, visible_problems, visible_version
+from grader.web.policy import Action, current_principal, find_submission, find_version, visible_versions
+from grader.web.student.attempts import history
 from grader.web.student.preview import allowed_names, expected_dimension, preview
 from grader.web.student.verdicts import verdict_view
 
@@ -65,7 +66,7 @@ def _typed(version: ProblemVersion) -> dict[str, str]:
 @bp.get("/problems")
 @login_required(STUDENTS)
 def problems():
-    versions = visible_problems(db.session, g.user)
+    versions = visible_versions(db.session, current_principal())
     progress = {}
     for version in versions:
         latest: dict[str, Submission] = {}
@@ -81,13 +82,13 @@ def problems():
 @bp.get("/problems/<slug>")
 @login_required(STUDENTS)
 def problem(slug: str):
-    return _problem_page(visible_version(db.session, g.user, slug))
+    return _problem_page(find_version(db.session, current_principal(), slug))
 
 
 @bp.post("/problems/<slug>/preview")
 @login_required(STUDENTS)
 def preview_page(slug: str):
-    version = visible_version(db.session, g.user, slug)
+    version = find_version(db.session, current_principal(), slug)
     texts = _typed(version)
     previews = {r["name"]: preview(r, texts[r["name"]]) for r in version.references if texts[r["name"]].strip()}
     return _problem_page(version, texts, previews)
@@ -97,12 +98,13 @@ def preview_page(slug: str):
 @login_required(STUDENTS)
 def submit_answers(slug: str):
     # Reads in a short session of their own: the queue commits each submission in its own transaction.
+    me = current_principal()
     with db.read() as session:
-        version = visible_version(session, g.user, slug)
+        version = find_version(session, me, slug, Action.SUBMIT)
     texts = {name: text for name, text in _typed(version).items() if text.strip()}
     if not texts:
         flash("Type at least one answer before submitting.", "error")
-        return _problem_page(visible_version(db.session, g.user, slug), status=422)
+        return _problem_page(find_version(db.session, me, slug, Action.SUBMIT), status=422)
     sent = 0
     for name, text in texts.items():
         try:
@@ -127,8 +129,9 @@ def preview_json():
         limiter.hit("preview", g.user.id)
     except ApiProblem as problem:
         return jsonify(error=problem.detail), 429, problem.headers
+    me = current_principal()
     with db.read() as session:  # a POST, but it only reads: no write transaction for a keystroke
-        version = visible_version(session, g.user, body["problem"])
+        version = find_version(session, me, body["problem"])
     reference = version.reference(body["answer"])
     if reference is None:
         abort(404, "This problem has no such answer.")
@@ -140,7 +143,7 @@ def preview_json():
 @bp.get("/submissions/<int:submission_id>")
 @login_required(STUDENTS)
 def submission(submission_id: int):
-    found = own_submission(db.session, g.user, submission_id)
+    found = find_submission(db.session, current_principal(), submission_id)
     view = verdict_view(found)
     return render_template("student/submission.html", submission=found, v=view,
                            prompt=(found.problem_version.reference(found.answer_name) or {}).get("prompt"))
@@ -149,7 +152,7 @@ def submission(submission_id: int):
 @bp.get("/submissions/<int:submission_id>/status")
 @login_required(STUDENTS)
 def submission_status(submission_id: int):
-    view = verdict_view(own_submission(db.session, g.user, submission_id))
+    view = verdict_view(find_submission(db.session, current_principal(), submission_id))
     html = render_template("student/_verdict.html", v=view)
     return jsonify(id=view["id"], status=view["status"], pending=view["pending"], label=view["label"],
                    css=view["css"], html=html)
