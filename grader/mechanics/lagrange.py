@@ -45,6 +45,7 @@ from dataclasses import dataclass, field
 
 import sympy
 
+from grader.mechanics.augmented import singular_directions, solve_augmented
 from grader.mechanics.scene import Scene, SceneError
 from grader.mechanics.simplification import quick_form
 
@@ -86,6 +87,7 @@ class EquationsOfMotion:
     accelerations: dict[str, sympy.Expr]
     multipliers: dict[str, sympy.Expr]
     constraint_forces: dict[str, dict[str, sympy.Expr]]
+    system: tuple[sympy.Matrix, sympy.Matrix] | None = None  # the augmented A, b of (q̈, λ)
     _tidy: "EquationsOfMotion | None" = None
 
     def tidy(self) -> "EquationsOfMotion":
@@ -93,12 +95,19 @@ class EquationsOfMotion:
         if self._tidy is None:
             self._tidy = EquationsOfMotion(
                 self.lhs, self.rhs, self.partials,
-                {q: quick_form(v) for q, v in self.accelerations.items()},
-                {k: quick_form(v) for k, v in self.multipliers.items()},
-                {k: {q: quick_form(v) for q, v in forces.items()} for k, forces in self.constraint_forces.items()},
+                {q: _tidy(v) for q, v in self.accelerations.items()},
+                {k: _tidy(v) for k, v in self.multipliers.items()},
+                {k: {q: _tidy(v) for q, v in forces.items()} for k, forces in self.constraint_forces.items()},
+                self.system,
             )
             self._tidy._tidy = self._tidy
         return self._tidy
+
+
+def _tidy(expr: sympy.Expr) -> sympy.Expr:
+    # The solve returns cancelled fractions; only small ones gain from factoring (a large one,
+    # a double pendulum's x1ddot in Cartesian coordinates, has no short form to find).
+    return quick_form(expr) if sympy.count_ops(expr) < 100 else expr
 
 
 def equations_of_motion(scene: Scene) -> EquationsOfMotion:
@@ -124,41 +133,24 @@ def equations_of_motion(scene: Scene) -> EquationsOfMotion:
         rows.append(sympy.expand(time_derivative(time_derivative(k.f, scene), scene)))
     A, b = sympy.linear_eq_to_matrix(rows, unknowns)
     _check_solvable(scene, A, len(coords))
-    solution = _solve_linear(A, b)
+    solution = solve_augmented(A, b, len(coords))
     accelerations = {c.name: solution[i] for i, c in enumerate(coords)}
     multipliers = {k.name: solution[len(coords) + i] for i, k in enumerate(cons)}
     forces = {k.name: {c.name: multipliers[k.name] * sympy.diff(k.f, c.symbol) for c in coords}
               for k in cons}
-    return EquationsOfMotion(lhs, rhs, partials, accelerations, multipliers, forces)
+    return EquationsOfMotion(lhs, rhs, partials, accelerations, multipliers, forces, (A, b))
 
 
 def _check_solvable(scene: Scene, A: sympy.Matrix, n: int) -> None:
-    """Reject singular mass matrices and redundant constraints with a message that says which."""
-    M, J = A[:n, :n], A[n:, :n]
-    point = _generic_point(A.free_symbols)
-    if M.subs(point).rank() < n:
-        raise SceneError(scene.source, "energy.kinetic",
-                         "the mass matrix is singular: some coordinate has no kinetic energy")
-    if J.rows and J.subs(point).rank() < J.rows:
-        names = ", ".join(k.name for k in scene.constraints)
-        raise SceneError(scene.source, "constraints",
-                         f"the constraints ({names}) are redundant or singular: their gradients "
-                         "with respect to the coordinates are linearly dependent")
+    """Refuse only a truly singular augmented system [M Jᵀ; J 0], saying what makes it so.
 
-
-def _generic_point(symbols) -> dict:
-    """A reproducible 'generic' point: irrational-looking values where no identity holds by accident."""
-    primes = [2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37, 41, 43, 47, 53, 59, 61, 67, 71, 73, 79, 83, 89]
-    point = {}
-    for i, s in enumerate(sorted(symbols, key=str)):
-        p = primes[i % len(primes)]
-        point[s] = sympy.Rational(p + 1, p) + sympy.Rational(i, 97)
-    return point
-
-
-def _solve_linear(A: sympy.Matrix, b: sympy.Matrix) -> list[sympy.Expr]:
-    """Solve A x = b symbolically; LU with cancellation keeps the expressions small."""
-    return list(A.LUsolve(b))
+    A singular mass matrix alone is fine (a winding angle, a massless pulley): the constraints
+    may tie the coordinate without kinetic energy to the others.
+    """
+    problem = singular_directions(A, n, list(scene.coordinates), [k.name for k in scene.constraints])
+    if problem is not None:
+        key = "constraints" if problem.startswith("the constraints") else "energy.kinetic"
+        raise SceneError(scene.source, key, problem)
 
 
 @dataclass

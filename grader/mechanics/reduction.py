@@ -20,7 +20,10 @@ from __future__ import annotations
 import numpy
 import sympy
 
+from grader.mechanics import budget
+from grader.mechanics.augmented import generic_point, solve_augmented
 from grader.mechanics.scene import Coordinate, Scene, SceneError
+from grader.mechanics.simplification import readable_denominator, tidy_trig
 
 __all__ = ["Reduction"]
 
@@ -128,18 +131,73 @@ class Reduction:
 
     # -- dynamics in the independent variables ----------------------------------------------------
     def solve(self, eom) -> None:
-        """ü and λ as functions of (u, u̇, t), from the Euler–Lagrange rows with q̈ = Φ̈(u, u̇, ü).
+        """ü and λ as functions of (u, u̇, t).
 
-        Substituting the map before solving keeps every entry small (x² + y² becomes l² before it
-        can spread through an LU solve), which is what makes a double pendulum take seconds rather
-        than minutes.
+        When the mass matrix M is invertible, ü comes from the reduced Lagrangian (M_r ü = F_r with
+        M_r = ∂²L_r/∂u̇², each entry simplified while it is small, so that a double pendulum's
+        cos θ₁ cos θ₂ + sin θ₁ sin θ₂ becomes cos(θ₁ − θ₂) before any solve), and λ from the
+        Schur complement J M⁻¹ Jᵀ on the map. Both are small systems solved with the adjugate,
+        over determinants written as people write them (m₁ + m₂ sin²(θ₁ − θ₂)). A singular M (a
+        coordinate without kinetic energy of its own) falls back to solving the Euler–Lagrange rows
+        of the scene's coordinates with q̈ = Φ̈(u, u̇, ü) for (ü, λ) together.
         """
         scene = self.scene
-        us = list(self.independent.values())
         phi_ddot = {}
         for c in scene.coordinates.values():
             if c.symbol in self.phi and self.phi[c.symbol] != c.symbol:
                 phi_ddot[c.ddot] = self.time_derivative(self.phi_dot[c.symbol])
+        with budget.step("solving the equations of motion in the independent variables"):
+            if not (eom.system is not None and self._solve_structured(eom)):
+                self._solve_rows(eom, phi_ddot)
+        accelerations = {}
+        for c in scene.coordinates.values():
+            value = phi_ddot.get(c.ddot, c.ddot)
+            accelerations[c.ddot] = value.xreplace(self.accelerations)
+        self.coordinate_accelerations = accelerations
+        self.forces = {}
+        for k in scene.constraints:
+            for c in scene.coordinates.values():
+                gradient = self.to_independent(sympy.diff(k.f, c.symbol))
+                self.forces[scene.forces[(k.name, c.name)]] = self.multipliers[k.name] * gradient
+
+    def _solve_structured(self, eom) -> bool:
+        """ü from the reduced Lagrangian, λ from the Schur complement; False if M is singular."""
+        scene = self.scene
+        A, b = eom.system
+        n, k = len(scene.coordinates), len(scene.constraints)
+        M = A[:n, :n]
+        point = generic_point(A.free_symbols)
+        if M.subs(point).det() == 0:
+            return False
+        us = list(self.independent.values())
+        L = self.lagrangian
+        Mr = sympy.Matrix(len(us), len(us), lambda i, j: _tidy_entry(
+            sympy.diff(L, us[i].dot, us[j].dot)))
+        if any(u.dot in Mr.free_symbols for u in us):
+            return False
+        Fr = sympy.Matrix([_tidy_entry(
+            sympy.diff(L, u.symbol)
+            - sum((sympy.diff(L, u.dot, w.symbol) * w.dot for w in us), sympy.Integer(0))
+            - sympy.diff(L, u.dot, scene.time)) for u in us])
+        uddot = _solve_small(Mr, Fr)
+        self.accelerations = {u.ddot: uddot[i] for i, u in enumerate(us)}
+        if k:
+            C, J = A[:n, n:], A[n:, :n]
+            b1, b2 = b[:n, :], b[n:, :]
+            Minv = (sympy.diag(*[1 / M[i, i] for i in range(n)]) if M.is_diagonal()
+                    else M.inv(method="LU").applyfunc(sympy.cancel))
+            S = (J * Minv * C).applyfunc(lambda e: _tidy_entry(self.to_independent(sympy.cancel(e))))
+            r = (J * Minv * b1 - b2).applyfunc(lambda e: _tidy_entry(self.to_independent(sympy.cancel(e))))
+            lam = _solve_small(S, r)
+        else:
+            lam = []
+        self.multipliers = {c.name: lam[i] for i, c in enumerate(scene.constraints)}
+        return True
+
+    def _solve_rows(self, eom, phi_ddot: dict) -> None:
+        """Solve the scene's Euler–Lagrange rows with q̈ = Φ̈ for (ü, λ) together (any M)."""
+        scene = self.scene
+        us = list(self.independent.values())
         rows = []
         for name, c in scene.coordinates.items():
             row = (eom.lhs[name] - eom.rhs[name]).xreplace(phi_ddot)
@@ -152,19 +210,9 @@ class Reduction:
             raise SceneError(scene.source, "constraints",
                              "the equations of motion cannot be solved in the independent variables "
                              f"{', '.join(self.independent)}: the system is singular")
-        solution = [sympy.cancel(v) for v in A.LUsolve(b)]
+        solution = solve_augmented(A, b)
         self.accelerations = {u.ddot: solution[i] for i, u in enumerate(us)}
         self.multipliers = {k.name: solution[len(us) + i] for i, k in enumerate(scene.constraints)}
-        accelerations = {}
-        for c in scene.coordinates.values():
-            value = phi_ddot.get(c.ddot, c.ddot)
-            accelerations[c.ddot] = value.xreplace(self.accelerations)
-        self.coordinate_accelerations = accelerations
-        self.forces = {}
-        for k in scene.constraints:
-            for c in scene.coordinates.values():
-                gradient = self.to_independent(sympy.diff(k.f, c.symbol))
-                self.forces[scene.forces[(k.name, c.name)]] = self.multipliers[k.name] * gradient
 
     def jacobi_integral(self) -> sympy.Expr | None:
         """h = Σ u̇ ∂L_r/∂u̇ − L_r when it is conserved (L_r free of t), else None."""
@@ -190,11 +238,19 @@ class Reduction:
 
 
 def _tidy_entry(expr: sympy.Expr) -> sympy.Expr:
-    """Cheap simplification of one matrix entry: trigsimp where trig functions appear."""
-    expr = sympy.expand(expr)
-    if expr.has(sympy.sin, sympy.cos, sympy.tan):
-        expr = sympy.trigsimp(expr)
-    return expr
+    """Cheap simplification of one matrix entry (see :func:`tidy_trig`)."""
+    return tidy_trig(expr)
+
+
+def _solve_small(A: sympy.Matrix, b: sympy.Matrix) -> list[sympy.Expr]:
+    """Solve a small system A x = b exactly, over a denominator written as people write it."""
+    result = []
+    for value in solve_augmented(A, b):
+        numerator, denominator = sympy.fraction(value)
+        if denominator.could_extract_minus_sign():
+            numerator, denominator = -numerator, -denominator
+        result.append(tidy_trig(numerator) / readable_denominator(denominator))
+    return result
 
 
 def _vanishes(expr: sympy.Expr) -> bool:

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import sympy
 
-__all__ = ["human_form", "quick_form"]
+__all__ = ["human_form", "quick_form", "readable_denominator", "tidy_trig"]
 
 _TRIG = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc)
 
@@ -40,21 +40,45 @@ def _weight(expr: sympy.Expr, allowed_multiples: int) -> tuple[int, int]:
     return sympy.count_ops(expr, visual=False) + 4 * extra, len(str(expr))
 
 
-def human_form(expr: sympy.Expr) -> sympy.Expr:
-    """The most readable of a few equivalent rewritings of ``expr`` (see the module example)."""
+def human_form(expr: sympy.Expr, seconds: float = 0.5) -> sympy.Expr:
+    """The most readable of a few equivalent rewritings of ``expr`` (see the module example).
+
+    Cheap rewritings always run; the costly ones (``simplify``, factoring) run under a budget of
+    ``seconds`` and only on expressions of moderate size, so that tidying never dominates a
+    derivation: their result is kept if they finish, skipped if not.
+    """
+    from grader.mechanics.budget import attempt
+
     expr = sympy.sympify(expr)
     if expr.is_Atom:
         return expr
     allowed = _multiple_angles(expr)
     cancelled = sympy.cancel(expr)
-    simplified = sympy.simplify(cancelled)
-    candidates = [expr, cancelled, simplified, sympy.factor(simplified)]
-    if simplified.has(*_TRIG):
-        expanded = sympy.expand_trig(simplified)
-        candidates += [sympy.factor(sympy.cancel(expanded)), sympy.factor(sympy.trigsimp(expanded))]
-        candidates += [sympy.factor(sympy.cancel(_pythagorean(c, square))) for c in (expanded, simplified)
-                       for square in (sympy.sin, sympy.cos)]
-    return min(candidates, key=lambda e: _weight(e, allowed))
+    candidates = [expr, cancelled, sympy.factor_terms(cancelled)]
+    numerator, denominator = sympy.fraction(cancelled)
+    if cancelled.has(*_TRIG):
+        candidates.append(sympy.factor_terms(tidy_trig(numerator)) / readable_denominator(denominator))
+
+    def costly():
+        simplified = sympy.simplify(cancelled)
+        candidates.extend([simplified, sympy.factor(simplified)])
+        if simplified.has(*_TRIG):
+            expanded = sympy.expand_trig(simplified)
+            candidates.extend([sympy.factor(sympy.cancel(expanded)), sympy.factor(sympy.trigsimp(expanded))])
+            candidates.extend([sympy.factor(sympy.cancel(_pythagorean(c, square))) for c in (expanded, simplified)
+                               for square in (sympy.sin, sympy.cos)])
+
+    if sympy.count_ops(cancelled) < 120:
+        attempt(costly, seconds, fallback=lambda: None)
+    return min((_positive_denominator(c) for c in candidates), key=lambda e: _weight(e, allowed))
+
+
+def _positive_denominator(expr: sympy.Expr) -> sympy.Expr:
+    """-a/(b + c) rather than a/(-b - c): a minus sign belongs in front, not in the denominator."""
+    numerator, denominator = sympy.fraction(expr)
+    if denominator != 1 and denominator.could_extract_minus_sign():
+        return (-numerator) / (-denominator)
+    return expr
 
 
 def _pythagorean(expr: sympy.Expr, square) -> sympy.Expr:
@@ -74,10 +98,60 @@ def _pythagorean(expr: sympy.Expr, square) -> sympy.Expr:
     )
 
 
-def quick_form(expr: sympy.Expr) -> sympy.Expr:
-    """A cheap tidy-up for large intermediate results: cancel and factor, trigsimp when small."""
+def quick_form(expr: sympy.Expr, seconds: float = 0.1) -> sympy.Expr:
+    """A cheap tidy-up for large intermediate results: cancel and factor, trigsimp when small.
+
+    Factoring a large multivariate polynomial takes anywhere from a second to minutes (the
+    algorithm is randomised), so it runs under a budget of ``seconds`` and is skipped past it.
+    """
+    from grader.mechanics.budget import attempt
+
     expr = sympy.cancel(sympy.sympify(expr))
-    candidates = [expr, sympy.factor(expr)]
-    if expr.has(*_TRIG) and sympy.count_ops(expr) < 80:
-        candidates.append(sympy.factor(sympy.trigsimp(expr)))
+    candidates = [expr, sympy.factor_terms(expr)]
+
+    def costly():
+        candidates.append(sympy.factor(expr))
+        if expr.has(*_TRIG) and sympy.count_ops(expr) < 80:
+            candidates.append(sympy.factor(sympy.trigsimp(expr)))
+
+    if sympy.count_ops(expr) < 60:
+        attempt(costly, seconds, fallback=lambda: None)
     return min(candidates, key=lambda e: _weight(e, 0))
+
+
+def readable_denominator(expr: sympy.Expr) -> sympy.Expr:
+    """A determinant as people write it: factored, with m₂ sin²(θ₁ − θ₂) rather than m₂ − m₂ cos²(…).
+
+    >>> m1, m2, a = sympy.symbols("m1 m2 a", positive=True)
+    >>> readable_denominator(m1*m2 + m2**2 - m2**2*sympy.cos(a)**2)
+    m2*(m1 + m2*sin(a)**2)
+    """
+    expr = sympy.factor(sympy.expand(expr))
+    candidates = [expr]
+    if expr.has(*_TRIG):
+        candidates += [sympy.factor(sympy.expand(_pythagorean(expr, square))) for square in (sympy.sin, sympy.cos)]
+    return min(candidates, key=lambda e: _weight(e, 0))
+
+
+def tidy_trig(expr: sympy.Expr) -> sympy.Expr:
+    """A fast trigonometric tidy-up for small entries: combine and use sin² + cos² = 1.
+
+    ``trigsimp`` finds the same on such entries but takes ~100 times longer; this does the two
+    things that matter for mechanics: products of sines and cosines of single angles into the
+    sine or cosine of a difference (fu's TR10i), and the Pythagorean identity in whichever
+    direction is shorter.
+
+    >>> a, b, l = sympy.symbols("a b l")
+    >>> tidy_trig(l*sympy.cos(a)*sympy.cos(b) + l*sympy.sin(a)*sympy.sin(b))
+    l*cos(a - b)
+    >>> tidy_trig(l**2*sympy.sin(a)**2 + l**2*sympy.cos(a)**2)
+    l**2
+    """
+    from sympy.simplify.fu import TR10i
+
+    expr = sympy.expand(expr)
+    if not expr.has(*_TRIG):
+        return sympy.factor_terms(expr)
+    expr = TR10i(expr)
+    candidates = [expr] + [sympy.expand(_pythagorean(expr, square)) for square in (sympy.sin, sympy.cos)]
+    return sympy.factor_terms(min(candidates, key=lambda e: _weight(e, 0)))

@@ -63,9 +63,10 @@ def test_bad_scene_file_is_rejected_with_file_key_and_problem(text, key, problem
         # A second, equivalent constraint: the Jacobian of the constraints loses rank.
         (broken('[initial]', '[[constraints]]\nname = "again"\nf = "2*r - 2*R"\n\n[initial]'),
          "constraints", "redundant"),
-        # A coordinate with no kinetic energy: the mass matrix is singular.
+        # A coordinate with no kinetic energy that no constraint ties to the others: the
+        # augmented system [M Jᵀ; J 0] is singular, and the message names the coordinate.
         (broken('kinetic = "m/2*(rdot^2 + r^2*thetadot^2)"', 'kinetic = "m/2*rdot^2"'),
-         "energy.kinetic", "singular"),
+         "energy.kinetic", "the coordinate theta has no kinetic energy of its own"),
         # N(theta) needs g: without it in in_terms_of the engine cannot reach the answer.
         (broken('in_terms_of = ["m", "g", "theta"]', 'in_terms_of = ["m", "theta"]'),
          "answers (normal_force)", "still depends on g"),

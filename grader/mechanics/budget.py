@@ -1,0 +1,140 @@
+"""Time budgets for the engine's symbolic steps.
+
+A symbolic solve or simplification can take minutes on an input where an equivalent one is
+instant (a cubic in sin θ that is trivial in S = sin θ). Every such step therefore runs under a
+budget and has a cheaper fallback; the whole derivation runs under an overall budget, and when it
+runs out the instructor is told which step and which answer were being worked on.
+
+Budgets interrupt with ``SIGALRM`` (sympy is pure Python, so the signal lands between bytecodes).
+Signals only reach the main thread; elsewhere (a web worker thread) a step is not interrupted and
+the caller's own limit (a killed child process) applies.
+
+Examples
+--------
+>>> import time
+>>> attempt(lambda: time.sleep(5) or "slow", 0.05, fallback=lambda: "fallback")
+'fallback'
+>>> attempt(lambda: "quick", 1.0, fallback=lambda: "fallback")
+'quick'
+"""
+
+from __future__ import annotations
+
+import signal
+import threading
+import time
+from contextlib import contextmanager
+from typing import Callable, TypeVar
+
+__all__ = ["BudgetExceeded", "attempt", "overall_budget", "step"]
+
+T = TypeVar("T")
+
+
+class _Timeout(BaseException):
+    """Raised by the alarm handler; BaseException so that ``except Exception`` in sympy won't eat it."""
+
+    def __init__(self, token: object):
+        super().__init__("budget exceeded")
+        self.token = token
+        self.where = current_step()  # captured now: the step's context unwinds on the way out
+
+
+class BudgetExceeded(RuntimeError):
+    """The overall budget of a derivation ran out; ``step`` and ``answer`` say where."""
+
+    def __init__(self, budget_s: float, step: str, answer: str | None):
+        self.budget_s, self.step, self.answer = budget_s, step, answer
+        where = f" for the answer '{answer}'" if answer else ""
+        super().__init__(f"the derivation ran out of its {budget_s:g} s budget while {step}{where}")
+
+
+_state = threading.local()
+
+
+def _can_interrupt() -> bool:
+    return threading.current_thread() is threading.main_thread() and hasattr(signal, "setitimer")
+
+
+@contextmanager
+def _alarm(seconds: float, token: object):
+    """Raise ``_Timeout(token)`` after ``seconds`` unless an outer alarm is due first."""
+    previous_handler = signal.getsignal(signal.SIGALRM)
+    remaining, _ = signal.getitimer(signal.ITIMER_REAL)
+    outer_deadline = time.monotonic() + remaining if remaining else None
+    if remaining and remaining <= seconds:
+        yield  # the outer budget is shorter: let it fire
+        return
+
+    def handler(signum, frame):
+        raise _Timeout(token)
+
+    signal.signal(signal.SIGALRM, handler)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    try:
+        yield
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous_handler)
+        if outer_deadline is not None:
+            signal.setitimer(signal.ITIMER_REAL, max(outer_deadline - time.monotonic(), 1e-3))
+
+
+def attempt(function: Callable[[], T], seconds: float, fallback: Callable[[], T]) -> T:
+    """``function()`` if it finishes within ``seconds``, else ``fallback()`` (see the module example)."""
+    if not _can_interrupt():
+        return function()
+    token = object()
+    try:
+        with _alarm(seconds, token):
+            return function()
+    except _Timeout as exc:
+        if exc.token is not token:
+            raise
+    return fallback()
+
+
+@contextmanager
+def step(description: str, answer: str | None = None):
+    """Name the step being worked on, for the message when the overall budget runs out.
+
+    >>> with step("solving the equations of motion"):
+    ...     current_step()
+    ('solving the equations of motion', None)
+    """
+    previous = getattr(_state, "step", None)
+    _state.step = (description, answer)
+    try:
+        yield
+    finally:
+        _state.step = previous
+
+
+def current_step() -> tuple[str, str | None] | None:
+    return getattr(_state, "step", None)
+
+
+@contextmanager
+def overall_budget(seconds: float | None):
+    """Raise :class:`BudgetExceeded` naming the current step when ``seconds`` run out.
+
+    >>> import time
+    >>> try:
+    ...     with overall_budget(0.05), step("simplifying", "tension"):
+    ...         time.sleep(5)
+    ... except BudgetExceeded as exc:
+    ...     print(exc)
+    the derivation ran out of its 0.05 s budget while simplifying for the answer 'tension'
+    """
+    if seconds is None or not _can_interrupt():
+        yield
+        return
+    token = object()
+    try:
+        with _alarm(seconds, token):
+            yield
+    except _Timeout as exc:
+        if exc.token is not token:
+            raise
+        where = exc.where or ("deriving", None)
+        raise BudgetExceeded(seconds, *where) from None
