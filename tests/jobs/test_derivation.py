@@ -5,7 +5,8 @@ from pathlib import Path
 import pytest
 from sqlalchemy import select
 
-from grader.jobs.derivation import DerivationError, derive_source, load_problem_files
+from grader.jobs.derivation import DerivationError, SandboxUnavailable, derive_source, load_problem_files
+from grader.sandbox import Outcome
 from grader.store.models import ProblemVersion
 
 PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
@@ -52,3 +53,27 @@ def test_a_broken_problem_file_is_skipped_not_fatal(database, tmp_path):
     (tmp_path / "bad.toml").write_text("not toml [")
     [(name, outcome)] = load_problem_files(database, [tmp_path / "bad.toml"])
     assert name == "bad.toml" and outcome.startswith("skipped:")
+
+
+class _Ended:
+    """A sandbox whose every run ends in the given outcome (the real ones are tested in tests/test_sandbox.py)."""
+
+    def __init__(self, outcome):
+        self.outcome = outcome
+
+    def run(self, request, budget_s=None):
+        return self.outcome
+
+
+# How each way a derivation child's run can end reads to the instructor who uploaded the scene.
+@pytest.mark.parametrize("outcome, error, words", [
+    (Outcome("timeout"), DerivationError, "longer than 20 s"),
+    (Outcome("out_of_memory"), DerivationError, "more than 2048 MB"),
+    (Outcome("crashed", detail="the child exited (signal SIGSEGV)"), DerivationError, "the engine failed"),
+    (Outcome("ok", reply={"outcome": "error", "message": "x.toml: energy: unknown name"}), DerivationError,
+     "unknown name"),
+    (Outcome("crashed", detail="did not start", during_start=True), SandboxUnavailable, "unavailable"),
+], ids=["timeout", "out-of-memory", "crash", "scene-error", "no-child"])
+def test_every_sandbox_outcome_becomes_a_scene_error_or_a_retry(outcome, error, words):
+    with pytest.raises(error, match=words):
+        derive_source("id = 'x'", timeout_s=20, memory_mb=2048, sandbox=_Ended(outcome))
