@@ -40,10 +40,12 @@ def check(jsonl, source, reference, answer, variables, kind, budget, memory_mb, 
     \b
     With --jsonl, reads SOURCE (default stdin), one request per line:
       {"reference", "answer", "variables": {name: {"dimension", "domain"}},
-       "kind": "expression"|"equation", "feedback"?: [{"expr", "message"}], "state"?: [names]}
+       "kind": "expression"|"equation", "feedback"?: [{"expr", "message"}], "state"?: [names],
+       "feedback_detail"?: "kind"|"full"}
     and writes one line per request:
       {"verdict", "certainty", "reason", "parsed", "counterexample", "feedback", "ms", ...}
-    Every check runs in a sandboxed child process with a hard time and memory limit.
+    A line that is not UTF-8, not JSON or not an object gets an "invalid" line of its own; the
+    batch goes on. Every check runs in a sandboxed child process with a hard time and memory limit.
     """
     runner = _runner(budget, memory_mb, no_sandbox)
     try:
