@@ -314,8 +314,9 @@ def check(
     state: Sequence[str] | None = None,
     options: Options = DEFAULT_OPTIONS,
     feedback_detail: str = "kind",
+    alternatives: Sequence[str] | None = None,
 ) -> Verdict:
-    """Check a student's answer against a reference answer.
+    """Check a student's answer against a reference answer (or any of its accepted alternatives).
 
     Parameters
     ----------
@@ -340,6 +341,10 @@ def check(
     feedback_detail : {"kind", "full"}
         ``"kind"``: slip messages name the kind of slip and no value that would reveal the
         reference; ``"full"``: they also state the factor or difference (an instructor's opt-in).
+    alternatives : list of str, optional
+        Other references that are also right (the mirror equilibrium -theta*, the other sign
+        convention), in the reference's grammar. An answer matching one is ``equivalent``, and
+        ``evidence["matched"]`` says which: 0 for ``reference``, i for the i-th alternative.
 
     Returns
     -------
@@ -363,6 +368,9 @@ def check(
     try:
         verdict = _check(reference, answer, variables, kind, feedback, budget_s, state, options, started,
                          feedback_detail)
+        if alternatives is not None:
+            verdict = _alternatives(verdict, alternatives, answer, variables, kind, feedback, budget_s, state,
+                                    options, started, feedback_detail)
     except _RequestError as error:
         verdict = Verdict.invalid(str(error), text)
     except RecursionError:
@@ -373,6 +381,24 @@ def check(
         # Only the type: a library's message may quote the reference.
         verdict = Verdict.invalid(f"internal error while checking ({type(error).__name__})", text)
     verdict.ms = (time.monotonic() - started) * 1000
+    return verdict
+
+
+def _alternatives(verdict: Verdict, alternatives, answer, variables, kind, feedback, budget_s, state, options,
+                  started, detail) -> Verdict:
+    """The first accepted reference the answer matches, or the verdict against the main one."""
+    if not isinstance(alternatives, (list, tuple)) or not all(isinstance(a, str) for a in alternatives):
+        raise _RequestError("'alternatives' must be a list of reference texts")
+    if verdict.verdict == "not_equivalent":
+        for index, alternative in enumerate(alternatives, 1):
+            other = _check(alternative, answer, variables, kind, feedback, budget_s, state, options, started,
+                           detail)
+            if other.verdict == "equivalent":
+                other.evidence = {**other.evidence, "matched": index}
+                other.reason = f"{other.reason} (matches accepted answer {index + 1} of {len(alternatives) + 1})"
+                return other
+    if verdict.verdict == "equivalent":
+        verdict.evidence = {**verdict.evidence, "matched": 0}
     return verdict
 
 
@@ -483,6 +509,7 @@ def check_request(request: Any) -> dict:
                 budget_s=request.get("budget_s", 2.0),
                 state=request.get("state"),
                 feedback_detail=request.get("feedback_detail", "kind"),
+                alternatives=request.get("alternatives"),
             )
     verdict.ms = (time.monotonic() - started) * 1000
     return verdict.to_json()

@@ -56,6 +56,9 @@ class ReferenceAnswer:
     feedback_detail : {"kind", "full"}
         How much slip messages may say (``"kind"`` never states a value; see
         `grader.answers.feedback`); set per problem by ``[feedback] detail`` in the scene file.
+    alternatives : tuple of str
+        Other references that are also right (``alternatives`` in the scene file: the mirror
+        equilibrium, the other sign convention); the verdict's ``evidence["matched"]`` says which.
 
     Examples
     --------
@@ -79,6 +82,7 @@ class ReferenceAnswer:
     latex: str
     feedback: tuple[dict[str, str], ...] = field(default_factory=tuple)
     feedback_detail: str = "kind"
+    alternatives: tuple[str, ...] = ()
 
     @classmethod
     def from_json(cls, data: Any) -> "ReferenceAnswer":
@@ -116,18 +120,25 @@ class ReferenceAnswer:
         detail = data.get("feedback_detail", "kind")
         if detail not in DETAILS:
             raise fail(f"'feedback_detail' must be one of {', '.join(DETAILS)}")
+        alternatives = data.get("alternatives") or []
+        if not isinstance(alternatives, (list, tuple)) or not all(isinstance(a, str) for a in alternatives):
+            raise fail("'alternatives' must be a list of reference texts")
         return cls(**{k: data[k] for k in _TEXT_KEYS},
                    variables={k: dict(v) for k, v in variables.items()},
                    feedback=tuple({"expr": f["expr"], "message": f["message"]} for f in feedback),
-                   feedback_detail=detail)
+                   feedback_detail=detail, alternatives=tuple(alternatives))
 
     def to_json(self) -> dict[str, Any]:
         """The JSON object stored in ``problem_versions.references`` (`from_json` reads it back)."""
         return {"name": self.name, "prompt": self.prompt, "kind": self.kind, "reference": self.reference,
                 "variables": self.variables, "dimension": self.dimension, "latex": self.latex,
-                "feedback": [dict(f) for f in self.feedback], "feedback_detail": self.feedback_detail}
+                "feedback": [dict(f) for f in self.feedback], "feedback_detail": self.feedback_detail,
+                "alternatives": list(self.alternatives)}
 
     def request(self, text: str) -> dict[str, Any]:
         """The checker request (``grader check --jsonl`` line) for a student's ``text`` against this reference."""
-        return {"reference": self.reference, "answer": text, "variables": self.variables, "kind": self.kind,
-                "feedback": [dict(f) for f in self.feedback], "feedback_detail": self.feedback_detail}
+        request = {"reference": self.reference, "answer": text, "variables": self.variables, "kind": self.kind,
+                   "feedback": [dict(f) for f in self.feedback], "feedback_detail": self.feedback_detail}
+        if self.alternatives:
+            request["alternatives"] = list(self.alternatives)
+        return request

@@ -71,6 +71,11 @@ def reference_answers(derivation) -> list[dict[str, Any]]:
         else:
             reference = sympy.sstr(value)
             latex = sympy.latex(value, symbol_names=names)
+        alternatives = []
+        for alternative in spec.alternatives:
+            symbols |= alternative.free_symbols
+            alternatives.append(equation_text(spec.expr, alternative) if spec.kind == "equation"
+                                else sympy.sstr(alternative))
         variables = {}
         for s in sorted(symbols, key=str):
             v = by_symbol[s]
@@ -89,4 +94,6 @@ def reference_answers(derivation) -> list[dict[str, Any]]:
         result.append({"name": spec.name, "prompt": spec.prompt, "kind": spec.kind, "reference": reference,
                        "variables": variables, "dimension": dimension_text(spec.dimension), "latex": latex,
                        "feedback": feedback, "feedback_detail": scene.feedback_detail})
+        if alternatives:
+            result[-1]["alternatives"] = alternatives
     return result

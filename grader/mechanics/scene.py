@@ -144,6 +144,7 @@ class AnswerSpec:
     feedback: tuple[FeedbackSpec, ...]
     symbol: sympy.Symbol  # stands for this answer inside later answers and `where`
     source_expr: str
+    alternatives: tuple[sympy.Expr, ...] = ()  # other values that are also right (in parameters)
 
 
 @dataclass
@@ -567,12 +568,31 @@ class _SceneReader:
             if spec.get("where") is not None:
                 where = self.read_where(f"{key}.where", spec["where"], namespace)
             feedback = self.read_feedback(key, spec.get("feedback", []))
+            alternatives = self.read_alternatives(key, spec.get("alternatives", []), namespace, inferred,
+                                                  {a.symbol for a in answers})
             prompt = self.string(spec, "prompt", key, default=name.replace("_", " "))
             symbol = self.add(Variable(name, inferred, parse_domain("real"), "answer"))
             known.add(name)
             answers.append(AnswerSpec(name, prompt, expr, kind, in_terms_of, dimension or inferred,
-                                      where, feedback, symbol, source_expr))
+                                      where, feedback, symbol, source_expr, alternatives))
         return answers
+
+    def read_alternatives(self, key: str, raw: Any, namespace: Namespace, dimension: Dimension,
+                          answer_symbols: set) -> tuple[sympy.Expr, ...]:
+        """``alternatives = ["-acos(g/(omega^2*l))"]``: other values of the answer that are also right."""
+        if not isinstance(raw, list):
+            raise self.fail(f"{key}.alternatives", "must be a list of expressions")
+        alternatives = []
+        for i, text in enumerate(raw):
+            where = f"{key}.alternatives[{i}]"
+            value = self.expression(where, text, namespace)
+            if value.free_symbols & answer_symbols:
+                raise self.fail(where, "may use the scene's parameters and coordinates, not other answers")
+            got = self.dimension_of(where, value)
+            if got != dimension:
+                raise self.fail(where, f"is {got.describe()}, but the answer is {dimension.describe()}")
+            alternatives.append(value)
+        return tuple(alternatives)
 
     def read_where(self, key: str, text: Any, namespace: Namespace) -> tuple[sympy.Expr, sympy.Expr]:
         if not isinstance(text, str) or text.count("=") != 1:

@@ -127,6 +127,8 @@ SCENE_SCHEMA: dict[str, Any] = {
                 "dimension": _DIMENSION,
                 "where": _string(MAX_EXPRESSION_CHARS, description='a condition such as "normal_force = 0"'),
                 "feedback": {"type": "array", "maxItems": MAX_ITEMS, "items": _FEEDBACK},
+                # other values that are also right (the mirror equilibrium, the other sign convention)
+                "alternatives": {"type": "array", "maxItems": MAX_ITEMS, "items": _EXPRESSION},
             },
         }),
     },

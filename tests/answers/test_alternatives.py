@@ -1,0 +1,87 @@
+"""Alternatives: an answer may accept several references, and the verdict says which one matched."""
+
+import pytest
+
+from grader.answers.checker import check, check_request
+from grader.answers.reference import ReferenceAnswer
+
+HOOP = {"g": {"dimension": "acceleration", "domain": "positive"},
+        "a": {"dimension": "length", "domain": "positive"},
+        "omega": {"dimension": "angular_velocity", "domain": [5, 10]}}
+EQUILIBRIUM = "acos(g/(omega^2*a))"  # the bead's off-axis equilibrium; its mirror image is -theta*
+MIRROR = "-acos(g/(omega^2*a))"
+
+
+@pytest.mark.parametrize("answer, verdict, matched", [
+    ("acos(g/(ω² a))", "equivalent", 0),
+    ("-acos(g/(ω² a))", "equivalent", 1),          # the mirror equilibrium
+    ("-arccos(g/(a omega^2))", "equivalent", 1),
+    ("asin(g/(ω² a))", "not_equivalent", None),
+])
+def test_the_verdict_says_which_reference_matched(answer, verdict, matched):
+    v = check(EQUILIBRIUM, answer, HOOP, alternatives=[MIRROR])
+    assert v.verdict == verdict
+    assert v.evidence.get("matched") == matched
+
+
+def test_without_alternatives_the_mirror_is_wrong():
+    assert check(EQUILIBRIUM, "-acos(g/(ω² a))", HOOP).verdict == "not_equivalent"
+
+
+def test_alternatives_must_be_texts():
+    assert check(EQUILIBRIUM, "x", HOOP, alternatives="-theta").verdict == "invalid"
+
+
+SCENE = '''
+id = "hoop_equilibrium"
+title = "Bead on a rotating hoop: where it rests"
+statement = "A bead on a smooth hoop of radius $a$ spinning at $\\\\omega$ about its vertical diameter."
+
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 0.1 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+a = { dimension = "length", domain = "positive", value = 0.5 }
+omega = { dimension = "angular_velocity", domain = [5, 10], value = 7.0 }
+
+[coordinates]
+theta = { dimension = "angle", domain = [-3.1416, 3.1416] }
+phi = { dimension = "angle" }
+
+[energy]
+kinetic = "m/2*(a^2*thetadot^2 + a^2*sin(theta)^2*phidot^2)"
+potential = "-m*g*a*cos(theta)"
+
+[[constraints]]
+name = "drive"
+f = "phi - omega*t"
+
+[initial]
+theta = 0.3
+thetadot = 0
+
+[[answers]]
+name = "equilibrium"
+prompt = "An angle where the bead can rest off the axis"
+expr = "acos(g/(omega^2*a))"
+alternatives = ["-acos(g/(omega^2*a))"]
+'''
+
+
+def test_alternatives_go_from_the_scene_file_through_the_reference_contract_to_the_checker():
+    from grader.mechanics.lagrange import derive
+    from grader.mechanics.references import reference_answers
+    from grader.mechanics.scene import parse_scene
+
+    (data,) = [r for r in reference_answers(derive(parse_scene(SCENE, source="test")))
+               if r["name"] == "equilibrium"]
+    reference = ReferenceAnswer.from_json(data)
+    assert reference.alternatives == ("-acos(g/(a*omega**2))",)
+    reply = check_request(reference.request("-acos(g/(omega^2 a))"))
+    assert reply["verdict"] == "equivalent" and reply["evidence"]["matched"] == 1
+
+
+def test_a_scene_alternative_of_the_wrong_dimension_is_refused():
+    from grader.mechanics.scene import SceneError, parse_scene
+
+    with pytest.raises(SceneError, match="alternatives"):
+        parse_scene(SCENE.replace('alternatives = ["-acos(g/(omega^2*a))"]', 'alternatives = ["a"]'), source="test")
