@@ -489,8 +489,9 @@ class Simulation:
         else:
             t, q, v = np.zeros(0), np.zeros((0, n)), np.zeros((0, n))
             lam, Q, active = np.zeros((0, m)), np.zeros((0, m, n)), np.zeros((0, m), dtype=bool)
+        k = len(t)
         return Trajectory(self.compiled.coordinates, self.compiled.constraints, t, q, v,
-                          lam.reshape(-1, m), Q.reshape(-1, m, n), active.reshape(-1, m), events)
+                          lam.reshape(k, m), Q.reshape(k, m, n), active.reshape(k, m), events)
 
 
 def _guard_start(g, t0: float, y0: np.ndarray):
