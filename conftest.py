@@ -7,6 +7,10 @@ the engine's examples read ``problems/*.toml`` by relative path, as a user at th
 import pytest
 from _pytest.doctest import DoctestItem
 
+# Importing this module lowers the importing process's CPU priority (it is a derivation child's
+# entry point): collecting it for doctests would nice the whole test run.
+collect_ignore = ["grader/jobs/derivation_child.py"]
+
 
 @pytest.fixture(autouse=True)
 def _examples_run_from_the_repository_root(request, monkeypatch):
