@@ -98,3 +98,18 @@ def test_a_counterexample_never_shows_the_reference_value(client, make_token, yo
     # Where the answer fails and what it gives there, but not the value of m g/3.
     assert example["values"] and "answer" in example
     assert "reference" not in example and "relative_difference" not in example
+
+
+def test_an_equation_counterexample_shows_no_value_of_the_reference():
+    from grader.answers import check
+    from grader.web.api.submissions import _student_counterexample
+
+    # thetaddot*l*3 = -g*sin(theta) is not the pendulum's equation times a state-free factor.
+    pendulum = {"g": {"dimension": "acceleration", "domain": "positive"},
+                "l": {"dimension": "length", "domain": "positive"},
+                "theta": {"dimension": "angle", "domain": "real", "kind": "coordinate"},
+                "thetaddot": {"dimension": "angular_acceleration", "domain": "real", "kind": "acceleration"}}
+    v = check("thetaddot = -g*sin(theta)/l", "thetaddot = -g*sin(theta)*theta/l", pendulum, kind="equation")
+    assert v.verdict == "not_equivalent" and "reference_there" in v.counterexample
+    shown = _student_counterexample(v.counterexample)
+    assert shown["values"] and not [k for k in shown if "reference" in k]

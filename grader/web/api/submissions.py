@@ -45,12 +45,16 @@ def _time(value) -> str:
     return value.isoformat() + "Z"
 
 
+# What a student may see of a counterexample: where their answer fails and what it gives there
+# (for equations, at a second state too). An allow-list: anything else the checker records (the
+# reference's values, their ratio or difference) is part of the reference.
+STUDENT_COUNTEREXAMPLE_KEYS = ("values", "answer", "note", "other_state", "answer_there")
+
+
 def _student_counterexample(example: dict | None) -> dict | None:
-    # The reference's value at a point is part of the reference: students (and LMSs acting for
-    # them) see where their answer fails and what it gives there, never what it should give.
     if not example:
         return example
-    return {k: v for k, v in example.items() if k not in ("reference", "relative_difference")}
+    return {k: v for k, v in example.items() if k in STUDENT_COUNTEREXAMPLE_KEYS}
 
 
 def verdict_json(verdict: Verdict | None) -> dict[str, Any] | None:
