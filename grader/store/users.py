@@ -6,6 +6,7 @@ once; the database keeps only their sha256, so a leaked database gives no usable
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import secrets
 
@@ -51,11 +52,23 @@ def set_password(user: User, password: str) -> None:
 
 
 def authenticate(session: Session, email: str, password: str) -> User | None:
-    """The user with this email and password, or None (same answer for unknown email and wrong password)."""
+    """The user with this email and password, or None (same answer for unknown email and wrong password).
+
+    An unknown email (or an account without a password) still checks the password, against a
+    stand-in hash of the same kind and cost, so the answer takes as long as for a wrong password
+    and its timing tells nothing about which accounts exist.
+    """
     user = session.scalar(select(User).where(User.email == email))
     if user is None or user.password_hash is None:
+        check_password_hash(_stand_in_hash(), password)
         return None
     return user if check_password_hash(user.password_hash, password) else None
+
+
+@functools.lru_cache(maxsize=1)
+def _stand_in_hash() -> str:
+    """A hash made like :func:`set_password` makes one, of a password nobody knows."""
+    return generate_password_hash(secrets.token_urlsafe(32))
 
 
 def create_token(session: Session, user: User, name: str | None = None) -> str:

@@ -36,8 +36,10 @@ def create_app(test_config: dict | None = None) -> Flask:
         MAX_CONTENT_LENGTH=1024 * 1024,
         CSRF_ENABLED=True,
         RATE_LIMITS_ENABLED=True,
-        # Token buckets, (per minute, burst): per user, except sign-in attempts (per address).
-        RATE_LIMITS={"check": (120, 30), "submit": (60, 20), "preview": (240, 40), "login": (10, 5)},
+        # Token buckets, (per minute, burst): per user, except failed sign-ins: per (account, address)
+        # and, looser, per address (a campus NAT is one address; see auth/throttle.py).
+        RATE_LIMITS={"check": (120, 30), "submit": (60, 20), "preview": (240, 40), "login": (10, 5),
+                     "login_address": (120, 60)},
         CHECK_SANDBOXES=2,  # sandbox children serving POST /check
         CHECK_BUDGET_S=CHECK_BUDGET_S,
         CHECK_QUEUE_TIMEOUT_S=30.0,

@@ -78,6 +78,9 @@ def api_user(roles: frozenset[str] | set[str]) -> User:
     return user
 
 
+MAX_BUCKETS = 10_000  # beyond this many, refilled buckets are forgotten
+
+
 @dataclass
 class _Bucket:
     tokens: float
@@ -93,6 +96,7 @@ class RateLimiter:
 
     def __init__(self):
         self._lock = threading.Lock()
+        self._pruned_at = float("-inf")
 
     def init_app(self, app: Flask) -> None:
         app.extensions["lagrade.rate_buckets"] = {}
@@ -103,6 +107,16 @@ class RateLimiter:
         An expensive request (a check with many feedback items) costs more than one token; the
         cost is capped at the burst, so that any single request can pass once the bucket is full.
         """
+        self._draw(action, key, cost, take=True)
+
+    def check(self, action: str, key: object) -> None:
+        """Raise the 429 problem if ``key``'s bucket for ``action`` is empty, without taking a token.
+
+        For limits that count only failures (sign-in): look before the attempt, :meth:`hit` after it fails.
+        """
+        self._draw(action, key, 1.0, take=False)
+
+    def _draw(self, action: str, key: object, cost: float, take: bool) -> None:
         config = current_app.config
         if not config["RATE_LIMITS_ENABLED"] or action not in config["RATE_LIMITS"]:
             return
@@ -112,15 +126,29 @@ class RateLimiter:
         now = time.monotonic()
         buckets: dict[tuple[str, object], _Bucket] = current_app.extensions["lagrade.rate_buckets"]
         with self._lock:
+            if len(buckets) > MAX_BUCKETS and now - self._pruned_at > 1.0:  # a scan a second at most
+                self._pruned_at = now
+                self._forget_full(buckets, now)
             bucket = buckets.setdefault((action, key), _Bucket(float(burst), now))
             bucket.tokens = min(float(burst), bucket.tokens + (now - bucket.updated) * rate)
             bucket.updated = now
             if bucket.tokens >= cost:
-                bucket.tokens -= cost
+                if take:
+                    bucket.tokens -= cost
                 return
             wait = math.ceil((cost - bucket.tokens) / rate)
         raise ApiProblem(429, f"Too many {action} requests: at most {per_minute} a minute (bursts of {burst}). "
                               f"Try again in {wait} s.", kind="rate-limited", headers={"Retry-After": str(wait)})
+
+    @staticmethod
+    def _forget_full(buckets: dict, now: float) -> None:
+        # Keys can come from request text (a sign-in name): drop buckets that have refilled, which a
+        # new bucket would equal, so the table stays the size of the recent traffic.
+        limits = current_app.config["RATE_LIMITS"]
+        for (action, key), bucket in list(buckets.items()):
+            per_minute, burst = limits.get(action, (1, 0))
+            if bucket.tokens + (now - bucket.updated) * per_minute / 60.0 >= burst:
+                del buckets[(action, key)]
 
 
 # The extension: buckets in memory, per app (one server process).

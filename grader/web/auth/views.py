@@ -9,8 +9,8 @@ from grader.store.users import authenticate
 from grader.web.auth import bp
 from grader.web.auth.redirects import safe_next
 from grader.web.auth.session import home_for, sign_in, sign_out
+from grader.web.auth.throttle import record_failed_sign_in, refuse_if_throttled
 from grader.web.errors import ApiProblem
-from grader.web.security import limiter
 
 MAX_FIELD = 320
 
@@ -30,14 +30,16 @@ def login():
     username = request.form.get("username", "").strip()[:MAX_FIELD]
     password = request.form.get("password", "")[:1024]
     try:
-        limiter.hit("login", request.remote_addr)
+        refuse_if_throttled(username, request.remote_addr)
     except ApiProblem as problem:
-        return render_template("auth/login.html", next=next_url, username=username, error=problem.detail), 429
+        return (render_template("auth/login.html", next=next_url, username=username, error=problem.detail),
+                429, problem.headers)
     user = None
     if username and password:
         with db.read() as session:  # a short read: checking a password hash is slow on purpose
             user = authenticate(session, username, password)
     if user is None or user.role not in ("student", "instructor", "admin"):
+        record_failed_sign_in(username, request.remote_addr)
         # One message for an unknown user and a wrong password: no hint about which accounts exist.
         return render_template("auth/login.html", next=next_url, username=username,
                                error="That username and password do not match an account."), 401
