@@ -26,7 +26,7 @@ def test_every_corpus_item_gets_its_labelled_verdict():
     wrong = []
     for item in ITEMS:
         v = check(item["reference"], item["answer"], item["variables"], kind=item["kind"],
-                  feedback=item.get("feedback"), state=item.get("state"))
+                  feedback=item.get("feedback"), state=item.get("state"), alternatives=item.get("alternatives"))
         codes = [f["code"] for f in v.feedback]
         if v.verdict != item["expected"] or (item.get("expect_feedback") and item["expect_feedback"] not in codes):
             wrong.append((item["id"], item["answer"][:60], item["expected"], v.verdict, codes, v.reason))

@@ -515,6 +515,123 @@ HOSTILE = [
 add("yoyo", "tension_hostile", "m*g/3", YOYO, [(answer, expected, "hostile") for answer, expected in HOSTILE])
 
 
+# -- notation, functions, powers, the whole domain, equations by the right rule, alternatives ----------
+# (issue 11, items 6-11). Appended after the older items so their ids stay the same.
+DOUBLE_PENDULUM = {"m": var("mass", POS), "g": var("acceleration", POS), "l": var("length", POS),
+                   **{f"theta{i}": var("angle", PI_DOMAIN) for i in (1, 2)},
+                   **{f"theta{i}dot": var("angular_velocity") for i in (1, 2)},
+                   **{f"theta{i}ddot": var("angular_acceleration") for i in (1, 2)}}
+add("double_pendulum", "kinetic_energy_upper", "m*l^2*theta1dot^2/2", DOUBLE_PENDULUM, [
+    ("m l² θ̇₁²/2", EQ, "notation"),
+    ("m l^2 θ₁̇^2/2", EQ, "notation"),
+    ("m*l^2*theta_1dot^2/2", EQ, "notation"),
+    ("m l^2 dot{θ}_1^2/2", EQ, "notation"),
+    ("\\frac{1}{2} m l^2 \\dot{\\theta}_1^2", EQ, "notation"),
+    ("\\frac{1}{2} m \\ell^2 \\dot\\theta_1^2", EQ, "notation"),
+    ("m ℓ² θ̇₁²/2", EQ, "notation"),
+    ("m l^2 θ˙₁^2/2", EQ, "notation"),
+    ("m l^2 θ̇₂^2/2", NE, "notation"),
+    ("m l^2 θ̇₁/2", NE, ["notation", "dimension"], "dimension"),
+    ("m l^2 θ̇̇̇₁^2/2", INV, "notation"),
+])
+add("double_pendulum", "tangential_force_upper", "m*l*theta1ddot", DOUBLE_PENDULUM, [
+    ("m ℓ θ̈₁", EQ, "notation"),
+    ("m l \\ddot{\\theta}_{1}", EQ, "notation"),
+    ("m l ddot(θ)_1", EQ, "notation"),
+    ("m*l*theta_1''", EQ, "notation"),
+    ("m l θ¨₁", EQ, "notation"),
+    ("m l θ̈₂", NE, "notation"),
+])
+PLANE = {"m": var("mass", POS), "x": var("length"), "xdot": var("velocity"), "xddot": var("acceleration"),
+         "y": var("length"), "ydot": var("velocity"), "yddot": var("acceleration")}
+add("plane", "force_sum", "m*(xddot + yddot)", PLANE, [
+    ("m(ẍ + ÿ)", EQ, "notation"),
+    ("m(x\u0308 + y\u0308)", EQ, "notation"),
+    ("m ẍ + m ÿ", EQ, "notation"),
+    ("mẍ + mÿ", EQ, "notation"),
+    ("m(ẍ + ẏ)", NE, ["notation", "dimension"], "dimension"),
+])
+
+NUMBER = {"x": var("dimensionless"), "y": var("dimensionless"), "u": var("dimensionless", [0.1, 0.9])}
+for reference, entries in [
+    ("asinh(x)", [("log(x + sqrt(x^2 + 1))", EQ), ("arsinh(x)", EQ), ("ln(x + sqrt(1 + x²))", EQ),
+                  ("log(x + sqrt(x^2 - 1))", NE), ("sinh(x)", NE)]),
+    ("acosh(1 + x^2)", [("arcosh(1 + x²)", EQ), ("log(1 + x^2 + sqrt((1 + x^2)^2 - 1))", EQ),
+                        ("acos(1 + x^2)", NE)]),
+    ("atanh(u)", [("log((1 + u)/(1 - u))/2", EQ), ("artanh(u)", EQ), ("log((1 + u)/(1 - u))", NE)]),
+    ("sech(x)", [("1/cosh(x)", EQ), ("2/(exp(x) + exp(-x))", EQ), ("1/sinh(x)", NE)]),
+    ("csch(u)", [("1/sinh(u)", EQ), ("2/(e^u - e^(-u))", EQ), ("1/cosh(u)", NE)]),
+    ("coth(u)", [("cosh(u)/sinh(u)", EQ), ("1/tanh(u)", EQ), ("tanh(u)", NE)]),
+    ("csc(u)", [("cosec(u)", EQ), ("1/sin(u)", EQ), ("sec(u)", NE)]),
+    ("atan2(y, x)", [("arctan2(y, x)", EQ), ("atan2(x, y)", NE), ("atan2(x)", INV), ("atan2 x", INV)]),
+    ("asin(u) + acos(u)", [("pi/2", EQ), ("arcsin(u) + arccos(u)", EQ), ("asin(u) - acos(u)", NE)]),
+    ("atan(u)", [("arctan(u)", EQ), ("asin(u/sqrt(1 + u^2))", EQ), ("atan(u + 0.5)", NE),
+                 ("asin(u + 0.25)", NE), ("acos(0.5 - u)", NE)]),
+    ("sign(x)", [("sgn(x)", EQ), ("x/abs(x)", EQ), ("abs(x)/x", EQ), ("-sign(x)", NE)]),
+    ("log(x^2 + 1)/log(10)", [("log10(x^2 + 1)", EQ), ("ln(x^2 + 1)", NE), ("log10(x^2 + 2)", NE)]),
+    ("asin(u)", [("asin(3/2)", INV), ("sin^-1(u)", EQ)]),
+]:
+    add("functions", reference.split("(")[0], reference, NUMBER,
+        [(answer, expected, "function") for answer, expected in entries])
+
+POWERS = {"x": var("dimensionless"), "y": var("dimensionless", POS), "n": var("dimensionless")}
+for reference, entries in [
+    ("x", [("sqrt(x)^2", NE), ("exp(log(x))", NE), ("(x^(1/3))^3", NE), ("x^(1/2)*x^(1/2)", NE),
+           ("(x^3)^(1/3)", NE), ("abs(x)", NE), ("x^1", EQ), ("(x^3)^(1/3)*sign(x)^2", NE)]),
+    ("abs(x)", [("sqrt(x^2)", EQ), ("(x^2)^(1/2)", EQ), ("(x^4)^(1/4)", EQ), ("x", NE)]),
+    ("y", [("sqrt(y)^2", EQ), ("exp(log(y))", EQ), ("(y^3)^(1/3)", EQ), ("y^(1/2)*y^(1/2)", EQ)]),
+    ("(x^2)^n", [("x^(2*n)", NE), ("abs(x)^(2*n)", EQ)]),
+    ("log(x^2)", [("2*log(x)", NE), ("2*log(abs(x))", EQ)]),
+    ("(x^3)^(1/3)", [("x", NE), ("(x^(1/3))^3", EQ)]),  # both defined exactly for x >= 0, and equal there
+]:
+    add("powers", "real_powers", reference, POWERS, [(answer, expected, "power") for answer, expected in entries])
+
+REAL = {"x": var("dimensionless")}
+for reference, entries in [
+    ("acosh(x/5)", [("log(x/5 + sqrt(x^2/25 - 1))", EQ), ("log(x/5 + sqrt(x^2/25 + 1))", NE)]),
+    ("sqrt(x - 5)", [("sqrt(2*x - 10)/sqrt(2)", EQ), ("sqrt(x - 6)", NE), ("sqrt(x - 5)*(1 + 10^-9)", NE)]),
+    ("sqrt(x - 5)*sqrt(x + 5)", [("sqrt(x^2 - 25)", NE)]),
+    ("log(x - 100)", [("log(2*x - 200) - log(2)", EQ), ("log(x - 101)", NE)]),
+]:
+    add("domain_scale", "defined_far_from_zero", reference, REAL,
+        [(answer, expected, "domain_scale") for answer, expected in entries])
+
+POLAR = {"g": var("acceleration", POS), "r": var("length", POS, "coordinate"),
+         "rdot": var("velocity", "real", "velocity"), "rddot": var("acceleration", "real", "acceleration"),
+         "thetadot": var("angular_velocity", "real", "velocity"), "x": var("dimensionless", "real", "coordinate")}
+add("polar", "radial_equation", "rddot = r*thetadot^2 - g", POLAR, [
+    ("r^2 rddot = r^3 thetadot^2 - g r^2", EQ, "state_factor"),
+    ("(rddot - r thetadot^2 + g)/r = 0", EQ, "state_factor"),
+    ("(1 + x^2)(rddot - r thetadot^2 + g) = 0", EQ, "state_factor"),
+    ("x (rddot - r thetadot^2 + g) = 0", NE, "state_factor"),
+    ("thetadot (rddot - r thetadot^2 + g) = 0", NE, "state_factor"),
+    ("rddot = r thetadot^2 + g", NE, "typical"),
+], kind="equation")
+add("pendulum", "equation_of_motion_small_swings", "thetaddot = -g/l*sin(theta)",
+    {**PENDULUM_EOM, "theta": var("angle", [-1.5, 1.5], "coordinate")}, [
+    ("thetaddot*cos(theta) = -g/l*sin(theta)*cos(theta)", EQ, "state_factor"),  # cos > 0 on [-1.5, 1.5]
+    ("(2 + cos(theta)) (l thetaddot + g sin(theta)) = 0", EQ, "state_factor"),
+    ("thetaddot*thetadot = -g/l*sin(theta)*thetadot", NE, "state_factor"),
+], kind="equation")
+add("polynomial", "root", "x^2 = 1", {"x": var("dimensionless", POS, "coordinate")}, [
+    ("x - 1 = 0", EQ, "factored"),
+    ("(x - 1)(x + 1) = 0", EQ, "factored"),
+    ("x^2 - x = 0", EQ, "factored"),       # x (x - 1): x > 0 adds no root
+    ("x = 2", NE, "factored"),
+    ("x + 1 = 0", NE, "factored"),         # no root at all for x > 0
+], kind="equation")
+
+HOOP = {"g": var("acceleration", POS), "a": var("length", POS), "omega": var("angular_velocity", [5, 10])}
+add("hoop", "equilibrium", "acos(g/(omega^2*a))", HOOP, [
+    ("acos(g/(a ω²))", EQ, "alternatives"),
+    ("-acos(g/(ω² a))", EQ, "alternatives"),       # the mirror equilibrium, accepted as an alternative
+    ("-arccos(g/(a*omega^2))", EQ, "alternatives"),
+    ("asin(g/(ω² a))", NE, "alternatives"),
+    ("pi - acos(g/(omega^2 a))", NE, "alternatives"),
+])
+items[-5:] = [{**item, "alternatives": ["-acos(g/(omega^2*a))"]} for item in items[-5:]]
+
+
 def build() -> dict[str, int]:
     by_problem: dict[str, list[dict]] = {}
     for n, item in enumerate(items):
