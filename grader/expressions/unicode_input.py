@@ -134,6 +134,9 @@ def bad_character(ch: str, position: int) -> ExpressionError:
     if ch in _INVISIBLE or unicodedata.category(ch) == "Cf":
         return ExpressionError(f"invisible character {name} (U+{ord(ch):04X})",
                                position, "bad_character", "delete it (it often comes with copy and paste)")
+    if unicodedata.category(ch) == "Cs":  # half of a UTF-16 pair, alone: a broken copy or encoding
+        return ExpressionError(f"broken character U+{ord(ch):04X} (a lone surrogate, not text)",
+                               position, "bad_character", "delete it and retype what was there")
     if unicodedata.category(ch).startswith("C"):
         return ExpressionError(f"control character U+{ord(ch):04X}",
                                position, "bad_character", "delete it")

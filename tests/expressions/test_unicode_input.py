@@ -23,6 +23,7 @@ def test_greek_letters_that_look_latin_are_not_names(char):
     ("\u200b", ["invisible", "ZERO WIDTH SPACE"]),
     ("\ufeff", ["invisible"]),
     ("\x00", ["control character U+0000"]),
+    ("\ud800", ["lone surrogate", "U+D800"]),
     ("😀", ["GRINNING FACE"]),
 ])
 def test_refused_characters_are_named(char, words):
