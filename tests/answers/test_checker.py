@@ -3,6 +3,8 @@
 import pytest
 
 from grader.answers import Verdict, check
+from grader.answers.checker import _prepare
+from grader.answers.feedback import _reference_candidates
 
 YOYO = {"m": {"dimension": "mass", "domain": "positive"},
         "g": {"dimension": "acceleration", "domain": "positive"},
@@ -97,5 +99,7 @@ def test_a_verdict_does_not_depend_on_the_answers_checked_before():
         data.pop("ms")
         return data
 
+    _prepare.cache_clear()  # so that "first" is checked against a cold reference, as in a fresh process
+    _reference_candidates.cache_clear()
     first = {a: verdict(a) for a in answers}
     assert {a: verdict(a) for a in reversed(answers)} == first
