@@ -12,6 +12,7 @@ from typing import Any
 
 from flask import g
 
+from grader.answers.verdict import CERTAINTIES, VERDICTS
 from grader.jobs.queue import MAX_ANSWER_CHARS
 from grader.web.api.bodies import validated_body
 
@@ -92,8 +93,8 @@ CHECK_RESULT = {
     "description": "Exactly one line of `grader check --jsonl`.",
     "required": ["verdict", "certainty", "reason", "parsed", "counterexample", "feedback", "ms"],
     "properties": {
-        "verdict": {"type": "string"},
-        "certainty": {"type": "string", "nullable": True},
+        "verdict": {"type": "string", "enum": list(VERDICTS)},
+        "certainty": {"type": "string", "nullable": True, "enum": [*CERTAINTIES, None]},
         "reason": {"type": "string", "nullable": True},
         "parsed": {**PARSED, "nullable": True},
         "counterexample": {"type": "object", "nullable": True},

@@ -23,7 +23,13 @@ from grader.web.security import api_user, limiter
 __all__ = ["ApiSpec", "Operation"]
 
 _CONVERTER = re.compile(r"<(?:(\w+):)?(\w+)>")
-_TYPES = {"int": {"type": "integer"}, "string": {"type": "string"}, None: {"type": "string"}}
+# Path parameters. Ids are INTEGER columns, 32-bit on PostgreSQL: a larger one names nothing (404)
+# and must not reach the database (PostgreSQL: "integer out of range"; SQLite: OverflowError).
+MAX_ID = 2**31 - 1
+MAX_SLUG_CHARS = 100  # problems.slug is String(100)
+_TYPES = {"int": {"type": "integer", "format": "int32", "minimum": 0, "maximum": MAX_ID},
+          "string": {"type": "string", "maxLength": MAX_SLUG_CHARS},
+          None: {"type": "string", "maxLength": MAX_SLUG_CHARS}}
 _PROBLEM = {"$ref": "#/components/schemas/Problem"}
 
 
@@ -115,6 +121,7 @@ class ApiSpec:
             def guarded(**kwargs):
                 if allowed is not None:
                     api_user(allowed)
+                _check_path(operation, kwargs)
                 self._validate(operation)
                 return view(**kwargs)
 
@@ -164,6 +171,16 @@ class ApiSpec:
                 },
             },
         }
+
+
+def _check_path(op: Operation, values: dict[str, Any]) -> None:
+    """Path parameters outside their documented range name no resource: 404, before any query."""
+    for converter, name in _CONVERTER.findall(op.rule):
+        schema, value = _TYPES.get(converter, _TYPES[None]), values.get(name)
+        too_big = isinstance(value, int) and not schema["minimum"] <= value <= schema["maximum"]
+        too_long = isinstance(value, str) and len(value) > schema["maxLength"]
+        if too_big or too_long:
+            raise ApiProblem(404, f"There is no such resource ({name} is out of range).", kind="not-found")
 
 
 def _check_parameter(parameter: dict, value: str) -> None:
