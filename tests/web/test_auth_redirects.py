@@ -3,6 +3,8 @@
 from urllib.parse import urlsplit
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from grader.web.auth.redirects import MAX_NEXT_LENGTH, safe_next
 from tests.web.conftest_pages import PASSWORD, accounts, form_token  # noqa: F401
@@ -106,3 +108,14 @@ def test_a_safe_next_still_comes_back_after_signing_in(client, accounts):
     response = client.post("/login?next=/problems/yoyo%3Ftab=1",
                            data={"username": "ada@example.org", "password": PASSWORD, "csrf_token": token})
     assert response.headers["Location"] == "/problems/yoyo?tab=1"
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.sampled_from(list("/\\:.%@?#&=aZ09 \t\n\r\x00\x7fé。／[]") + ["//", "http:", "javascript:"]),
+                max_size=20).map("".join) | st.text(max_size=60))
+def test_any_text_gives_a_same_site_path_or_nothing(target):
+    result = safe_next(target)
+    parts = urlsplit(result)
+    assert result == "" or (result.startswith("/") and not result.startswith("//"))
+    assert not parts.scheme and not parts.netloc
+    assert all(0x20 < ord(c) < 0x7f and c != "\\" for c in result)

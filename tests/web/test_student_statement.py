@@ -4,6 +4,8 @@ import re
 from html.parser import HTMLParser
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from grader.web.student.statement import ALLOWED_TAGS, render_inline, render_statement, statement_problems
 
@@ -172,3 +174,14 @@ def test_math_and_markdown_still_render_next_to_a_removed_vector():
     html = str(render_statement("A *bead* $m_1$ <img src=x onerror=alert(1)> [x](javascript&#58;alert(1))"))
     assert "<em>bead</em>" in html and "<msub><mi>m</mi><mn>1</mn></msub>" in html
     assert _script_vectors(html) == []
+
+
+_FRAGMENTS = ["[x](", ")", "![i](", "<", ">", "javascript", "&#58;", "&colon;", "&#x3A;", ":", "&Tab;", "\t", "\n",
+              "data", "vbscript", "$", "$$", "x", '"', "'", " ", "onerror=", "alert(1)", "<img src=x ", "<svg ",
+              "<script>", "[r]: ", "[y][r]", "\\", "`", "*", "&", "#", "/"]
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.sampled_from(_FRAGMENTS), max_size=25).map("".join))
+def test_no_mix_of_vector_fragments_yields_script(text):
+    assert _script_vectors(str(render_statement(text))) == []
