@@ -632,6 +632,113 @@ add("hoop", "equilibrium", "acos(g/(omega^2*a))", HOOP, [
 items[-5:] = [{**item, "alternatives": ["-acos(g/(omega^2*a))"]} for item in items[-5:]]
 
 
+# -- textbook scenes (tests/mechanics/scenes): bigger answers than the paper's ------------------------
+# References as the engine derives them; every answer form below was rewritten and labelled by hand.
+DOUBLE = {"g": var("acceleration", POS), "l1": var("length", POS), "l2": var("length", POS),
+          "m1": var("mass", POS), "m2": var("mass", POS),
+          "theta1": var("angle", PI_DOMAIN, "coordinate"), "theta2": var("angle", PI_DOMAIN, "coordinate"),
+          "theta1dot": var("angular_velocity", "real", "velocity"),
+          "theta2dot": var("angular_velocity", "real", "velocity")}
+add("textbook", "double_pendulum_tension_lower",
+    "m1*m2*(g*cos(theta1)*cos(theta1 - theta2) + l1*theta1dot**2*cos(theta1 - theta2) + l2*theta2dot**2)"
+    "/(m1 + m2*sin(theta1 - theta2)**2)", DOUBLE, [
+        ("m1 m2 (cos(θ₁ - θ₂)(g cos θ₁ + l1 θ̇₁²) + l2 θ̇₂²)/(m1 + m2 sin²(θ₁ - θ₂))", EQ, "textbook"),
+        ("m1 m2 (cos(θ₁ - θ₂)(g cos θ₁ + l1 θ̇₁²) + l2 θ̇₂²)/(m1 + m2 - m2 cos(θ₁ - θ₂)^2)", EQ, "textbook"),
+        ("m1*m2*(g*cos(theta1) + l1*theta1dot^2)*(cos(theta1)*cos(theta2) + sin(theta1)*sin(theta2))"
+         "/(m1 + m2*sin(theta1 - theta2)^2) + m1*m2*l2*theta2dot^2/(m1 + m2*sin(theta1 - theta2)^2)", EQ, "textbook"),
+        ("m1 m2 (cos(θ₁ - θ₂)(g cos θ₁ + l1 θ̇₁²) + l2 θ̇₂²)/(m1 + m2 cos²(θ₁ - θ₂))", NE, "textbook"),
+        ("m1 m2 cos(θ₁ - θ₂)(g cos θ₁ + l1 θ̇₁²)/(m1 + m2 sin²(θ₁ - θ₂))", NE, "textbook"),
+        ("m1 m2 (cos(θ₁ - θ₂)(g cos θ₁ - l1 θ̇₁²) + l2 θ̇₂²)/(m1 + m2 sin²(θ₁ - θ₂))", NE, "textbook"),
+    ])
+add("textbook", "double_pendulum_tension_upper",
+    "m1*(g*m1*cos(theta1) + g*m2*cos(theta1) + l1*m1*theta1dot**2 + l1*m2*theta1dot**2"
+    " + l2*m2*theta2dot**2*cos(theta1 - theta2))/(m1 + m2*sin(theta1 - theta2)**2)", DOUBLE, [
+        ("m1 ((m1 + m2)(g cos θ₁ + l1 θ̇₁²) + m2 l2 θ̇₂² cos(θ₁ - θ₂))/(m1 + m2 sin²(θ₁ - θ₂))", EQ, "textbook"),
+        ("m1*(m1 + m2)*(g*cos(theta1) + l1*theta1dot^2)/(m1 + m2*sin(theta1 - theta2)^2)"
+         " + m1*m2*l2*theta2dot^2*cos(theta1 - theta2)/(m1 + m2*sin(theta1 - theta2)^2)", EQ, "textbook"),
+        ("m1 (m1 (g cos θ₁ + l1 θ̇₁²) + m2 l2 θ̇₂² cos(θ₁ - θ₂))/(m1 + m2 sin²(θ₁ - θ₂))", NE, "textbook"),
+        ("m1 ((m1 + m2)(g cos θ₁ + l1 θ̇₁²) + m2 l2 θ̇₂² cos(θ₁ + θ₂))/(m1 + m2 sin²(θ₁ - θ₂))", NE, "textbook"),
+    ])
+WEDGE = {"M": var("mass", POS), "m": var("mass", POS), "g": var("acceleration", POS),
+         "alpha": var("angle", [0.05, 1.5])}
+add("textbook", "wedge_normal_force", "M*g*m*cos(alpha)/(M + m*sin(alpha)**2)", WEDGE, [
+    ("M m g cos α/(M + m sin²α)", EQ, "textbook"),
+    ("M m g cos(α)/(M + m - m cos(α)^2)", EQ, "textbook"),
+    ("m g cos(α)/(1 + (m/M) sin(α)^2)", EQ, "textbook"),
+    ("m g cos α", NE, "textbook"),
+    ("M m g cos α/(M + m sin α)", NE, "textbook"),
+])
+add("textbook", "wedge_acceleration", "-g*m*sin(alpha)*cos(alpha)/(M + m*sin(alpha)**2)", WEDGE, [
+    ("-m g sin(2α)/(2(M + m sin²α))", EQ, "textbook"),
+    ("-g m sin α cos α/(M + m sin(α)^2)", EQ, "textbook"),
+    ("m g sin α cos α/(M + m sin²α)", NE, "textbook"),
+    ("-m g sin α cos α/(M + m)", NE, "textbook"),
+])
+ORBIT = {"g": var("acceleration", POS), "m1": var("mass", POS), "m2": var("mass", POS),
+         "omega0": var("angular_velocity", POS), "r": var("length", POS, "coordinate"), "r0": var("length", POS)}
+add("textbook", "orbit_radial_acceleration", "(-g*m2*r**3 + m1*omega0**2*r0**4)/(r**3*(m1 + m2))", ORBIT, [
+    ("(m1 ω0² r0⁴/r³ - m2 g)/(m1 + m2)", EQ, "textbook"),
+    ("(m1 omega0^2 r0^4 - m2 g r^3)/(r^3 (m1 + m2))", EQ, "textbook"),
+    ("(m1 ω0² r0²/r - m2 g)/(m1 + m2)", NE, "textbook"),
+    ("(m1 ω0² r0⁴/r³ + m2 g)/(m1 + m2)", NE, "textbook"),
+])
+add("textbook", "orbit_tension", "m1*m2*(g*r**3 + omega0**2*r0**4)/(r**3*(m1 + m2))", ORBIT, [
+    ("m1 m2 (g + ω0² r0⁴/r³)/(m1 + m2)", EQ, "textbook"),
+    ("m1*m2*g/(m1 + m2) + m1*m2*omega0^2*r0^4/(r^3*(m1 + m2))", EQ, "textbook"),
+    ("m1 m2 (g - ω0² r0⁴/r³)/(m1 + m2)", NE, "textbook"),
+])
+add("textbook", "orbit_radial_speed_squared",
+    "-(r - r0)*(2*g*m2*r**2 - m1*omega0**2*r*r0**2 - m1*omega0**2*r0**3)/(r**2*(m1 + m2))", ORBIT, [
+        ("(m1 ω0² r0² (1 - r0²/r²) - 2 m2 g (r - r0))/(m1 + m2)", EQ, "textbook"),
+        ("(m1*omega0^2*r0^2*(r - r0)*(r + r0)/r^2 - 2*m2*g*(r - r0))/(m1 + m2)", EQ, "textbook"),
+        ("(m1 ω0² r0² (1 - r0²/r²) + 2 m2 g (r - r0))/(m1 + m2)", NE, "textbook"),
+        ("(m1 ω0² r0² (1 - r0/r) - 2 m2 g (r - r0))/(m1 + m2)", NE, "textbook"),
+    ])
+PULLEY = {"M": var("mass", POS), "m1": var("mass", POS), "m2": var("mass", POS), "g": var("acceleration", POS),
+          "R": var("length", POS), "L": var("length", POS)}
+add("textbook", "massive_pulley_acceleration", "2*g*(m1 - m2)/(M + 2*m1 + 2*m2)", PULLEY, [
+    ("g (m1 - m2)/(m1 + m2 + M/2)", EQ, "textbook"),
+    ("(m1 - m2) g/(m1 + m2 + 0.5 M)", EQ, "textbook"),
+    ("g (m1 - m2)/(m1 + m2 + M)", NE, "textbook"),
+    ("g (m2 - m1)/(m1 + m2 + M/2)", NE, "textbook"),
+])
+add("textbook", "massive_pulley_tension_left", "g*m1*(M + 4*m2)/(M + 2*m1 + 2*m2)", PULLEY, [
+    ("m1 g - 2 m1 g (m1 - m2)/(M + 2 m1 + 2 m2)", EQ, "textbook"),
+    ("m1 g (M + 4 m2)/(M + 2(m1 + m2))", EQ, "textbook"),
+    ("m1 g (M + 2 m2)/(M + 2 m1 + 2 m2)", NE, "textbook"),
+])
+HOOP_MOTION = {"a": var("length", POS), "g": var("acceleration", POS), "m": var("mass", POS),
+               "omega": var("angular_velocity", POS), "theta": var("angle", PI_DOMAIN, "coordinate"),
+               "thetadot": var("angular_velocity", "real", "velocity"),
+               "thetaddot": var("angular_acceleration", "real", "acceleration")}
+add("textbook", "hoop_drive_torque", "2*a**2*m*omega*thetadot*sin(theta)*cos(theta)", HOOP_MOTION, [
+    ("m a² ω θ̇ sin(2θ)", EQ, "textbook"),
+    ("2 m a^2 omega thetadot sin theta cos theta", EQ, "textbook"),
+    ("2 m a² ω θ̇ sin θ", NE, "textbook"),
+])
+add("textbook", "hoop_speed_squared",
+    "(a*omega**2*sin(theta)**2 - a*omega**2*sin(3/10)**2 + 2*g*cos(theta) - 2*g*cos(3/10))/a", HOOP_MOTION, [
+        ("ω²(sin²θ - sin²(0.3)) + 2g/a (cos θ - cos(0.3))", EQ, "textbook"),
+        ("omega^2*(cos(0.3)^2 - cos(theta)^2) + 2*g*(cos(theta) - cos(0.3))/a", EQ, "textbook"),
+        ("ω²(sin²θ - sin²(0.3)) + 2g/a (cos(0.3) - cos θ)", NE, "textbook"),
+    ])
+add("textbook", "hoop_equation_of_motion", "thetaddot = (a*omega**2*cos(theta) - g)*sin(theta)/a", HOOP_MOTION, [
+    ("a θ̈ = (a ω² cos θ - g) sin θ", EQ, "textbook"),
+    ("θ̈ = ω² sin θ cos θ - g/a sin θ", EQ, "textbook"),
+    ("m a² θ̈ = m a (a ω² cos θ - g) sin θ", EQ, "textbook"),
+    ("θ̈ = ω² sin θ cos θ + g/a sin θ", NE, "textbook"),
+], kind="equation")
+LADDER = {"g": var("acceleration", POS), "l": var("length", POS), "m": var("mass", POS),
+          "theta": var("angle", [0, 1.5708], "coordinate"), "theta0": var("angle", [0.1, 1.5])}
+add("textbook", "ladder_wall_force", "3*g*m*(3*sin(theta) - 2*sin(theta0))*cos(theta)/4", LADDER, [
+    ("(3/4) m g cos θ (3 sin θ - 2 sin θ0)", EQ, "textbook"),
+    ("9/4 m g sin θ cos θ - 3/2 m g sin(theta0) cos θ", EQ, "textbook"),
+    ("9/8 m g sin(2θ) - 3/2 m g sin(theta0) cos(theta)", EQ, "textbook"),
+    ("(3/4) m g sin θ (3 cos θ - 2 sin θ0)", NE, "textbook"),
+    ("(3/4) m g cos θ (3 sin θ - 2 sin θ0) + m g/10^6", NE, "textbook"),
+])
+
+
 def build() -> dict[str, int]:
     by_problem: dict[str, list[dict]] = {}
     for n, item in enumerate(items):
