@@ -171,12 +171,14 @@ class Task:
 def claim(db: Database, worker_id: str, *, lease_s: float = LEASE_S) -> Task | None:
     """Take the oldest queued submission for ``worker_id``, or None if there is none.
 
-    The write transaction is only the conditional UPDATE; the task's data is read afterwards.
+    The write transaction is only the conditional UPDATE; the task's data is read afterwards. On
+    PostgreSQL the row is locked with ``FOR UPDATE SKIP LOCKED``, so workers in other processes
+    claim different rows without waiting for each other; SQLite has one writer at a time anyway.
     """
     while True:
         with db.write() as session:
             submission_id = session.scalar(select(Submission.id).where(Submission.status == "queued")
-                                           .order_by(Submission.id).limit(1))
+                                           .order_by(Submission.id).limit(1).with_for_update(skip_locked=True))
             if submission_id is None:
                 return None
             now = utcnow()

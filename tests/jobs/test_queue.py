@@ -172,3 +172,20 @@ def test_a_new_submission_wakes_idle_workers(database, setup):
     _submit(database, setup)
     thread.join(5.0)
     assert woke.is_set()
+
+
+@pytest.mark.postgresql_only
+def test_a_claim_skips_a_row_another_transaction_has_locked(database, setup):
+    # PostgreSQL: FOR UPDATE SKIP LOCKED lets a worker take the next row at once instead of waiting
+    # for (or colliding with) another process's claim. SQLite serialises writers: nothing to skip.
+    first, _ = _submit(database, setup, text="1*g*m")
+    second, _ = _submit(database, setup, text="2*g*m")
+    holder = database.writer()
+    try:
+        holder.execute(select(Submission.id).where(Submission.id == first).with_for_update())
+        task = queue.claim(database, "w1")
+        assert task is not None and task.submission_id == second
+    finally:
+        holder.rollback()
+        holder.close()
+    assert queue.claim(database, "w2").submission_id == first  # free again once the lock is gone

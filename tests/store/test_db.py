@@ -14,12 +14,14 @@ def _sqlite_path(url: str) -> str:
     return url.removeprefix("sqlite:///")
 
 
+@pytest.mark.sqlite_only
 @pytest.mark.parametrize("pragma, expected", [("journal_mode", "wal"), ("foreign_keys", 1), ("busy_timeout", 30000)])
 def test_every_connection_is_configured(database, pragma, expected):
     with database.read() as session:
         assert session.execute(text(f"PRAGMA {pragma}")).scalar() == expected
 
 
+@pytest.mark.sqlite_only
 def test_a_writer_holds_the_write_lock_from_its_first_statement(database, database_url):
     other = sqlite3.connect(_sqlite_path(database_url), timeout=0, isolation_level=None)
     with database.writer() as session:
@@ -31,6 +33,7 @@ def test_a_writer_holds_the_write_lock_from_its_first_statement(database, databa
     other.close()
 
 
+@pytest.mark.sqlite_only
 def test_a_reader_does_not_block_writers(database, database_url):
     other = sqlite3.connect(_sqlite_path(database_url), timeout=0, isolation_level=None)
     with database.reader() as session:
