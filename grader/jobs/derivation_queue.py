@@ -81,10 +81,12 @@ def enqueue(db: Database, *, requester_id: int, source: str, filename: str = "up
     """Store the scene ``source`` as a ``queued`` job; returns its id.
 
     Raises :class:`TooManyDerivations` when the requester has ``max_active`` jobs queued or running.
-    The count and the insert share one write transaction, so concurrent uploads cannot both slip
-    under the limit.
+    The count and the insert share one write transaction, serialized per requester (SQLite has one
+    writer at a time; elsewhere the requester's row is locked), so concurrent uploads cannot both
+    slip under the limit.
     """
     with db.write() as session:
+        session.execute(select(User.id).where(User.id == requester_id).with_for_update())
         active = session.scalar(select(func.count()).select_from(DerivationJob)
                                 .where(DerivationJob.requester_id == requester_id, DerivationJob.status.in_(ACTIVE)))
         if active >= max_active:

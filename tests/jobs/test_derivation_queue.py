@@ -138,3 +138,22 @@ def test_jobs_are_claimed_oldest_first(database, people):
     assert [queue.claim(database, "w", lease_s=60).job_id for _ in ids] == ids
     with database.read() as session:
         assert set(session.scalars(select(DerivationJob.status))) == {"running"}
+
+
+def test_concurrent_uploads_of_one_requester_cannot_slip_past_the_limit(database, people):
+    import threading
+
+    accepted, refused = [], []
+
+    def upload():
+        try:
+            accepted.append(queue.enqueue(database, requester_id=people["ine"], source=SOURCE, max_active=2))
+        except queue.TooManyDerivations:
+            refused.append(True)
+
+    threads = [threading.Thread(target=upload) for _ in range(8)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert (len(accepted), len(refused)) == (2, 6)
