@@ -16,6 +16,7 @@ from grader.jobs.derivation_queue import MAX_ACTIVE_PER_REQUESTER
 from grader.jobs.grading import CHECK_BUDGET_S, CheckerPool, sandbox_checker
 from grader.store.db import db, default_url
 from grader.web import errors, headers, security
+from grader.web.converters import IdConverter
 
 __all__ = ["create_app"]
 
@@ -27,6 +28,7 @@ def create_app(test_config: dict | None = None) -> Flask:
     """Make the app. Settings: ``test_config``, else ``LAGRADE_*`` environment variables
     (``LAGRADE_HTTPS=true``...), else the defaults below; ``DATABASE_URL`` as usual."""
     app = Flask(__name__, instance_path=str(Path.cwd() / "instance"))
+    app.url_map.converters["int"] = IdConverter  # ids in URLs stay within the database's integers
     app.config.from_mapping(
         DATABASE_URL=None,
         SESSION_COOKIE_HTTPONLY=True,

@@ -268,3 +268,26 @@ def test_invalid_checks_are_charged_too(limited, make_token):
     _, student = make_token("student")
     statuses = _statuses(client, student, {"reference": "m"}, 21)
     assert statuses[:20] == [422] * 20 and statuses[20] == 429
+
+
+def _int_routes(app):
+    for rule in app.url_map.iter_rules():
+        if "<int:" in rule.rule and "GET" in rule.methods:
+            yield rule.rule
+
+
+@pytest.mark.parametrize("value", ["2147483648", "9" * 30])
+def test_an_id_beyond_the_databases_integers_is_404_in_every_route(app, client, make_token, value):
+    # Ids are 32-bit INTEGER columns on PostgreSQL; a larger one used to reach the database (a 500).
+    _, admin = make_token("admin")
+    routes = list(_int_routes(app))
+    assert any(r.startswith("/api/") for r in routes) and any(not r.startswith("/api/") for r in routes)
+    for rule in routes:
+        url = re.sub(r"<int:\w+>", value, re.sub(r"<\w+>", "yoyo", rule))
+        assert client.get(url, headers=admin).status_code == 404, url
+
+
+def test_a_slug_longer_than_any_stored_one_is_404(client, make_token):
+    _, student = make_token("student")
+    response = client.get("/api/v1/problems/" + "p" * 101, headers=student)
+    assert response.status_code == 404 and response.mimetype == "application/problem+json"

@@ -17,15 +17,15 @@ from typing import Any, Callable
 from flask import Blueprint, g
 
 from grader.web.api.bodies import LIMITS_TEXT, validated_body
+from grader.web.converters import MAX_ID
 from grader.web.errors import ApiProblem
 from grader.web.security import api_user, limiter
 
 __all__ = ["ApiSpec", "Operation"]
 
 _CONVERTER = re.compile(r"<(?:(\w+):)?(\w+)>")
-# Path parameters. Ids are INTEGER columns, 32-bit on PostgreSQL: a larger one names nothing (404)
-# and must not reach the database (PostgreSQL: "integer out of range"; SQLite: OverflowError).
-MAX_ID = 2**31 - 1
+# Path parameters, as documented and enforced: ids by the app's `int` converter (converters.py),
+# slugs below. Either out of range names nothing: 404, before any query.
 MAX_SLUG_CHARS = 100  # problems.slug is String(100)
 _TYPES = {"int": {"type": "integer", "format": "int32", "minimum": 0, "maximum": MAX_ID},
           "string": {"type": "string", "maxLength": MAX_SLUG_CHARS},
@@ -174,13 +174,11 @@ class ApiSpec:
 
 
 def _check_path(op: Operation, values: dict[str, Any]) -> None:
-    """Path parameters outside their documented range name no resource: 404, before any query."""
-    for converter, name in _CONVERTER.findall(op.rule):
-        schema, value = _TYPES.get(converter, _TYPES[None]), values.get(name)
-        too_big = isinstance(value, int) and not schema["minimum"] <= value <= schema["maximum"]
-        too_long = isinstance(value, str) and len(value) > schema["maxLength"]
-        if too_big or too_long:
-            raise ApiProblem(404, f"There is no such resource ({name} is out of range).", kind="not-found")
+    """A slug longer than any stored one names no resource: 404, before any query."""
+    for name, value in values.items():
+        if isinstance(value, str) and len(value) > MAX_SLUG_CHARS:
+            raise ApiProblem(404, f"There is no such resource ({name} is longer than {MAX_SLUG_CHARS} characters).",
+                             kind="not-found")
 
 
 def _check_parameter(parameter: dict, value: str) -> None:
