@@ -109,3 +109,18 @@ def test_the_misspelt_key_that_used_to_change_the_answer_is_refused():
     text = edited(SPHERE, 'in_terms_of = ["m", "g", "theta"]', 'in_term_of = ["m", "g", "theta"]')
     with pytest.raises(SceneError, match="did you mean 'in_terms_of'"):
         parse_scene(text, source="sphere.toml")
+
+
+@pytest.mark.parametrize("schema_path, column", [
+    (("properties", "title"), "problem_versions.title"),
+    (("properties", "id"), "problems.slug"),
+    (("properties", "answers", "items", "properties", "name"), "submissions.answer_name"),
+])
+def test_scene_lengths_fit_the_database_columns_they_are_stored_in(schema_path, column):
+    from grader.store.models import Base
+
+    schema = SCENE_SCHEMA
+    for key in schema_path:
+        schema = schema[key]
+    table, name = column.split(".")
+    assert schema["maxLength"] <= Base.metadata.tables[table].c[name].type.length

@@ -3,7 +3,8 @@
 Every string and list in a request has a limit here (``maxLength``, ``maxItems``, ``maxProperties``,
 ``minimum``/``maximum``, ``pattern``); the route registry (:mod:`grader.web.api.spec`) validates
 each JSON body against its schema with ``jsonschema`` before the view runs (:mod:`.bodies`), so
-what the document says is what the server checks. Lengths match the database's columns.
+what the document says is what the server checks. Lengths of stored fields are read from the
+database's columns (:mod:`grader.store.models`), so the two cannot drift apart.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from flask import g
 
 from grader.answers.verdict import CERTAINTIES, VERDICTS
 from grader.jobs.queue import MAX_ANSWER_CHARS
+from grader.store.models import Submission, User
 from grader.web.api.bodies import validated_body
 
 __all__ = ["CHECK_REQUEST", "CHECK_RESULT", "SUBMISSION_REQUEST", "check_cost", "read_json"]
@@ -110,10 +112,10 @@ SUBMISSION_REQUEST = {
     "required": ["answer", "text"],
     "additionalProperties": False,
     "properties": {
-        "answer": {"type": "string", "maxLength": 64, "pattern": NAME_PATTERN,
+        "answer": {"type": "string", "maxLength": Submission.__table__.c.answer_name.type.length, "pattern": NAME_PATTERN,
                    "description": "The name of the problem's answer."},
         "text": {"type": "string", "maxLength": MAX_ANSWER_CHARS, "description": "The student's answer."},
-        "user": {"type": "string", "minLength": 1, "maxLength": 200,
+        "user": {"type": "string", "minLength": 1, "maxLength": User.__table__.c.external_id.type.length,
                  "description": "LMS tokens only: the external id of the student this is for."},
     },
 }

@@ -16,6 +16,7 @@ from typing import Any, Callable
 
 from flask import Blueprint, g
 
+from grader.store.models import Problem
 from grader.web.api.bodies import LIMITS_TEXT, validated_body
 from grader.web.converters import MAX_ID
 from grader.web.errors import ApiProblem
@@ -26,7 +27,7 @@ __all__ = ["ApiSpec", "Operation"]
 _CONVERTER = re.compile(r"<(?:(\w+):)?(\w+)>")
 # Path parameters, as documented and enforced: ids by the app's `int` converter (converters.py),
 # slugs below. Either out of range names nothing: 404, before any query.
-MAX_SLUG_CHARS = 100  # problems.slug is String(100)
+MAX_SLUG_CHARS = Problem.__table__.c.slug.type.length
 _TYPES = {"int": {"type": "integer", "format": "int32", "minimum": 0, "maximum": MAX_ID},
           "string": {"type": "string", "maxLength": MAX_SLUG_CHARS},
           None: {"type": "string", "maxLength": MAX_SLUG_CHARS}}
