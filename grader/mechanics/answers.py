@@ -113,30 +113,94 @@ class AnswerEvaluator:
         return expr
 
     def eliminate_velocities(self, expr: sympy.Expr, target: set[sympy.Symbol], key: str) -> sympy.Expr:
-        """Remove a velocity that target excludes with the conserved Jacobi integral (energy)."""
+        """Remove velocities that target excludes with the first integrals of the motion.
+
+        First the conserved momenta p_c = ∂L_r/∂u̇_c of cyclic coordinates (∂L_r/∂u_c = 0), all
+        at once (they are linear in the velocities), then the Jacobi integral h (energy) for one
+        velocity more: u̇² from h = h(initial), or u̇ itself, as ±√, where the motion from
+        [initial] fixes the sign.
+        """
         extra = [u for u in self.reduction.independent.values()
                  if u.dot in expr.free_symbols and u.dot not in target]
         if not extra:
             return expr
+        momenta = self.momentum_substitution(target, key)
+        if momenta:
+            expr = human_form(sympy.expand(expr.xreplace(momenta)))
+            extra = [u for u in extra if u.dot in expr.free_symbols]
+            if not extra:
+                return expr
         if len(extra) > 1:
+            cyclic = ", ".join(u.name for u in self.cyclic_coordinates()) or "none"
             raise SceneError(self.scene.source, key,
-                             "energy conservation removes one velocity, but "
-                             f"{', '.join(u.dot.name for u in extra)} all remain")
+                             f"{', '.join(u.dot.name for u in extra)} all remain: energy removes one velocity "
+                             f"and each conserved momentum one more (cyclic coordinates: {cyclic}); add the "
+                             "others to in_terms_of")
         u = extra[0]
-        squared = self.velocity_squared(u, key)
+        squared = self.velocity_squared(u, key, momenta)
         expr = sympy.expand(expr)
         expr = expr.replace(
             lambda e: e.is_Pow and e.base == u.dot and e.exp.is_Integer and e.exp % 2 == 0,
             lambda e: squared ** (e.exp // 2),
         )
         if u.dot in expr.free_symbols:
-            raise SceneError(self.scene.source, key,
-                             f"{u.dot.name} appears to an odd power, so its sign is not fixed by energy "
-                             "conservation; add it to in_terms_of")
+            sign = self.motion_sign(u)
+            if sign is None:
+                raise SceneError(self.scene.source, key,
+                                 f"{u.dot.name} appears to an odd power, so its sign is not fixed by energy "
+                                 "conservation and the motion from [initial] does not fix it either; add it "
+                                 "to in_terms_of")
+            # Until the first turning point, u̇ keeps the sign it starts with (or, from rest,
+            # the sign of the initial acceleration).
+            expr = expr.xreplace({u.dot: sign * sympy.sqrt(squared)})
         return human_form(expr)
 
-    def velocity_squared(self, u, key: str) -> sympy.Expr:
-        """u̇² from h(u, u̇) = h(initial)."""
+    def cyclic_coordinates(self) -> list:
+        """Independent coordinates the reduced Lagrangian does not depend on."""
+        L = self.reduction.lagrangian
+        return [u for u in self.reduction.independent.values()
+                if u.symbol not in L.free_symbols and u.dot in L.free_symbols]
+
+    def momentum_substitution(self, target: set[sympy.Symbol], key: str) -> dict:
+        """Velocities of cyclic coordinates (not in target) from their conserved momenta."""
+        equations, unknowns = [], []
+        for u in self.cyclic_coordinates():
+            if u.dot in target:
+                continue
+            p = sympy.diff(self.reduction.lagrangian, u.dot)
+            p0 = self.reduction.initial_value(p)
+            if p0 is None:
+                continue
+            equations.append(p - p0)
+            unknowns.append(u.dot)
+        if not equations:
+            return {}
+        solution = sympy.solve(equations, unknowns, dict=True)
+        if len(solution) != 1:
+            return {}
+        return {v: human_form(e) for v, e in solution[0].items()}
+
+    def motion_sign(self, u) -> int | None:
+        """The sign of u̇ at the start of the motion from [initial], if [initial] fixes it."""
+        from grader.mechanics.special_values import _parameter_points
+
+        velocity = self.scene.initial.get(u.dot.name)
+        candidate = velocity
+        if velocity is None or velocity == 0:
+            acceleration = self.reduction.initial_value(self.reduction.accelerations[u.ddot])
+            candidate = acceleration
+        if candidate is None:
+            return None
+        signs = set()
+        for point in _parameter_points(self.scene):
+            value = complex(sympy.N(candidate.xreplace({s: sympy.Float(v, 30) for s, v in point.items()})))
+            if abs(value.imag) > 1e-12 or value.real == 0:
+                return None
+            signs.add(1 if value.real > 0 else -1)
+        return signs.pop() if len(signs) == 1 else None
+
+    def velocity_squared(self, u, key: str, momenta: dict | None = None) -> sympy.Expr:
+        """u̇² from h(u, u̇) = h(initial), with conserved momenta substituted first."""
         h = self.reduction.jacobi_integral()
         if h is None:
             raise SceneError(self.scene.source, key,
@@ -148,6 +212,8 @@ class AnswerEvaluator:
             raise SceneError(self.scene.source, key,
                              f"{u.dot.name} is eliminated with energy conservation, which needs [initial] "
                              f"values for {names}")
+        if momenta:
+            h = sympy.expand(h.xreplace(momenta))
         poly = sympy.Poly(h, u.dot)
         if poly.degree() != 2 or poly.coeff_monomial(u.dot) != 0:
             raise SceneError(self.scene.source, key,

@@ -547,8 +547,13 @@ class _SceneReader:
             source_expr = self.string(spec, "expr", key)
             expr = self.expression(f"{key}.expr", source_expr, namespace)
             kind = spec.get("kind", "expression")
-            if kind not in ("expression", "equation"):
-                raise self.fail(f"{key}.kind", "must be \"expression\" or \"equation\"")
+            if kind not in ("expression", "equation", "small_oscillation"):
+                raise self.fail(f"{key}.kind", "must be \"expression\", \"equation\" or \"small_oscillation\"")
+            if kind == "small_oscillation" and (spec.get("where") is None
+                                                or expr not in {v.symbol for v in self.variables
+                                                                if v.kind == "coordinate"}):
+                raise self.fail(f"{key}.kind", "a small_oscillation answer names the oscillating coordinate "
+                                               "in expr and its equilibrium in where")
             in_terms_of = spec.get("in_terms_of")
             if in_terms_of is not None:
                 if not isinstance(in_terms_of, list) or not all(isinstance(n, str) for n in in_terms_of):
@@ -561,6 +566,8 @@ class _SceneReader:
             if spec.get("dimension") is not None:
                 dimension = self.dimension(f"{key}.dimension", spec["dimension"])
             inferred = self.dimension_of(f"{key}.expr", expr)
+            if kind == "small_oscillation":
+                inferred = parse_dimension("frequency")  # the angular frequency of the oscillation
             if dimension is not None and inferred != dimension:
                 raise self.fail(f"{key}.dimension", f"the expression is {inferred.describe()}, "
                                                     f"not {dimension.describe()}")

@@ -95,7 +95,6 @@ SCENE_SCHEMA: dict[str, Any] = {
                 "mu_s": _NUMBER_OR_EXPRESSION,  # rolling: static friction coefficient
                 "mu_k": _NUMBER_OR_EXPRESSION,  # rolling: kinetic friction coefficient
                 "normal": _string(MAX_NAME_CHARS),  # rolling: the constraint giving the normal force
-                "normal": _string(MAX_NAME_CHARS),  # rolling: the constraint giving the normal force
             },
         }),
         # coordinate or velocity name = number or expression in parameters
@@ -122,7 +121,7 @@ SCENE_SCHEMA: dict[str, Any] = {
                 "name": _string(MAX_NAME_CHARS),
                 "prompt": _string(MAX_TEXT_CHARS),
                 "expr": _EXPRESSION,
-                "kind": {"enum": ["expression", "equation"]},
+                "kind": {"enum": ["expression", "equation", "small_oscillation"]},
                 "in_terms_of": {"type": "array", "maxItems": MAX_ITEMS, "items": _string(MAX_NAME_CHARS)},
                 "dimension": _DIMENSION,
                 "where": _string(MAX_EXPRESSION_CHARS, description='a condition such as "normal_force = 0"'),

@@ -1,14 +1,31 @@
-"""Special values: an answer at the configuration where a condition holds.
+"""Special values: an answer where a condition holds.
 
-``where = "normal_force = 0"`` asks for the configuration u* where the body leaves the sphere. The
-condition, after the engine has expressed it in one independent coordinate u (velocities removed
-with energy conservation), may have many roots (cos θ = 2/3 holds at ±48.19° and again after a
-turn); the one asked for is the first that the motion from ``[initial]`` reaches. So we follow the
-motion numerically: scan from u0 in the direction it moves (that of u̇0, else of ü0, else +, the
-direction of an infinitesimal push away from an unstable equilibrium), stopping where the energy no
-longer allows motion, and take the first sign change. The closed form is then chosen among sympy's
-symbolic roots (and their periodic images) as the one equal to that numeric root, checked at two
-parameter points so that a coincidence cannot pick the wrong branch.
+``where = "lhs = rhs"`` names a condition. After the engine has expressed it in the independent
+variables (accelerations and multipliers solved, and if needed velocities removed with the first
+integrals), it must leave exactly one **unknown**: a symbol that the answer's ``in_terms_of``
+(default: the parameters) does not allow. The unknown may be
+
+- a coordinate: the body leaves the sphere where N(θ) = 0, the ladder leaves the wall;
+- a velocity: a steady circular orbit, r̈ = 0 solved for φ̇ as a function of r;
+- a parameter: a threshold, such as the least launch speed v₀ for which the normal force at the top
+  of a loop is zero.
+
+The condition is solved **algebraically** first, under a time budget (a condition in sin θ alone is
+solved as a polynomial in S = sin θ, which is instant where a direct solve can hang), and the
+roots are kept where they are real and inside the unknown's domain, at two parameter points. Then:
+
+- for a coordinate that ``[initial]`` gives, the motion from there decides (even between roots
+  where the answer has the same value, since the motion may turn back before any of them): it moves in the direction of u̇₀ (else
+  of ü₀, else +, an infinitesimal push away from an unstable equilibrium) until energy turns it
+  back, then the other way until it turns back again; the first root on that path is the one
+  reached. Periodic images of an angle are followed turn after turn: there is no fixed range;
+- for a velocity, the sign the motion from ``[initial]`` gives it decides;
+- otherwise, if the answer has the same value at every root (cos θ = 2/3 at θ = ±48.19°), that
+  value is the answer; if not, the roots are named and the file is refused.
+
+``kind = "small_oscillation"`` gives the angular frequency of small oscillations of the coordinate
+in ``expr`` about the equilibrium ``where`` names: ω² = −∂ü/∂u at rest at the equilibrium, by
+linearising the solved equation of motion (no division by sin θ).
 
 Examples
 --------
@@ -26,68 +43,208 @@ import numpy
 import sympy
 from scipy.optimize import brentq
 
+from grader.mechanics import budget
 from grader.mechanics.scene import AnswerSpec, SceneError
 from grader.mechanics.simplification import human_form
 
-__all__ = ["special_value"]
+__all__ = ["special_value", "solve_for"]
 
+_SOLVE_BUDGET_S = 3.0
 _SCAN_STEPS = 4000
+_TRIG = (sympy.sin, sympy.cos, sympy.tan)
 
 
 def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
-    """Closed form of ``spec.expr`` where ``spec.where`` holds, on the motion from [initial]."""
+    """Closed form of ``spec.expr`` where ``spec.where`` holds (see the module notes)."""
     scene = evaluator.scene
     key = f"answers ({spec.name}).where"
-    params = evaluator.parameters
-    lhs, rhs = spec.where
-    condition = evaluator.reduce(lhs - rhs, params | evaluator.state_symbols(velocities=False), key)
-    coordinates = [u for u in evaluator.reduction.independent.values() if u.symbol in condition.free_symbols]
-    if len(coordinates) != 1:
-        raise SceneError(scene.source, key,
-                         "the condition must fix one coordinate; after eliminating velocities it depends on "
-                         f"{', '.join(u.name for u in coordinates) or 'no coordinate'}")
-    u = coordinates[0]
-    points = _parameter_points(scene)
-    # Follow the motion first: "never reached" is the more useful message when both fail.
-    numeric_roots = [_first_root_on_motion(evaluator, condition, u, point, key) for point in points]
-    roots = _symbolic_roots(condition, u, scene.source, key)
-    chosen = None
-    for point, numeric_root in zip(points, numeric_roots):
-        match = [r for r in roots if _close(r, numeric_root, point)]
-        if not match:
-            raise SceneError(scene.source, key,
-                             f"the motion reaches {u.name} = {numeric_root:.12g} where the condition holds, "
-                             "but the engine found no closed form for that root")
-        if chosen is None:
-            chosen = match[0]
-        elif not _close(chosen, numeric_root, point):
-            raise SceneError(scene.source, key, "the root reached depends on the parameter values")
-    target = evaluator.target(spec, default_state=False) | {u.symbol}
-    value = evaluator.reduce(spec.expr, target, f"answers ({spec.name}).expr")
-    value = human_form(value.xreplace({u.symbol: chosen}))
-    leftover = value.free_symbols - evaluator.target(spec, default_state=False)
+    target = evaluator.target(spec, default_state=False)
+    with budget.step("reducing the condition", spec.name):
+        condition, unknown = _condition(evaluator, spec, target, key)
+    with budget.step(f"solving the condition for {unknown}", spec.name):
+        roots = solve_for(condition, unknown, scene.source, key)
+    with budget.step("evaluating the answer at the roots", spec.name):
+        if spec.kind == "small_oscillation":
+            value = _stiffness(evaluator, spec, key)
+        else:
+            value = evaluator.reduce(spec.expr, target | {unknown}, f"answers ({spec.name}).expr")
+        chosen = _choose_root(evaluator, spec, condition, unknown, roots, value, key)
+        result = human_form(value.xreplace({unknown: chosen}))
+        if spec.kind == "small_oscillation":
+            _check_stable(scene, spec, result)
+            result = human_form(sympy.sqrt(result))
+    leftover = result.free_symbols - target
     if leftover:
         raise SceneError(scene.source, f"answers ({spec.name})",
                          f"at the special point it still depends on {', '.join(sorted(map(str, leftover)))}")
-    return value
+    return result
 
 
-def _symbolic_roots(condition: sympy.Expr, u, source: str, key: str) -> list[sympy.Expr]:
-    try:
-        roots = sympy.solve(condition, u.symbol)
-    except NotImplementedError:
-        roots = []
+# -- the condition --------------------------------------------------------------------------------
+def _condition(evaluator, spec, target: set, key: str) -> tuple[sympy.Expr, sympy.Symbol]:
+    """The condition in the independent variables, and its one unknown."""
+    scene = evaluator.scene
+    lhs, rhs = spec.where
+    everything = evaluator.parameters | evaluator.state_symbols() | {scene.time}
+    expr = lhs - rhs
+    if spec.kind == "small_oscillation":
+        # An equilibrium: at rest.
+        expr = expr.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
+        expr = expr.xreplace({c.dot: 0 for c in scene.coordinates.values()})
+    attempts = [everything, target | evaluator.parameters | evaluator.state_symbols(velocities=False)]
+    found = []
+    for allowed in attempts:
+        try:
+            condition = evaluator.reduce(expr, allowed, key)
+        except SceneError:
+            continue
+        if spec.kind == "small_oscillation":
+            condition = condition.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
+        unknowns = sorted(condition.free_symbols - target, key=str)
+        if len(unknowns) == 1:
+            return sympy.numer(sympy.together(condition)), unknowns[0]
+        found.append(unknowns)
+    names = ", ".join(str(s) for s in (found[-1] if found else [])) or "nothing"
+    raise SceneError(scene.source, key,
+                     f"the condition must leave exactly one unknown that in_terms_of does not allow; it "
+                     f"leaves {names}")
+
+
+def solve_for(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> list[sympy.Expr]:
+    """Closed-form roots of ``condition = 0`` in ``x``, under a time budget.
+
+    A condition in which x appears only through one of sin x, cos x, tan x is solved as a
+    polynomial in that function (S = sin θ), and the roots mapped back.
+
+    >>> theta, a = sympy.symbols("theta a", positive=True)
+    >>> solve_for(3*sympy.cos(theta) - 2, theta, "f.toml", "k")
+    [acos(2/3), -acos(2/3)]
+    """
+    S = sympy.Dummy("S")
+    for function in _TRIG:
+        substituted = condition.xreplace({function(x): S})
+        if substituted != condition and x not in substituted.free_symbols:
+            values = _budgeted_solve(substituted, S)
+            if values is None:
+                break
+            inverse = {sympy.sin: lambda v: [sympy.asin(v), sympy.pi - sympy.asin(v)],
+                       sympy.cos: lambda v: [sympy.acos(v), -sympy.acos(v)],
+                       sympy.tan: lambda v: [sympy.atan(v), sympy.atan(v) - sympy.pi]}[function]
+            roots = []
+            for v in values:
+                roots += [r for r in inverse(v) if r not in roots]
+            return roots
+    roots = _budgeted_solve(condition, x)
+    if roots is None:
+        raise SceneError(source, key, f"solving the condition for {x} ran out of its {_SOLVE_BUDGET_S:g} s "
+                                      "budget; write the condition in a simpler form")
+    return roots
+
+
+def _budgeted_solve(expr: sympy.Expr, x) -> list[sympy.Expr] | None:
+    def solve():
+        try:
+            return list(sympy.solve(expr, x))
+        except NotImplementedError:
+            return []
+
+    return budget.attempt(solve, _SOLVE_BUDGET_S, fallback=lambda: None)
+
+
+# -- choosing among roots ---------------------------------------------------------------------------
+def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> sympy.Expr:
+    scene = evaluator.scene
+    variable = _variable(evaluator, x)
     if not roots:
-        raise SceneError(source, key, f"no solution for {u.name} in closed form")
-    periodic = any(isinstance(f, (sympy.sin, sympy.cos, sympy.tan)) for f in condition.atoms(sympy.Function))
-    candidates = []
-    for r in roots:
-        images = [r]
-        if periodic:
-            images += [-r, sympy.pi - r]
-            images += [i + k * 2 * sympy.pi for i in list(images) for k in (-1, 1)]
-        candidates += images
-    return candidates
+        raise SceneError(scene.source, key, f"the condition has no solution for {x} in closed form")
+    chosen_index = None
+    for point in _parameter_points(scene):
+        numeric = _numeric_roots(roots, point, variable)
+        if not numeric:
+            raise SceneError(scene.source, key,
+                             f"the condition has no real root for {x} anywhere in its domain (closed forms: "
+                             f"{', '.join(sympy.sstr(r) for r in roots)})")
+        values = {}
+        for index, r in numeric.items():
+            v = _evaluate(value.xreplace({x: roots[index]}), point)
+            if v is not None:
+                values[index] = v
+        groups = _groups(values)
+        if variable is not None and variable[0] == "coordinate" and variable[1].name in scene.initial:
+            # Even a single root must be reached: the motion may turn back before it.
+            index = _first_reached(evaluator, variable[1], condition, numeric, point, key)
+        elif len(groups) == 1:
+            index = min(groups[0])
+        elif variable is not None and variable[0] == "velocity":
+            sign = evaluator.motion_sign(variable[1])
+            matching = [i for i, r in numeric.items() if sign is not None and r * sign > 0]
+            if sign is None or len({min(g) for g in groups for i in matching if i in g}) != 1:
+                raise SceneError(scene.source, key, _ambiguous(x, roots, numeric))
+            index = matching[0]
+        else:
+            raise SceneError(scene.source, key, _ambiguous(x, roots, numeric))
+        group = next(g for g in groups if index in g) if index in values else {index}
+        if chosen_index is None:
+            chosen_index = index
+        elif chosen_index not in group:
+            raise SceneError(scene.source, key, "which root holds depends on the parameter values")
+    return roots[chosen_index]
+
+
+def _ambiguous(x, roots, numeric) -> str:
+    listed = ", ".join(sympy.sstr(roots[i]) for i in sorted(numeric))
+    return (f"the condition has several roots for {x} with different answers ({listed}); narrow the domain "
+            "of the unknown or give [initial] so that the motion decides")
+
+
+def _variable(evaluator, x):
+    for u in evaluator.reduction.independent.values():
+        if x == u.symbol:
+            return ("coordinate", u)
+        if x == u.dot:
+            return ("velocity", u)
+    for p in evaluator.scene.parameters.values():
+        if x == p.symbol:
+            return ("parameter", p)
+    return None
+
+
+def _numeric_roots(roots, point, variable) -> dict[int, float]:
+    """Real roots inside the unknown's domain, as numbers at ``point``."""
+    result = {}
+    for i, r in enumerate(roots):
+        v = _evaluate(r, point)
+        if v is None:
+            continue
+        if variable is not None and variable[0] in ("coordinate", "parameter") and not variable[1].domain.contains(v):
+            periodic = variable[0] == "coordinate" and variable[1].dimension.is_dimensionless
+            images = [v + 2 * math.pi * k for k in (-1, 1)] if periodic else []
+            if not any(variable[1].domain.contains(w) for w in images):
+                continue
+        result[i] = v
+    return result
+
+
+def _groups(values: dict[int, float]) -> list[set[int]]:
+    groups: list[tuple[float, set[int]]] = []
+    for i, v in values.items():
+        for value, members in groups:
+            if abs(value - v) <= 1e-9 * max(1.0, abs(v)):
+                members.add(i)
+                break
+        else:
+            groups.append((v, {i}))
+    return [members for _, members in groups]
+
+
+def _evaluate(expr: sympy.Expr, point: dict) -> float | None:
+    try:
+        value = complex(sympy.N(expr.xreplace({s: sympy.Float(v, 30) for s, v in point.items()}), 30))
+    except (TypeError, ValueError):
+        return None
+    if not math.isfinite(value.real) or abs(value.imag) > 1e-12 * max(1.0, abs(value.real)):
+        return None
+    return value.real
 
 
 def _parameter_points(scene) -> list[dict]:
@@ -103,58 +260,106 @@ def _parameter_points(scene) -> list[dict]:
     return [base, other]
 
 
-def _close(candidate: sympy.Expr, root: float, point: dict) -> bool:
-    try:
-        value = complex(candidate.evalf(30, subs=point))
-    except (TypeError, ValueError):
-        return False
-    return abs(value.imag) < 1e-12 and abs(value.real - root) <= 1e-8 * max(1.0, abs(root))
-
-
-def _first_root_on_motion(evaluator, condition, u, point: dict, key: str) -> float:
+# -- following the motion ----------------------------------------------------------------------------
+def _first_reached(evaluator, u, condition, numeric: dict[int, float], point: dict, key: str) -> int:
+    """Which root the motion from [initial] reaches first (see the module notes)."""
     scene = evaluator.scene
-    reduction = evaluator.reduction
-    initial = {n: v for n, v in scene.initial.items()}
-    if u.name not in initial:
-        raise SceneError(scene.source, key, f"a special value follows the motion from [initial]; give {u.name}")
-    u0 = float(initial[u.name].evalf(30, subs=point))
-    g = _numeric(condition.xreplace({s: sympy.Float(v, 30) for s, v in point.items()}), u.symbol)
-    speed2 = None
-    if reduction.jacobi_integral() is not None and reduction.initial_value(reduction.jacobi_integral()) is not None:
-        squared = evaluator.velocity_squared(u, key)
-        speed2 = _numeric(squared.xreplace({s: sympy.Float(v, 30) for s, v in point.items()}), u.symbol)
-    direction = _direction(evaluator, u, initial, point)
-    span = 2 * math.pi if u.dimension.is_dimensionless else 10 * max(
-        [abs(float(v)) for v in point.values()] + [1.0])
-    step = direction * span / _SCAN_STEPS
-    previous_u, previous = u0, g(u0)
-    for k in range(1, _SCAN_STEPS + 1):
-        current_u = u0 + k * step
-        if not u.domain.contains(current_u):
-            break
-        if speed2 is not None and k > 1 and speed2(current_u) < 0:
-            break  # the motion turns back before this point
-        current = g(current_u)
-        if math.isfinite(previous) and math.isfinite(current):
-            if previous == 0 and k > 1:
-                return previous_u
-            if previous * current < 0:
-                return brentq(g, min(previous_u, current_u), max(previous_u, current_u), xtol=1e-15, rtol=1e-15)
-        previous_u, previous = current_u, current
+    u0 = float(sympy.N(scene.initial[u.name].xreplace({s: sympy.Float(v, 30) for s, v in point.items()})))
+    direction = _direction(evaluator, u, point)
+    speed2 = _speed_squared(evaluator, u, point, key)
+    periodic = u.dimension.is_dimensionless and not _bounded(u)
+    path = []  # (start, direction, end or None, why it ends)
+    end, why = _travel(u, u0, direction, speed2)
+    path.append((direction, end, why))
+    if why == "turns back":
+        other_end, other_why = _travel(u, end, -direction, speed2, skip=True)
+        path.append((-direction, other_end, other_why))
+    best = None
+    start = u0
+    for leg, (d, stop, _) in enumerate(path):
+        for index, r in numeric.items():
+            images = [r] if not periodic else _images_ahead(r, start, d, stop)
+            for image in images:
+                distance = d * (image - start)
+                if distance < -1e-12 or (distance <= 1e-12 and leg == 0):
+                    continue  # behind (the start itself does not count: the motion leaves it)
+                if stop is not None and distance > d * (stop - start) + 1e-12:
+                    continue
+                if best is None or distance < best[0]:
+                    best = (distance, index)
+        if best is not None:
+            return best[1]
+        start = stop if stop is not None else start
+    stops = ", then ".join(f"{why} at {u.name} = {stop:.6g}" for _, stop, why in path if stop is not None)
+    roots = ", ".join(f"{u.name} = {r:.6g}" for r in numeric.values())
     raise SceneError(scene.source, key,
-                     f"the motion from [initial] never reaches a point where the condition holds "
-                     f"(scanned {u.name} in the direction of motion within its domain)")
+                     f"the motion from [initial] {stops or 'runs away'} before it reaches a root of the "
+                     f"condition ({roots})")
 
 
-def _direction(evaluator, u, initial: dict, point: dict) -> float:
+def _bounded(u) -> bool:
+    return u.domain.kind == "interval" and (u.domain.hi - u.domain.lo) < 2 * math.pi + 1e-3
+
+
+def _images_ahead(r: float, start: float, d: float, stop: float | None) -> list[float]:
+    """Periodic images r + 2πk ahead of ``start`` in direction ``d``, up to ``stop`` (or one turn)."""
+    k = math.floor(d * (r - start) / (2 * math.pi))
+    first = r - d * 2 * math.pi * k
+    images = [first - d * 2 * math.pi, first, first + d * 2 * math.pi]
+    return [i for i in images if stop is None or d * (i - stop) <= 1e-12]
+
+
+def _travel(u, u0: float, d: float, speed2, skip: bool = False) -> tuple[float | None, str]:
+    """Where the motion from u0 in direction d stops: a turning point, the domain's end, or None."""
+    limit = None
+    if u.domain.kind == "interval":
+        limit = u.domain.hi if d > 0 else u.domain.lo
+    if speed2 is None:
+        return (limit, "leaves the domain") if limit is not None else (None, "never turns back")
+    step = (2 * math.pi if u.dimension.is_dimensionless else max(abs(u0), 1.0)) / _SCAN_STEPS
+    x, previous = u0, speed2(u0)
+    # The scan has no fixed range: it goes on until the motion turns back or leaves the domain;
+    # the step grows with the distance so that a runaway motion costs O(log) steps.
+    for k in range(1, 200 * _SCAN_STEPS):
+        nxt = x + d * step * (1 + k // _SCAN_STEPS)
+        if limit is not None and d * (nxt - limit) > 0:
+            return limit, "leaves the domain"
+        value = speed2(nxt)
+        if math.isfinite(value) and value < 0 and (k > 1 or not skip):
+            if math.isfinite(previous) and previous >= 0:
+                return brentq(speed2, min(x, nxt), max(x, nxt), xtol=1e-14), "turns back"
+            return x, "turns back"
+        x, previous = nxt, value
+    return None, "never turns back"
+
+
+def _speed_squared(evaluator, u, point: dict, key: str):
+    reduction = evaluator.reduction
+    h = reduction.jacobi_integral()
+    if h is None or reduction.initial_value(h) is None:
+        return None
+    try:
+        squared = evaluator.velocity_squared(u, key, evaluator.momentum_substitution(set(), key))
+    except SceneError:
+        return None
+    if squared.free_symbols - set(point) - {u.symbol}:
+        return None
+    return _numeric(squared.xreplace({s: sympy.Float(v, 30) for s, v in point.items()}), u.symbol)
+
+
+def _direction(evaluator, u, point: dict) -> float:
+    initial = evaluator.scene.initial
     velocity = initial.get(u.dot.name)
-    if velocity is not None and float(velocity.evalf(subs=point)) != 0:
-        return math.copysign(1.0, float(velocity.evalf(subs=point)))
-    acceleration = evaluator.reduction.accelerations[u.ddot]
-    state = {u.symbol: initial[u.name], u.dot: velocity if velocity is not None else 0}
-    value = float(sympy.N(acceleration.xreplace(state).xreplace(
-        {s: sympy.Float(v, 30) for s, v in point.items()}).subs(evaluator.scene.time, 0)))
-    return math.copysign(1.0, value) if abs(value) > 1e-12 else 1.0
+    if velocity is not None:
+        v = _evaluate(velocity, point)
+        if v:
+            return math.copysign(1.0, v)
+    acceleration = evaluator.reduction.initial_value(evaluator.reduction.accelerations[u.ddot])
+    if acceleration is not None:
+        a = _evaluate(acceleration, point)
+        if a is not None and abs(a) > 1e-12:
+            return math.copysign(1.0, a)
+    return 1.0
 
 
 def _numeric(expr: sympy.Expr, symbol: sympy.Symbol):
@@ -171,3 +376,27 @@ def _numeric(expr: sympy.Expr, symbol: sympy.Symbol):
             return math.nan
 
     return call
+
+
+# -- small oscillations ------------------------------------------------------------------------------
+def _stiffness(evaluator, spec, key: str) -> sympy.Expr:
+    """ω² = −∂ü/∂u at rest, from the solved equation of motion (linearisation)."""
+    reduction = evaluator.reduction
+    u = next((v for v in reduction.independent.values() if v.symbol == spec.expr), None)
+    others = [v for v in reduction.independent.values() if v is not u]
+    if u is None or others:
+        raise SceneError(evaluator.scene.source, f"answers ({spec.name}).expr",
+                         "small oscillations are computed for one degree of freedom; expr must be the "
+                         "scene's one independent coordinate")
+    rest = {v.dot: 0 for v in reduction.independent.values()}
+    acceleration = reduction.accelerations[u.ddot]
+    return sympy.cancel(-sympy.diff(acceleration, u.symbol).xreplace(rest))
+
+
+def _check_stable(scene, spec, omega_squared: sympy.Expr) -> None:
+    for point in _parameter_points(scene):
+        value = _evaluate(omega_squared, point)
+        if value is not None and value < 0:
+            raise SceneError(scene.source, f"answers ({spec.name}).where",
+                             f"the equilibrium is unstable (ω² = {sympy.sstr(omega_squared)} < 0): there are no "
+                             "small oscillations about it")

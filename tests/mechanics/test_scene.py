@@ -10,6 +10,8 @@ import pytest
 from grader.mechanics.lagrange import derive
 from grader.mechanics.scene import SceneError, load_scene, parse_scene
 
+ROOT = Path(__file__).resolve().parents[2]
+
 SPHERE = (Path(__file__).resolve().parents[2] / "problems" / "sphere.toml").read_text()
 
 
@@ -70,9 +72,9 @@ def test_bad_scene_file_is_rejected_with_file_key_and_problem(text, key, problem
         # N(theta) needs g: without it in in_terms_of the engine cannot reach the answer.
         (broken('in_terms_of = ["m", "g", "theta"]', 'in_terms_of = ["m", "theta"]'),
          "answers (normal_force)", "still depends on g"),
-        # The normal force never reaches 10 m g on the motion from the top.
+        # The normal force is never 10 m g, anywhere (cos θ = 4 has no real root).
         (broken('where = "normal_force = 0"', 'where = "normal_force = 10*m*g"'),
-         "answers (separation_cos).where", "never reaches"),
+         "answers (separation_cos).where", "no real root for theta anywhere"),
         # Energy conservation needs the initial angular velocity.
         (broken('[initial]\ntheta = 0\nthetadot = 0', '[initial]\ntheta = 0'),
          "answers (normal_force)", "[initial]"),
@@ -85,6 +87,15 @@ def test_scene_the_engine_cannot_solve_gets_a_clear_error(text, key, problem):
         derive(parse_scene(text, source="upload.toml"))
     assert caught.value.key == key
     assert problem in str(caught.value)
+
+
+def test_a_root_the_motion_never_reaches_is_refused_saying_where_it_turns_back():
+    """Released from rest at θ₀ = 0.6, the pendulum turns back at θ = -0.6 before θ = -1."""
+    text = (ROOT / "problems" / "pendulum.toml").read_text()
+    assert 'where = "theta = 0"' in text
+    with pytest.raises(SceneError, match=r"turns back at theta = -0\.6, then turns back at theta = 0\.6 before it reaches") as caught:
+        derive(parse_scene(text.replace('where = "theta = 0"', 'where = "theta = -1"'), source="p.toml"))
+    assert caught.value.key == "answers (tension_lowest).where"
 
 
 def test_missing_file_is_a_scene_error(tmp_path):
