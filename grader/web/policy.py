@@ -67,6 +67,10 @@ from grader.store.problems import latest_version, problem_by_slug
 from grader.web.errors import ApiProblem, wants_problem_json
 
 __all__ = [
+    "API_ROLES",
+    "INSTRUCTOR_ROLES",
+    "PAGE_ROLES",
+    "STUDENT_ROLES",
     "Action",
     "Principal",
     "allowed",
@@ -102,8 +106,13 @@ class Action(str, enum.Enum):
 
 Resource = Union[Problem, ProblemVersion, Submission, DerivationJob, None]
 
+# The doors: which roles may call a kind of endpoint at all (``spec.route(roles=...)``,
+# ``login_required(...)``), before any resource is looked at.
+STUDENT_ROLES = frozenset({"student"})
 INSTRUCTOR_ROLES = frozenset({"instructor", "admin"})
-_ROLE_ONLY = {Action.CREATE: INSTRUCTOR_ROLES, Action.CHECK: frozenset({"student", "instructor", "admin", "lms"})}
+PAGE_ROLES = frozenset({"student", "instructor", "admin"})  # an "lms" account only uses the API
+API_ROLES = frozenset({"student", "instructor", "admin", "lms"})
+_ROLE_ONLY = {Action.CREATE: INSTRUCTOR_ROLES, Action.CHECK: API_ROLES}
 
 
 @dataclass(frozen=True)

@@ -6,10 +6,11 @@ from flask import current_app
 
 from grader.jobs.grading import CheckersBusy
 from grader.web.api import spec
+from grader.web.policy import API_ROLES
 from grader.web.api.schemas import CHECK_REQUEST, CHECK_RESULT, check_cost, read_json
 from grader.web.errors import ApiProblem
 
-ANY_ROLE = {"student", "instructor", "admin", "lms"}
+ANY_ROLE = API_ROLES
 
 
 @spec.route("/check", "POST", roles=ANY_ROLE, errors=(400, 413, 415, 422, 429, 503),

@@ -17,11 +17,11 @@ from grader.jobs.derivation_queue import queued_ahead
 from grader.store.db import db
 from grader.store.models import DerivationJob
 from grader.web.api import spec
-from grader.web.policy import current_principal, find_derivation
+from grader.web.policy import INSTRUCTOR_ROLES, current_principal, find_derivation
 
 __all__ = ["DERIVATION", "derivation_json"]
 
-INSTRUCTORS = {"instructor", "admin"}
+INSTRUCTORS = INSTRUCTOR_ROLES
 
 DERIVATION = spec.schema("Derivation", {"type": "object", "required": ["id", "status", "links"], "properties": {
     "id": {"type": "integer"},

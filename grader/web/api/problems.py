@@ -14,12 +14,12 @@ from grader.store.models import DerivationJob, ProblemVersion
 from grader.web.api import spec
 from grader.web.api.derivations import DERIVATION, derivation_json
 from grader.web.errors import ApiProblem
-from grader.web.policy import Action, allowed, current_principal, find_version, require_upload, visible_versions
+from grader.web.policy import (API_ROLES, INSTRUCTOR_ROLES, Action, allowed, current_principal, find_version,
+                               require_upload, visible_versions)
 
 __all__ = ["INSTRUCTORS", "problem_json", "visible_version"]
 
-INSTRUCTORS = {"instructor", "admin"}
-EVERYONE = {"student", "instructor", "admin", "lms"}
+INSTRUCTORS, EVERYONE = INSTRUCTOR_ROLES, API_ROLES
 MAX_SCENE_BYTES = 256 * 1024
 
 _ANSWER = {"type": "object", "properties": {

@@ -15,11 +15,9 @@ from flask import abort, g, redirect, request, session, url_for
 from grader.store.db import db
 from grader.store.models import User
 from grader.web.auth import bp
+from grader.web.policy import INSTRUCTOR_ROLES, PAGE_ROLES  # the role sets live in the access policy
 
 __all__ = ["INSTRUCTOR_ROLES", "home_for", "login_required", "sign_in", "sign_out"]
-
-INSTRUCTOR_ROLES = frozenset({"instructor", "admin"})
-PAGE_ROLES = frozenset({"student", "instructor", "admin"})  # "lms" accounts only use the API
 
 
 def _password_stamp(user: User) -> str:

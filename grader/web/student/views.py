@@ -22,12 +22,12 @@ from grader.web.auth.session import login_required
 from grader.web.errors import ApiProblem
 from grader.web.security import limiter
 from grader.web.student import bp
-from grader.web.policy import Action, current_principal, find_submission, find_version, visible_versions
+from grader.web.policy import STUDENT_ROLES, Action, current_principal, find_submission, find_version, visible_versions
 from grader.web.student.attempts import history
 from grader.web.student.preview import allowed_names, expected_dimension, preview
 from grader.web.student.verdicts import verdict_view
 
-STUDENTS = frozenset({"student"})
+STUDENTS = STUDENT_ROLES
 FIELD = "answer-"  # form field of answer NAME: "answer-NAME"
 
 
