@@ -23,11 +23,12 @@ BODIES = [{"answer": "tension", "text": a} for a in ANSWERS]
 
 
 @pytest.fixture
-def site(tmp_path):
-    """A working directory with the yo-yo problem and a database URL; servers started in it are killed after."""
+def site(tmp_path, database_url):
+    """A working directory with the yo-yo problem and a database URL (SQLite or PostgreSQL, migrated);
+    servers started in it are killed after."""
     (tmp_path / "problems").mkdir()
     shutil.copy(YOYO, tmp_path / "problems" / "yoyo.toml")
-    url = f"sqlite:///{tmp_path / 'serve.sqlite'}"
+    url = database_url
     servers = []
 
     def server(**kwargs) -> Server:
