@@ -39,6 +39,7 @@ __all__ = [
     "fail",
     "finish",
     "queued_ahead",
+    "unfinished_business",
     "recover",
     "release",
     "requeue_expired",
@@ -189,6 +190,14 @@ def queued_ahead(session: Session, job: DerivationJob) -> int | None:
         return None
     return session.scalar(select(func.count()).select_from(DerivationJob)
                           .where(DerivationJob.status == "queued", DerivationJob.id < job.id))
+
+
+def unfinished_business(session: Session, requester_id: int, *, limit: int = 5) -> list[DerivationJob]:
+    """The requester's newest uploads still waiting, deriving, or failed (what needs their attention)."""
+    return list(session.scalars(select(DerivationJob)
+                                .where(DerivationJob.requester_id == requester_id,
+                                       DerivationJob.status.in_(ACTIVE + ("failed",)))
+                                .order_by(DerivationJob.id.desc()).limit(limit)))
 
 
 def release(db: Database, task: DerivationTask, worker_id: str) -> None:

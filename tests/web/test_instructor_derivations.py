@@ -88,3 +88,15 @@ def test_a_job_is_seen_by_its_courses_instructors_but_not_by_another_courses(app
     sign_in(other, accounts["oth"])
     assert as_colleague.get(location).status_code == 200
     assert other.get(location).status_code == 404
+
+
+def test_the_dashboard_lists_my_uploads_that_wait_or_failed(app, as_instructor, as_colleague):
+    done = _upload(as_instructor).headers["Location"]
+    broken = _upload(as_instructor, YOYO_SCENE.replace('potential = "-m*g*s"', 'potential = "-m*g*tehta"'))
+    derive_all(app)
+    waiting = _upload(as_instructor, YOYO_SCENE.replace('id = "yoyo"', 'id = "yoyo2"')).headers["Location"]
+    page = as_instructor.get("/instructor/").get_data(as_text=True)
+    assert f'href="{done}"' not in page  # done: it is among the problems now
+    assert f'href="{broken.headers["Location"]}"' in page and ">failed</span>" in page
+    assert f'href="{waiting}"' in page and ">queued</span>" in page
+    assert "Your uploads" not in as_colleague.get("/instructor/").get_data(as_text=True)  # only one's own

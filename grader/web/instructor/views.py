@@ -16,7 +16,7 @@ from flask import abort, current_app, flash, g, redirect, render_template, reque
 
 from grader.jobs import regrade as queue_regrade
 from grader.jobs.derivation import DerivationError, read_scene_id
-from grader.jobs.derivation_queue import TooManyDerivations, enqueue, queued_ahead
+from grader.jobs.derivation_queue import TooManyDerivations, enqueue, queued_ahead, unfinished_business
 from grader.jobs.grading import check_request
 from grader.store.db import Database, db
 from grader.store.models import Problem, ProblemVersion
@@ -66,7 +66,8 @@ def dashboard():
         items.append({"problem": problem, "newest": newest, "published": published,
                       "submissions": len(rows), "students": len({r.user_id for r in rows}),
                       "pending": sum(1 for r in rows if r.status in ("queued", "running"))})
-    return render_template("instructor/dashboard.html", items=items)
+    return render_template("instructor/dashboard.html", items=items,
+                           uploads=unfinished_business(db.session, g.user.id))
 
 
 @bp.route("/problems/new", methods=["GET", "POST"])
