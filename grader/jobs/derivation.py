@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import hashlib
 import logging
+import math
+import signal
 import threading
 import tomllib
 import traceback
@@ -38,6 +40,8 @@ DERIVE_TIMEOUT_S = 20.0
 DERIVE_MEMORY_MB = 2048
 # The child's entry point, which first lowers its CPU priority (see grader.jobs.derivation_child).
 HANDLER = "grader.jobs.derivation_child:derive_request"
+# The child's own alarm fires this long after its budget, later than the parent's kill (see derive_request).
+ORPHAN_MARGIN_S = 5
 
 _sandboxes: dict[int, Sandbox] = {}  # one warm child per memory limit, made on first use
 _sandboxes_lock = threading.Lock()
@@ -90,7 +94,7 @@ def derive_source(source: str, *, filename: str = "upload.toml", timeout_s: floa
             sandbox = _sandboxes.get(memory_mb)
             if sandbox is None:
                 sandbox = _sandboxes[memory_mb] = derivation_sandbox(timeout_s, memory_mb)
-    ran = sandbox.run({"source": source, "filename": filename}, budget_s=timeout_s)
+    ran = sandbox.run({"source": source, "filename": filename, "budget_s": timeout_s}, budget_s=timeout_s)
     if ran.during_start:
         # The child could not even start: not the scene's fault (a worker retries the job later).
         raise SandboxUnavailable(f"the derivation sandbox is unavailable: {ran.detail}")
@@ -112,8 +116,16 @@ def derive_source(source: str, *, filename: str = "upload.toml", timeout_s: floa
 
 
 def derive_request(request: dict) -> dict:
-    """The sandbox child's handler: ``{"source", "filename"}`` -> ``{"outcome", ...}`` (never raises)."""
+    """The sandbox child's handler: ``{"source", "filename", "budget_s"?}`` -> ``{"outcome", ...}``.
+
+    It never raises. With ``budget_s``, the child also arms an alarm a little after the parent's
+    kill would come: should the parent die first (a ``kill -9`` of the server), the orphaned child
+    still stops instead of deriving a pathological scene for minutes.
+    """
     filename = request.get("filename", "upload.toml")
+    budget = request.get("budget_s")
+    if budget:
+        signal.alarm(math.ceil(float(budget)) + ORPHAN_MARGIN_S)  # SIGALRM's default action ends the process
     try:
         return {"outcome": "ok", "problem": _derive(request["source"], filename)}
     except MemoryError:
@@ -122,6 +134,9 @@ def derive_request(request: dict) -> dict:
         return {"outcome": "error", "message": str(error)}
     except Exception:  # an engine bug: the parent logs it, the client gets a generic message
         return {"outcome": "internal", "trace": traceback.format_exc()}
+    finally:
+        if budget:
+            signal.alarm(0)
 
 
 def _derive(source: str, filename: str) -> dict:

@@ -1,5 +1,7 @@
 """Deriving uploaded scenes in a limited child process, and loading problems/ at start."""
 
+import json
+import signal
 from pathlib import Path
 
 import pytest
@@ -77,3 +79,29 @@ class _Ended:
 def test_every_sandbox_outcome_becomes_a_scene_error_or_a_retry(outcome, error, words):
     with pytest.raises(error, match=words):
         derive_source("id = 'x'", timeout_s=20, memory_mb=2048, sandbox=_Ended(outcome))
+
+
+@pytest.mark.slow
+def test_an_orphaned_derivation_child_stops_by_itself(tmp_path):
+    """If the server dies mid-derivation (kill -9), its child must not derive on for minutes."""
+    import subprocess
+    import sys
+    import time
+
+    from grader.bench.isolation import pathological_scene
+
+    request = json.dumps({"source": pathological_scene(3), "filename": "chain3.toml", "budget_s": 0.5})
+    child = subprocess.Popen([sys.executable, "-m", "grader.sandbox", "--handler",
+                              "grader.jobs.derivation_child:derive_request"],
+                             stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+    try:
+        assert json.loads(child.stdout.readline()) == {"ready": True}
+        child.stdin.write((request + "\n").encode())
+        child.stdin.flush()  # nobody will kill it: this parent "died" and only waits
+        started = time.monotonic()
+        child.wait(timeout=30)
+        assert time.monotonic() - started < 1 + 5 + 5  # its budget rounded up, the margin, start-up slack
+        assert child.returncode == -signal.SIGALRM
+    finally:
+        child.kill()
+        child.wait()
