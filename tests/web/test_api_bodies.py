@@ -10,6 +10,7 @@ import pytest
 
 from grader.web.api import spec
 from grader.web.api.bodies import MAX_BODY_BYTES, MAX_DEPTH
+from tests.web.conftest_pages import accounts, as_student, csrf, problems  # noqa: F401  (fixtures)
 
 # Every operation of the document that takes a JSON body, by operationId.
 JSON_OPERATIONS = [op for op in spec.operations if op.request and "application/json" in op.request]
@@ -291,3 +292,13 @@ def test_a_slug_longer_than_any_stored_one_is_404(client, make_token):
     _, student = make_token("student")
     response = client.get("/api/v1/problems/" + "p" * 101, headers=student)
     assert response.status_code == 404 and response.mimetype == "application/problem+json"
+
+
+# The pages' one JSON endpoint (the live preview) parses its body by the same strict rules.
+@pytest.mark.parametrize("raw", [HOSTILE[case][0] for case in ("deep-arrays", "lone-surrogate", "nan", "not-utf8")]
+                         + [b'{"problem": "\\ud800", "answer": "tension", "text": "m"}'],
+                         ids=["deep", "lone-surrogate", "nan", "not-utf8", "surrogate-in-problem"])
+def test_the_live_preview_refuses_hostile_json_with_a_400(as_student, problems, raw):
+    response = as_student.post("/preview", data=raw, headers={"Content-Type": "application/json",
+                                                              "X-CSRF-Token": csrf(as_student)})
+    assert response.status_code == 400 and "Send JSON" in response.get_json()["error"]

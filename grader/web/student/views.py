@@ -18,6 +18,7 @@ from flask import abort, flash, g, jsonify, redirect, render_template, request, 
 from grader.jobs import SubmissionRejected, submit
 from grader.store.db import Database, db
 from grader.store.models import ProblemVersion, Submission
+from grader.web.api.bodies import validated_body
 from grader.web.auth.session import login_required
 from grader.web.errors import ApiProblem
 from grader.web.security import limiter
@@ -119,12 +120,21 @@ def submit_answers(slug: str):
     return redirect(url_for("student.problem", slug=slug) + "#answers")
 
 
+PREVIEW_REQUEST = {"type": "object", "required": ["problem", "answer", "text"], "additionalProperties": False,
+                   "properties": {"problem": {"type": "string", "maxLength": 100},
+                                  "answer": {"type": "string", "maxLength": 64},
+                                  # longer than the preview reads, so that it says why it stops
+                                  "text": {"type": "string", "maxLength": 20_000}}}
+
+
 @bp.post("/preview")
 @login_required(STUDENTS)
 def preview_json():
-    body = request.get_json(silent=True)
-    if not isinstance(body, dict) or not all(isinstance(body.get(k), str) for k in ("problem", "answer", "text")):
-        return jsonify(error="Send JSON {problem, answer, text}, all strings."), 400
+    try:  # strict JSON (no deep nesting, lone surrogates, NaN) of this shape, as the API's bodies
+        body = validated_body(PREVIEW_REQUEST, {})
+    except ApiProblem as refused:
+        status = 400 if refused.status == 422 else refused.status  # this page's JSON says 400 for any bad shape
+        return jsonify(error=f"Send JSON {{problem, answer, text}}, all strings: {refused.detail}"), status
     try:
         limiter.hit("preview", g.user.id)
     except ApiProblem as problem:
