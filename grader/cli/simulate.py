@@ -54,8 +54,9 @@ def _overrides(pairs: tuple[str, ...]) -> dict[str, float]:
 @click.option("--json", "as_json", is_flag=True, help='Print {"events": [...], "samples": [...]}.')
 @click.option("--csv", "as_csv", is_flag=True, help="Print the samples and events as CSV.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Draw coordinates and reaction forces to an SVG.")
+@click.option("--budget", default="60", show_default=True, help="Give up after this many seconds of computing.")
 def simulate(path: str, t_end: str, settings: tuple[str, ...], samples: str, as_json: bool, as_csv: bool,
-             plot: str | None) -> None:
+             plot: str | None, budget: str) -> None:
     """Integrate a scene file from its [initial] state, with its declared effects."""
     from grader.mechanics.scene import SceneError, load_scene
     from grader.simulate.compiled import SingularDynamics
@@ -68,9 +69,10 @@ def simulate(path: str, t_end: str, settings: tuple[str, ...], samples: str, as_
     count = _positive_number(samples, "--samples")
     if count != int(count) or not 2 <= count <= 100_000:
         _fail(f"--samples must be a whole number from 2 to 100000, not {samples!r}")
+    budget_s = _positive_number(budget, "--budget")
     overrides = _overrides(settings)
     try:
-        trajectory = simulate_scene(load_scene(path), overrides, t_end=end, samples=int(count))
+        trajectory = simulate_scene(load_scene(path), overrides, t_end=end, samples=int(count), budget_s=budget_s)
     except KeyError as exc:
         _fail(exc.args[0] if exc.args else str(exc))
     except (SceneError, InitialStateError, SingularDynamics, SimulationError, ValueError) as exc:

@@ -198,6 +198,9 @@ def kkt_solve(M, F, J, b, extra=None, *, t: float = 0.0) -> tuple[np.ndarray, np
     # LAPACK's dgesv directly: numpy.linalg.solve's checks cost more than the solve at this size.
     _, _, x, info = _dgesv(K, rhs)
     if info != 0 or not math.isfinite(x.sum()):
+        if not math.isfinite(K.sum() + rhs.sum()):
+            raise SingularDynamics(f"at t = {t:.6g} the equations of motion are not finite numbers (a "
+                                   "division by zero or a function outside its domain in the scene)")
         raise SingularDynamics(f"at t = {t:.6g} the equations of motion cannot be solved for the "
                                "accelerations: a body without mass, redundant constraints, or a "
                                "singular point of the coordinates")

@@ -43,6 +43,7 @@ True
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 from typing import Callable, Mapping, Sequence
 
@@ -164,6 +165,7 @@ class Simulation:
         self.n, self.m = compiled.n, compiled.m
         self.rtol, self.atol = rtol, atol
         self.switching = any(e.kind != "bilateral" for e in self.effects)
+        self._deadline: float | None = None
 
     # -- dynamics in a mode -----------------------------------------------------------------------
     def solve(self, t: float, y: np.ndarray, mode: Mode):
@@ -387,13 +389,30 @@ class Simulation:
 
     # -- integration ------------------------------------------------------------------------------
     def run(self, t0: float, q0, qdot0, t_end: float, sample_times: Sequence[float] = (), *,
-            project_every: float | None = None, max_events: int = _MAX_EVENTS) -> Trajectory:
+            project_every: float | None = None, max_events: int = _MAX_EVENTS,
+            budget_s: float | None = None) -> Trajectory:
         """Integrate from (t0, q0, q̇0) to t_end; samples at ``sample_times`` (within [t0, t_end]).
 
         ``project_every`` (s): also put the state back onto the constraints that hold at these
         intervals; the constraints enter only through the accelerations, so over long runs f
-        and ḟ drift with the integration error unless projected.
+        and ḟ drift with the integration error unless projected. ``budget_s``: give up with a
+        :class:`SimulationError` after this much computing time (checked every 256 evaluations).
+
+        Raises
+        ------
+        SimulationError
+            Integrator failure, endless events, or the budget spent.
+        SingularDynamics
+            Equations of motion that cannot be solved, or that are not finite (a square root of
+            a negative number, a division by zero), at some state.
         """
+        self._deadline = None if budget_s is None else time.monotonic() + budget_s
+        # A scene's expressions may divide by zero or leave their domain at some state; the
+        # result is then not finite and reported by kkt_solve, not as a numpy warning.
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            return self._run(t0, q0, qdot0, t_end, sample_times, project_every, max_events)
+
+    def _run(self, t0, q0, qdot0, t_end, sample_times, project_every, max_events) -> Trajectory:
         y = np.concatenate([np.asarray(q0, float), np.asarray(qdot0, float)])
         wanted = np.array(sorted(float(s) for s in sample_times))
         stops = [float(x) for x in np.arange(t0 + project_every, t_end, project_every)] if project_every else []
@@ -444,6 +463,8 @@ class Simulation:
         return wanted[after & (wanted <= stop)]
 
     def _integrate(self, rhs, t0, t_end, y, events):
+        if self._deadline is not None:
+            rhs = _within(rhs, self._deadline)
         try:
             solution = solve_ivp(rhs, (t0, t_end), y, method="DOP853", rtol=self.rtol, atol=self.atol,
                                  events=events or None, dense_output=True)
@@ -494,6 +515,20 @@ class Simulation:
                           lam.reshape(k, m), Q.reshape(k, m, n), active.reshape(k, m), events)
 
 
+def _within(rhs, deadline: float):
+    """``rhs`` that stops the integration once the clock passes ``deadline``."""
+    calls = 0
+
+    def limited(t, y):
+        nonlocal calls
+        calls += 1
+        if calls % 256 == 0 and time.monotonic() > deadline:
+            raise SimulationError(f"stopped at t = {t:.6g}: the simulation took longer than its time budget")
+        return rhs(t, y)
+
+    return limited
+
+
 def _guard_start(g, t0: float, y0: np.ndarray):
     """``g`` with its value at the segment's start moved to the side it leaves towards.
 
@@ -518,7 +553,7 @@ def _guard_start(g, t0: float, y0: np.ndarray):
 def simulate_scene(scene, overrides: Mapping[str, float] | None = None, *, t_end: float,
                    samples: int = 201, initial: Mapping[str, float] | None = None,
                    rtol: float = 1e-11, atol: float | None = None,
-                   project_every: float | None = None) -> Trajectory:
+                   project_every: float | None = None, budget_s: float | None = None) -> Trajectory:
     """Simulate a scene from its ``[initial]`` state with its declared effects.
 
     Parameters
@@ -536,7 +571,7 @@ def simulate_scene(scene, overrides: Mapping[str, float] | None = None, *, t_end
         DOP853 tolerances. The default ``atol`` is 1e-12 times the smallest nonzero initial
         coordinate or velocity (at most 1e-12), so that a motion of amplitude 1e-8 is resolved
         to the same relative accuracy as one of amplitude 1.
-    project_every : float, optional
+    project_every, budget_s : float, optional
         See :meth:`Simulation.run`.
     """
     import sympy
@@ -552,7 +587,7 @@ def simulate_scene(scene, overrides: Mapping[str, float] | None = None, *, t_end
         atol = 1e-12 * min(1.0, max(sizes[sizes > 0].min(initial=1.0), 1e-200))
     simulation = Simulation(compiled, declared_effects(scene, compiled.values), rtol=rtol, atol=atol)
     return simulation.run(0.0, q0, qdot0, t_end, np.linspace(0.0, t_end, max(samples, 2)),
-                          project_every=project_every)
+                          project_every=project_every, budget_s=budget_s)
 
 
 def _with_initial(scene, initial):

@@ -109,3 +109,29 @@ def test_text_output_lists_events():
     assert result.exit_code == 0
     assert result.output.startswith("0 event(s)")  # at rest on the top: it never leaves
     assert not math.isnan(float(result.output.splitlines()[-1].split()[0]))
+
+
+def test_a_run_longer_than_its_budget_stops_with_one_line():
+    result = run(CIRCLE, "--t-end", "1e9", "--budget", "0.5")
+    assert result.exit_code == 2
+    assert result.output.startswith("error: stopped at t = ") and "time budget" in result.output
+
+
+def test_a_scene_whose_forces_are_not_finite_gets_one_line(tmp_path):
+    scene = tmp_path / "bad.toml"
+    scene.write_text('''id = "bad"
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 1.0 }
+k = { dimension = "energy", domain = "positive", value = 1.0 }
+a = { dimension = "length", domain = "positive", value = 1.0 }
+[coordinates]
+x = { dimension = "length" }
+[energy]
+kinetic = "m/2*xdot^2"
+potential = "k*sqrt(x/a)"
+[initial]
+x = -1
+''')
+    result = run(str(scene), "--t-end", "1")
+    assert result.exit_code == 2, result.output
+    assert len(result.output.strip().splitlines()) == 1 and "not finite" in result.output
