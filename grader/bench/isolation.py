@@ -4,7 +4,7 @@ It starts its own ``grader serve`` (as ``grader bench http`` does, with the serv
 size caps and derivation budget) and measures the ``POST /check`` latency of a few well-behaved
 students, each sending one check a second, in three phases:
 
-1. **quiet**: nothing else runs; the reference median.
+1. **quiet**: nothing else runs; the reference median (measured half before and half after the flood).
 2. **oversized flood**: meanwhile one student sends ``POST /check`` bodies far over the size cap, as
    fast as ``--flood-clients`` connections allow.
 3. **pathological uploads**: meanwhile ``--uploads`` scene files that the engine cannot derive in
@@ -189,21 +189,24 @@ def _uploads(base_url: str, tokens: list[str], count: int, calls: Calls) -> list
     return locations
 
 
-def _job_statuses(base_url: str, token_of: dict[str, str], locations: list[str]) -> dict[str, int]:
+def _job_statuses(base_url: str, token_of: dict[str, str], locations: list[str]) -> dict:
     import requests
 
     counts: dict[str, int] = {}
+    errors: list[str] = []
     for location in locations:
         body = requests.get(base_url + location, headers={"Authorization": f"Bearer {token_of[location]}"},
                             timeout=30).json()
         counts[body["status"]] = counts.get(body["status"], 0) + 1
-    return counts
+        if body.get("error"):
+            errors.append(body["error"])
+    return {"statuses": counts, "error_examples": errors[:2]}
 
 
 @click.command("isolation")
 @click.option("--duration", default=20.0, show_default=True, help="Seconds per phase.")
-@click.option("--users", default=6, show_default=True, help="Well-behaved students measuring POST /check.")
-@click.option("--interval", default=1.0, show_default=True, help="Seconds between one student's checks.")
+@click.option("--users", default=8, show_default=True, help="Well-behaved students measuring POST /check.")
+@click.option("--interval", default=0.75, show_default=True, help="Seconds between one student's checks.")
 @click.option("--flood-clients", default=8, show_default=True, help="Connections of the flooding student.")
 @click.option("--flood-kib", default=2048, show_default=True, help="Size of each flood body, in KiB.")
 @click.option("--uploads", default=20, show_default=True, help="Pathological scene uploads at once.")
@@ -228,13 +231,14 @@ def bench_isolation(duration: float, users: int, interval: float, flood_clients:
     with server:
         base = server.base_url
 
-        def phase(name: str, background: list[threading.Thread], stop: threading.Event) -> Calls:
+        def phase(name: str, background: list[threading.Thread], stop: threading.Event,
+                  seconds: float = duration) -> Calls:
             checks = Calls(f"POST /check, other users ({name})")
             measure_stop = threading.Event()
             threads = _paced_checks(base, measuring, measure_stop, checks, interval)
             for thread in background + threads:
                 thread.start()
-            time.sleep(duration)
+            time.sleep(seconds)
             measure_stop.set()
             stop.set()
             for thread in background + threads:
@@ -251,8 +255,9 @@ def bench_isolation(duration: float, users: int, interval: float, flood_clients:
         for thread in warmers:
             thread.join(65)
 
-        quiet = phase("quiet", [], threading.Event())
-        phases.append({"phase": "quiet", "checks": quiet.summary()})
+        # The quiet reference is measured in two halves, before and after the flood, so that a change
+        # in the machine's other load during the run shifts the reference as much as the phases.
+        quiet = phase("quiet", [], threading.Event(), duration / 2)
 
         context = multiprocessing.get_context("spawn")
         results = context.Queue()
@@ -264,6 +269,13 @@ def bench_isolation(duration: float, users: int, interval: float, flood_clients:
         flood_calls.latencies_ms, flood_calls.statuses, flood_calls.failures = results.get(timeout=120)
         flooder_process.join(30)
         phases.append({"phase": "oversized flood", "checks": flooded.summary(), "abuse": flood_calls.summary()})
+        after = phase("quiet", [], threading.Event(), duration / 2)
+        halves = {"before_flood_p50_ms": round(quiet.median(), 2), "after_flood_p50_ms": round(after.median(), 2)}
+        quiet.latencies_ms += after.latencies_ms
+        for status, count in after.statuses.items():
+            quiet.statuses[status] = quiet.statuses.get(status, 0) + count
+        quiet.failures += after.failures
+        phases.insert(0, {"phase": "quiet", "checks": quiet.summary(), "halves": halves})
 
         upload_calls = Calls("POST /problems (pathological scenes)")
         locations: list[str] = []
@@ -322,7 +334,11 @@ def _print_table(report: dict) -> None:
             statuses = ", ".join(f"{k}: {v}" for k, v in abuse["statuses"].items())
             meanwhile = f"{abuse['requests']} requests ({statuses}), p50 {abuse['p50_ms']} ms"
         if "jobs_after_phase" in entry:
-            meanwhile += "; jobs " + ", ".join(f"{k}: {v}" for k, v in sorted(entry["jobs_after_phase"].items()))
+            jobs = entry["jobs_after_phase"]["statuses"]
+            meanwhile += "; jobs " + ", ".join(f"{k}: {v}" for k, v in sorted(jobs.items()))
         click.echo(f"{entry['phase']:22} {checks['requests']:>20} {checks['p50_ms']:>8} {checks['p90_ms']:>8} "
                    f"{entry['ratio_to_quiet']:>7}x   {meanwhile}")
+    for entry in report["phases"]:
+        for error in entry.get("jobs_after_phase", {}).get("error_examples", [])[:1]:
+            click.echo(f"\na failed derivation says: {error}")
     click.echo(f"\ntarget: other users' /check median within {TARGET_RATIO:g}x of the quiet median\n")
