@@ -44,19 +44,64 @@ def _percentile(values: list[float], q: float) -> float:
     return ordered[min(len(ordered) - 1, int(q * len(ordered)))]
 
 
-def _run_ours(items, options=None, budget_s=2.0):
+def _run_ours(items, options=None, budget_s=2.0, clock=time.perf_counter, cold=False, forget=False):
+    """Check every item; ``clock`` times it (``time.thread_time``: CPU time, robust on a busy machine),
+    ``cold`` empties sympy's cache and the parser's memory before each check (a new answer: nothing
+    of it built before), ``forget`` only the parser's memory of texts."""
+    from sympy.core.cache import clear_cache
+
     from grader.answers.checker import DEFAULT_OPTIONS, check
+    from grader.expressions.parser import forget_parses
 
     results = []
     for item in items:
-        started = time.perf_counter()
+        if cold:
+            clear_cache()
+        if cold or forget:
+            forget_parses()
+        started = clock()
         verdict = check(item["reference"], item["answer"], item["variables"], kind=item["kind"],
                         feedback=item.get("feedback"), state=item.get("state"), budget_s=budget_s,
-                        options=options or DEFAULT_OPTIONS)
-        ms = (time.perf_counter() - started) * 1000
+                        options=options or DEFAULT_OPTIONS, alternatives=item.get("alternatives"))
+        ms = (clock() - started) * 1000
         results.append({"id": item["id"], "verdict": verdict.verdict, "ms": ms,
                         "codes": [f["code"] for f in verdict.feedback]})
     return results
+
+
+def _textbook(items, baseline: dict | None) -> dict:
+    """Before/after on the textbook scenes' answers, in CPU time, with identical verdicts required.
+
+    "before" is ``Options(fast=False)`` (the older evaluation paths) with every text parsed afresh,
+    "after" the default, with the parser's memory of texts. Two
+    measures, each mode on equal footing: ``steady`` (every reference prepared and each answer seen
+    once before, the steady state of a grading worker) and ``first_sight`` (sympy's cache emptied
+    before every check: nothing of the answer built before, the reference still prepared).
+    """
+    from grader.answers.equivalence import Options
+
+    modes = {"before": Options(fast=False), "after": Options()}
+    figures: dict = {"items": len(items)}
+    verdicts = {}
+    for name, options in modes.items():
+        forget = name == "before"
+        _run_ours(items, options, forget=forget)  # prepare the references, and see each answer once
+        steady = _run_ours(items, options, clock=time.thread_time, forget=forget)
+        cold = _run_ours(items, options, clock=time.thread_time, cold=True)
+        verdicts[name] = [r["verdict"] for r in steady] + [r["verdict"] for r in cold]
+        figures[name] = {"steady": _summary(items, steady), "first_sight": _summary(items, cold)}
+    figures["identical_verdicts"] = verdicts["before"] == verdicts["after"]
+    for measure in ("steady", "first_sight"):
+        figures[f"speedup_{measure}"] = (figures["before"][measure]["p50_ms"]
+                                         / figures["after"][measure]["p50_ms"])
+    if baseline:
+        base = [baseline[i["id"]] for i in items if i["id"] in baseline]
+        figures["baseline"] = _summary([i for i in items if i["id"] in baseline], base)
+        figures["baseline_cpu_p50_ms"] = _percentile([r["cpu_ms"] for r in base], 0.5)
+        for measure in ("steady", "first_sight"):
+            figures[f"baseline_ratio_{measure}"] = (figures["baseline_cpu_p50_ms"]
+                                                    / figures["after"][measure]["p50_ms"])
+    return figures
 
 
 def _summary(items, results) -> dict:
@@ -133,9 +178,9 @@ def _baseline_worker(connection) -> None:
         item = connection.recv()
         if item is None:
             return
-        started = time.perf_counter()
+        started, cpu = time.perf_counter(), time.thread_time()
         verdict = _baseline_verdict(item)
-        connection.send((verdict, (time.perf_counter() - started) * 1000))
+        connection.send((verdict, (time.perf_counter() - started) * 1000, (time.thread_time() - cpu) * 1000))
 
 
 class _Baseline:
@@ -151,16 +196,17 @@ class _Baseline:
         self._process = self._context.Process(target=_baseline_worker, args=(child,), daemon=True)
         self._process.start()
 
-    def run(self, item: dict) -> tuple[str, float]:
+    def run(self, item: dict) -> tuple[str, float, float]:
+        """(verdict, wall ms, CPU ms), timed inside the worker like ours (no pipe overhead)."""
         started = time.perf_counter()
         self._parent.send(item)
         if self._parent.poll(self.timeout_s):
-            verdict, ms = self._parent.recv()
-            return verdict, ms  # timed inside the worker, like ours (no pipe overhead)
+            return self._parent.recv()
         self._process.kill()
         self._process.join()
         self._start()
-        return "timeout", (time.perf_counter() - started) * 1000
+        ms = (time.perf_counter() - started) * 1000
+        return "timeout", ms, ms
 
     def close(self):
         try:
@@ -258,7 +304,7 @@ def bench_check(corpus: Path, out: Path, baseline_timeout: float, no_baseline: b
         sandboxed = []
         for item in items:
             request = {k: item[k] for k in ("reference", "answer", "variables", "kind") if k in item}
-            for k in ("feedback", "state"):
+            for k in ("feedback", "state", "alternatives"):
                 if k in item:
                     request[k] = item[k]
             started = time.perf_counter()
@@ -275,14 +321,21 @@ def bench_check(corpus: Path, out: Path, baseline_timeout: float, no_baseline: b
         try:
             base = []
             for item in benign:
-                verdict, ms = baseline.run(item)
-                base.append({"id": item["id"], "verdict": verdict, "ms": ms, "codes": []})
+                verdict, ms, cpu_ms = baseline.run(item)
+                base.append({"id": item["id"], "verdict": verdict, "ms": ms, "cpu_ms": cpu_ms, "codes": []})
         finally:
             baseline.close()
         figures["baseline"] = _summary(benign, base)
         figures["baseline"]["timeouts"] = sum(r["verdict"] == "timeout" for r in base)
         figures["baseline"]["timeout_s"] = baseline_timeout
         figures["speedup_median"] = figures["baseline"]["p50_ms"] / figures["ours_benign"]["p50_ms"]
+        baseline_by_id = {r["id"]: r for r in base}
+    else:
+        baseline_by_id = None
+
+    textbook = [i for i in benign if "textbook" in i["tags"]]
+    if textbook:
+        figures["textbook"] = _textbook(textbook, baseline_by_id)
 
     if not no_sweep:
         figures["sweep"] = _sweep(benign)
@@ -310,6 +363,22 @@ def _print(f: dict, out: Path) -> None:
         click.echo(f"median speed-up over the baseline: {f['speedup_median']:.0f}x")
     click.echo(f"feedback: {f['feedback']['expected'] - f['feedback']['missed']}/{f['feedback']['expected']} "
                "expected feedback codes given")
+    if "textbook" in f:
+        t = f["textbook"]
+        click.echo("")
+        click.echo(f"textbook scenes' answers ({t['items']} items), CPU ms per check, before/after in this run "
+                   f"(identical verdicts: {'yes' if t['identical_verdicts'] else 'NO'}):")
+        click.echo(f"{'measure':34s} {'before p50':>10s} {'after p50':>10s} {'after p99':>10s} {'speed-up':>9s}"
+                   f" {'wrong':>6s}")
+        for measure, label in (("steady", "steady state (answer seen before)"),
+                               ("first_sight", "first sight (sympy cache empty)")):
+            b, a = t["before"][measure], t["after"][measure]
+            click.echo(f"{label:34s} {b['p50_ms']:10.3f} {a['p50_ms']:10.3f} {a['p99_ms']:10.2f} "
+                       f"{t['speedup_' + measure]:8.2f}x {a['wrong']:6d}")
+        if "baseline" in t:
+            click.echo(f"naive baseline on these items: CPU p50 {t['baseline_cpu_p50_ms']:.2f} ms, "
+                       f"{t['baseline']['wrong']} wrong; ours is {t['baseline_ratio_steady']:.0f}x faster "
+                       f"(steady), {t['baseline_ratio_first_sight']:.0f}x (first sight)")
     if f["ours"]["wrong_items"]:
         click.echo("wrong verdicts (ours): " + ", ".join(f"{i} (expected {e}, got {g})" for i, e, g in f["ours"]["wrong_items"]))
     if "sweep" in f:

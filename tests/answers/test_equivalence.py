@@ -180,3 +180,19 @@ def test_values_beyond_float_range_give_a_verdict_not_an_internal_error():
 
     v = check("cosh(sinh(e/1.5e-3))", "100/cosec(x)", X_REAL)
     assert "internal error" not in v.reason
+
+
+# -- speed: the fast paths give the same verdicts as the older ones --------------------------------
+@pytest.mark.parametrize("reference, answer", [
+    ("M*g*m*cos(a)/(M + m*sin(a)^2)", "M m g cos(a)/(M + m - m cos(a)^2)"),
+    ("M*g*m*cos(a)/(M + m*sin(a)^2)", "M m g cos(a)/(M + m sin(a))"),
+    ("x", "sqrt(x)^2"),
+    ("(x - 1)^2", "x^2 - 2x + 1"),
+])
+def test_the_fast_paths_give_the_verdicts_of_the_older_ones(reference, answer):
+    from grader.answers import check
+
+    variables = {"M": {"domain": "positive"}, "m": {"domain": "positive"}, "g": {"domain": "positive"},
+                 "a": {"domain": [0.05, 1.5]}, "x": {"domain": "real"}}
+    fast, slow = check(reference, answer, variables), check(reference, answer, variables, options=Options(fast=False))
+    assert fast.verdict == slow.verdict and fast.verdict in ("equivalent", "not_equivalent")

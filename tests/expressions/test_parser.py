@@ -494,3 +494,18 @@ def test_every_refusal_names_the_word_and_the_fix(ns, text, named, fix):
 def test_the_typed_real_domain_survives_simplification(ns, text, expr, conditions):
     p = parse_expression(text, ns)
     assert p.text == expr and [str(c) for c in p.conditions] == conditions
+
+
+def test_a_remembered_text_parses_to_the_same_result_with_its_own_notes(ns):
+    from grader.expressions.parser import forget_parses
+
+    forget_parses()
+    first = parse_expression("mg cos θ", ns)
+    first.notes.append("changed by a caller")
+    again = parse_expression("mg cos θ", ns)
+    assert again.expr == first.expr and again.text == first.text
+    assert "changed by a caller" not in again.notes and again.notes == ["read 'mg' as m·g"]
+    other = Namespace([Variable("m", "mass", "positive"), Variable("g", "length", "positive"),
+                       Variable("theta", "angle", "real")])
+    assert parse_expression("mg cos θ", other).expr.free_symbols != set() and \
+        parse_expression("mg cos θ", other) is not again  # another namespace is another text
