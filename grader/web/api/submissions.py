@@ -88,9 +88,9 @@ def _whose(session: Session, requester: User, version: ProblemVersion, external_
         if principal.role == "lms":
             raise ApiProblem(422, "An LMS token must say which student this is for in 'user'.", kind="invalid-request")
         return requester
-    if external_id == requester.external_id:
+    if principal.role == "student" and external_id == requester.external_id:
         return requester
-    require(principal, Action.SUBMIT_FOR_OTHERS, version)
+    require(principal, Action.SUBMIT_FOR_OTHERS, version)  # a student naming someone else: 403
     student = session.scalar(select(User).where(User.external_id == external_id))
     if student is None:  # first sight of this student: create them in a transaction of its own
         try:
