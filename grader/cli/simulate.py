@@ -54,12 +54,13 @@ def _overrides(pairs: tuple[str, ...]) -> dict[str, float]:
 @click.option("--json", "as_json", is_flag=True, help='Print {"events": [...], "samples": [...]}.')
 @click.option("--csv", "as_csv", is_flag=True, help="Print the samples and events as CSV.")
 @click.option("--plot", type=click.Path(dir_okay=False), help="Draw coordinates and reaction forces to an SVG.")
+@click.option("--animate", type=click.Path(dir_okay=False), help="Animate the scene's [geometry] to an SVG.")
 @click.option("--budget", default="60", show_default=True, help="Give up after this many seconds of computing.")
 def simulate(path: str, t_end: str, settings: tuple[str, ...], samples: str, as_json: bool, as_csv: bool,
-             plot: str | None, budget: str) -> None:
+             plot: str | None, animate: str | None, budget: str) -> None:
     """Integrate a scene file from its [initial] state, with its declared effects."""
     from grader.mechanics.scene import SceneError, load_scene
-    from grader.simulate.compiled import SingularDynamics
+    from grader.simulate.compiled import SingularDynamics, parameter_values
     from grader.simulate.initial import InitialStateError
     from grader.simulate.trajectory import SimulationError, simulate_scene
 
@@ -72,18 +73,26 @@ def simulate(path: str, t_end: str, settings: tuple[str, ...], samples: str, as_
     budget_s = _positive_number(budget, "--budget")
     overrides = _overrides(settings)
     try:
-        trajectory = simulate_scene(load_scene(path), overrides, t_end=end, samples=int(count), budget_s=budget_s)
+        scene = load_scene(path)
+        if animate and scene.geometry is None:
+            _fail(f"{scene.source}: --animate needs a [geometry] table saying where to draw the bodies")
+        trajectory = simulate_scene(scene, overrides, t_end=end, samples=int(count), budget_s=budget_s)
     except KeyError as exc:
         _fail(exc.args[0] if exc.args else str(exc))
     except (SceneError, InitialStateError, SingularDynamics, SimulationError, ValueError) as exc:
         _fail(str(exc))
-    if plot:
-        from grader.simulate.plot import plot_trajectory
+    if plot or animate:
+        from grader.simulate.plot import animation_of, plot_of
 
-        try:
-            plot_trajectory(trajectory, plot)
-        except OSError as exc:
-            _fail(f"cannot write {plot}: {exc.strerror}")
+        pictures = [(plot, lambda: plot_of(trajectory, scene.title))] + [
+            (animate, lambda: animation_of(scene, trajectory, parameter_values(scene, overrides)))]
+        for target, draw in pictures:
+            if target:
+                try:
+                    with open(target, "w", encoding="utf-8") as handle:
+                        handle.write(draw())
+                except OSError as exc:
+                    _fail(f"cannot write {target}: {exc.strerror}")
     if as_json:
         click.echo(json.dumps(trajectory.to_json()))
     elif as_csv:

@@ -49,11 +49,25 @@ def test_csv_has_one_row_per_sample_and_per_event_in_time_order():
     assert times == sorted(times)
 
 
-def test_plot_writes_an_svg(tmp_path):
+def test_plot_writes_a_script_free_svg_with_the_events_marked(tmp_path):
     out = tmp_path / "circle.svg"
     result = run(CIRCLE, "--t-end", "2", "--plot", str(out))
     assert result.exit_code == 0, result.output
-    assert out.read_text().lstrip().startswith("<?xml") and "<svg" in out.read_text()
+    svg = out.read_text()
+    assert svg.startswith("<svg") and "<script" not in svg
+    assert "release" in svg and "contact" in svg and "lambda_string" in svg
+
+
+def test_animate_draws_the_scenes_geometry(tmp_path):
+    out = tmp_path / "sphere.svg"
+    result = run(SPHERE, "--t-end", "1", "--animate", str(out))
+    assert result.exit_code == 0, result.output
+    assert "<animate" in out.read_text()
+
+
+def test_animate_without_geometry_is_refused_in_one_line(tmp_path):
+    result = run(str(ROOT / "problems" / "yoyo.toml"), "--t-end", "1", "--animate", str(tmp_path / "x.svg"))
+    assert result.exit_code == 2 and "[geometry]" in result.output
 
 
 @pytest.mark.parametrize("args, message", [
