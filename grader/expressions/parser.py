@@ -23,6 +23,7 @@ asin(x).  Names resolve only through the :class:`~.variables.Namespace`
 from __future__ import annotations
 
 from collections.abc import Mapping
+import threading
 from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 
@@ -612,24 +613,28 @@ def _finish(parser: _Parser, expr: sympy.Expr, printed: bool = True) -> Parsed:
 #: notes are handed out as copies), and the namespace object itself is part of the key.
 PARSE_MEMORY = 2048
 _remembered: OrderedDict = OrderedDict()
+_memory_lock = threading.Lock()  # the web app parses previews on several threads
 
 
 def forget_parses() -> None:
     """Empty the memory of parsed texts (for benchmarks that must parse every text afresh)."""
-    _remembered.clear()
+    with _memory_lock:
+        _remembered.clear()
 
 
 def _recall(key):
-    found = _remembered.get(key)
-    if found is not None:
-        _remembered.move_to_end(key)
-    return found
+    with _memory_lock:
+        found = _remembered.get(key)
+        if found is not None:
+            _remembered.move_to_end(key)
+        return found
 
 
 def _remember(key, value) -> None:
-    _remembered[key] = value
-    if len(_remembered) > PARSE_MEMORY:
-        _remembered.popitem(last=False)
+    with _memory_lock:
+        _remembered[key] = value
+        if len(_remembered) > PARSE_MEMORY:
+            _remembered.popitem(last=False)
 
 
 def parse_expression(text: str, namespace: Namespace, *, printed: bool = True) -> Parsed:
