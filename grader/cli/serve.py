@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import logging
+import os
 import secrets
 import signal
 import sys
@@ -47,8 +48,17 @@ def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, 
         for line in _demo_accounts(database):
             click.echo(line)
 
-    pool = WorkerPool(database, workers=workers, checker_factory=app.config["CHECKER_FACTORY"],
-                      budget_s=app.config["CHECK_BUDGET_S"]).start()
+    if os.environ.get("GRADER_BROKER_URL"):
+        # Celery workers grade (grader/jobs/celery_worker.py); this process only announces work.
+        from grader.jobs.celery_worker import install_publisher
+
+        install_publisher()
+        pool = None
+        grading = "grading by Celery workers on GRADER_BROKER_URL"
+    else:
+        pool = WorkerPool(database, workers=workers, checker_factory=app.config["CHECKER_FACTORY"],
+                          budget_s=app.config["CHECK_BUDGET_S"]).start()
+        grading = f"{workers} grading workers"
     derivers = DerivationWorkerPool(database, may_update=may_update, workers=app.config["DERIVE_WORKERS"],
                                     **limits).start()
     # A body over the app's cap is refused by waitress from its Content-Length, before it is read:
@@ -58,7 +68,7 @@ def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, 
     base = f"http://{host}:{server.effective_port}"
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(0))
     click.echo(f"sign in at {base}{_sign_in_path(app)}; API at {base}/api/v1 (see /api/v1/openapi.json)\n"
-               f"lagrade is serving on {base}/ with {workers} grading workers")
+               f"lagrade is serving on {base}/ with {grading}")
     try:
         server.run()
     except (KeyboardInterrupt, SystemExit):
@@ -66,7 +76,8 @@ def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, 
     finally:
         server.close()
         derivers.stop()
-        pool.stop()
+        if pool is not None:
+            pool.stop()
         app.extensions["lagrade.checkers"].close()
         database.dispose()
 

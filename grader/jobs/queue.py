@@ -17,10 +17,11 @@ from __future__ import annotations
 
 import hashlib
 import json
+import logging
 import threading
 from dataclasses import dataclass
 from datetime import datetime, timedelta
-from typing import Any
+from typing import Any, Callable
 
 from sqlalchemy import select, update
 from sqlalchemy.exc import IntegrityError
@@ -29,13 +30,19 @@ from sqlalchemy.orm import Session
 from grader.store.db import Database
 from grader.store.models import ProblemVersion, Submission, User, Verdict, utcnow
 
+log = logging.getLogger(__name__)
+
 __all__ = [
     "IdempotencyConflict",
     "MAX_ANSWER_CHARS",
     "MAX_ATTEMPTS",
     "SubmissionRejected",
     "Task",
+    "add_publisher",
     "claim",
+    "claim_submission",
+    "holder_lease",
+    "queued_since",
     "record",
     "recover",
     "regrade",
@@ -55,6 +62,27 @@ _new_work = threading.Event()
 
 def wake_workers() -> None:
     _new_work.set()
+
+
+# Where queued work is announced besides the in-process event: a task queue (Celery) when
+# GRADER_BROKER_URL is set. Each publisher gets the (submission id, round) pairs just queued.
+_publishers: list[Callable[[list[tuple[int, int]]], None]] = []
+
+
+def add_publisher(publisher: Callable[[list[tuple[int, int]]], None]) -> None:
+    """Announce every newly queued (submission, round) to ``publisher`` too (once per process)."""
+    if publisher not in _publishers:
+        _publishers.append(publisher)
+
+
+def _announce(work: list[tuple[int, int]]) -> None:
+    wake_workers()
+    for publisher in _publishers:
+        try:
+            publisher(work)
+        except Exception:
+            # The work is committed as queued; the workers' sweep sends it again later.
+            log.exception("could not announce %d queued submissions; the sweep will", len(work))
 
 
 def wait_for_work(timeout: float) -> None:
@@ -115,7 +143,7 @@ def submit(database: Database, *, user: User, version: ProblemVersion, answer: s
             if existing is None:
                 raise
             return _replay(existing, fingerprint), False
-    wake_workers()
+    _announce([(submission_id, 1)])
     return submission_id, True
 
 
@@ -150,7 +178,10 @@ def regrade(database: Database, version: ProblemVersion) -> int:
                                      .where(Submission.problem_version_id.in_(problem_versions), match)
                                      .values(**values))
             queued += result.rowcount
-    wake_workers()
+        work = [(row[0], row[1]) for row in session.execute(
+            select(Submission.id, Submission.grading_round)
+            .where(Submission.problem_version_id.in_(problem_versions), Submission.status == "queued"))]
+    _announce(work)
     return queued
 
 
@@ -190,18 +221,66 @@ def claim(db: Database, worker_id: str, *, lease_s: float = LEASE_S) -> Task | N
             ).rowcount
         if taken != 1:
             continue  # another worker took it between our SELECT and UPDATE
-        with db.read() as session:
-            submission = session.get(Submission, submission_id)
-            version = submission.grading_version
-            task = Task(submission.id, submission.grading_round, version.id, submission.attempts,
-                        submission.answer_name, submission.text, version.reference(submission.answer_name),
-                        submission.received_at)
-        if task.reference is None:
-            _fail(db, task, worker_id, f"version {version.number} has no answer {task.answer!r}")
-        elif task.attempts > MAX_ATTEMPTS:
-            _fail(db, task, worker_id, f"grading was interrupted {MAX_ATTEMPTS} times")
-        else:
+        task = _claimed_task(db, submission_id, worker_id)
+        if task is not None:
             return task
+
+
+def claim_submission(db: Database, submission_id: int, grading_round: int, worker_id: str, *,
+                     lease_s: float = LEASE_S) -> Task | None:
+    """Take submission ``submission_id`` for its round ``grading_round`` (a task message names both).
+
+    It is taken when it is queued in that round, or running under a lease that has run out (its
+    worker died). None when there is nothing to do: already graded, failed, a newer round, or
+    another live worker holds it (see :func:`holder_lease`).
+    """
+    now = utcnow()
+    with db.write() as session:
+        taken = session.execute(
+            update(Submission)
+            .where(Submission.id == submission_id, Submission.grading_round == grading_round,
+                   (Submission.status == "queued")
+                   | ((Submission.status == "running") & (Submission.lease_until < now)))
+            .values(status="running", worker_id=worker_id, lease_until=now + timedelta(seconds=lease_s),
+                    attempts=Submission.attempts + 1, updated_at=now)).rowcount
+    return _claimed_task(db, submission_id, worker_id) if taken == 1 else None
+
+
+def holder_lease(db: Database, submission_id: int, grading_round: int) -> datetime | None:
+    """When another worker's claim on this round runs out, if one holds it now; else None."""
+    with db.read() as session:
+        submission = session.get(Submission, submission_id)
+        if submission is None or submission.grading_round != grading_round or submission.status != "running":
+            return None
+        return submission.lease_until
+
+
+def _claimed_task(db: Database, submission_id: int, worker_id: str) -> Task | None:
+    """The task of a submission this worker has just claimed, or None if it cannot be graded
+    (then it is recorded as failed)."""
+    with db.read() as session:
+        submission = session.get(Submission, submission_id)
+        version = submission.grading_version
+        task = Task(submission.id, submission.grading_round, version.id, submission.attempts,
+                    submission.answer_name, submission.text, version.reference(submission.answer_name),
+                    submission.received_at)
+    if task.reference is None:
+        _fail(db, task, worker_id, f"version {version.number} has no answer {task.answer!r}")
+    elif task.attempts > MAX_ATTEMPTS:
+        _fail(db, task, worker_id, f"grading was interrupted {MAX_ATTEMPTS} times")
+    else:
+        return task
+    return None
+
+
+def queued_since(db: Database, before: datetime, limit: int = 1000) -> list[tuple[int, int]]:
+    """(submission, round) of queued submissions not touched since ``before``: work whose message
+    may have been lost (a broker that was down when it was submitted)."""
+    with db.read() as session:
+        rows = session.execute(select(Submission.id, Submission.grading_round)
+                               .where(Submission.status == "queued", Submission.updated_at < before)
+                               .order_by(Submission.id).limit(limit))
+        return [(row[0], row[1]) for row in rows]
 
 
 def _fail(db: Database, task: Task, worker_id: str, reason: str) -> None:
@@ -254,7 +333,7 @@ def release(db: Database, task: Task, worker_id: str) -> None:
                         .where(Submission.id == task.submission_id, Submission.worker_id == worker_id,
                                Submission.status == "running", Submission.grading_round == task.grading_round)
                         .values(status="queued", worker_id=None, lease_until=None, updated_at=utcnow()))
-    wake_workers()
+    _announce([(task.submission_id, task.grading_round)])
 
 
 def recover(db: Database) -> int:
