@@ -4,7 +4,11 @@ One row per fact, nothing derived twice:
 
 - ``User``: a person or a program (``student``, ``instructor``, ``admin``, ``lms``); students coming
   from an LMS carry its ``external_id``; people who sign in on the web carry a password hash.
-- ``Course`` and ``Enrolment``: who takes or teaches what.
+- ``Course`` and ``Enrolment``: who takes, assists in (``ta``: grades, never publishes) or teaches what.
+- ``Assignment`` and ``AssignmentProblem``: an ordered set of pinned problem versions in a course, with
+  its opening, due and closing times (stored in UTC, shown in the assignment's time zone), attempt
+  limit, late penalty and score policy. ``ParameterDraw``: one student's drawn parameter values for
+  one problem of an assignment (randomised problems).
 - ``Problem`` and ``ProblemVersion``: a problem is a scene id; every change of its scene source is a new
   version, holding the source and the references the engine derived from it (so grading never needs
   the engine again).
@@ -28,13 +32,18 @@ from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column, relationship
 
 __all__ = [
     "ApiToken",
+    "Assignment",
+    "AssignmentProblem",
     "Base",
     "Course",
     "DerivationJob",
+    "ENROLMENT_ROLES",
     "Enrolment",
+    "ParameterDraw",
     "Problem",
     "ProblemVersion",
     "ROLES",
+    "SCORE_POLICIES",
     "STATUSES",
     "Submission",
     "User",
@@ -44,6 +53,8 @@ __all__ = [
 
 ROLES = ("student", "instructor", "admin", "lms")
 STATUSES = ("queued", "running", "done", "failed")
+ENROLMENT_ROLES = ("student", "ta", "instructor")  # and "lms": an LMS account linked to the course
+SCORE_POLICIES = ("best", "latest")
 
 # Named constraints, so that Alembic's batch mode on SQLite can find and alter them later.
 _NAMING = {
@@ -93,6 +104,7 @@ class Course(Base):
 
     enrolments: Mapped[list[Enrolment]] = relationship(back_populates="course")
     problems: Mapped[list[Problem]] = relationship(back_populates="course")
+    assignments: Mapped[list[Assignment]] = relationship(back_populates="course", order_by="Assignment.opens_at")
 
 
 class Enrolment(Base):
@@ -102,7 +114,7 @@ class Enrolment(Base):
     id: Mapped[int] = mapped_column(primary_key=True)
     user_id: Mapped[int] = mapped_column(ForeignKey("users.id", ondelete="CASCADE"))
     course_id: Mapped[int] = mapped_column(ForeignKey("courses.id", ondelete="CASCADE"))
-    role: Mapped[str] = mapped_column(String(16), default="student")  # student | instructor
+    role: Mapped[str] = mapped_column(String(16), default="student")  # student | ta | instructor | lms
 
     user: Mapped[User] = relationship(back_populates="enrolments")
     course: Mapped[Course] = relationship(back_populates="enrolments")
@@ -169,6 +181,9 @@ class Submission(Base):
     lease_until: Mapped[datetime | None]
     idempotency_key: Mapped[str | None] = mapped_column(String(200))
     request_sha256: Mapped[str | None] = mapped_column(String(64))
+    # The assignment it was handed in for (its deadlines, attempt limit and score policy apply); None:
+    # practice outside any assignment.
+    assignment_id: Mapped[int | None] = mapped_column(ForeignKey("assignments.id", ondelete="SET NULL"), index=True)
     updated_at: Mapped[datetime] = mapped_column(default=utcnow, server_default=func.current_timestamp())
 
     user: Mapped[User] = relationship(foreign_keys=[user_id])
@@ -252,3 +267,62 @@ class DerivationJob(Base):
     requester: Mapped[User] = relationship()
     course: Mapped[Course | None] = relationship()
     problem_version: Mapped[ProblemVersion | None] = relationship()
+
+
+class Assignment(Base):
+    """Problems set in a course with deadlines. Times are naive UTC; ``time_zone`` (an IANA name) is
+    how pages show them. No ``closes_at``: nothing is accepted after ``due_at``."""
+
+    __tablename__ = "assignments"
+    __table_args__ = (UniqueConstraint("course_id", "slug"),)
+
+    id: Mapped[int] = mapped_column(primary_key=True)
+    course_id: Mapped[int] = mapped_column(ForeignKey("courses.id", ondelete="CASCADE"), index=True)
+    slug: Mapped[str] = mapped_column(String(64))  # the assignment's id within its course
+    title: Mapped[str] = mapped_column(String(200))
+    opens_at: Mapped[datetime]
+    due_at: Mapped[datetime]
+    closes_at: Mapped[datetime | None]  # the hard close of late submissions
+    time_zone: Mapped[str] = mapped_column(String(64), default="UTC")
+    max_attempts: Mapped[int | None]  # per answer; None: unlimited
+    late_penalty_per_day: Mapped[float] = mapped_column(default=0.0)  # fraction of the score per started day
+    score_policy: Mapped[str] = mapped_column(String(16), default="best")  # best | latest
+    solutions_released: Mapped[bool] = mapped_column(default=False)  # before the close, by the instructor
+    created_at: Mapped[datetime] = mapped_column(default=utcnow)
+
+    course: Mapped[Course] = relationship(back_populates="assignments")
+    problems: Mapped[list[AssignmentProblem]] = relationship(
+        back_populates="assignment", order_by="AssignmentProblem.position", cascade="all, delete-orphan")
+
+
+class AssignmentProblem(Base):
+    """One problem of an assignment, in its place, pinned to the version students answer."""
+
+    __tablename__ = "assignment_problems"
+    __table_args__ = (UniqueConstraint("assignment_id", "position"), UniqueConstraint("assignment_id", "problem_id"))
+
+    id: Mapped[int] = mapped_column(primary_key=True)
+    assignment_id: Mapped[int] = mapped_column(ForeignKey("assignments.id", ondelete="CASCADE"), index=True)
+    position: Mapped[int]
+    problem_id: Mapped[int] = mapped_column(ForeignKey("problems.id", ondelete="CASCADE"))
+    problem_version_id: Mapped[int] = mapped_column(ForeignKey("problem_versions.id"))
+
+    assignment: Mapped[Assignment] = relationship(back_populates="problems")
+    problem: Mapped[Problem] = relationship()
+    problem_version: Mapped[ProblemVersion] = relationship()
+
+
+class ParameterDraw(Base):
+    """The parameter values one student got for one problem of an assignment (randomised problems):
+    drawn once from ``seed``, kept so that every page, check and solution uses the same numbers."""
+
+    __tablename__ = "parameter_draws"
+    __table_args__ = (UniqueConstraint("assignment_id", "user_id", "problem_id"),)
+
+    id: Mapped[int] = mapped_column(primary_key=True)
+    assignment_id: Mapped[int] = mapped_column(ForeignKey("assignments.id", ondelete="CASCADE"), index=True)
+    user_id: Mapped[int] = mapped_column(ForeignKey("users.id", ondelete="CASCADE"))
+    problem_id: Mapped[int] = mapped_column(ForeignKey("problems.id", ondelete="CASCADE"))
+    seed: Mapped[int]
+    values: Mapped[dict[str, Any]]  # {parameter name: value as text or number}
+    created_at: Mapped[datetime] = mapped_column(default=utcnow)

@@ -70,3 +70,32 @@ def test_upgrading_a_database_in_use_keeps_its_rows_and_adds_the_derivation_jobs
             assert connection.exec_driver_sql("SELECT name FROM users").scalars().all() == ["Ine"]
     finally:
         engine.dispose()
+
+
+def test_upgrading_a_database_with_submissions_keeps_every_one_and_adds_assignments(url):
+    """A database made by revision 0002, with a graded submission in it, gains the assignment tables;
+    the submission, its verdict and its text are all still there, in no assignment."""
+    upgrade(url, "0002")
+    engine = create_engine(url)
+    try:
+        with engine.begin() as connection:
+            run = connection.exec_driver_sql
+            run("INSERT INTO users (id, role, name, created_at) VALUES (1, 'student', 'Ada', '2026-11-21 00:00:00')")
+            run("INSERT INTO problems (id, slug, created_at) VALUES (1, 'yoyo', '2026-11-21 00:00:00')")
+            run("INSERT INTO problem_versions (id, problem_id, number, title, statement, source, source_sha256, "
+                "derivation, \"references\", engine_version, published, created_at) VALUES (1, 1, 1, 'Yo-yo', 's', "
+                "'src', 'x', '{}', '[]', 'test', 1, '2026-11-21 00:00:00')")
+            run("INSERT INTO submissions (id, user_id, requester_id, problem_version_id, grading_version_id, "
+                "answer_name, text, received_at, status, grading_round, attempts, updated_at) VALUES "
+                "(1, 1, 1, 1, 1, 'tension', 'm*g/3', '2026-11-21 00:00:00', 'done', 1, 1, '2026-11-21 00:00:00')")
+            run("INSERT INTO verdicts (submission_id, grading_round, problem_version_id, verdict, score, graded_at) "
+                "VALUES (1, 1, 1, 'equivalent', 1.0, '2026-11-21 00:00:00')")
+        assert upgrade(url) == head_revision()
+        assert {"assignments", "assignment_problems", "parameter_draws"} <= set(inspect(engine).get_table_names())
+        with engine.connect() as connection:
+            rows = connection.exec_driver_sql(
+                "SELECT s.text, s.assignment_id, v.score FROM submissions s JOIN verdicts v ON v.submission_id = s.id"
+            ).all()
+        assert [tuple(r) for r in rows] == [("m*g/3", None, 1.0)]
+    finally:
+        engine.dispose()
