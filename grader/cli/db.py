@@ -1,4 +1,4 @@
-"""``grader db``: migrate the database and manage sign-in accounts."""
+"""``grader db``: migrate the database and manage sign-in accounts, courses and enrolments."""
 
 from __future__ import annotations
 
@@ -54,6 +54,71 @@ def create_user(role: str, email: str, name: str | None, password: str | None) -
     finally:
         database.dispose()
     click.echo(f"created {role} {email} (user {user_id}) with password: {password}")
+
+
+@db.command("create-course")
+@click.argument("code")
+@click.option("--title", help="Default: the code.")
+def create_course(code: str, title: str | None) -> None:
+    """Create the course CODE (its students see its published problems; see `grader db enrol`)."""
+    from sqlalchemy import select
+
+    from grader.store.migrate import upgrade as run_upgrade
+    from grader.store.models import Course
+
+    url = default_url()
+    run_upgrade(url)
+    database = Database(url)
+    try:
+        with database.write() as session:
+            if session.scalar(select(Course).where(Course.code == code)) is not None:
+                raise click.ClickException(f"there is a course {code!r} already")
+            course = Course(code=code, title=title or code)
+            session.add(course)
+            session.flush()
+            course_id = course.id
+    finally:
+        database.dispose()
+    click.echo(f"created course {code} (course {course_id})")
+
+
+@db.command()
+@click.argument("code")
+@click.option("--user", "user_id", type=int, required=True,
+              help="The user's id, as create-user or token create printed it.")
+@click.option("--as", "role", type=click.Choice(["student", "instructor", "lms"]), default="student",
+              show_default=True, help="instructor: manages the course's problems; lms: links an LMS account, which may then submit "
+                   "for students and read grades of the course's problems.")
+def enrol(code: str, user_id: int, role: str) -> None:
+    """Enrol a user in the course CODE (again: change their role in it). Access rules: grader.web.policy."""
+    from sqlalchemy import select
+
+    from grader.store.migrate import upgrade as run_upgrade
+    from grader.store.models import Course, Enrolment, User
+
+    url = default_url()
+    run_upgrade(url)
+    database = Database(url)
+    try:
+        with database.write() as session:
+            course = session.scalar(select(Course).where(Course.code == code))
+            user = session.get(User, user_id)
+            if course is None:
+                raise click.ClickException(f"there is no course {code!r}")
+            if user is None:
+                raise click.ClickException(f"there is no user {user_id}")
+            # An LMS account is only ever linked (role lms), and only instructors can teach.
+            if (role == "lms") != (user.role == "lms") or (role == "instructor" and user.role != "instructor"):
+                raise click.ClickException(f"user {user_id} is a {user.role} account; it cannot be enrolled as {role}")
+            enrolment = session.scalar(select(Enrolment).where(Enrolment.user_id == user_id,
+                                                               Enrolment.course_id == course.id))
+            if enrolment is None:
+                session.add(Enrolment(user_id=user_id, course_id=course.id, role=role))
+            else:
+                enrolment.role = role
+    finally:
+        database.dispose()
+    click.echo(f"enrolled user {user_id} in {code} as {role}")
 
 
 def _safe(url: str) -> str:
