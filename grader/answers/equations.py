@@ -264,6 +264,8 @@ def _not_a_multiple(k, points, R, S, j, i):
 _NOT_A_MULTIPLE = "your equation is not the reference multiplied by a factor free of the state"
 # Largest residuals (in nodes) whose ratio is worth a symbolic cancellation.
 FACTOR_MAX_NODES = 200
+# Highest integer power worth cancelling symbolically.
+FACTOR_MAX_POWER = 8
 # Boxes the ball-arithmetic proof may split a bounded domain into.
 FACTOR_MAX_BOXES = 256
 
@@ -297,6 +299,15 @@ def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: d
     >>> state_dependent_factor(ref, thetadot*ref, domains).equivalent
     False
     """
+    # A high power of a nonzero factor ((1 + theta**2)**400) changes no solution: set it aside
+    # rather than make cancel expand it.
+    kept = []
+    for factor in sympy.Mul.make_args(answer):
+        if factor.is_Pow and factor.exp.is_Integer and abs(int(factor.exp)) > FACTOR_MAX_POWER \
+                and _nonzero_on(factor.base, domains) is True:
+            continue
+        kept.append(factor)
+    answer = sympy.Mul(*kept)
     if not (_nodes(reference) <= FACTOR_MAX_NODES and _nodes(answer) <= FACTOR_MAX_NODES):
         return None
     try:
@@ -323,10 +334,13 @@ def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: d
 
 
 def _nodes(expr: sympy.Expr) -> int:
+    """Nodes of ``expr`` (past the limit when a high power makes cancelling it costly: x**1000)."""
     count, stack = 0, [expr]
     while stack and count <= FACTOR_MAX_NODES:
         node = stack.pop()
         count += 1
+        if node.is_Pow and node.exp.is_Integer and abs(int(node.exp)) > FACTOR_MAX_POWER:
+            return FACTOR_MAX_NODES + 1
         stack.extend(node.args)
     return count
 

@@ -122,3 +122,15 @@ def test_a_factored_polynomial_with_the_same_roots_on_the_domain_is_right(answer
     variables = {"x": {"dimension": "dimensionless", "domain": "positive", "kind": "coordinate"}}
     v = check("x^2 = 1", answer, variables, kind="equation")
     assert v.verdict == expected, v.reason
+
+
+@pytest.mark.parametrize("answer, expected", [
+    ("(1 + theta^2)^400 (l thetaddot + g sin theta) = 0", "equivalent"),   # a high power of a nonzero factor
+    ("theta^400 (l thetaddot + g sin theta) = 0", "not_equivalent"),       # vanishes at theta = 0
+])
+def test_high_powers_of_a_factor_are_decided_without_expanding_them(pendulum, answer, expected):
+    import time
+
+    started = time.monotonic()
+    v = check(PENDULUM_EOM, answer, pendulum, kind="equation")
+    assert v.verdict == expected and time.monotonic() - started < 2.0
