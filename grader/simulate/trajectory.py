@@ -307,17 +307,21 @@ class Simulation:
             if i in mode.active:
                 mode.slipping.pop(i, None)
 
-    def initial_mode(self, t: float, y: np.ndarray) -> tuple[Mode, list[tuple[str, int]]]:
-        """The mode at the start: every contact that touches and does not separate holds."""
+    def initial_mode(self, t: float, y: np.ndarray) -> tuple[Mode, np.ndarray, list[tuple[str, int, bool]]]:
+        """The mode and state at the start: every contact that touches and does not separate
+        holds; one that touches while moving into the surface is an impact at the start."""
         f, rates, f_tol, v_tol, _ = self._scales(t, y)
-        mode = Mode(set())
-        for e in self.effects:
-            i = e.index
-            if e.kind == "bilateral":
-                mode.active.add(i)
-            elif e.kind == "unilateral" and f[i] <= f_tol[i] and rates[i] <= v_tol[i]:
-                mode.active.add(i)
-        return self.settle(t, y, mode)
+        mode = Mode({e.index for e in self.effects if e.kind == "bilateral"})
+        touching = [e.index for e in self.effects
+                    if e.kind == "unilateral" and f[e.index] <= f_tol[e.index] and rates[e.index] <= v_tol[e.index]]
+        impacts = [i for i in touching if rates[i] < -v_tol[i]]
+        mode.active |= set(touching) - set(impacts)
+        mode, switches = self.settle(t, y, mode)
+        for i in impacts:
+            if i not in mode.active:
+                mode, y, more = self.transition(t, y, mode, "contact", i)
+                switches += more
+        return mode, y, switches
 
     # -- transitions ------------------------------------------------------------------------------
     def project(self, t: float, y: np.ndarray, mode: Mode) -> np.ndarray:
@@ -428,7 +432,7 @@ class Simulation:
                 t, y = stop, self.project(stop, solution.y[:, -1], mode) if project_every else solution.y[:, -1]
             return self._trajectory(rows, events)
 
-        mode, switches = self.initial_mode(t0, y)
+        mode, y, switches = self.initial_mode(t0, y)
         y = self.project(t0, y, mode)
         # A force that is exactly zero at the start (a restart at an event) switches by the sign of
         # its derivative: that is the event already reported, not a new one.

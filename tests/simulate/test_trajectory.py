@@ -168,3 +168,10 @@ def test_a_disk_launched_without_spin_slides_until_its_slip_stops_then_rolls():
     # v(t) = v0 + g (sin α − μ_k cos α) t and R ω(t) = 2 μ_k g cos α t meet at t*.
     t_star = 2.0 / (2 * mu_k * g * math.cos(alpha) - g * (math.sin(alpha) - mu_k * math.cos(alpha)))
     assert stick.t == pytest.approx(t_star, rel=1e-9)
+
+
+def test_a_ball_starting_on_the_floor_moving_into_it_bounces_at_the_start():
+    motion = simulate_scene(BALL, {}, t_end=0.2, initial={"y": 0.0, "ydot": -1.0})
+    first, second = motion.events[:2]
+    assert (first.effect, first.t, first.state["ydot"]) == ("bounce", 0.0, pytest.approx(0.5, rel=1e-12))
+    assert second.t == pytest.approx(2 * 0.5 / 9.81, rel=1e-9)   # flight time of a 0.5 m/s hop
