@@ -12,7 +12,9 @@ from http import HTTPStatus
 from typing import Any
 
 from flask import Flask, Response, current_app, json, render_template, request
-from werkzeug.exceptions import HTTPException, InternalServerError
+from werkzeug.exceptions import HTTPException, InternalServerError, UnprocessableEntity
+
+from grader.store.lengths import StoredValueError
 
 __all__ = ["ApiProblem", "init_app", "problem_response", "wants_problem_json"]
 
@@ -67,6 +69,15 @@ def init_app(app: Flask) -> None:
     def _api_problem(error: ApiProblem):
         return problem_response(error.status, error.detail, kind=error.kind, title=error.title,
                                 headers=error.headers, **error.extensions)
+
+    @app.errorhandler(StoredValueError)
+    def _unstorable(error: StoredValueError):
+        # Inputs are capped before this (schemas); a value that still does not fit its column is the
+        # client's data, not a server failure.
+        detail = f"A value cannot be stored: {error}."
+        if wants_problem_json():
+            return problem_response(422, detail, kind="invalid-request")
+        return _html_page(UnprocessableEntity(detail))
 
     @app.errorhandler(HTTPException)
     def _http_error(error: HTTPException):

@@ -302,3 +302,21 @@ def test_the_live_preview_refuses_hostile_json_with_a_400(as_student, problems, 
     response = as_student.post("/preview", data=raw, headers={"Content-Type": "application/json",
                                                               "X-CSRF-Token": csrf(as_student)})
     assert response.status_code == 400 and "Send JSON" in response.get_json()["error"]
+
+
+@pytest.fixture
+def unstorable_app(app):
+    from grader.store.lengths import StoredValueError
+
+    @app.get("/api/v1/unstorable")
+    def unstorable():
+        raise StoredValueError("users.name", "201 characters; the limit is 200")
+
+    app.config["PROPAGATE_EXCEPTIONS"] = False
+    return app
+
+
+def test_a_value_its_column_cannot_hold_is_a_422_naming_the_column(unstorable_app):
+    response = unstorable_app.test_client().get("/api/v1/unstorable")
+    assert response.status_code == 422 and response.mimetype == "application/problem+json"
+    assert "users.name: 201 characters; the limit is 200" in response.get_json()["detail"]
