@@ -41,7 +41,7 @@ from grader.expressions import (
 __all__ = ["check", "check_request", "DEFAULT_OPTIONS"]
 
 DEFAULT_OPTIONS = Options()
-FEEDBACK_OPTIONS = Options(points=4, symbolic=False)
+FEEDBACK_OPTIONS = Options(points=4, symbolic=False, factors=False)
 # Share of the budget the mathematics may use; the rest is for the reply (and, in the sandbox,
 # is the margin before the hard kill).
 BUDGET_SHARE = 0.8

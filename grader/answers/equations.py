@@ -137,10 +137,9 @@ def compare_equations(
             if agreed >= needed:
                 break
         elif kind == "differ":
-            if k == 1 and options.symbolic and outcome[1].startswith(_NOT_A_MULTIPLE):
+            if k == 1 and options.factors and outcome[1].startswith(_NOT_A_MULTIPLE):
                 # Not a constant multiple; it may still be the reference times a factor that depends
-                # on the state and is nonzero on the whole domain (r**2 with r > 0, 1 + x**2). A
-                # symbolic step, so not for the numeric judge alone (feedback candidates, the sweep).
+                # on the state and is nonzero on the whole domain (r**2 with r > 0, 1 + x**2).
                 factor = state_dependent_factor(reference[0], answer[0], {**parameters.domains, **states.domains},
                                                 (parameters, states), deadline)
                 if factor is not None:

@@ -62,6 +62,10 @@ class Options:
         Highest working precision tried by ``arb`` before a point is called unresolved.
     symbolic : bool
         Try a cheap symbolic proof (expansion) first.
+    factors : bool
+        Equations: accept the reference times a state-dependent factor that is provably nonzero
+        on the domain (`grader.answers.equations.state_dependent_factor`, a symbolic step). Off
+        for feedback candidates, which are many and only need to be screened.
     fast : bool
         The faster paths (a term's scale from its float midpoint, the answer's values remembered
         between the one-point screen and the full comparison, no expansion of a difference with a
@@ -75,6 +79,7 @@ class Options:
     tolerance: float = 1e-9
     max_bits: int = 4096
     symbolic: bool = True
+    factors: bool = True
     fast: bool = True
 
     def backend(self):
