@@ -320,3 +320,12 @@ def test_a_value_its_column_cannot_hold_is_a_422_naming_the_column(unstorable_ap
     response = unstorable_app.test_client().get("/api/v1/unstorable")
     assert response.status_code == 422 and response.mimetype == "application/problem+json"
     assert "users.name: 201 characters; the limit is 200" in response.get_json()["detail"]
+
+
+def test_the_costliest_valid_check_still_passes_once_the_bucket_is_full(limited, make_token):
+    # 1 + 16 feedback items + 64 variables / 16 = 21 tokens, more than the burst of 20: charged the burst.
+    client = limited.test_client()
+    _, student = make_token("student")
+    body = {**CHEAP, "variables": {f"v{i}": {} for i in range(64)},
+            "feedback": [{"expr": f"{i}*m*g", "message": "no"} for i in range(2, 18)]}
+    assert _statuses(client, student, body, 2) == [200, 429]
