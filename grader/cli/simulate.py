@@ -62,7 +62,8 @@ def simulate(path: str, t_end: str, settings: tuple[str, ...], samples: str, as_
     from grader.mechanics.scene import SceneError, load_scene
     from grader.simulate.compiled import SingularDynamics, parameter_values
     from grader.simulate.initial import InitialStateError
-    from grader.simulate.trajectory import SimulationError, simulate_scene
+    from grader.simulate.events import SimulationError
+    from grader.simulate.trajectory import simulate_scene
 
     if as_json and as_csv:
         _fail("choose one of --json and --csv")

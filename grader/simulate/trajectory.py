@@ -52,31 +52,15 @@ from scipy.integrate import solve_ivp
 
 from grader.simulate.compiled import CompiledScene, kkt_solve, parameter_values
 from grader.simulate.effects import Effect, Mode, declared_effects
+from grader.simulate.events import EventRecord, SimulationError, guard_start, within_budget
 from grader.simulate.initial import initial_state
 
-__all__ = ["EventRecord", "Simulation", "SimulationError", "Trajectory", "simulate_scene"]
+__all__ = ["Simulation", "Trajectory", "simulate_scene"]
 
 _TOL = 1e-9          # relative: what counts as zero for a gap, a rate or a force at a mode decision
 _H = 1e-6            # s: step of the central differences along the flow (signs, Newton step)
 _MAX_EVENTS = 10_000
 _BAND = 1e-11        # relative: friction within this of μ_s N still holds (rounding, not physics)
-
-
-class SimulationError(RuntimeError):
-    """The motion cannot be continued (integrator failure, endless events)."""
-
-
-@dataclass(frozen=True)
-class EventRecord:
-    """An effect switching: when, what, on which constraint, and the state the motion continues from."""
-
-    t: float
-    effect: str  # "release" | "contact" | "bounce" | "slip" | "stick"
-    constraint: str
-    state: dict[str, float]
-
-    def to_json(self) -> dict:
-        return {"t": self.t, "effect": self.effect, "constraint": self.constraint, "state": self.state}
 
 
 @dataclass
@@ -442,7 +426,7 @@ class Simulation:
             stop = next(x for x in stops if x > t)
             evaluator = _Evaluator(self, mode)
             functions = self.event_functions(mode, evaluator)
-            guarded = [_guard_start(g, t, y) for g, _, _ in functions]
+            guarded = [guard_start(g, t, y) for g, _, _ in functions]
             solution = self._integrate(evaluator.rhs, t, stop, y, guarded)
             self._sample(solution, mode, self._inside(wanted, t, solution.t[-1], rows), rows)
             if solution.status != 1:
@@ -468,7 +452,7 @@ class Simulation:
 
     def _integrate(self, rhs, t0, t_end, y, events):
         if self._deadline is not None:
-            rhs = _within(rhs, self._deadline)
+            rhs = within_budget(rhs, self._deadline)
         try:
             solution = solve_ivp(rhs, (t0, t_end), y, method="DOP853", rtol=self.rtol, atol=self.atol,
                                  events=events or None, dense_output=True)
@@ -517,41 +501,6 @@ class Simulation:
         k = len(t)
         return Trajectory(self.compiled.coordinates, self.compiled.constraints, t, q, v,
                           lam.reshape(k, m), Q.reshape(k, m, n), active.reshape(k, m), events)
-
-
-def _within(rhs, deadline: float):
-    """``rhs`` that stops the integration once the clock passes ``deadline``."""
-    calls = 0
-
-    def limited(t, y):
-        nonlocal calls
-        calls += 1
-        if calls % 256 == 0 and time.monotonic() > deadline:
-            raise SimulationError(f"stopped at t = {t:.6g}: the simulation took longer than its time budget")
-        return rhs(t, y)
-
-    return limited
-
-
-def _guard_start(g, t0: float, y0: np.ndarray):
-    """``g`` with its value at the segment's start moved to the side it leaves towards.
-
-    The mode was chosen (:meth:`Simulation.settle`) so that every event function of the new mode
-    starts on its non-firing side or at zero moving away from it (the gap just after a lift-off,
-    the slip velocity just after slipping starts). At exactly zero scipy would take the start of
-    the first step as a root (brentq returns an endpoint where the function is 0), and miss a
-    real crossing later in that step (a ball that bounces and lands within one step), so at the
-    start the function reports the side it moves into.
-    """
-    away = -g.direction
-    start = g(t0, y0)
-    start = start if start * away > 0 else away * 1e-300
-
-    def guarded(t, y):
-        return start if t == t0 else g(t, y)
-
-    guarded.terminal, guarded.direction = g.terminal, g.direction
-    return guarded
 
 
 def simulate_scene(scene, overrides: Mapping[str, float] | None = None, *, t_end: float,
