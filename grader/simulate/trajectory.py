@@ -77,7 +77,8 @@ class Trajectory:
     forces : ndarray (k, m, n)
         Generalized reaction forces Q_ij = λ_i ∂f_i/∂q_j.
     active : ndarray (k, m) of bool
-        Whether each constraint held at each sample.
+        Whether each constraint held (f = 0, or its offset after a slip) at each sample: False
+        while a contact is open or a rolling constraint slips.
     events : list of EventRecord
     """
 
@@ -477,8 +478,7 @@ class Simulation:
         if not len(times):
             return
         states = solution.sol(times)
-        active = np.array([i in mode.active or bool(mode.slipping.get(i)) and
-                           self.effects[i].normal in mode.active for i in range(self.m)], dtype=bool)
+        active = np.array([i in mode.active for i in range(self.m)], dtype=bool)
         for k, t in enumerate(times):
             y = states[:, k]
             _, lam, J, _ = self.solve(t, y, mode)

@@ -175,3 +175,9 @@ def test_a_ball_starting_on_the_floor_moving_into_it_bounces_at_the_start():
     first, second = motion.events[:2]
     assert (first.effect, first.t, first.state["ydot"]) == ("bounce", 0.0, pytest.approx(0.5, rel=1e-12))
     assert second.t == pytest.approx(2 * 0.5 / 9.81, rel=1e-9)   # flight time of a 0.5 m/s hop
+
+
+def test_a_slipping_rolling_constraint_does_not_count_as_holding():
+    motion = simulate_scene(SLIPPING, {"alpha": 0.9}, t_end=0.5, samples=6)
+    assert not motion.active[:, 0].any()      # roll: slipping all along
+    assert motion.active[:, 1].all()          # contact: holds
