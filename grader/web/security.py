@@ -5,18 +5,17 @@
   it authenticates with bearer tokens, which a browser never sends on its own.
 - API tokens: ``Authorization: Bearer <secret>``; :func:`api_user` resolves it to a user and checks
   the role.
-- Rate limits: a token bucket per user and action, in memory (one server process), answered with
-  429 and ``Retry-After``.
+- Rate limits: per user (or account and address) and action, kept by Flask-Limiter's storage (in
+  memory, or Redis shared by every web process), answered with 429 and ``Retry-After``.
 """
 
 from __future__ import annotations
 
+import hashlib
 import hmac
 import math
 import secrets
-import threading
 import time
-from dataclasses import dataclass
 
 from flask import Flask, current_app, g, request, session
 
@@ -25,7 +24,7 @@ from grader.store.models import User
 from grader.store.users import user_for_token
 from grader.web.errors import ApiProblem
 
-__all__ = ["RateLimiter", "api_user", "csrf_token", "init_app", "limiter"]
+__all__ = ["RateLimiter", "api_user", "csrf_exempt", "csrf_token", "init_app", "limiter"]
 
 CSRF_FIELD = "csrf_token"
 CSRF_HEADER = "X-CSRF-Token"
@@ -42,10 +41,18 @@ def csrf_token() -> str:
     return token
 
 
+def csrf_exempt(view):
+    """Mark a page another site form-posts to by design (an LMS's LTI login and launch): it proves
+    itself otherwise (a signed id_token bound to a state cookie), never with this site's CSRF token."""
+    view.csrf_exempt = True
+    return view
+
+
 def _check_csrf() -> None:
     if (request.method not in _UNSAFE or not current_app.config["CSRF_ENABLED"]
             or request.routing_exception is not None  # a 404/405 says more than a CSRF refusal
-            or request.blueprint == "api" or request.path.startswith("/api/")):
+            or request.blueprint == "api" or request.path.startswith("/api/")
+            or getattr(current_app.view_functions.get(request.endpoint), "csrf_exempt", False)):
         return
     expected = session.get("_csrf")
     sent = request.form.get(CSRF_FIELD) or request.headers.get(CSRF_HEADER)
@@ -78,39 +85,42 @@ def api_user(roles: frozenset[str] | set[str]) -> User:
     return user
 
 
-MAX_BUCKETS = 10_000  # beyond this many, refilled buckets are forgotten
-
-
-@dataclass
-class _Bucket:
-    tokens: float
-    updated: float
-
-
 class RateLimiter:
-    """Token buckets per (action, user): ``rate`` requests per second on average, ``burst`` at once.
+    """Rate limits per (action, key), kept by Flask-Limiter's storage: in memory (one process) by
+    default, shared by every web process with ``LAGRADE_RATELIMIT_STORAGE_URI=redis://...``.
 
     Limits come from ``app.config["RATE_LIMITS"]`` = {action: (per_minute, burst)} and are off when
-    ``RATE_LIMITS_ENABLED`` is false.
+    ``RATE_LIMITS_ENABLED`` is false. Each is a moving window: at most ``burst`` in any span of
+    ``60 * burst / per_minute`` seconds (the time a token bucket of that size takes to refill).
     """
 
-    def __init__(self):
-        self._lock = threading.Lock()
-        self._pruned_at = float("-inf")
-
     def init_app(self, app: Flask) -> None:
-        app.extensions["lagrade.rate_buckets"] = {}
+        from flask_limiter import Limiter
+
+        app.config.setdefault("RATELIMIT_STORAGE_URI", "memory://")
+        app.config.setdefault("RATELIMIT_STRATEGY", "moving-window")
+        app.config.setdefault("RATELIMIT_KEY_PREFIX", "lagrade")
+        # Only its storage and strategy are used: the limits are charged by the calls below, where
+        # the action, the key and the cost of a request are known.
+        app.extensions["lagrade.flask_limiter"] = Limiter(lambda: "", app=app, headers_enabled=False)
+
+    @staticmethod
+    def _window(per_minute: float, burst: float):
+        from limits import RateLimitItemPerSecond
+
+        # ``burst`` in any span of the time a bucket takes to refill: the same average rate.
+        return RateLimitItemPerSecond(int(burst), max(1, math.ceil(60.0 * burst / per_minute)))
 
     def hit(self, action: str, key: object, cost: float = 1.0) -> None:
-        """Take ``cost`` tokens from ``key``'s bucket for ``action``, or raise a 429 problem.
+        """Charge ``cost`` to ``key``'s limit for ``action``, or raise a 429 problem.
 
-        An expensive request (a check with many feedback items) costs more than one token; the
-        cost is capped at the burst, so that any single request can pass once the bucket is full.
+        An expensive request (a check with many feedback items) costs more than one; the cost is
+        capped at the burst, so that any single request can pass once the limit has recovered.
         """
         self._draw(action, key, cost, take=True)
 
     def check(self, action: str, key: object) -> None:
-        """Raise the 429 problem if ``key``'s bucket for ``action`` is empty, without taking a token.
+        """Raise the 429 problem if ``key``'s limit for ``action`` is used up, without charging it.
 
         For limits that count only failures (sign-in): look before the attempt, :meth:`hit` after it fails.
         """
@@ -121,37 +131,21 @@ class RateLimiter:
         if not config["RATE_LIMITS_ENABLED"] or action not in config["RATE_LIMITS"]:
             return
         per_minute, burst = config["RATE_LIMITS"][action]
-        rate = per_minute / 60.0
-        cost = min(max(float(cost), 1.0), float(burst))
-        now = time.monotonic()
-        buckets: dict[tuple[str, object], _Bucket] = current_app.extensions["lagrade.rate_buckets"]
-        with self._lock:
-            if len(buckets) > MAX_BUCKETS and now - self._pruned_at > 1.0:  # a scan a second at most
-                self._pruned_at = now
-                self._forget_full(buckets, now)
-            bucket = buckets.setdefault((action, key), _Bucket(float(burst), now))
-            bucket.tokens = min(float(burst), bucket.tokens + (now - bucket.updated) * rate)
-            bucket.updated = now
-            if bucket.tokens >= cost:
-                if take:
-                    bucket.tokens -= cost
-                return
-            wait = math.ceil((cost - bucket.tokens) / rate)
-        raise ApiProblem(429, f"Too many {action} requests: at most {per_minute} a minute (bursts of {burst}). "
-                              f"Try again in {wait} s.", kind="rate-limited", headers={"Retry-After": str(wait)})
-
-    @staticmethod
-    def _forget_full(buckets: dict, now: float) -> None:
-        # Keys can come from request text (a sign-in name): drop buckets that have refilled, which a
-        # new bucket would equal, so the table stays the size of the recent traffic.
-        limits = current_app.config["RATE_LIMITS"]
-        for (action, key), bucket in list(buckets.items()):
-            per_minute, burst = limits.get(action, (1, 0))
-            if bucket.tokens + (now - bucket.updated) * per_minute / 60.0 >= burst:
-                del buckets[(action, key)]
+        charge = min(max(math.ceil(cost), 1), int(burst))
+        strategy = current_app.extensions["lagrade.flask_limiter"].limiter
+        identifiers = (action, hashlib.sha256(repr(key).encode("utf-8", "surrogatepass")).hexdigest()[:32])
+        window = self._window(per_minute, burst)
+        allowed = (strategy.hit(window, *identifiers, cost=charge) if take
+                   else strategy.test(window, *identifiers, cost=charge))
+        if not allowed:
+            reset = strategy.get_window_stats(window, *identifiers).reset_time
+            wait = max(1, math.ceil(reset - time.time()))
+            raise ApiProblem(429, f"Too many {action} requests: at most {per_minute} a minute (bursts of "
+                                  f"{burst}). Try again in {wait} s.", kind="rate-limited",
+                             headers={"Retry-After": str(wait)})
 
 
-# The extension: buckets in memory, per app (one server process).
+# The extension: storage per app (memory, or Redis shared by every web process).
 limiter = RateLimiter()
 
 

@@ -113,7 +113,7 @@ def test_submissions_are_rate_limited_per_user_with_retry_after(app, client, mak
     assert codes == [202, 202, 202, 429]
     limited = client.post("/api/v1/problems/yoyo/submissions", json=body, headers=ada)
     assert limited.mimetype == "application/problem+json"
-    assert 1 <= int(limited.headers["Retry-After"]) <= 10
+    assert 1 <= int(limited.headers["Retry-After"]) <= 30  # the window: 3 in any 30 s (6 a minute)
     # Another student's bucket is untouched.
     assert client.post("/api/v1/problems/yoyo/submissions", json=body, headers=bob).status_code == 202
 
