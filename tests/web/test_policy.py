@@ -96,6 +96,21 @@ def test_a_problem_counts_as_published_if_any_version_is(action):
                                                                          Action.SUBMIT_FOR_OTHERS))
 
 
+# Whoever may do the first may do the second: so a refusal of the second can never reveal more
+# (404) than the first allows, and every grader of a problem can also see it.
+IMPLICATIONS = [(Action.SUBMIT, Action.SEE), (Action.SUBMIT_FOR_OTHERS, Action.SUBMIT),
+                (Action.MANAGE, Action.SUBMIT_FOR_OTHERS), (Action.READ_GRADES, Action.SEE),
+                (Action.REGRADE, Action.READ_GRADES), (Action.EXPORT, Action.READ_GRADES), (Action.MANAGE, Action.EXPORT)]
+
+
+@pytest.mark.parametrize("stronger, weaker", IMPLICATIONS, ids=lambda a: a.value)
+@pytest.mark.parametrize("resource", ["mech", "mech_draft", "open", "open_draft"])
+def test_a_stronger_permission_implies_the_weaker(stronger, weaker, resource):
+    for name, principal in PRINCIPALS.items():
+        if allowed(principal, stronger, RESOURCES[resource]()):
+            assert allowed(principal, weaker, RESOURCES[resource]()), name
+
+
 def test_actions_are_named_by_their_value():
     assert allowed(PRINCIPALS["stu_in"], "see", RESOURCES["mech"]()) is True
     with pytest.raises(ValueError):
