@@ -12,6 +12,7 @@ from grader.store.models import (
     User,
     Verdict,
 )
+from grader.store import lti_models  # noqa: E402,F401  (the LTI tool's tables join Base.metadata)
 from grader.store import lengths  # noqa: E402,F401  (every flushed row's text must fit its column)
 
 __all__ = [
