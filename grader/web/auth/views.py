@@ -8,7 +8,7 @@ from grader.store.db import db
 from grader.store.users import authenticate
 from grader.web.auth import bp
 from grader.web.auth.redirects import safe_next
-from grader.web.auth.session import home_for, sign_in, sign_out
+from grader.web.auth.session import PAGE_ROLES, home_for, sign_in, sign_out
 from grader.web.auth.throttle import record_failed_sign_in, refuse_if_throttled
 from grader.web.errors import ApiProblem
 
@@ -38,7 +38,7 @@ def login():
     if username and password:
         with db.read() as session:  # a short read: checking a password hash is slow on purpose
             user = authenticate(session, username, password)
-    if user is None or user.role not in ("student", "instructor", "admin"):
+    if user is None or user.role not in PAGE_ROLES:
         record_failed_sign_in(username, request.remote_addr)
         # One message for an unknown user and a wrong password: no hint about which accounts exist.
         return render_template("auth/login.html", next=next_url, username=username,
