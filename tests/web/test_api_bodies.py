@@ -329,3 +329,31 @@ def test_the_costliest_valid_check_still_passes_once_the_bucket_is_full(limited,
     body = {**CHEAP, "variables": {f"v{i}": {} for i in range(64)},
             "feedback": [{"expr": f"{i}*m*g", "message": "no"} for i in range(2, 18)]}
     assert _statuses(client, student, body, 2) == [200, 429]
+
+
+@pytest.mark.parametrize("query, status", [("format=csv", 200), ("format=json", 200), ("format=xml", 422)])
+def test_a_documented_query_parameter_is_enforced(client, make_token, yoyo_version, query, status):
+    _, admin = make_token("admin")
+    response = client.get(f"/api/v1/problems/yoyo/grades?{query}", headers=admin)
+    assert response.status_code == status
+    if status == 422:
+        assert "The format query parameter must be one of json, csv" in response.get_json()["detail"]
+
+
+# Inputs that are valid JSON of the right shape but hostile to the checker: a verdict, never a 500.
+@pytest.mark.parametrize("reference, answer", [
+    ("x", "x + 1"),  # a reference plus a constant, x dimensionless
+    ("atan2(x, 1)", "atan2(x)"),  # a function with one argument too few
+    ("x", "9^9^9^9^9"),
+    ("x", "(" * 300 + "x" + ")" * 300),
+    ("x", "sin(" * 120 + "x" + ")" * 120),
+    ("x", "x" * 4000),
+])
+def test_hostile_but_well_formed_checks_get_a_documented_verdict(client, make_token, reference, answer):
+    from grader.answers.verdict import VERDICTS
+
+    _, student = make_token("student")
+    response = client.post("/api/v1/check", headers=student,
+                           json={"reference": reference, "answer": answer, "variables": {"x": {}}})
+    assert response.status_code == 200
+    assert response.get_json()["verdict"] in VERDICTS

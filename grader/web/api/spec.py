@@ -139,11 +139,20 @@ class ApiSpec:
         charge = 1.0
         try:
             for parameter in op.parameters:
-                value = request.headers.get(parameter["name"]) if parameter["in"] == "header" else None
+                # Headers, and query parameters documented as strings (enum, length, pattern); other
+                # query types are read leniently by their views (published=0/no/false).
+                if parameter["in"] == "header":
+                    value = request.headers.get(parameter["name"])
+                elif parameter["in"] == "query" and parameter.get("schema", {}).get("type") == "string":
+                    value = request.args.get(parameter["name"])
+                else:
+                    value = None
                 if value is not None:
                     _check_parameter(parameter, value)
             g.api_body = None
-            if op.request and "application/json" in op.request:
+            # An operation that also takes another body type (a CSV roster) validates JSON bodies only.
+            if op.request and "application/json" in op.request and (
+                    len(op.request) == 1 or request.mimetype == "application/json"):
                 g.api_body = validated_body(op.request["application/json"], self.schemas)
                 charge = float(op.cost(g.api_body)) if op.cost else 1.0
         finally:  # an invalid request is charged too: a flood of them is limited like any other
@@ -183,12 +192,13 @@ def _check_path(op: Operation, values: dict[str, Any]) -> None:
 
 
 def _check_parameter(parameter: dict, value: str) -> None:
-    """A header parameter against its (string) schema: its length, pattern and enum."""
+    """A header or query parameter against its (string) schema: its length, pattern and enum."""
     from grader.web.api.bodies import problems_of
 
     problems = problems_of(value, parameter.get("schema", {}))
     if problems:
-        detail = problems[0]["detail"].replace("body", f"The {parameter['name']} header", 1)
+        where = "header" if parameter["in"] == "header" else "query parameter"
+        detail = problems[0]["detail"].replace("body", f"The {parameter['name']} {where}", 1)
         raise ApiProblem(422, detail, kind="invalid-request",
                          errors=[{"parameter": parameter["name"], "detail": detail}])
 
