@@ -144,6 +144,17 @@ ROWS = [
         "/instructor/problems/mech-draft/versions/1/publish",                          "401   401   403   403   ok    404   401   ok"),
     Row("POST", "/instructor/problems/<slug>/regrade", "/instructor/problems/mech/regrade",
                                                                                        "401   401   403   403   ok    404   401   ok"),
+    # --- LTI 1.3 (an LMS posts to login and launch; without its parameters they are 400 for everyone) -------
+    Row("GET", "/lti/jwks", "/lti/jwks",                                               "ok    ok    ok    ok    ok    ok    ok    ok"),
+    Row("GET", "/lti/login", "/lti/login",                                             "400   400   400   400   400   400   400   400"),
+    Row("POST", "/lti/login", "/lti/login",                                            "400   400   400   400   400   400   400   400"),
+    Row("POST", "/lti/launch", "/lti/launch",                                          "400   400   400   400   400   400   400   400"),
+    Row("GET", "/lti/deep-link", "/lti/deep-link",                                     "login login 403   403   400   400   login 400"),
+    Row("POST", "/lti/deep-link", "/lti/deep-link",                                    "401   401   403   403   400   400   401   400",
+        {"data": {"problem": "mech"}}),
+    Row("GET", "/lti/config", "/lti/config",                                           "login login 403   403   ok    ok    login ok"),
+    Row("POST", "/lti/contexts/<int:context_id>/roster", "/lti/contexts/{lti_context}/roster",
+                                                                                       "401   401   403   403   409   404   401   409"),
 ]
 
 
@@ -157,10 +168,11 @@ class World:
     cookies: dict[str, str]  # principal -> signed session cookie
 
 
-def _app(database_path: Path):
+def _app(database_path: Path, **config):
     from grader.web import create_app
 
-    app = create_app({"TESTING": True, "DATABASE_URL": f"sqlite:///{database_path}", "SECRET_KEY": SECRET_KEY})
+    app = create_app({"TESTING": True, "DATABASE_URL": f"sqlite:///{database_path}", "SECRET_KEY": SECRET_KEY,
+                      **config})
     app.extensions["lagrade.checkers"].factory = InProcessChecker
     return app
 
@@ -205,9 +217,20 @@ def world(tmp_path_factory) -> World:
     ids["submission"], _ = submit(database, user=ada, requester=lms, version=mech_version, answer="tension",
                                   text="m*g/2")
     ids["job"] = enqueue(database, requester_id=ids["ins"], source=MECH_SCENE, course_id=ids["mech"])
+    with database.write() as session:  # an LMS course linked to MECH, launched without a roster service
+        from grader.store.lti_models import LtiContext
+        from grader.web.lti.platforms import register_platform
+
+        platform = register_platform(session, name="LMS", issuer="https://lms.example.org", client_id="lagrade",
+                                     auth_url="https://lms.example.org/auth", token_url="https://lms.example.org/token",
+                                     jwks_url="https://lms.example.org/jwks", deployment_ids=["1"])
+        context = LtiContext(platform_id=platform.id, context_id="mech-lms", title="Mechanics", course_id=ids["mech"])
+        session.add(context)
+        session.flush()
+        ids["lti_context"] = context.id
     database.dispose()
 
-    app, cookies = _app(path), {}
+    app, cookies = _app(path, RATE_LIMITS_ENABLED=False), {}  # five sign-ins in a row from one address
     for key, (_, login) in people.items():
         if login is None:
             continue
