@@ -74,6 +74,8 @@ def read_scene_id(source: str, filename: str = "upload.toml") -> str | None:
         data = tomllib.loads(source)
     except tomllib.TOMLDecodeError as error:
         raise DerivationError(f"{filename}: not valid TOML: {error}") from None
+    except RecursionError:  # tomllib recurses per level of [[[...]]] or {a={b=...}}
+        raise DerivationError(f"{filename}: not valid TOML: nested too deeply") from None
     slug = data.get("id")
     return slug if isinstance(slug, str) else None
 

@@ -214,10 +214,12 @@ def parse_scene(text: str, source: str = "<scene>") -> Scene:
         raise SceneError(source, "", f"file is larger than {_MAX_SOURCE_BYTES // 1024} KiB")
     try:
         data = tomllib.loads(text)
+        # The keys and their types first (scene_schema.py): a misspelt key is an error, not ignored.
+        problems = structure_problems(data)
     except tomllib.TOMLDecodeError as exc:
         raise SceneError(source, "", f"not valid TOML: {exc}") from None
-    # The keys and their types first (scene_schema.py): a misspelt key is an error, not ignored.
-    problems = structure_problems(data)
+    except RecursionError:  # tomllib and the schema recurse per level of [[[...]]] or {a={b=...}}
+        raise SceneError(source, "", "nested too deeply") from None
     if problems:
         raise SceneError(source, *problems[0])
     return _SceneReader(data, source, text).read()

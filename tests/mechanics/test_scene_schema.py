@@ -124,3 +124,13 @@ def test_scene_lengths_fit_the_database_columns_they_are_stored_in(schema_path, 
         schema = schema[key]
     table, name = column.split(".")
     assert schema["maxLength"] <= Base.metadata.tables[table].c[name].type.length
+
+
+@pytest.mark.parametrize("text", [
+    'id = "x"\na = ' + "[" * 5000 + "]" * 5000,
+    'id = "x"\na = ' + "{b=" * 2000 + "1" + "}" * 2000,
+    'id = "x"\na = ' + "[" * 400 + "]" * 400,  # within tomllib's reach, deep for the schema
+], ids=["arrays", "inline-tables", "moderately-deep"])
+def test_a_deeply_nested_file_is_a_scene_error(text):
+    with pytest.raises(SceneError, match="upload.toml: "):
+        parse_scene(text, source="upload.toml")

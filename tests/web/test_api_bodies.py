@@ -357,3 +357,13 @@ def test_hostile_but_well_formed_checks_get_a_documented_verdict(client, make_to
                            json={"reference": reference, "answer": answer, "variables": {"x": {}}})
     assert response.status_code == 200
     assert response.get_json()["verdict"] in VERDICTS
+
+
+@pytest.mark.parametrize("source", [b'id = "x"\na = ' + b"[" * 5000 + b"]" * 5000,
+                                    b'id = "x"\na = ' + b"{b=" * 2000 + b"1" + b"}" * 2000],
+                         ids=["arrays", "inline-tables"])
+def test_a_deeply_nested_scene_upload_is_a_422(client, make_token, source):
+    _, instructor = make_token("instructor")
+    response = client.post("/api/v1/problems", data=source,
+                           headers={**instructor, "Content-Type": "application/toml"})
+    assert response.status_code == 422 and "nested too deeply" in response.get_json()["detail"]
