@@ -21,7 +21,7 @@ from grader.web.converters import IdConverter
 __all__ = ["create_app"]
 
 # The page blueprints, each a package exposing ``bp``; registered when present.
-PAGE_BLUEPRINTS = ("auth", "student", "instructor")
+PAGE_BLUEPRINTS = ("auth", "student", "instructor", "lti")
 
 
 def create_app(test_config: dict | None = None) -> Flask:

@@ -7,8 +7,10 @@ One ``Row`` per request: ``Row(method, rule, url, expect, send)``.
 - ``rule`` is the Flask rule exactly as ``app.url_map`` spells it (``/problems/<slug>``); every rule
   and method of the app must have at least one row, and every row must name a real rule, or
   :func:`test_every_route_has_a_row` fails. A new endpoint therefore needs a row here.
-- ``url`` is the concrete path; ``{submission}`` and ``{job}`` are filled in with the ids of the
-  world below (``mech``: published in course MECH; ``mech-draft``: a draft in MECH).
+- ``url`` is the concrete path; ``{name}`` is filled in from ``world.ids``: ``mech``/``other`` (the
+  courses' ids), ``stu``... ``adm`` (users), ``mech_version``, ``submission`` (Ada's, sent by the LMS),
+  ``job`` (Ine's queued upload), ``lti_context``. Problems: ``mech`` is published in course MECH,
+  ``mech-draft`` a draft in MECH.
 - ``expect`` holds eight outcomes, one per principal, in the order of ``PRINCIPALS``:
 
   ========== ==========================================================================
@@ -208,10 +210,10 @@ def world(tmp_path_factory) -> World:
             derived = dataclasses.replace(YOYO, slug=slug, title=slug, source=f'id = "{slug}"\n')
             version, _ = save_problem(session, derived, published=published)
             version.problem.course_id = mech.id
-            ids[slug] = version.id
+            ids[f"{slug}_version"] = version.id  # ids["mech"] is the course MECH
         ids.update({key: user.id for key, user in users.items()}, mech=mech.id, other=other.id)
     with database.read() as session:
-        mech_version = session.get(ProblemVersion, ids["mech"])
+        mech_version = session.get(ProblemVersion, ids["mech_version"])
         ada, lms = session.get(User, ids["stu"]), session.get(User, ids["lms"])
         session.expunge_all()
     ids["submission"], _ = submit(database, user=ada, requester=lms, version=mech_version, answer="tension",

@@ -1,0 +1,86 @@
+"""Names and Role Provisioning: fill a course's roster from its LMS course's members.
+
+:func:`sync_roster` reads every page of the context's membership container (following ``Link:
+rel="next"``) and gives each active member an account (the same one their launch would give) and an
+enrolment in the mapped course in their LMS role. Members no longer active are left as they are: a
+student's work is never removed by a roster sync.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import requests
+from sqlalchemy.orm import Session
+
+from grader.store.db import Database
+from grader.store.lti_models import LtiContext, LtiPlatform
+from grader.store.models import utcnow
+from grader.web.lti.accounts import course_role, enrol, lti_user
+from grader.web.lti.http import MAX_BODY, TIMEOUT, PlatformUnreachable
+from grader.web.lti.tokens import PlatformAccess, access_token
+
+__all__ = ["MEMBERSHIP_SCOPE", "RosterResult", "fetch_members", "sync_roster"]
+
+MEMBERSHIP_SCOPE = "https://purl.imsglobal.org/spec/lti-nrps/scope/contextmembership.readonly"
+MEMBERSHIP_TYPE = "application/vnd.ims.lti-nrps.v2.membershipcontainer+json"
+MAX_PAGES = 200
+
+
+@dataclass
+class RosterResult:
+    members: int = 0
+    students: int = 0
+    instructors: int = 0
+    skipped: int = 0
+
+
+def fetch_members(url: str, token: str) -> list[dict]:
+    """Every member of the membership container at ``url``, page after page."""
+    members: list[dict] = []
+    for _ in range(MAX_PAGES):
+        try:
+            response = requests.get(url, headers={"Authorization": f"Bearer {token}", "Accept": MEMBERSHIP_TYPE},
+                                    timeout=TIMEOUT, allow_redirects=False)
+        except requests.RequestException as error:
+            raise PlatformUnreachable(f"GET {url} failed: {type(error).__name__}") from error
+        if response.status_code >= 300 or len(response.content) > MAX_BODY:
+            raise PlatformUnreachable(f"the roster service answered {response.status_code}", status=response.status_code)
+        try:
+            page = response.json()
+        except ValueError as error:
+            raise PlatformUnreachable("the roster service answered something that is not JSON") from error
+        found = page.get("members") if isinstance(page, dict) else None
+        members.extend(m for m in found or [] if isinstance(m, dict))
+        following = response.links.get("next", {}).get("url")
+        if not following:
+            return members
+        url = following
+    raise PlatformUnreachable(f"the roster has more than {MAX_PAGES} pages")
+
+
+def sync_roster(database: Database, session: Session, context: LtiContext) -> RosterResult:
+    """Enrol every active member of ``context``'s LMS course in its lagrade course (in ``session``)."""
+    if not context.memberships_url:
+        raise PlatformUnreachable("this LMS course offered no roster service at its launches")
+    platform = session.get(LtiPlatform, context.platform_id)
+    token = access_token(database, PlatformAccess(platform.id, platform.issuer, platform.client_id,
+                                                  platform.token_url), {MEMBERSHIP_SCOPE})
+    result = RosterResult()
+    for member in fetch_members(context.memberships_url, token):
+        sub, roles = member.get("user_id"), member.get("roles")
+        if not isinstance(sub, str) or not sub or len(sub) > 255 or member.get("status", "Active") != "Active":
+            result.skipped += 1
+            continue
+        role = course_role(roles if isinstance(roles, list) else [])
+        name = member.get("name") or " ".join(str(member.get(k, "")) for k in ("given_name", "family_name")).strip()
+        user = lti_user(session, platform, sub, name if isinstance(name, str) else "", role)
+        enrol(session, user, context.course_id, role)
+        result.members += 1
+        if role == "instructor":
+            result.instructors += 1
+        else:
+            result.students += 1
+    context.roster_synced_at = utcnow()
+    session.flush()
+    return result
