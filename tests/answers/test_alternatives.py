@@ -68,12 +68,17 @@ alternatives = ["-acos(g/(omega^2*a))"]
 
 
 def test_alternatives_go_from_the_scene_file_through_the_reference_contract_to_the_checker():
-    from grader.mechanics.lagrange import derive
+    from types import SimpleNamespace
+
     from grader.mechanics.references import reference_answers
     from grader.mechanics.scene import parse_scene
 
-    (data,) = [r for r in reference_answers(derive(parse_scene(SCENE, source="test")))
-               if r["name"] == "equilibrium"]
+    scene = parse_scene(SCENE, source="test")
+    (spec,) = scene.answers
+    # The answer is already in closed form in the parameters: its derived value is its expression
+    # (a stand-in for derive(), whose time budget is not what this test is about).
+    derivation = SimpleNamespace(scene=scene, answers={"equilibrium": spec.expr})
+    (data,) = reference_answers(derivation)
     reference = ReferenceAnswer.from_json(data)
     assert reference.alternatives == ("-acos(g/(a*omega**2))",)
     reply = check_request(reference.request("-acos(g/(omega^2 a))"))
