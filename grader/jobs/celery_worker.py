@@ -27,7 +27,6 @@ from __future__ import annotations
 import importlib
 import logging
 import os
-import socket
 import threading
 import time
 from dataclasses import dataclass
@@ -36,6 +35,7 @@ from datetime import timedelta
 from celery import Celery, signals
 
 from grader.jobs import queue
+from grader.jobs.processes import process_tag
 from grader.jobs.grading import CHECK_BUDGET_S, Checker, check_task, score
 from grader.store.db import Database, default_url
 from grader.store.models import utcnow
@@ -111,7 +111,7 @@ def _drop_checker() -> None:
 
 
 def _worker_id() -> str:
-    return f"celery-{socket.gethostname()}-{os.getpid()}-{threading.get_ident() % 100000}"
+    return f"{process_tag()}:celery-{threading.get_ident() % 100000}"
 
 
 @app.task(name="lagrade.grade", bind=True, max_retries=None)

@@ -14,6 +14,7 @@ import uuid
 from typing import Callable
 
 from grader.jobs import queue
+from grader.jobs.processes import process_tag
 from grader.jobs.grading import CHECK_BUDGET_S, Checker, check_task, sandbox_checker, score
 from grader.store.db import Database
 from grader.store.models import utcnow
@@ -38,7 +39,7 @@ class WorkerPool:
                  poll_s: float = 1.0, budget_s: float = CHECK_BUDGET_S, lease_s: float = queue.LEASE_S):
         self.db, self.workers, self.poll_s, self.budget_s, self.lease_s = db, workers, poll_s, budget_s, lease_s
         self.checker_factory = checker_factory or sandbox_checker
-        self.boot_id = f"{os.getpid()}-{uuid.uuid4().hex[:8]}"
+        self.boot_id = f"{process_tag()}:{uuid.uuid4().hex[:8]}"  # recover() reads host and pid from it
         self._stop = threading.Event()
         self._threads: list[threading.Thread] = []
         self.graded = 0

@@ -1,5 +1,7 @@
 """The grading queue: committed before grading, claimed once, exactly one verdict in effect after anything."""
 
+import os
+import socket
 import threading
 from concurrent.futures import ThreadPoolExecutor
 from datetime import timedelta
@@ -11,6 +13,10 @@ from grader.jobs import queue
 from grader.store.models import Submission, User, Verdict, utcnow
 from grader.store.problems import save_problem
 from grader.store.users import create_user
+
+# Worker ids name their host and process (grader/jobs/processes.py); no process ever has this pid.
+DEAD = f"{socket.gethostname()}:{2 ** 22 + 7}:pool/0"
+ALIVE = f"{socket.gethostname()}:{os.getpid()}:pool/0"
 
 RESULT = {"verdict": "correct", "certainty": "proved", "reason": "equal", "parsed": None,
           "counterexample": None, "feedback": None, "ms": 1.0}
@@ -93,20 +99,31 @@ def test_record_commits_the_verdict_and_done_together_and_only_once(database, se
 
 def test_a_result_from_a_worker_that_lost_its_claim_is_dropped(database, setup):
     submission_id, _ = _submit(database, setup)
-    stale = queue.claim(database, "w1")
-    queue.recover(database)  # e.g. a restart decided w1 was gone
+    stale = queue.claim(database, DEAD)
+    queue.recover(database)  # a restart found DEAD's process gone (it was only slow elsewhere...)
     fresh = queue.claim(database, "w2")
-    assert _record(database, stale, worker="w1") is False
+    assert _record(database, stale, worker=DEAD) is False
     assert _record(database, fresh, worker="w2") is True
     assert len(_verdicts(database, submission_id)) == 1
 
 
 def test_recover_queues_again_what_a_crash_left_running(database, setup):
     submission_id, _ = _submit(database, setup)
-    task = queue.claim(database, "w1")
+    task = queue.claim(database, DEAD)
     assert queue.recover(database) == 1
     again = queue.claim(database, "w2")
     assert (again.submission_id, again.grading_round, again.attempts) == (task.submission_id, 1, 2)
+
+
+@pytest.mark.parametrize("holder", [ALIVE, "other-host:1234:pool/0", "unreadable"],
+                         ids=["live-process-here", "other-host", "unreadable-id"])
+def test_recover_leaves_claims_that_a_live_or_unknown_process_holds_to_their_lease(database, setup, holder):
+    # Several web processes share the database: one starting up must not take work from another.
+    _submit(database, setup)
+    queue.claim(database, holder)
+    assert queue.recover(database) == 0
+    assert queue.claim(database, "w2") is None
+    assert queue.requeue_expired(database, now=utcnow() + timedelta(seconds=queue.LEASE_S + 1)) == 1
 
 
 def test_expired_leases_are_queued_again(database, setup):
@@ -119,9 +136,9 @@ def test_expired_leases_are_queued_again(database, setup):
 def test_a_submission_that_keeps_crashing_its_grader_ends_failed_with_one_verdict(database, setup):
     submission_id, _ = _submit(database, setup)
     for _ in range(queue.MAX_ATTEMPTS):
-        assert queue.claim(database, "w1") is not None
+        assert queue.claim(database, DEAD) is not None
         queue.recover(database)  # the grader died each time
-    assert queue.claim(database, "w1") is None
+    assert queue.claim(database, DEAD) is None
     with database.read() as session:
         assert session.get(Submission, submission_id).status == "failed"
     [verdict] = _verdicts(database, submission_id)

@@ -1,5 +1,6 @@
 """Grading workers: every queued submission gets exactly one verdict, from the sandboxed checker."""
 
+import socket
 import time
 
 import pytest
@@ -74,7 +75,7 @@ def test_many_submissions_each_get_exactly_one_verdict(database, setup):
 
 def test_start_queues_again_what_a_crash_left_running(database, setup):
     [submission_id] = _submit_all(database, setup, ["m*g/3"])
-    queue.claim(database, "a-worker-of-a-dead-process")
+    queue.claim(database, f"{socket.gethostname()}:{2 ** 22 + 7}:pool/0")  # no process has that pid
     pool = WorkerPool(database, workers=1, poll_s=0.1).start()
     try:
         _wait_until_graded(database, [submission_id])
