@@ -27,6 +27,7 @@ from sqlalchemy import select, update
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
+from grader.jobs.processes import holder_is_dead
 from grader.jobs import lti_passback
 from grader.store.db import Database
 from grader.store.models import ProblemVersion, Submission, User, Verdict, utcnow
@@ -341,15 +342,23 @@ def release(db: Database, task: Task, worker_id: str) -> None:
 
 
 def recover(db: Database) -> int:
-    """At start-up: every ``running`` submission was interrupted by a crash; queue it again.
+    """At start-up: queue again the ``running`` submissions whose worker process has died on this host.
 
-    Assumes one ``grader serve`` per database (its workers are the only ones that can hold leases).
+    Safe with many processes on one database: a claim held by a live process (here or on another
+    host) is left alone; if that process dies, its lease runs out and :func:`requeue_expired` takes
+    it back.
     """
     with db.write() as session:
-        count = session.execute(update(Submission).where(Submission.status == "running")
-                                .values(status="queued", worker_id=None, lease_until=None)).rowcount
+        running = session.execute(select(Submission.id, Submission.worker_id, Submission.grading_round)
+                                  .where(Submission.status == "running")).all()
+        dead = [(row.id, row.worker_id, row.grading_round) for row in running if holder_is_dead(row.worker_id)]
+        count = 0
+        for submission_id, worker_id, grading_round in dead:
+            count += session.execute(update(Submission).where(
+                Submission.id == submission_id, Submission.status == "running", Submission.worker_id == worker_id)
+                .values(status="queued", worker_id=None, lease_until=None)).rowcount
     if count:
-        wake_workers()
+        _announce([(submission_id, grading_round) for submission_id, _, grading_round in dead])
     return count
 
 
