@@ -181,3 +181,23 @@ def test_a_slipping_rolling_constraint_does_not_count_as_holding():
     motion = simulate_scene(SLIPPING, {"alpha": 0.9}, t_end=0.5, samples=6)
     assert not motion.active[:, 0].any()      # roll: slipping all along
     assert motion.active[:, 1].all()          # contact: holds
+
+
+def test_a_scene_without_effects_costs_exactly_the_plain_integration():
+    # Count the compiled M, F, J, b evaluations: the simulation of a scene with only bilateral
+    # constraints must do the work of solve_ivp on the compiled right-hand side and nothing more.
+    from scipy.integrate import solve_ivp
+
+    scene = load_scene(ROOT / "tests" / "mechanics" / "scenes" / "double_pendulum.toml")
+    sim = simulation(scene)
+    compiled = sim.compiled
+    q0 = np.array([0.6, -0.8, 0.6 + 0.7 * math.sin(0.4), -0.8 - 0.7 * math.cos(0.4)])
+    calls = []
+    terms = compiled.terms
+    compiled.terms = lambda *args: calls.append(1) or terms(*args)
+    solve_ivp(compiled.rhs, (0.0, 2.0), np.concatenate([q0, np.zeros(4)]), method="DOP853",
+              rtol=sim.rtol, atol=sim.atol, dense_output=True)
+    plain, calls[:] = len(calls), []
+    motion = sim.run(0.0, q0, np.zeros(4), 2.0, ())
+    assert len(calls) == plain and motion.events == []
+    assert not sim.switching
