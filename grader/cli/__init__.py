@@ -18,6 +18,7 @@ _COMMANDS = {
     "db": "grader.cli.db:db",
     "token": "grader.cli.token:token",
     "simulate": "grader.cli.simulate:simulate",
+    "lti": "grader.cli.lti:lti",
 }
 _BENCHMARKS = {
     "derive": "grader.bench.derive:bench_derive",
