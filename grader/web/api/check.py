@@ -6,7 +6,7 @@ from flask import current_app
 
 from grader.jobs.grading import CheckersBusy
 from grader.web.api import spec
-from grader.web.policy import API_ROLES
+from grader.web.policy import API_ROLES, Action, current_principal, require
 from grader.web.api.schemas import CHECK_REQUEST, CHECK_RESULT, check_cost, read_json
 from grader.web.errors import ApiProblem
 
@@ -24,6 +24,7 @@ def check_answer():
     them gets a verdict saying so, not an error. A check costs one request of the rate limit, plus
     one per feedback item and a little for many variables or long texts.
     """
+    require(current_principal(), Action.CHECK, None)
     body = read_json(CHECK_REQUEST)
     checkers = current_app.extensions["lagrade.checkers"]
     limit = current_app.config["CHECK_BUDGET_S"]
