@@ -46,6 +46,7 @@ from pathlib import Path
 from urllib.parse import urlparse
 
 import pytest
+from flask import g
 from sqlalchemy import func, select
 
 from grader.jobs import submit
@@ -252,6 +253,13 @@ def cell_app(world, tmp_path):
     copy = tmp_path / "cell.sqlite"
     shutil.copyfile(world.path, copy)
     app = _app(copy)
+    app.extensions["matrix.asked"] = asked = []
+
+    @app.after_request
+    def _record(response):  # did this request ask the access policy who the caller is?
+        asked.append("_principal" in g)
+        return response
+
     yield app
     _close(app)
 
@@ -287,6 +295,15 @@ def test_every_route_has_a_row(world):
     assert sorted(rows - routes) == [], "rows naming no route of the app"
 
 
+# Signed in or not, these only redirect (to the sign-in page or to one's home page).
+NOT_GUARDED = {("GET", "/"), ("POST", "/logout")}
+
+
+def _guarded(row: Row) -> bool:
+    """Whether the row's endpoint is closed to anonymous callers: then it must ask the policy."""
+    return row.outcomes()["anon"] != "ok" and (row.method, row.rule) not in NOT_GUARDED
+
+
 CELLS = [pytest.param(row, principal, expected, id=f"{row.method} {row.url} as {principal}")
          for row in ROWS for principal, expected in row.outcomes().items()]
 
@@ -297,6 +314,8 @@ def test_access(world, cell_app, row, principal, expected):
     url = row.url.format(**world.ids)
     response = client.open(url, method=row.method, headers=headers, **row.send)
     assert outcome(response) == expected, (response.status_code, response.get_data(as_text=True)[:300])
+    if expected == "ok" and _guarded(row):
+        assert cell_app.extensions["matrix.asked"] == [True], "let the caller through without asking grader.web.policy"
     if response.mimetype.endswith("json") and url.startswith("/api/") and response.status_code >= 400:
         assert response.mimetype == "application/problem+json"  # refusals are problem documents too
 
