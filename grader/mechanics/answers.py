@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import sympy
 
+from grader.mechanics import budget
 from grader.mechanics.reduction import Reduction
 from grader.mechanics.scene import AnswerSpec, Scene, SceneError
 from grader.mechanics.simplification import human_form
@@ -73,7 +74,8 @@ class AnswerEvaluator:
 
             value = special_value(self, spec)
         else:
-            value = self.reduce(spec.expr, self.target(spec), key)
+            with budget.step("expressing the answer in its variables", spec.name):
+                value = self.reduce(spec.expr, self.target(spec), key)
         self.values[spec.symbol] = value
         return value
 

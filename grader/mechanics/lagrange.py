@@ -45,6 +45,7 @@ from dataclasses import dataclass, field
 
 import sympy
 
+from grader.mechanics import budget
 from grader.mechanics.augmented import singular_directions, solve_augmented
 from grader.mechanics.scene import Scene, SceneError
 from grader.mechanics.simplification import quick_form
@@ -179,13 +180,21 @@ class Derivation:
         return self.references_cache
 
 
-def derive(scene: Scene) -> Derivation:
-    """Derive equations of motion, multipliers, constraint forces and every answer of a scene."""
+def derive(scene: Scene, budget_s: float | None = None) -> Derivation:
+    """Derive equations of motion, multipliers, constraint forces and every answer of a scene.
+
+    With ``budget_s``, a derivation that runs longer raises
+    :class:`~grader.mechanics.budget.BudgetExceeded` naming the step and the answer it was
+    working on (only in the main thread; elsewhere the caller's own limit applies).
+    """
     from grader.mechanics.answers import evaluate_answers
     from grader.mechanics.steps import derivation_steps
 
-    eom = equations_of_motion(scene)
-    answers, equations = evaluate_answers(scene, eom)
-    derivation = Derivation(scene, eom, answers, equations)
-    derivation.steps = derivation_steps(derivation)
+    with budget.overall_budget(budget_s):
+        with budget.step("solving the equations of motion"):
+            eom = equations_of_motion(scene)
+        answers, equations = evaluate_answers(scene, eom)
+        derivation = Derivation(scene, eom, answers, equations)
+        with budget.step("writing the step-by-step derivation"):
+            derivation.steps = derivation_steps(derivation)
     return derivation

@@ -14,8 +14,9 @@ The condition is solved **algebraically** first, under a time budget (a conditio
 solved as a polynomial in S = sin θ, which is instant where a direct solve can hang), and the
 roots are kept where they are real and inside the unknown's domain, at two parameter points. Then:
 
-- for a coordinate that ``[initial]`` gives, the motion from there decides (even between roots
-  where the answer has the same value, since the motion may turn back before any of them): it moves in the direction of u̇₀ (else
+- for a coordinate that ``[initial]`` gives (and an answer not in terms of a parameter [initial]
+  uses, which would make it a formula over a family of motions), the motion from there decides,
+  even between roots where the answer has the same value, since it may turn back before any: it moves in the direction of u̇₀ (else
   of ü₀, else +, an infinitesimal push away from an unstable equilibrium) until energy turns it
   back, then the other way until it turns back again; the first root on that path is the one
   reached. Periodic images of an angle are followed turn after turn: there is no fixed range;
@@ -67,7 +68,10 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
         if spec.kind == "small_oscillation":
             value = _stiffness(evaluator, spec, key)
         else:
-            value = evaluator.reduce(spec.expr, target | {unknown}, f"answers ({spec.name}).expr")
+            # Parameters outside in_terms_of may cancel once the root is substituted (b in -2 g b φ
+            # at φ = -h/b); the final check below catches those that do not.
+            value = evaluator.reduce(spec.expr, target | evaluator.parameters | {unknown},
+                                     f"answers ({spec.name}).expr")
         chosen = _choose_root(evaluator, spec, condition, unknown, roots, value, key)
         result = human_form(value.xreplace({unknown: chosen}))
         if spec.kind == "small_oscillation":
@@ -100,14 +104,32 @@ def _condition(evaluator, spec, target: set, key: str) -> tuple[sympy.Expr, symp
             continue
         if spec.kind == "small_oscillation":
             condition = condition.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
-        unknowns = sorted(condition.free_symbols - target, key=str)
+        condition = _essential(condition)
+        # A state variable is the unknown when there is one (the condition picks a configuration;
+        # parameters outside in_terms_of may still cancel from the answer); else a parameter
+        # (a threshold).
+        unknowns = sorted((condition.free_symbols - target) & evaluator.state_symbols(), key=str) or sorted(
+            condition.free_symbols - target, key=str)
         if len(unknowns) == 1:
-            return sympy.numer(sympy.together(condition)), unknowns[0]
+            return condition, unknowns[0]
         found.append(unknowns)
     names = ", ".join(str(s) for s in (found[-1] if found else [])) or "nothing"
     raise SceneError(scene.source, key,
                      f"the condition must leave exactly one unknown that in_terms_of does not allow; it "
                      f"leaves {names}")
+
+
+def _essential(condition: sympy.Expr) -> sympy.Expr:
+    """The condition's numerator without factors that cannot vanish (m in m (v₀²/R − 5g) = 0).
+
+    >>> m, v, g = sympy.symbols("m v g", positive=True)
+    >>> _essential(m*(v**2 - 5*g)/g)
+    -5*g + v**2
+    """
+    numerator = sympy.numer(sympy.together(condition))
+    factors = sympy.Mul.make_args(sympy.factor_terms(numerator))
+    kept = [f for f in factors if not (f.is_positive or f.is_negative)]
+    return sympy.Mul(*kept) if kept else numerator
 
 
 def solve_for(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> list[sympy.Expr]:
@@ -159,6 +181,7 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> sympy
         raise SceneError(scene.source, key, f"the condition has no solution for {x} in closed form")
     chosen_index = None
     for point in _parameter_points(scene):
+        point = _with_state(evaluator, point, (condition.free_symbols | value.free_symbols) - {x})
         numeric = _numeric_roots(roots, point, variable)
         if not numeric:
             raise SceneError(scene.source, key,
@@ -170,7 +193,7 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> sympy
             if v is not None:
                 values[index] = v
         groups = _groups(values)
-        if variable is not None and variable[0] == "coordinate" and variable[1].name in scene.initial:
+        if variable is not None and variable[0] == "coordinate" and _one_motion(evaluator, spec, variable[1]):
             # Even a single root must be reached: the motion may turn back before it.
             index = _first_reached(evaluator, variable[1], condition, numeric, point, key)
         elif len(groups) == 1:
@@ -189,6 +212,34 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> sympy
         elif chosen_index not in group:
             raise SceneError(scene.source, key, "which root holds depends on the parameter values")
     return roots[chosen_index]
+
+
+def _one_motion(evaluator, spec, u) -> bool:
+    """Whether the answer is about the one motion from [initial] (then that motion must reach it).
+
+    An answer in terms of a parameter that [initial] uses (θ₀, v₀) is about a family of motions:
+    its value at a configuration is a formula in that parameter, reachable for some of its values.
+    """
+    initial = evaluator.scene.initial
+    if u.name not in initial:
+        return False
+    used = set().union(*(e.free_symbols for e in initial.values()))
+    allowed = evaluator.target(spec, default_state=False) if spec.in_terms_of is not None else set()
+    return not (used & allowed)
+
+
+def _with_state(evaluator, point: dict, symbols: set) -> dict:
+    """The parameter point, with numbers for the state variables an answer is written in.
+
+    A steady orbit's φ̇(r) is checked at the radius [initial] gives, else at a generic one.
+    """
+    point = dict(point)
+    initial = evaluator.scene.initial
+    for k, s in enumerate(sorted(symbols - set(point), key=str)):
+        given = initial.get(s.name)
+        value = _evaluate(given, point) if given is not None else None
+        point[s] = value if value else 0.7 + 0.13 * k
+    return point
 
 
 def _ambiguous(x, roots, numeric) -> str:
@@ -267,7 +318,7 @@ def _first_reached(evaluator, u, condition, numeric: dict[int, float], point: di
     u0 = float(sympy.N(scene.initial[u.name].xreplace({s: sympy.Float(v, 30) for s, v in point.items()})))
     direction = _direction(evaluator, u, point)
     speed2 = _speed_squared(evaluator, u, point, key)
-    periodic = u.dimension.is_dimensionless and not _bounded(u)
+    periodic = not _bounded(u) and _periodic(condition, u.symbol)
     path = []  # (start, direction, end or None, why it ends)
     end, why = _travel(u, u0, direction, speed2)
     path.append((direction, end, why))
@@ -295,6 +346,15 @@ def _first_reached(evaluator, u, condition, numeric: dict[int, float], point: di
     raise SceneError(scene.source, key,
                      f"the motion from [initial] {stops or 'runs away'} before it reaches a root of the "
                      f"condition ({roots})")
+
+
+def _periodic(condition: sympy.Expr, x: sympy.Symbol) -> bool:
+    """Whether x enters the condition only through sin, cos, tan of integer multiples of x."""
+    atoms = [f for f in condition.atoms(*_TRIG) if x in f.free_symbols]
+    if not all((f.args[0] / x).is_Integer for f in atoms):
+        return False
+    stripped = condition.xreplace({f: sympy.Dummy() for f in atoms})
+    return x not in stripped.free_symbols
 
 
 def _bounded(u) -> bool:

@@ -96,7 +96,12 @@ def derivation_steps(derivation) -> list[Step]:
     for spec in scene.answers:
         value = derivation.answers[spec.name]
         where = f" where {sympy.sstr(spec.where[0])} = {sympy.sstr(spec.where[1])}" if spec.where else ""
-        if spec.kind == "equation":
+        if spec.kind == "small_oscillation":
+            s.add(f"{spec.name} = frequency of small oscillations of {sympy.sstr(spec.expr)} about the "
+                  f"equilibrium{where} = sqrt(-d({spec.expr}ddot)/d{spec.expr}) = {sympy.sstr(value)}",
+                  rf"\text{{{_tex_text(spec.name)}}} = \sqrt{{-\partial \ddot{{{tex(spec.expr)}}}/"
+                  rf"\partial {tex(spec.expr)}}} = {tex(value)}")
+        elif spec.kind == "equation":
             s.add(f"{spec.name}: {sympy.sstr(spec.expr)} = {sympy.sstr(value)}",
                   rf"\text{{{_tex_text(spec.name)}}}: {tex(spec.expr)} = {tex(value)}")
         else:

@@ -87,6 +87,59 @@ def test_textbook_scenes(derived, scene, answer, expected):
 @pytest.mark.parametrize(
     "scene, answer, expected",
     [
+        # Massless pulley: the angle phi has no kinetic energy of its own; M = diag(m1, m2, 0) is
+        # singular, [M J^T; J 0] is not. Newton: a = (m1 - m2) g/(m1 + m2), T = 2 m1 m2 g/(m1 + m2).
+        ("atwood_massless_pulley", "acceleration", "(m1 - m2)*g/(m1 + m2)"),
+        ("atwood_massless_pulley", "angular_acceleration", "(m1 - m2)*g/(R*(m1 + m2))"),
+        ("atwood_massless_pulley", "tension_left", "2*m1*m2*g/(m1 + m2)"),
+        ("atwood_massless_pulley", "tension_right", "2*m1*m2*g/(m1 + m2)"),
+        # Puck tied through a hole: angular momentum m1 r^2 phidot = m1 r0^2 omega0 removes phidot;
+        # (m1 + m2) rddot = m1 r phidot^2 - m2 g; energy and momentum together give rdot^2.
+        ("table_hole_orbit", "radial_acceleration", "(m1*r0^4*omega0^2/r^3 - m2*g)/(m1 + m2)"),
+        ("table_hole_orbit", "tension", "m1*m2*(g + r0^4*omega0^2/r^3)/(m1 + m2)"),
+        ("table_hole_orbit", "radial_speed_squared",
+         "(m1*omega0^2*r0^2*(1 - r0^2/r^2) - 2*m2*g*(r - r0))/(m1 + m2)"),
+        # Steady orbit: rddot = 0 solved for phidot, the sign the motion (omega0 > 0) gives it.
+        ("table_hole_orbit", "steady_angular_velocity", "sqrt(m2*g/(m1*r))"),
+        # Spinning hoop: theta'' = sin(theta) (omega^2 cos(theta) - g/a); the bead swings about
+        # cos(theta*) = g/(a omega^2), with omega_small^2 = omega^2 sin^2(theta*) (linearised).
+        ("bead_hoop_equilibrium", "equilibrium_cos", "g/(a*omega^2)"),
+        ("bead_hoop_equilibrium", "small_oscillation_frequency", "sqrt(omega^2 - g^2/(a^2*omega^2))"),
+        # Helix: z = b phi, so the drop h is reached at phi = -h/b (four turns down), v^2 = 2 g h.
+        ("bead_helix", "turns_angle", "-h/b"),
+        ("bead_helix", "speed_squared_there", "2*g*h"),
+        # Driven support x_s = A cos(Omega t): the support's acceleration acts as a horizontal
+        # inertial force m A Omega^2 cos(Omega t) in its frame.
+        ("pendulum_driven_support", "equation_of_motion",
+         "(A*Omega^2*cos(Omega*t)*cos(theta) - g*sin(theta))/l"),
+        ("pendulum_driven_support", "tension",
+         "m*(g*cos(theta) + l*thetadot^2 + A*Omega^2*cos(Omega*t)*sin(theta))"),
+        # Double incline, three constraints: a = g (m1 sin(alpha) - m2 sin(beta))/(m1 + m2),
+        # T = m1 m2 g (sin(alpha) + sin(beta))/(m1 + m2), N1 = m1 g cos(alpha).
+        ("double_incline_cartesian", "acceleration", "g*(m1*sin(alpha) - m2*sin(beta))/(m1 + m2)"),
+        ("double_incline_cartesian", "tension", "m1*m2*g*(sin(alpha) + sin(beta))/(m1 + m2)"),
+        ("double_incline_cartesian", "normal_left", "m1*g*cos(alpha)"),
+        # Inside a loop: N = m v^2/R + m g cos(phi) with v^2 = v0^2 - 2 g R (1 - cos(phi)); it
+        # leaves where N = 0; it goes round only if N(pi) >= 0, i.e. v0 >= sqrt(5 g R).
+        ("loop_inside_track", "normal_force", "m*(v0^2/R - 2*g + 3*g*cos(phi))"),
+        ("loop_inside_track", "leave_cos", "(2*g*R - v0^2)/(3*g*R)"),
+        ("loop_inside_track", "top_normal_force", "m*(v0^2/R - 5*g)"),
+        ("loop_inside_track", "least_launch_speed", "sqrt(5*g*R)"),
+        # Solid cylinder rolling inside a cylinder: T = 3/4 m (R - r)^2 phidot^2, so
+        # (R - r) phidot^2 = 4 g (cos(phi) - cos(phi0))/3, N = m g (7 cos(phi) - 4 cos(phi0))/3,
+        # friction F = m g sin(phi)/3 (the rolling constraint's reaction), omega^2 = 2 g/(3 (R - r)).
+        ("cylinder_in_cylinder", "normal_force", "m*g*(7*cos(phi) - 4*cos(phi0))/3"),
+        ("cylinder_in_cylinder", "friction_force", "m*g*sin(phi)/3"),
+        ("cylinder_in_cylinder", "small_oscillation_frequency", "sqrt(2*g/(3*(R - r)))"),
+    ],
+)
+def test_constraint_chapter_scenes(derived, scene, answer, expected):
+    assert_same(derived(scene), answer, expected)
+
+
+@pytest.mark.parametrize(
+    "scene, answer, expected",
+    [
         ("pendulum", "equation_of_motion", ("thetaddot", "-g*sin(theta)/l")),
         ("bead_rotating_hoop", "equation_of_motion", ("thetaddot", "sin(theta)*(omega^2*cos(theta) - g/a)")),
     ],

@@ -49,6 +49,18 @@ SAMPLES_PER_CHUNK = 9
 T_MAX = 30.0           # s: give up looking for a `where` condition after this
 
 
+# Special values that define a state or a parameter rather than a moment of the motion from
+# [initial] (a steady orbit, small oscillations, a threshold launch speed, a configuration this
+# launch does not reach): each has its own experiment in test_special_values_confirmed.py.
+CONFIRMED_ELSEWHERE = {
+    ("table_hole_orbit", "steady_angular_velocity"),
+    ("bead_hoop_equilibrium", "small_oscillation_frequency"),
+    ("cylinder_in_cylinder", "small_oscillation_frequency"),
+    ("loop_inside_track", "top_normal_force"),
+    ("loop_inside_track", "least_launch_speed"),
+}
+
+
 def _answer_ids() -> list[tuple[Path, str]]:
     # Read names with tomllib, not the scene loader, so that collection works even when the
     # loader or a file is broken (the test itself then fails with the loader's message).
@@ -58,7 +70,8 @@ def _answer_ids() -> list[tuple[Path, str]]:
             answers = tomllib.loads(path.read_text(encoding="utf-8")).get("answers", [])
         except (tomllib.TOMLDecodeError, UnicodeDecodeError):
             answers = [{"name": "<unreadable>"}]
-        cases += [(path, a.get("name", f"answers[{i}]")) for i, a in enumerate(answers)]
+        cases += [(path, a.get("name", f"answers[{i}]")) for i, a in enumerate(answers)
+                  if (path.stem, a.get("name")) not in CONFIRMED_ELSEWHERE]
     return cases
 
 
@@ -92,7 +105,7 @@ def _where_events(model: SceneModel) -> list[Event]:
     """One event per distinct ``where`` condition: lhs - rhs crossing zero."""
     conditions = {}
     for spec in model.scene.answers:
-        if spec.where is not None:
+        if spec.where is not None and (model.scene.id, spec.name) not in CONFIRMED_ELSEWHERE:
             lhs, rhs = spec.where
             conditions[_condition_key(model, spec)] = model.definition(lhs - rhs)
     return [Event(key, lambda s, e=expr: model.evaluate(e, model.quantities(s)), terminal=False)
@@ -159,12 +172,20 @@ def run_experiment(path: Path) -> Experiment:
     conditions = _where_events(model)
     states, found = _follow_motion(model, start, conditions)
     # Quantities in time order, so that parametrization angles follow the motion continuously.
+    # A fresh model does it: the events above already walked the other one's parametrization
+    # guess far along the motion (four turns down a helix), where Gauss–Newton would have to
+    # come back from.
     states.sort(key=lambda s: s.t)
+    # The states where conditions hold are taken in the same time order, for the same reason.
+    model = SceneModel(scene, fallback)
+    quantities = {}
+    for state in sorted(states + list(found.values()), key=lambda s: s.t):
+        quantities[id(state)] = model.quantities(state)
     return Experiment(
         model=model,
         closed_forms=closed_forms,
-        samples=[model.quantities(s) for s in states],
-        where={e.name: (model.quantities(found[e.name]) if e.name in found else None) for e in conditions},
+        samples=[quantities[id(s)] for s in states],
+        where={e.name: (quantities[id(found[e.name])] if e.name in found else None) for e in conditions},
         push_energy_ratio=_push_energy_ratio(model, start, states[-1]),
     )
 

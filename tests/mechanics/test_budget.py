@@ -1,0 +1,43 @@
+"""Budgets: a derivation that runs out of time says which step and which answer ran out."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from grader.cli.derive import derive as derive_command
+from grader.mechanics.budget import BudgetExceeded, attempt, overall_budget, step
+from grader.mechanics.lagrange import derive
+from grader.mechanics.scene import load_scene
+
+SCENES = Path(__file__).resolve().parent / "scenes"
+
+
+def test_attempt_falls_back_when_the_step_runs_out_and_restores_an_outer_budget():
+    with pytest.raises(BudgetExceeded, match="while outer work"):
+        with overall_budget(0.6), step("outer work"):
+            assert attempt(lambda: time.sleep(2), 0.05, fallback=lambda: "fallback") == "fallback"
+            time.sleep(2)  # the outer budget still fires after the inner one was used
+
+
+def test_a_derivation_out_of_budget_names_the_step():
+    scene = load_scene(SCENES / "double_pendulum.toml")
+    with pytest.raises(BudgetExceeded) as caught:
+        derive(scene, budget_s=0.01)
+    assert caught.value.step  # e.g. "solving the equations of motion"
+    assert "0.01 s budget while" in str(caught.value)
+
+
+def test_grader_derive_has_a_budget_and_says_where_it_ran_out():
+    result = CliRunner().invoke(derive_command, [str(SCENES / "double_pendulum.toml"), "--budget", "0.1"])
+    assert result.exit_code == 3
+    assert "double_pendulum.toml: the derivation ran out of its 0.1 s budget while" in result.output
+
+
+def test_grader_derive_within_budget_prints_the_derivation():
+    result = CliRunner().invoke(derive_command, [str(SCENES / "atwood_massless_pulley.toml"), "--budget", "60"])
+    assert result.exit_code == 0, result.output
+    assert "tension_left = -lambda_left = 2*g*m1*m2/(m1 + m2)" in result.output

@@ -1,0 +1,130 @@
+"""Special values that are not a moment of the motion from [initial], confirmed numerically.
+
+``test_problems_confirmed.py`` confirms a ``where`` answer at the first moment its condition holds
+along the motion from ``[initial]``. Some special values define a *state* or a *parameter*
+instead: a steady orbit (r̈ = 0 solved for φ̇), the frequency of small oscillations about an
+equilibrium, a threshold on the launch speed, a value at a configuration the motion from the
+scene's own ``[initial]`` does not reach. Each is confirmed here by an experiment of its own with
+the numerical machinery (:mod:`grader.simulate`), which differentiates the scene's T, V and f
+numerically and never sees the engine's results; only the closed form under test comes from the
+engine.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from grader.simulate.constrained import Event, multiplier_zero, simulate
+from grader.simulate.lagrangian_numeric import snapshot
+from grader.simulate.scene_numeric import SceneModel
+
+SCENES = Path(__file__).resolve().parents[1] / "mechanics" / "scenes"
+
+
+def scene_of(name: str, replace: tuple[tuple[str, str], ...] = ()):
+    """A scene file, optionally with some text replaced (another parameter value)."""
+    from grader.mechanics.scene import parse_scene
+
+    text = (SCENES / f"{name}.toml").read_text(encoding="utf-8")
+    for old, new in replace:
+        assert old in text
+        text = text.replace(old, new)
+    return parse_scene(text, source=f"{name}.toml")
+
+
+@functools.lru_cache(maxsize=None)
+def engine(name: str):
+    """The scene's numeric model and the engine's closed-form answers."""
+    from grader.mechanics.lagrange import derive
+
+    scene = scene_of(name)
+    return SceneModel(scene), derive(scene).answers
+
+
+def closed_form(model: SceneModel, answers, name: str, **state: float) -> float:
+    return model.evaluate(answers[name], {**model.values, **state})
+
+
+@pytest.mark.parametrize("radius", [0.6, 0.9])
+def test_steady_orbit_angular_velocity_keeps_the_radius(radius):
+    """Started at r with ṙ = 0 and the engine's φ̇(r), the puck's radial acceleration vanishes."""
+    model, answers = engine("table_hole_orbit")
+    l, g = model.values["l"], model.values["g"]
+    omega = closed_form(model, answers, "steady_angular_velocity", r=radius)
+    s = snapshot(model.numeric, 0.0, [radius, 0.0, l - radius], [0.0, omega, 0.0])
+    assert abs(s.qddot[0]) < 1e-9 * g
+    # ... and stays there: over two seconds the radius drifts by nothing measurable.
+    motion = simulate(model.numeric, [radius, 0.0, l - radius], [0.0, omega, 0.0], 2.0,
+                      sample_times=np.linspace(0, 2, 9))
+    assert max(abs(s.q[0] - radius) for s in motion.samples) < 1e-8 * radius
+
+
+def _measured_frequency(model, q_of, coordinate: int, equilibrium: float, epsilon: float, period_guess: float):
+    """Angular frequency of the motion released at rest at equilibrium + epsilon, from its zero crossings."""
+    q0, qdot0 = q_of(equilibrium + epsilon)
+    crossing = Event("crossing", lambda s: s.q[coordinate] - equilibrium, terminal=False)
+    motion = simulate(model.numeric, q0, qdot0, 3.2 * period_guess, events=[crossing])
+    times = [s.t for s in motion.events["crossing"]]
+    assert len(times) >= 5, "fewer than two and a half oscillations"
+    return 2 * math.pi / ((times[4] - times[0]) / 2)
+
+
+def test_small_oscillations_about_the_spinning_hoops_relative_equilibrium():
+    model, answers = engine("bead_hoop_equilibrium")
+    omega = model.values["omega"]
+
+    def state(theta):  # coordinates (theta, phi); the drive fixes phi = omega t
+        return [theta, 0.0], [0.0, omega]
+
+    # The equilibrium located numerically: θ̈ = 0 at rest, away from the axis.
+    equilibrium = brentq(lambda th: snapshot(model.numeric, 0.0, *state(th)).qddot[0], 0.3, 1.5, xtol=1e-15)
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _measured_frequency(model, state, 0, equilibrium, 1e-4, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_small_oscillations_of_a_cylinder_rolling_inside_a_cylinder():
+    model, answers = engine("cylinder_in_cylinder")
+    R, r = model.values["R"], model.values["r"]
+
+    def state(phi):  # coordinates (rho, phi, psi): in contact and rolling
+        return [R - r, phi, -(R - r) * phi / r], [0.0, 0.0, 0.0]
+
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _measured_frequency(model, state, 1, 0.0, 1e-4, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def _loop_run(v0: float):
+    """Launch on the loop at v0 (a numeric model only): the first release and the first arrival at the top."""
+    model = SceneModel(scene_of("loop_inside_track", (("value = 4.0 }", f"value = {v0!r} }}"),)))
+    R = model.values["R"]
+    top = Event("top", lambda s: s.q[1] - math.pi, terminal=True)
+    return simulate(model.numeric, [R, 0.0], [0.0, v0 / R], 10.0,
+                    events=[top, multiplier_zero("track", terminal=False)])
+
+
+@pytest.mark.parametrize("factor, goes_round", [(1.0001, True), (0.9999, False)])
+def test_least_launch_speed_is_the_threshold_for_going_round(factor, goes_round):
+    model, answers = engine("loop_inside_track")
+    motion = _loop_run(closed_form(model, answers, "least_launch_speed") * factor)
+    reached = motion.first("top")
+    assert reached is not None, "the block is carried (bilaterally) up to the top"
+    # N(φ) = m (v0²/R − 2g + 3g cos φ) is least at the top, so the track holds the block all the
+    # way round exactly when the numerically computed N there is still positive.
+    assert (reached.multiplier("track") > 0) == goes_round
+
+
+def test_normal_force_at_the_top_for_a_launch_that_gets_there():
+    model, answers = engine("loop_inside_track")
+    motion = _loop_run(6.0)
+    top = motion.first("top")
+    assert top is not None and motion.first("lambda_track = 0") is None
+    expected = closed_form(model, answers, "top_normal_force", v0=6.0)
+    assert abs(top.multiplier("track") - expected) < 1e-6 * abs(expected)
