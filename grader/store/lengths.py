@@ -1,7 +1,8 @@
 """Text the database stores fits its column, checked before every INSERT and UPDATE, on every database.
 
 SQLite stores a 300-character name in a ``String(200)`` column; PostgreSQL refuses it with a
-``DataError`` (a 500 in the service), and text holding a lone surrogate cannot be encoded for either.
+``DataError`` (a 500 in the service), and text holding a lone surrogate cannot be encoded for either
+(nor a NUL character for PostgreSQL).
 The limits are read from the models' own column declarations, so this rule is in one place and
 follows the schema; inputs are capped earlier too (the API's schemas, the scene schema), and this is
 the last line for any path that forgets.
@@ -50,6 +51,8 @@ def check_row(mapper: Mapper, connection: Any, target: Any) -> None:
             raise StoredValueError(name, f"{len(value)} characters; the limit is {column.type.length}")
         if _SURROGATE.search(value):
             raise StoredValueError(name, "holds a lone surrogate (U+D800-U+DFFF), which is not text")
+        if "\x00" in value:  # PostgreSQL's text cannot hold NUL; SQLite would store it
+            raise StoredValueError(name, "holds a NUL character, which is not text")
 
 
 event.listen(Base, "before_insert", check_row, propagate=True)

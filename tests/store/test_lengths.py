@@ -15,7 +15,8 @@ from grader.store.users import create_user
     ({"name": "ok", "external_id": "e" * 201}, "users.external_id", "201 characters; the limit is 200"),
     ({"name": "ok", "email": "a" * 321}, "users.email", "321 characters; the limit is 320"),
     ({"name": "Ad\ud800a"}, "users.name", "lone surrogate"),
-], ids=["name", "external-id", "email", "surrogate"])
+    ({"name": "Ad\x00a"}, "users.name", "NUL character"),  # PostgreSQL's text cannot hold it
+], ids=["name", "external-id", "email", "surrogate", "nul"])
 def test_text_that_does_not_fit_its_column_is_refused_with_the_column_named(database, fields, column, problem):
     with pytest.raises(StoredValueError) as refused:
         with database.write() as session:

@@ -23,6 +23,10 @@ def resolve(schema: dict) -> dict:
     return schema
 
 
+# Strings that satisfy the patterns request schemas use (names, codes, e-mail addresses, times).
+_SAMPLE_STRINGS = ["a", "a@b.org", "2026-12-01T17:00:00Z"]
+
+
 def minimal(schema: dict):
     """The smallest value valid against ``schema`` (its required members only)."""
     schema = resolve(schema)
@@ -32,8 +36,13 @@ def minimal(schema: dict):
     if "enum" in schema:
         return schema["enum"][0]
     if kind == "object":
-        return {name: minimal(schema["properties"][name]) for name in schema.get("required", [])}
-    return {"string": "a", "array": [], "number": schema.get("minimum", 1), "integer": 1, "boolean": True}[kind]
+        required = schema.get("required", []) + [n for b in schema.get("anyOf", [])[:1] for n in b.get("required", [])]
+        return {name: minimal(schema["properties"][name]) for name in required}
+    if kind == "string":
+        return next(s for s in _SAMPLE_STRINGS if re.search(schema.get("pattern", ""), s))
+    if kind == "array":
+        return [minimal(schema["items"]) for _ in range(schema.get("minItems", 0))]
+    return {"number": schema.get("minimum", 1), "integer": schema.get("minimum", 1), "boolean": True}[kind]
 
 
 def url_of(op) -> str:
@@ -96,6 +105,7 @@ HOSTILE = {
     "just-too-deep": (b'{"x":' + b"[" * MAX_DEPTH + b"]" * MAX_DEPTH + b"}", 400, "nested more than"),
     "lone-surrogate": (b'{"x": "\\ud800"}', 400, "lone surrogate"),
     "lone-low-surrogate-key": (b'{"\\udc00": 1}', 400, "lone surrogate"),
+    "nul-character": (b'{"x": "a\\u0000b"}', 400, "NUL character"),  # PostgreSQL text cannot hold it
     "not-utf8": (b'{"x": "\xff\xfe"}', 400, "not UTF-8"),
     "truncated": (b'{"x": ', 400, "not valid JSON"),
     "empty": (b"", 400, "not valid JSON"),
@@ -204,7 +214,7 @@ def test_every_string_list_and_map_of_every_request_body_has_a_published_cap():
     assert uncapped == []
 
 
-@pytest.mark.parametrize("key, status", [("k" * 200, 202), ("k" * 201, 422), ("", 422)])
+@pytest.mark.parametrize("key, status", [("k" * 200, 202), ("k" * 201, 422), ("", 422), ("a\x00b", 422)])
 def test_the_idempotency_key_has_the_length_its_column_has(client, make_token, yoyo_version, key, status):
     _, student = make_token("student")
     response = client.post("/api/v1/problems/yoyo/submissions", json={"answer": "tension", "text": "m*g/3"},

@@ -6,7 +6,8 @@ every JSON endpoint gets the same treatment and what the document says is what t
 - the body is at most :data:`MAX_BODY_BYTES`, UTF-8, one JSON value at most :data:`MAX_DEPTH` deep
   (deeper ones are refused before they can exhaust the parser's recursion), with finite numbers of
   reasonable length (no ``NaN``, ``Infinity``, ``1e999`` or a thousand digits), object keys of at
-  most :data:`MAX_KEY_CHARS` characters and no lone surrogates (``"\\ud800"``) in any string: a 400;
+  most :data:`MAX_KEY_CHARS` characters and no lone surrogates (``"\\ud800"``) or NUL characters in
+  any string: a 400;
 - then the operation's JSON Schema (its ``maxLength``, ``maxItems``, ``maxProperties``,
   ``minimum``/``maximum``, ``pattern``, ``enum``, ``required``, ``additionalProperties``), checked
   by ``jsonschema``: a 422 listing each error with the JSON pointer of the field.
@@ -45,13 +46,14 @@ MAX_DEPTH = 8  # {"variables": {"m": {"domain": [0, 1]}}} is 4 levels deep
 MAX_KEY_CHARS = 64
 _MAX_NUMBER_CHARS = 40  # a float64 needs at most 25 characters; `budget_s: 1000…0` gains nothing
 _SURROGATE = re.compile("[\ud800-\udfff]")
+_NUL = "\x00"  # PostgreSQL text cannot hold it; nothing a client sends needs it
 _CONSTANTS = {"NaN", "Infinity", "-Infinity"}
 
 # What every JSON body must be, said once (the OpenAPI document's description repeats it).
 LIMITS_TEXT = (f"JSON request bodies are at most {MAX_BODY_BYTES // 1024} KiB of UTF-8, at most {MAX_DEPTH} levels "
                f"deep, with finite numbers of at most {_MAX_NUMBER_CHARS} characters, object keys of at most "
-               f"{MAX_KEY_CHARS} characters and no lone surrogates in strings; each field has the limits of "
-               "its schema.")
+               f"{MAX_KEY_CHARS} characters and no lone surrogates or NUL characters in strings; each field has "
+               "the limits of its schema.")
 
 
 def _bad_json(reason: str, pointer: str | None = None) -> ApiProblem:
@@ -99,14 +101,17 @@ def _check_values(value: Any) -> None:
         if isinstance(node, str):
             if _SURROGATE.search(node):
                 raise _bad_json("a string holds a lone surrogate (\\ud800-\\udfff), which is not text", pointer or "/")
+            if _NUL in node:
+                raise _bad_json("a string holds a NUL character (\\u0000), which is not text", pointer or "/")
         elif isinstance(node, (dict, list)):
             if depth > MAX_DEPTH:
                 raise _bad_json(f"it is nested more than {MAX_DEPTH} levels deep", pointer)
             items = node.items() if isinstance(node, dict) else enumerate(node)
             for key, item in items:
                 if isinstance(key, str):
-                    if _SURROGATE.search(key):
-                        raise _bad_json("a key holds a lone surrogate (\\ud800-\\udfff), which is not text", pointer or "/")
+                    if _SURROGATE.search(key) or _NUL in key:
+                        raise _bad_json("a key holds a lone surrogate or a NUL character, which is not text",
+                                        pointer or "/")
                     if len(key) > MAX_KEY_CHARS:
                         raise _bad_json(f"a key of {len(key)} characters is too long (at most {MAX_KEY_CHARS})",
                                         pointer or "/")

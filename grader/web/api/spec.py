@@ -150,11 +150,15 @@ class ApiSpec:
                 if value is not None:
                     _check_parameter(parameter, value)
             g.api_body = None
-            # An operation that also takes another body type (a CSV roster) validates JSON bodies only.
-            if op.request and "application/json" in op.request and (
-                    len(op.request) == 1 or request.mimetype == "application/json"):
-                g.api_body = validated_body(op.request["application/json"], self.schemas)
-                charge = float(op.cost(g.api_body)) if op.cost else 1.0
+            # An operation that also takes another body type (a CSV roster) validates JSON bodies only;
+            # a body of a type it does not declare is refused here, so its view never sees one.
+            if op.request and "application/json" in op.request:
+                if len(op.request) > 1 and request.mimetype not in op.request:
+                    raise ApiProblem(415, f"Send the body as one of: {', '.join(op.request)}.",
+                                     kind="unsupported-media-type")
+                if len(op.request) == 1 or request.mimetype == "application/json":
+                    g.api_body = validated_body(op.request["application/json"], self.schemas)
+                    charge = float(op.cost(g.api_body)) if op.cost else 1.0
         finally:  # an invalid request is charged too: a flood of them is limited like any other
             if op.rate_limit is not None and getattr(g, "api_user", None) is not None:
                 limiter.hit(op.rate_limit, g.api_user.id, cost=charge)
@@ -195,9 +199,11 @@ def _check_parameter(parameter: dict, value: str) -> None:
     """A header or query parameter against its (string) schema: its length, pattern and enum."""
     from grader.web.api.bodies import problems_of
 
+    where = "header" if parameter["in"] == "header" else "query parameter"
     problems = problems_of(value, parameter.get("schema", {}))
+    if any(ord(c) < 0x20 or 0xD800 <= ord(c) <= 0xDFFF for c in value):  # NUL: PostgreSQL cannot store it
+        problems = [{"detail": "body holds a control character"}]
     if problems:
-        where = "header" if parameter["in"] == "header" else "query parameter"
         detail = problems[0]["detail"].replace("body", f"The {parameter['name']} {where}", 1)
         raise ApiProblem(422, detail, kind="invalid-request",
                          errors=[{"parameter": parameter["name"], "detail": detail}])
