@@ -3,12 +3,12 @@
 An answer's ``expr`` is written over parameters, coordinates and their dots/ddots, multipliers
 ``lambda_<c>``, constraint forces ``Q_<c>_<q>``, ``t`` and earlier answers. The engine replaces
 multipliers, forces and accelerations by the solved equations of motion, moves to the independent
-variables (:mod:`grader.mechanics.reduction`), removes a velocity that ``in_terms_of`` does not
-allow with the conserved Jacobi integral (energy) from ``[initial]``, and simplifies.
+variables (:mod:`grader.mechanics.reduction`), removes velocities that ``in_terms_of`` does not
+allow with the first integrals from ``[initial]`` (conserved momenta of cyclic coordinates, then
+the Jacobi integral, i.e. energy), and simplifies.
 
-An answer with ``where = "lhs = rhs"`` is a special value: its expression at the configuration
-where the condition holds, taking the root that the motion from ``[initial]`` reaches first
-(:mod:`grader.mechanics.special_values`).
+An answer with ``where = "lhs = rhs"`` is a special value: its expression where the condition
+holds, solved for the condition's one unknown (:mod:`grader.mechanics.special_values`).
 
 Examples
 --------

@@ -74,11 +74,28 @@ def human_form(expr: sympy.Expr, seconds: float = 0.5) -> sympy.Expr:
 
 
 def _positive_denominator(expr: sympy.Expr) -> sympy.Expr:
-    """-a/(b + c) rather than a/(-b - c): a minus sign belongs in front, not in the denominator."""
+    """-a/(b + c) rather than a/(-b - c), and (r - r0)(…) rather than -(-r + r0)(…).
+
+    A minus sign belongs in front of the whole, not inside a denominator or a factor.
+
+    >>> r, r0, a = sympy.symbols("r r0 a", positive=True)
+    >>> _positive_denominator(-(-r + r0)*(a - r)/(-a - r))
+    -(a - r)*(r - r0)/(a + r)
+    """
     numerator, denominator = sympy.fraction(expr)
-    if denominator != 1 and denominator.could_extract_minus_sign():
-        return (-numerator) / (-denominator)
-    return expr
+    sign = 1
+    parts = []
+    for part in (numerator, denominator):
+        factors = []
+        for f in sympy.Mul.make_args(part):
+            base, exp = f.as_base_exp()
+            if base.is_Add and base.could_extract_minus_sign() and exp.is_Integer:
+                base = -base
+                sign *= (-1) ** int(exp)
+            factors.append(base ** exp)
+        parts.append(sympy.Mul(*factors))
+    result = sign * parts[0] / parts[1]
+    return result if sympy.count_ops(result) <= sympy.count_ops(expr) else expr
 
 
 def _pythagorean(expr: sympy.Expr, square) -> sympy.Expr:
