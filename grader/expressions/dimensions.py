@@ -7,6 +7,7 @@ fine and ``thetadot`` has dimension 1/s.  Exponents are ``Fraction`` because
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 from fractions import Fraction
@@ -19,7 +20,7 @@ from sympy.core.function import AppliedUndef
 from .errors import DimensionError
 from .functions import BY_SYMPY
 
-__all__ = ["Dimension", "parse_dimension", "dimension_of", "NAMED_DIMENSIONS"]
+__all__ = ["Dimension", "parse_dimension", "parse_unit", "dimension_of", "NAMED_DIMENSIONS", "UNITS", "PREFIXES"]
 
 _SUPERSCRIPTS = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 
@@ -161,13 +162,66 @@ _WORDS: dict[Dimension, str] = {
     _M * _L ** 2 / _T: "an angular momentum",
 }
 
-_SI_UNITS: dict[str, Dimension] = {
-    "kg": _M, "m": _L, "s": _T,
-    "N": _M * _L / _T ** 2, "J": _M * _L ** 2 / _T ** 2, "W": _M * _L ** 2 / _T ** 3,
-    "rad": DIMENSIONLESS, "Hz": DIMENSIONLESS / _T,
+# The one unit table: symbol -> (size in SI units, dimension, takes an SI prefix). Dimensions
+# (`parse_dimension`) read the SI-sized units only; quantities (`parse_unit`, a numeric answer's
+# "14.7 kN") read all of them, with prefixes, and scale.
+UNITS: dict[str, tuple[float, Dimension, bool]] = {
+    "kg": (1.0, _M, False), "g": (1e-3, _M, True), "m": (1.0, _L, True), "s": (1.0, _T, True),
+    "min": (60.0, _T, False), "h": (3600.0, _T, False),
+    "N": (1.0, _M * _L / _T ** 2, True), "J": (1.0, _M * _L ** 2 / _T ** 2, True),
+    "W": (1.0, _M * _L ** 2 / _T ** 3, True), "Pa": (1.0, _M / _L / _T ** 2, True),
+    "rad": (1.0, DIMENSIONLESS, True), "Hz": (1.0, DIMENSIONLESS / _T, True),
+    "deg": (math.pi / 180, DIMENSIONLESS, False), "°": (math.pi / 180, DIMENSIONLESS, False),
 }
+PREFIXES: dict[str, float] = {"T": 1e12, "G": 1e9, "M": 1e6, "k": 1e3, "h": 1e2, "d": 1e-1, "c": 1e-2,
+                              "m": 1e-3, "µ": 1e-6, "μ": 1e-6, "u": 1e-6, "n": 1e-9, "p": 1e-12}
+_SI_UNITS: dict[str, Dimension] = {name: dim for name, (size, dim, _) in UNITS.items()
+                                   if size == 1.0 and name != "g"}
 
-_DIM_TOKEN = re.compile(r"\s*(?:(\d+(?:/\d+)?)|([A-Za-z_]+)|(\*\*|[*/^()·.\-+]))")
+_DIM_TOKEN = re.compile(r"\s*(?:(\d+(?:/\d+)?)|([A-Za-z_µμ°]+)|(\*\*|[*/^()·.\-+]))")
+_SUPERSCRIPT_RUN = re.compile("[⁺⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+")
+_FROM_SUPERSCRIPTS = str.maketrans("⁺⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "+-0123456789")
+
+
+def _unit_size(name: str) -> tuple[float, Dimension] | None:
+    """(size in SI, dimension) of a unit symbol such as ``kN`` or ``min``; None if it is not one."""
+    if name in UNITS:
+        size, dim, _ = UNITS[name]
+        return size, dim
+    for prefix, factor in PREFIXES.items():
+        if name.startswith(prefix) and name[len(prefix):] in UNITS:
+            size, dim, prefixable = UNITS[name[len(prefix):]]
+            if prefixable:
+                return factor * size, dim
+    return None
+
+
+def parse_unit(text: str) -> tuple[float, Dimension]:
+    """Read a unit as a student writes it after a number: (size in SI units, dimension).
+
+    Units are ``kg g m s min h N J W Pa rad Hz deg °`` with SI prefixes (``kN``, ``cm``, ``ms``,
+    ``µs``), combined with ``* / ^ **``, ``·``, a space (``kg m/s^2``), parentheses and
+    superscripts (``m/s²``); an empty text is a pure number.
+
+    Examples
+    --------
+    >>> parse_unit("km/h")[0], parse_unit("km/h")[1].describe()
+    (0.2777777777777778, 'a velocity (m/s)')
+    >>> parse_unit("kg m/s²") == parse_unit("N")
+    True
+    >>> parse_unit("Nm")
+    Traceback (most recent call last):
+    ...
+    grader.expressions.errors.DimensionError: unknown unit 'Nm' (write a product with '*', as in N*m)
+    """
+    if not isinstance(text, str) or len(text) > 200:
+        raise DimensionError("a unit is short text such as 'N' or 'kg*m/s^2'")
+    text = _SUPERSCRIPT_RUN.sub(lambda m: "^" + m.group().translate(_FROM_SUPERSCRIPTS), text.strip())
+    if not text:
+        return 1.0, DIMENSIONLESS
+    if text.startswith("/"):
+        text = "1" + text  # "5 /s"
+    return _UnitParser(text, scaled=True).parse_scaled()
 
 
 def parse_dimension(text: "str | Dimension") -> Dimension:
@@ -198,17 +252,24 @@ def parse_dimension(text: "str | Dimension") -> Dimension:
 
 
 class _UnitParser:
-    """Recursive descent over ``product := power (('*'|'/') power)*``."""
+    """Recursive descent over ``product := power (('*'|'/') power)*``.
 
-    def __init__(self, text: str) -> None:
+    It works on (size in SI, dimension) pairs: dimensions ignore the size; with ``scaled`` (a
+    quantity's unit, :func:`parse_unit`) prefixed and non-SI units are read too, a space multiplies,
+    and named dimensions are refused (``14 force`` is no quantity).
+    """
+
+    def __init__(self, text: str, scaled: bool = False) -> None:
         self.text = text
+        self.scaled = scaled
         self.tokens: list[tuple[str, str]] = []
         pos = 0
         stripped = text.rstrip()
         while pos < len(stripped):
             match = _DIM_TOKEN.match(stripped, pos)
             if not match:
-                raise DimensionError(f"cannot read dimension {text!r} at position {pos}")
+                what = "unit" if scaled else "dimension"
+                raise DimensionError(f"cannot read {what} {text!r} at position {pos}")
             number, name, op = match.groups()
             self.tokens.append(("num", number) if number else ("name", name) if name else ("op", op))
             pos = match.end()
@@ -225,43 +286,68 @@ class _UnitParser:
         return tok
 
     def parse(self) -> Dimension:
+        return self.parse_scaled()[1]
+
+    def parse_scaled(self) -> tuple[float, Dimension]:
         if not self.tokens:
             raise DimensionError("empty dimension")
-        dim = self.product(0)
+        size, dim = self.product(0)
         if self.peek() is not None:
-            raise DimensionError(f"cannot read dimension {self.text!r}: unexpected {self.peek()[1]!r}")
-        return dim
+            what = "unit" if self.scaled else "dimension"
+            raise DimensionError(f"cannot read {what} {self.text!r}: unexpected {self.peek()[1]!r}")
+        return size, dim
 
-    def product(self, depth: int) -> Dimension:
+    def product(self, depth: int) -> tuple[float, Dimension]:
         if depth > 20:
             raise DimensionError("dimension is nested too deeply")
-        dim = self.power(depth)
-        while self.peek() in (("op", "*"), ("op", "/"), ("op", "·"), ("op", ".")):
-            op = self.take()[1]
-            right = self.power(depth)
-            dim = dim / right if op == "/" else dim * right
-        return dim
+        size, dim = self.power(depth)
+        while True:
+            token = self.peek()
+            if token in (("op", "*"), ("op", "/"), ("op", "·"), ("op", ".")):
+                op = self.take()[1]
+            elif self.scaled and token is not None and (token[0] == "name" or token == ("op", "(")):
+                op = "*"  # "kg m/s^2": a space between units multiplies
+            else:
+                return size, dim
+            right_size, right = self.power(depth)
+            if op == "/":
+                size, dim = size / right_size, dim / right
+            else:
+                size, dim = size * right_size, dim * right
 
-    def power(self, depth: int) -> Dimension:
+    def power(self, depth: int) -> tuple[float, Dimension]:
         kind, value = self.take()
         if (kind, value) == ("op", "("):
-            dim = self.product(depth + 1)
+            size, dim = self.product(depth + 1)
             if self.take() != ("op", ")"):
                 raise DimensionError(f"unbalanced parenthesis in dimension {self.text!r}")
         elif kind == "num" and value == "1":
-            dim = DIMENSIONLESS
+            size, dim = 1.0, DIMENSIONLESS
+        elif self.scaled:
+            found = _unit_size(value) if kind == "name" else None
+            if found is None:
+                hint = ""
+                if kind == "name" and len(value) > 1 and _unit_size(value[0]) and _unit_size(value[1:]):
+                    hint = f" (write a product with '*', as in {value[0]}*{value[1:]})"
+                raise DimensionError(f"unknown unit {value!r}{hint}" if hint else
+                                     f"unknown unit {value!r} in {self.text!r}; use SI units such as "
+                                     f"kg g m s min h N J W Pa rad Hz deg, with prefixes (kN, cm, ms)")
+            size, dim = found
         elif kind == "name" and value in _SI_UNITS:
-            dim = _SI_UNITS[value]
+            size, dim = 1.0, _SI_UNITS[value]
         elif kind == "name" and value.lower() in NAMED_DIMENSIONS:
-            dim = NAMED_DIMENSIONS[value.lower()]
+            size, dim = 1.0, NAMED_DIMENSIONS[value.lower()]
         else:
             known = ", ".join(sorted(NAMED_DIMENSIONS))
             raise DimensionError(f"unknown dimension or unit {value!r} in {self.text!r}; "
                                  f"use SI units (kg m s N J W rad Hz) or one of: {known}")
         if self.peek() in (("op", "^"), ("op", "**")):
             self.take()
-            dim = dim ** self.exponent()
-        return dim
+            exponent = self.exponent()
+            if abs(exponent) > 12:
+                raise DimensionError(f"a unit exponent of {exponent} is not plausible in {self.text!r}")
+            size, dim = size ** float(exponent), dim ** exponent
+        return size, dim
 
     def exponent(self) -> Fraction:
         sign = 1
