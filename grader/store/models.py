@@ -190,6 +190,7 @@ class Submission(Base):
     requester: Mapped[User] = relationship(foreign_keys=[requester_id])
     problem_version: Mapped[ProblemVersion] = relationship(foreign_keys=[problem_version_id])
     grading_version: Mapped[ProblemVersion] = relationship(foreign_keys=[grading_version_id])
+    assignment: Mapped[Assignment | None] = relationship()
     verdicts: Mapped[list[Verdict]] = relationship(back_populates="submission", order_by="Verdict.grading_round")
 
     @property

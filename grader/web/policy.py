@@ -31,6 +31,13 @@ action                 who, besides admins
                        the instructors who teach its course (the course chosen at upload, or
                        the course of the problem it made).
 ``create``             (no resource) instructors: upload a scene under a new id.
+``create_course``      (no resource) instructors: start a course (they teach it).
+``view_course``        a Course or Assignment: everyone enrolled in the course (any role, an
+                       LMS linked to it): its page, its assignments, one's own scores.
+``grade_course``       its instructors and teaching assistants (``Enrolment.role == "ta"``):
+                       roster, gradebook, everyone's submissions of its assignments.
+``manage_course``      its instructors: enrol people, build assignments, release solutions.
+                       TAs grade but never publish: they have neither this nor ``manage``.
 ``check``              (no resource) any authenticated caller: the stateless ``POST /check``.
 =====================  =====================================================================
 
@@ -62,7 +69,8 @@ from sqlalchemy import and_, func, select
 from sqlalchemy.orm import Session, selectinload
 
 from grader.store.db import db
-from grader.store.models import Course, DerivationJob, Enrolment, Problem, ProblemVersion, Submission, User
+from grader.store.models import (Assignment, Course, DerivationJob, Enrolment, Problem, ProblemVersion, Submission,
+                                 User)
 from grader.store.problems import latest_version, problem_by_slug
 from grader.web.errors import ApiProblem, wants_problem_json
 
@@ -75,6 +83,8 @@ __all__ = [
     "Principal",
     "allowed",
     "current_principal",
+    "find_assignment",
+    "find_course",
     "find_derivation",
     "find_problem",
     "find_submission",
@@ -82,6 +92,7 @@ __all__ = [
     "managed_courses",
     "managed_problems",
     "may_update",
+    "my_courses",
     "require",
     "require_upload",
     "visible_versions",
@@ -102,9 +113,13 @@ class Action(str, enum.Enum):
     VIEW_DERIVATION = "view_derivation"
     CREATE = "create"
     CHECK = "check"
+    CREATE_COURSE = "create_course"
+    VIEW_COURSE = "view_course"
+    GRADE_COURSE = "grade_course"
+    MANAGE_COURSE = "manage_course"
 
 
-Resource = Union[Problem, ProblemVersion, Submission, DerivationJob, None]
+Resource = Union[Problem, ProblemVersion, Submission, DerivationJob, Course, Assignment, None]
 
 # The doors: which roles may call a kind of endpoint at all (``spec.route(roles=...)``,
 # ``login_required(...)``), before any resource is looked at.
@@ -112,7 +127,8 @@ STUDENT_ROLES = frozenset({"student"})
 INSTRUCTOR_ROLES = frozenset({"instructor", "admin"})
 PAGE_ROLES = frozenset({"student", "instructor", "admin"})  # an "lms" account only uses the API
 API_ROLES = frozenset({"student", "instructor", "admin", "lms"})
-_ROLE_ONLY = {Action.CREATE: INSTRUCTOR_ROLES, Action.CHECK: API_ROLES}
+_ROLE_ONLY = {Action.CREATE: INSTRUCTOR_ROLES, Action.CHECK: API_ROLES, Action.CREATE_COURSE: INSTRUCTOR_ROLES}
+_COURSE_ACTIONS = (Action.VIEW_COURSE, Action.GRADE_COURSE, Action.MANAGE_COURSE)
 
 
 @dataclass(frozen=True)
@@ -120,13 +136,15 @@ class Principal:
     """Who is asking: a user acting in a role (a page session's role or an API token's role).
 
     ``enrolled`` holds every course the user is enrolled in, in any role; ``taught`` the courses
-    they are an instructor of. An anonymous caller has ``role`` None and may do nothing.
+    they are an instructor of; ``assisted`` those they are a teaching assistant of. An anonymous
+    caller has ``role`` None and may do nothing.
     """
 
     user_id: int | None = None
     role: str | None = None
     enrolled: frozenset[int] = frozenset()
     taught: frozenset[int] = frozenset()
+    assisted: frozenset[int] = frozenset()
 
     @classmethod
     def of(cls, session: Session, user: User | None, role: str | None = None) -> Principal:
@@ -135,7 +153,8 @@ class Principal:
             return ANONYMOUS
         rows = session.execute(select(Enrolment.course_id, Enrolment.role).where(Enrolment.user_id == user.id)).all()
         return cls(user_id=user.id, role=role or user.role, enrolled=frozenset(c for c, _ in rows),
-                   taught=frozenset(c for c, r in rows if r == "instructor"))
+                   taught=frozenset(c for c, r in rows if r == "instructor"),
+                   assisted=frozenset(c for c, r in rows if r == "ta"))
 
     @property
     def is_admin(self) -> bool:
@@ -180,6 +199,10 @@ def allowed(principal: Principal, action: Action, resource: Resource = None) -> 
         return False
     if principal.is_admin:
         return True
+    if isinstance(resource, (Course, Assignment)):
+        return _may_course(principal, action, resource.id if isinstance(resource, Course) else resource.course_id)
+    if action in _COURSE_ACTIONS:
+        return False
     if isinstance(resource, Submission):
         return action is Action.VIEW_SUBMISSION and _may_view_submission(principal, resource)
     if isinstance(resource, DerivationJob):
@@ -202,11 +225,24 @@ def allowed(principal: Principal, action: Action, resource: Resource = None) -> 
     return False
 
 
+def _may_course(principal: Principal, action: Action, course_id: int) -> bool:
+    if action is Action.VIEW_COURSE:
+        return course_id in principal.enrolled
+    if action is Action.GRADE_COURSE:
+        return principal.role != "lms" and course_id in (principal.taught | principal.assisted)
+    if action is Action.MANAGE_COURSE:
+        return principal.role == "instructor" and course_id in principal.taught
+    return False
+
+
 def _may_view_submission(principal: Principal, submission: Submission) -> bool:
     if submission.user_id == principal.user_id:
         return True
     if principal.role == "lms":
         return submission.requester_id == principal.user_id
+    if submission.assignment_id is not None and submission.assignment is not None and _may_course(
+            principal, Action.GRADE_COURSE, submission.assignment.course_id):
+        return True  # the course's TAs grade what was handed in for its assignments
     return principal.role == "instructor" and principal.manages_course(submission.problem_version.problem.course_id)
 
 
@@ -240,7 +276,7 @@ def _forbidden(detail: str) -> NoReturn:
 
 
 _SEEING = {Submission: Action.VIEW_SUBMISSION, Problem: Action.SEE, ProblemVersion: Action.SEE,
-           DerivationJob: Action.VIEW_DERIVATION}
+           DerivationJob: Action.VIEW_DERIVATION, Course: Action.VIEW_COURSE, Assignment: Action.VIEW_COURSE}
 
 
 def _describe(resource: Resource) -> str:
@@ -248,6 +284,10 @@ def _describe(resource: Resource) -> str:
         return f"submission {resource.id}"
     if isinstance(resource, DerivationJob):
         return f"derivation {resource.id}"
+    if isinstance(resource, Course):
+        return f"course {resource.code!r}"
+    if isinstance(resource, Assignment):
+        return f"assignment {resource.slug!r}"
     if resource is None:
         return "resource"
     return f"problem {_problem(resource).slug!r}"
@@ -303,6 +343,26 @@ def find_derivation(session: Session, principal: Principal, job_id: int) -> Deri
     return job
 
 
+def find_course(session: Session, principal: Principal, code: str, action: Action = Action.VIEW_COURSE) -> Course:
+    """Course ``code`` if the principal may ``action`` it; 404 if unknown or they are not in it, else 403."""
+    course = session.scalar(select(Course).where(Course.code == code))
+    if course is None:
+        _not_found(f"There is no course {code!r}.")
+    require(principal, action, course)
+    return course
+
+
+def find_assignment(session: Session, principal: Principal, code: str, slug: str,
+                    action: Action = Action.VIEW_COURSE) -> Assignment:
+    """Assignment ``slug`` of course ``code`` if the principal may ``action`` it (404/403 as :func:`require`)."""
+    course = find_course(session, principal, code)
+    assignment = session.scalar(select(Assignment).where(Assignment.course_id == course.id, Assignment.slug == slug))
+    if assignment is None:
+        _not_found(f"There is no assignment {slug!r} in course {code!r}.")
+    require(principal, action, assignment)
+    return assignment
+
+
 def require_upload(session: Session, principal: Principal, slug: str) -> Problem | None:
     """Refuse (403) an upload under id ``slug`` unless it is new or names a problem the principal
     manages; returns the existing problem, if any. Call it before deriving and again before saving."""
@@ -347,6 +407,12 @@ def managed_courses(session: Session, principal: Principal) -> list[Course]:
     """The courses whose problems the principal manages (every course for an admin), by code."""
     courses = session.scalars(select(Course).order_by(Course.code))
     return [c for c in courses if c.id is not None and principal.manages_course(c.id)]
+
+
+def my_courses(session: Session, principal: Principal) -> list[Course]:
+    """The courses the principal is enrolled in, in any role (every course for an admin), by code."""
+    courses = session.scalars(select(Course).order_by(Course.code))
+    return [c for c in courses if allowed(principal, Action.VIEW_COURSE, c)]
 
 
 def managed_problems(session: Session, principal: Principal) -> list[Problem]:

@@ -10,7 +10,7 @@ One ``Row`` per request: ``Row(method, rule, url, expect, send)``.
 - ``url`` is the concrete path; ``{name}`` is filled in from ``world.ids``: ``mech``/``other`` (the
   courses' ids), ``stu``... ``adm`` (users), ``mech_version``, ``submission`` (Ada's, sent by the LMS),
   ``job`` (Ine's queued upload), ``lti_context``. Problems: ``mech`` is published in course MECH,
-  ``mech-draft`` a draft in MECH.
+  ``mech-draft`` a draft in MECH. Course MECH has an assignment ``hw1`` over ``mech``, open now.
 - ``expect`` holds eight outcomes, one per principal, in the order of ``PRINCIPALS``:
 
   ========== ==========================================================================
@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import dataclasses
 import shutil
+from datetime import datetime, timezone
 from dataclasses import dataclass, field
 from pathlib import Path
 from urllib.parse import urlparse
@@ -52,6 +53,7 @@ from sqlalchemy import func, select
 from grader.jobs import submit
 from grader.jobs.derivation_queue import enqueue
 from grader.store.db import Database
+from grader.store.assignments import create_assignment
 from grader.store.migrate import upgrade
 from grader.store.models import Course, DerivationJob, Enrolment, ProblemVersion, User
 from grader.store.problems import save_problem
@@ -147,6 +149,28 @@ ROWS = [
         "/instructor/problems/mech-draft/versions/1/publish",                          "401   401   403   403   ok    404   401   ok"),
     Row("POST", "/instructor/problems/<slug>/regrade", "/instructor/problems/mech/regrade",
                                                                                        "401   401   403   403   ok    404   401   ok"),
+    # --- API: courses (H10) -------------------------------------------------------------------------------------
+    Row("POST", "/api/v1/courses", "/api/v1/courses",                                  "401   401   403   403   ok    ok    403   ok",
+        {"json": {"code": "NEW", "title": "New course"}}),
+    Row("GET", "/api/v1/courses", "/api/v1/courses",                                   "401   401   ok    ok    ok    ok    ok    ok"),
+    Row("GET", "/api/v1/courses/<code>", "/api/v1/courses/MECH",                       "401   401   ok    404   ok    404   ok    ok"),
+    Row("GET", "/api/v1/courses/<code>", "/api/v1/courses/NOPE",                       "401   401   404   404   404   404   404   404"),
+    Row("POST", "/api/v1/courses/<code>/members", "/api/v1/courses/MECH/members",      "401   401   403   403   ok    404   403   ok",
+        {"json": {"email": "cy@example.org", "name": "Cy"}}),
+    Row("POST", "/api/v1/courses/<code>/assignments", "/api/v1/courses/MECH/assignments",
+                                                                                       "401   401   403   403   ok    404   403   ok",
+        {"json": {"id": "hw2", "title": "Homework 2", "problems": ["mech"], "opens_at": "2026-12-01T09:00:00Z",
+                  "due_at": "2026-12-08T17:00:00+01:00"}}),
+    Row("GET", "/api/v1/courses/<code>/assignments/<assignment>", "/api/v1/courses/MECH/assignments/hw1",
+                                                                                       "401   401   ok    404   ok    404   ok    ok"),
+    Row("POST", "/api/v1/courses/<code>/assignments/<assignment>/release", "/api/v1/courses/MECH/assignments/hw1/release",
+                                                                                       "401   401   403   403   ok    404   403   ok"),
+    Row("POST", "/api/v1/courses/<code>/assignments/<assignment>/submissions",
+        "/api/v1/courses/MECH/assignments/hw1/submissions",                            "401   401   ok    404   403   404   403   403",
+        {"json": {"problem": "mech", "answer": "tension", "text": "m*g/3"}}),
+    Row("GET", "/api/v1/courses/<code>/gradebook", "/api/v1/courses/MECH/gradebook",   "401   401   ok    404   ok    404   403   ok"),
+    Row("GET", "/api/v1/courses/<code>/gradebook", "/api/v1/courses/MECH/gradebook?format=csv",
+                                                                                       "401   401   ok    404   ok    404   403   ok"),
     # --- LTI 1.3 (an LMS posts to login and launch; without its parameters they are 400 for everyone) -------
     Row("GET", "/lti/jwks", "/lti/jwks",                                               "ok    ok    ok    ok    ok    ok    ok    ok"),
     Row("GET", "/lti/login", "/lti/login",                                             "400   400   400   400   400   400   400   400"),
@@ -212,6 +236,11 @@ def world(tmp_path_factory) -> World:
             version, _ = save_problem(session, derived, published=published)
             version.problem.course_id = mech.id
             ids[f"{slug}_version"] = version.id  # ids["mech"] is the course MECH
+        session.flush()
+        # MECH's homework hw1 over the problem mech: open from long ago until long after.
+        create_assignment(session, mech, slug="hw1", title="Homework 1", problems=["mech"],
+                          opens_at=datetime(2020, 1, 1, tzinfo=timezone.utc),
+                          due_at=datetime(2100, 1, 1, tzinfo=timezone.utc))
         ids.update({key: user.id for key, user in users.items()}, mech=mech.id, other=other.id)
     with database.read() as session:
         mech_version = session.get(ProblemVersion, ids["mech_version"])
