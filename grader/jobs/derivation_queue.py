@@ -22,7 +22,7 @@ from datetime import datetime, timedelta
 from typing import Callable
 
 from sqlalchemy import func, select, update
-from sqlalchemy.orm import Session
+from sqlalchemy.orm import Session, aliased
 
 from grader.store.db import Database
 from grader.store.models import DerivationJob, Problem, User, utcnow
@@ -116,11 +116,19 @@ class DerivationTask:
 
 
 def claim(db: Database, worker_id: str, *, lease_s: float) -> DerivationTask | None:
-    """Take the oldest queued job for ``worker_id``, or None if there is none."""
+    """Take the next queued job for ``worker_id``, or None if there is none.
+
+    Requesters take turns: the next job is the oldest of the requester served longest ago (or
+    never), so many instructors' slow scenes delay a newcomer's upload by one derivation per
+    worker, not by all of theirs.
+    """
+    earlier = aliased(DerivationJob)
+    last_served = (select(func.max(earlier.started_at)).where(earlier.requester_id == DerivationJob.requester_id)
+                   .scalar_subquery())
     while True:
         with db.write() as session:
             job_id = session.scalar(select(DerivationJob.id).where(DerivationJob.status == "queued")
-                                    .order_by(DerivationJob.id).limit(1))
+                                    .order_by(last_served.is_not(None), last_served, DerivationJob.id).limit(1))
             if job_id is None:
                 return None
             now = utcnow()

@@ -133,9 +133,12 @@ def test_an_expired_lease_is_queued_again(database, people):
     assert _job(database, job_id).status == "queued"
 
 
-def test_jobs_are_claimed_oldest_first(database, people):
-    ids = [queue.enqueue(database, requester_id=people[who], source=SOURCE) for who in ("ine", "oth", "ine")]
-    assert [queue.claim(database, "w", lease_s=60).job_id for _ in ids] == ids
+def test_requesters_take_turns_and_each_ones_jobs_go_oldest_first(database, people):
+    ine = [queue.enqueue(database, requester_id=people["ine"], source=SOURCE, max_active=5) for _ in range(3)]
+    oth = [queue.enqueue(database, requester_id=people["oth"], source=SOURCE, max_active=5) for _ in range(2)]
+    # Ine uploaded first, but once she is served, Oth's waiting upload goes before her next one.
+    claimed = [queue.claim(database, "w", lease_s=60).job_id for _ in range(5)]
+    assert claimed == [ine[0], oth[0], ine[1], oth[1], ine[2]]
     with database.read() as session:
         assert set(session.scalars(select(DerivationJob.status))) == {"running"}
 
