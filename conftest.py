@@ -9,7 +9,8 @@ from _pytest.doctest import DoctestItem
 
 # Importing this module lowers the importing process's CPU priority (it is a derivation child's
 # entry point): collecting it for doctests would nice the whole test run.
-collect_ignore = ["grader/jobs/derivation_child.py"]
+# grader/web/wsgi.py makes an app and starts workers when imported (it is gunicorn's entry point).
+collect_ignore = ["grader/jobs/derivation_child.py", "grader/web/wsgi.py"]
 
 
 @pytest.fixture(autouse=True)

@@ -8,7 +8,10 @@ queue and API can be tested without running the engine; tests that need the engi
 from __future__ import annotations
 
 import os
+import shutil
+import socket
 import subprocess
+import time
 import uuid
 from pathlib import Path
 
@@ -218,3 +221,49 @@ def poll(client):
         raise AssertionError(f"{url} not graded within {timeout} s: {body}")
 
     return wait
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="session")
+def redis_server(tmp_path_factory):
+    """A Redis server for the session (Debian's redis-server on a free loopback port), or
+    ``LAGRADE_TEST_REDIS_URL``. Skipped without the package, except under CI."""
+    url = os.environ.get("LAGRADE_TEST_REDIS_URL")
+    if url:
+        yield url
+        return
+    binary = shutil.which("redis-server")
+    if binary is None:
+        if os.environ.get("CI") == "true":
+            pytest.fail("redis-server is not installed (apt-get install redis-server)")
+        pytest.skip("redis-server is not installed (apt-get install redis-server)")
+    port = free_port()
+    server = subprocess.Popen([binary, "--port", str(port), "--bind", "127.0.0.1", "--save", "", "--appendonly", "no",
+                               "--dir", str(tmp_path_factory.mktemp("redis"))],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
+    deadline = time.monotonic() + 10
+    while time.monotonic() < deadline:
+        try:
+            socket.create_connection(("127.0.0.1", port), timeout=0.2).close()
+            break
+        except OSError:
+            time.sleep(0.05)
+    yield f"redis://127.0.0.1:{port}/0"
+    server.kill()
+    server.wait()
+
+
+@pytest.fixture
+def redis_url(redis_server):
+    """The session's Redis, emptied: no message of an earlier test is left to deliver."""
+    import redis
+
+    client = redis.Redis.from_url(redis_server)
+    client.flushall()
+    client.close()
+    return redis_server

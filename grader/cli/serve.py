@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import logging
-import os
 import secrets
 import signal
 import sys
@@ -25,13 +24,11 @@ def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, 
     """Serve the web pages and the API, and grade submissions in the background."""
     import waitress
 
-    from grader.jobs import WorkerPool
     from grader.jobs.derivation import close_shared_sandboxes, load_problem_files
-    from grader.jobs.derivation_workers import DerivationWorkerPool
     from grader.store.db import Database, default_url
     from grader.store.migrate import upgrade
     from grader.web import create_app
-    from grader.web.policy import may_update
+    from grader.web.background import start_background
 
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(levelname)s %(name)s: %(message)s")
     url = default_url()
@@ -48,19 +45,7 @@ def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, 
         for line in _demo_accounts(database):
             click.echo(line)
 
-    if os.environ.get("GRADER_BROKER_URL"):
-        # Celery workers grade (grader/jobs/celery_worker.py); this process only announces work.
-        from grader.jobs.celery_worker import install_publisher
-
-        install_publisher()
-        pool = None
-        grading = "grading by Celery workers on GRADER_BROKER_URL"
-    else:
-        pool = WorkerPool(database, workers=workers, checker_factory=app.config["CHECKER_FACTORY"],
-                          budget_s=app.config["CHECK_BUDGET_S"]).start()
-        grading = f"{workers} grading workers"
-    derivers = DerivationWorkerPool(database, may_update=may_update, workers=app.config["DERIVE_WORKERS"],
-                                    **limits).start()
+    background = start_background(app, grading_workers=workers)
     # A body over the app's cap is refused by waitress from its Content-Length, before it is read:
     # a flood of oversized requests then costs the server a header each, not megabytes each.
     server = waitress.create_server(app, host=host, port=port, threads=threads, ident="lagrade",
@@ -68,16 +53,14 @@ def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, 
     base = f"http://{host}:{server.effective_port}"
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(0))
     click.echo(f"sign in at {base}{_sign_in_path(app)}; API at {base}/api/v1 (see /api/v1/openapi.json)\n"
-               f"lagrade is serving on {base}/ with {grading}")
+               f"lagrade is serving on {base}/ with {background.description}")
     try:
         server.run()
     except (KeyboardInterrupt, SystemExit):
         pass
     finally:
         server.close()
-        derivers.stop()
-        if pool is not None:
-            pool.stop()
+        background.stop()
         app.extensions["lagrade.checkers"].close()
         database.dispose()
 
