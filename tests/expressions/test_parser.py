@@ -509,3 +509,20 @@ def test_a_remembered_text_parses_to_the_same_result_with_its_own_notes(ns):
                        Variable("theta", "angle", "real")])
     assert parse_expression("mg cos θ", other).expr.free_symbols != set() and \
         parse_expression("mg cos θ", other) is not again  # another namespace is another text
+
+
+_GREEK = {"theta": "θ", "phi": "φ", "psi": "ψ", "alpha": "α", "omega": "ω"}
+_SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+
+
+@pytest.mark.parametrize("letter", sorted(_GREEK))
+@pytest.mark.parametrize("index", ["1", "2", "12"])
+def test_every_spelling_of_a_dotted_subscripted_greek_variable_is_one_symbol(letter, index):
+    """θ̇₁, θ₁̇, θ_1dot, dot{θ}_1, \\dot{\\theta}_1, \\dot\\theta_1 and theta_1' are one variable."""
+    name = f"{letter}{index}"
+    ns = Namespace([Variable(name, "angle", "real"), Variable(f"{name}dot", "angular_velocity", "real")])
+    char, sub = _GREEK[letter], index.translate(_SUBSCRIPT)
+    spellings = [f"{char}\u0307{sub}", f"{char}{sub}\u0307", f"{char}_{index}dot", f"dot{{{char}}}_{index}",
+                 f"\\dot{{\\{letter}}}_{index}", f"\\dot{{\\{letter}}}_{{{index}}}", f"\\dot\\{letter}_{index}",
+                 f"{letter}_{index}'", f"{name}dot"]
+    assert {parse(text, ns) for text in spellings} == {ns.symbol(f"{name}dot")}
