@@ -126,3 +126,23 @@ def _safe(url: str) -> str:
     from sqlalchemy.engine import make_url
 
     return make_url(url).render_as_string(hide_password=True)
+
+
+@db.command("load-problems")
+@click.argument("directory", default="problems", type=click.Path(file_okay=False, exists=True))
+def load_problems(directory: str) -> None:
+    """Derive and store the scene files in DIRECTORY (unchanged ones are skipped by their hash)."""
+    from pathlib import Path
+
+    from grader.jobs.derivation import close_shared_sandboxes, load_problem_files
+    from grader.store.migrate import upgrade as run_upgrade
+
+    url = default_url()
+    run_upgrade(url)
+    database = Database(url)
+    try:
+        for name, outcome in load_problem_files(database, sorted(Path(directory).glob("*.toml"))):
+            click.echo(f"problem {name}: {outcome}")
+    finally:
+        close_shared_sandboxes()
+        database.dispose()
