@@ -14,6 +14,7 @@ from sqlalchemy import select
 from grader.jobs.queue import MAX_ANSWER_CHARS, SubmissionRejected, wake_workers
 from grader.store.assignments import attempts_used, deadline_state, late_days, to_utc
 from grader.store.db import Database
+from grader.store.draws import draw_in
 from grader.store.models import Assignment, AssignmentProblem, Submission, User
 
 __all__ = ["HandInRefused", "hand_in"]
@@ -29,9 +30,11 @@ class HandInRefused(ValueError):
 
 
 def hand_in(database: Database, *, user: User, assignment_id: int, problem_id: int, answer: str, text: str,
-            now: datetime, requester: User | None = None) -> tuple[int, int]:
+            now: datetime, requester: User | None = None, secret: str = "") -> tuple[int, int]:
     """Store ``text`` as ``user``'s answer ``answer`` to problem ``problem_id`` of the assignment,
     received at ``now`` (the server's clock), queued for grading; returns (submission id, late days).
+    A randomised problem's parameter values for the student are drawn (from ``secret`` and the ids)
+    if they were not yet, so the worker grades with the numbers the student was shown.
 
     Raises :class:`HandInRefused` outside the assignment's window or past the attempt limit, and
     :class:`~grader.jobs.queue.SubmissionRejected` for an unknown answer or an over-long text.
@@ -60,6 +63,7 @@ def hand_in(database: Database, *, user: User, assignment_id: int, problem_id: i
                 session, assignment_id, user.id, problem_id, answer) >= assignment.max_attempts:
             raise HandInRefused("no_attempts_left", f"No attempts left for this answer (the limit is "
                                                     f"{assignment.max_attempts}).")
+        draw_in(session, assignment_id, user.id, item, secret)
         submission = Submission(user_id=user.id, requester_id=(requester or user).id, problem_version_id=version.id,
                                 grading_version_id=version.id, answer_name=answer, text=text, status="queued",
                                 received_at=received, assignment_id=assignment_id)

@@ -1,65 +1,73 @@
 """Each student's own numbers for a randomised problem of an assignment.
 
-A student's parameter values are drawn once, the first time they are asked for, and kept in
-``parameter_draws`` (one row per assignment, student and problem), so every page, every check and
-the worked solution use the same numbers. The drawing itself is the engine's
-(``draw_parameters``, helper H11's part of issue 9); a problem that declares no random parameters
-has no draw and gets ``{}``.
+A student's parameter values are drawn once, the first time they are needed (their assignment page,
+or their first hand-in), and kept in ``parameter_draws`` (one row per assignment, student and
+problem), so every page, every check and the worked solution use the same numbers. The drawing is
+:func:`grader.answers.randomised.draw_parameters`; a problem without random parameters has no draw
+and gets ``{}`` (its fixed values stay in its statement).
 """
 
 from __future__ import annotations
 
-import hashlib
 from typing import Any
 
 from sqlalchemy import select
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
-from grader.store.models import Assignment, AssignmentProblem, ParameterDraw, User
+from grader.answers.randomised import draw_parameters, is_randomised, seed_for
+from grader.store.db import Database
+from grader.store.models import AssignmentProblem, ParameterDraw, Submission
 
-__all__ = ["parameters_for", "seed_for"]
-
-
-def seed_for(assignment_id: int, user_id: int, problem_id: int) -> int:
-    """A seed fixed by (assignment, student, problem): the same student gets the same numbers again,
-    two students (almost surely) different ones.
-
-    Examples
-    --------
-    >>> seed_for(1, 2, 3) == seed_for(1, 2, 3), seed_for(1, 2, 3) == seed_for(1, 4, 3)
-    (True, False)
-    """
-    digest = hashlib.sha256(f"{assignment_id}:{user_id}:{problem_id}".encode()).digest()
-    return int.from_bytes(digest[:4], "big") & 0x7FFFFFFF  # fits the database's 32-bit integer
+__all__ = ["draw_in", "parameters_for", "stored_values", "submission_values"]
 
 
-def _drawer():
-    """The engine's ``draw_parameters(source_or_derivation, seed)``, if this build has it."""
-    try:
-        from grader.mechanics.randomise import draw_parameters  # H11 (issue 9)
-    except ImportError:
-        return None
-    return draw_parameters
+def stored_values(session: Session, assignment_id: int, user_id: int, problem_id: int) -> dict[str, Any] | None:
+    """The values drawn for this student, assignment and problem, if drawn."""
+    return session.scalar(select(ParameterDraw.values).where(ParameterDraw.assignment_id == assignment_id,
+                                                             ParameterDraw.user_id == user_id,
+                                                             ParameterDraw.problem_id == problem_id))
 
 
-def parameters_for(session: Session, assignment: Assignment, student: User, item: AssignmentProblem) -> dict[str, Any]:
-    """``student``'s parameter values for ``item`` (drawn and stored on first use; ``{}`` if fixed)."""
-    stored = session.scalar(select(ParameterDraw).where(ParameterDraw.assignment_id == assignment.id,
-                                                        ParameterDraw.user_id == student.id,
-                                                        ParameterDraw.problem_id == item.problem_id))
-    if stored is not None:
-        return dict(stored.values)
-    draw = _drawer()
-    version = item.problem_version
-    if draw is None or not version.derivation.get("random_parameters"):
+def draw_in(session: Session, assignment_id: int, user_id: int, item: AssignmentProblem,
+            secret: str = "") -> dict[str, Any]:
+    """The student's values for ``item``, drawn and added to ``session`` (a write transaction) if new."""
+    values = stored_values(session, assignment_id, user_id, item.problem_id)
+    if values is not None:
+        return dict(values)
+    spec = item.problem_version.derivation.get("parameters") or {}
+    if not is_randomised(spec):
         return {}
-    seed = seed_for(assignment.id, student.id, item.problem_id)
-    values = draw(version.derivation, seed)
-    try:
-        with session.begin_nested():
-            session.add(ParameterDraw(assignment_id=assignment.id, user_id=student.id, problem_id=item.problem_id,
-                                      seed=seed, values=values))
-    except IntegrityError:  # drawn at the same moment by another request: the same seed, the same values
-        pass
+    seed = seed_for(secret, assignment_id, user_id, item.problem_id)
+    values = draw_parameters(spec, seed)
+    session.add(ParameterDraw(assignment_id=assignment_id, user_id=user_id, problem_id=item.problem_id, seed=seed,
+                              values=values))
+    session.flush()
     return values
+
+
+def parameters_for(database: Database, assignment_id: int, user_id: int, item: AssignmentProblem,
+                   secret: str = "") -> dict[str, Any]:
+    """The student's values for ``item`` (``{}`` for a fixed problem), drawn and stored in a short write
+    transaction of their own the first time."""
+    with database.read() as session:
+        values = stored_values(session, assignment_id, user_id, item.problem_id)
+    if values is not None:
+        return dict(values)
+    if not is_randomised(item.problem_version.derivation.get("parameters") or {}):
+        return {}
+    try:
+        with database.write() as session:
+            return draw_in(session, assignment_id, user_id, session.get(AssignmentProblem, item.id), secret)
+    except IntegrityError:  # drawn at the same moment by another request: read theirs
+        with database.read() as session:
+            return dict(stored_values(session, assignment_id, user_id, item.problem_id) or {})
+
+
+def submission_values(session: Session, submission: Submission) -> dict[str, Any] | None:
+    """The parameter values a submission is graded with: its student's draw for its assignment's
+    problem (None outside an assignment or for a fixed problem: the preview values apply)."""
+    if submission.assignment_id is None:
+        return None
+    return stored_values(session, submission.assignment_id, submission.user_id,
+                         submission.problem_version.problem_id)

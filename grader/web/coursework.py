@@ -10,9 +10,11 @@ from __future__ import annotations
 from datetime import datetime
 from typing import Any
 
+from flask import current_app
 from sqlalchemy.orm import Session
 
 from grader.store.assignments import deadline_state, late_days, late_factor, local_time, solutions_open
+from grader.store.db import Database
 from grader.store.draws import parameters_for
 from grader.store.models import Assignment, User
 from grader.store.scores import StudentRow, gradebook
@@ -84,7 +86,8 @@ def assignment_view(session: Session, assignment: Assignment, now: datetime, *, 
                 answers.append(answer)
             entry["answers"] = answers
         if student is not None:
-            entry["parameters"] = parameters_for(session, assignment, student, item)
+            entry["parameters"] = parameters_for(Database.current(), assignment.id, student.id, item,
+                                                 current_app.config["SECRET_KEY"])
             entry["score"] = score.score if score is not None else 0.0
         if solutions:
             entry["solution"] = {"steps": version.derivation.get("steps") or [],

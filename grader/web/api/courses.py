@@ -12,7 +12,7 @@ from __future__ import annotations
 from datetime import datetime
 from typing import Any
 
-from flask import g, request, url_for
+from flask import current_app, g, request, url_for
 from sqlalchemy.exc import IntegrityError
 
 from grader.jobs.assignment_submissions import HandInRefused, hand_in
@@ -299,7 +299,8 @@ def hand_in_route(code: str, assignment: str):
         raise ApiProblem(403, "Only the course's students hand in answers for its assignments.", kind="forbidden")
     try:
         submission_id, late = hand_in(db, user=g.api_user, assignment_id=assignment_id, problem_id=problem_id,
-                                      answer=body["answer"], text=body["text"], now=clock.now())
+                                      answer=body["answer"], text=body["text"], now=clock.now(),
+                                      secret=current_app.config["SECRET_KEY"])
     except HandInRefused as refused:
         raise ApiProblem(_REFUSED[refused.reason], str(refused), kind=refused.reason.replace("_", "-")) from None
     except SubmissionRejected as error:
