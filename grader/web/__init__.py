@@ -17,6 +17,7 @@ from grader.jobs.grading import CHECK_BUDGET_S, CheckerPool, sandbox_checker
 from grader.store.db import db, default_url
 from grader.web import errors, headers, security
 from grader.web.converters import IdConverter
+from grader.web import text_input
 
 __all__ = ["create_app"]
 
@@ -62,6 +63,7 @@ def create_app(test_config: dict | None = None) -> Flask:
     db.init_app(app)
     errors.init_app(app)
     security.init_app(app)
+    text_input.init_app(app)
     headers.init_app(app)
     app.extensions["lagrade.checkers"] = CheckerPool(app.config["CHECK_SANDBOXES"], app.config["CHECKER_FACTORY"])
 

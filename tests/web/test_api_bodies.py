@@ -377,3 +377,16 @@ def test_a_deeply_nested_scene_upload_is_a_422(client, make_token, source):
     response = client.post("/api/v1/problems", data=source,
                            headers={**instructor, "Content-Type": "application/toml"})
     assert response.status_code == 422 and "nested too deeply" in response.get_json()["detail"]
+
+
+@pytest.mark.parametrize("method, url, data", [
+    ("POST", "/login", {"username": "a\x00b@example.org", "password": "x"}),  # was a 500 on PostgreSQL
+    ("GET", "/login?next=/problems%00", None),
+    ("GET", "/api/v1/health?x=%00", None),
+], ids=["form-field", "query", "api-query"])
+def test_a_nul_character_in_a_form_or_query_is_a_400(app, method, url, data):
+    client = app.test_client()
+    client.get("/login")
+    if data is not None:
+        data = {**data, "csrf_token": csrf(client)}
+    assert client.open(url, method=method, data=data).status_code == 400
