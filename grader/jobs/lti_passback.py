@@ -155,10 +155,15 @@ def _due(session: Session, now: datetime, limit: int) -> list[int]:
 
 def _claim(database: Database, passback_id: int, now: datetime) -> ScoreToSend | None:
     with database.write() as session:
-        row = session.get(LtiScorePassback, passback_id)
-        if row is None or row.sent_at is not None or row.superseded or row.next_try_at > now:
+        # A conditional UPDATE: of several senders (processes), exactly one moves the row's next try.
+        taken = session.execute(
+            update(LtiScorePassback)
+            .where(LtiScorePassback.id == passback_id, LtiScorePassback.sent_at.is_(None),
+                   LtiScorePassback.superseded.is_(False), LtiScorePassback.next_try_at <= now)
+            .values(next_try_at=now + timedelta(seconds=CLAIM_S))).rowcount
+        if taken != 1:
             return None  # another sender took it, or a newer score replaced it
-        row.next_try_at = now + timedelta(seconds=CLAIM_S)
+        row = session.get(LtiScorePassback, passback_id)
         link = row.resource_link
         context = session.get(LtiContext, link.context_id)
         platform = session.get(LtiPlatform, context.platform_id)

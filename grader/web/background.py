@@ -51,4 +51,9 @@ def start_background(app: Flask, *, grading_workers: int = 2) -> Background:
     background.pools.append(DerivationWorkerPool(database, may_update=may_update, workers=app.config["DERIVE_WORKERS"],
                                                  timeout_s=app.config["DERIVE_TIMEOUT_S"],
                                                  memory_mb=app.config["DERIVE_MEMORY_MB"]).start())
+    # LTI scores waiting for their LMS (grader/jobs/lti_passback.py): each row is claimed by one sender.
+    from grader.jobs.lti_passback import PassbackSender
+    from grader.web.lti.ags import deliverer
+
+    background.pools.append(PassbackSender(database, deliverer(database)).start())
     return background
