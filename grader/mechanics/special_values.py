@@ -26,7 +26,8 @@ roots are kept where they are real and inside the unknown's domain, at two param
 
 ``kind = "small_oscillation"`` gives the angular frequency of small oscillations of the coordinate
 in ``expr`` about the equilibrium ``where`` names: ω² = −∂ü/∂u at rest at the equilibrium, by
-linearising the solved equation of motion (no division by sin θ).
+linearising the solved equation of motion (no division by sin θ). The equilibrium need not be
+reached by the motion; the motion from ``[initial]`` only chooses among several equilibria.
 
 Examples
 --------
@@ -193,7 +194,12 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> sympy
             if v is not None:
                 values[index] = v
         groups = _groups(values)
-        if variable is not None and variable[0] == "coordinate" and _one_motion(evaluator, spec, variable[1]):
+        one_motion = variable is not None and variable[0] == "coordinate" and _one_motion(evaluator, spec, variable[1])
+        if one_motion and spec.kind == "small_oscillation" and len(groups) == 1:
+            # An equilibrium need not be reached to oscillate about it; the motion only
+            # chooses among equilibria.
+            index = min(groups[0])
+        elif one_motion:
             # Even a single root must be reached: the motion may turn back before it.
             index = _first_reached(evaluator, variable[1], condition, numeric, point, key)
         elif len(groups) == 1:
