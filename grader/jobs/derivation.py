@@ -30,8 +30,8 @@ from grader.sandbox import Sandbox
 from grader.store.models import ProblemVersion
 from grader.store.problems import DerivedProblem, save_problem
 
-__all__ = ["DERIVE_MEMORY_MB", "DERIVE_TIMEOUT_S", "DerivationError", "SandboxUnavailable", "derivation_sandbox", "derive_request",
-           "close_shared_sandboxes", "derive_source", "load_problem_files", "read_scene_id"]
+__all__ = ["DERIVE_MEMORY_MB", "DERIVE_TIMEOUT_S", "DerivationError", "SandboxUnavailable", "close_shared_sandboxes",
+           "derivation_sandbox", "derive_request", "derive_source", "load_problem_files", "read_scene_id"]
 
 log = logging.getLogger(__name__)
 
