@@ -26,6 +26,7 @@ _BENCHMARKS = {
     "http": "grader.bench.http:bench_http",
     "isolation": "grader.bench.isolation:bench_isolation",
     "accuracy": "grader.bench.accuracy:bench_accuracy",
+    "load": "grader.bench.load:bench_load",
     "simulate": "grader.bench.simulate:bench_simulate",
 }
 
