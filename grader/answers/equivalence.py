@@ -542,7 +542,57 @@ def compare_expressions(
         if not answer_conditions and not reference_conditions and not (options.fast and _sum_denominator(diff)) \
                 and symbolic_zero(diff):
             return Comparison(True, "proved", "symbolically identical", evidence={"method": "symbolic"})
-    return compare_numeric(ref, ans, sampler, options, deadline)
+    result = compare_numeric(ref, ans, sampler, options, deadline)
+    if result.equivalent and options.method == "arb":
+        return _at_landmarks(ref, ans, sampler, (reference, answer), options, deadline) or result
+    return result
+
+
+# Constants outside the ordinary samples' scale (0.5 .. 3) say where else to look: abs(x - 10)
+# and 10 - x agree for every x <= 10.
+LANDMARK_SCALE = (0.3, 3.0)
+MAX_LANDMARKS = 4
+
+
+def _at_landmarks(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, options: Options,
+                  deadline: float | None) -> Comparison | None:
+    """A counterexample at the scale of the expressions' own constants, or None.
+
+    Each unbounded variable (real line or positive) is set to twice and half of each constant
+    outside the ordinary samples' scale, with both signs where the domain allows, the other
+    variables as at the first sample point.
+    """
+    values = set()
+    for expr in exprs:
+        for atom in expr.atoms(sympy.Rational):
+            c = abs(float(atom))
+            if c and not LANDMARK_SCALE[0] <= c <= LANDMARK_SCALE[1]:
+                values.add(c)
+    if not values:
+        return None
+    free = [s for s, d in sampler.domains.items()
+            if getattr(d, "kind", None) in ("real", "positive", "nonnegative")]
+    if not free:
+        return None
+    base = sampler.point(0)
+    for n, c in enumerate(sorted(values)[:MAX_LANDMARKS]):
+        for j, v in enumerate((2 * c, c / 2, -2 * c, -c / 2)):
+            if v < 0 and any(sampler.domains[s].kind != "real" for s in free):
+                continue
+            point = {**base, **{s: v for s in free}}
+            # keyed by the value itself: the reference's cache is shared by every answer to it
+            result = compare_at(ref, ans, point, ("landmark", v), options, deadline)
+            if result.kind in ("differ", "answer_undefined", "answer_defined"):
+                example = counterexample(point, result)
+                values_ = (_to_float(result.answer), _to_float(result.reference)) if result.kind == "differ" else None
+                return Comparison(False, "proved", "your answer and the correct one differ at the point in the "
+                                  "counterexample" if result.kind == "differ" else
+                                  "your answer is undefined at a point where the correct one is defined"
+                                  if result.kind == "answer_undefined" else
+                                  "your answer is defined at a point of the domain where the correct one is not",
+                                  evidence={"method": options.describe(), "points": 1},
+                                  counterexample=example, values=values_)
+    return None
 
 
 def _sum_denominator(expr: sympy.Expr) -> bool:

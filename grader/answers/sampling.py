@@ -24,6 +24,10 @@ STRESS_EVERY = 4
 STRESS_DECADES = 6.0
 # Offset of the seed of the wide points' generator from the ordinary one's.
 WIDE_STREAM = 0x5EED
+# Real variables on stress points: magnitudes 10**-3 .. 10**6, either sign, from a generator of
+# their own (seed + REAL_STREAM).
+REAL_DECADES = (3.0, 6.0)
+REAL_STREAM = 0x4EA1
 
 
 def seed_for(*parts: Any) -> int:
@@ -34,6 +38,11 @@ def seed_for(*parts: Any) -> int:
     """
     digest = hashlib.blake2b(repr(parts).encode(), digest_size=8).digest()
     return int.from_bytes(digest, "little")
+
+
+def _real_line(domain) -> bool:
+    """A variable over the whole real line, whose stress points span both signs and every scale."""
+    return getattr(domain, "kind", None) == "real"
 
 
 def _stressable(domain) -> bool:
@@ -79,6 +88,10 @@ class Sampler:
         self._wide_rng = None
         self._wide_points: list[dict[sympy.Symbol, float]] = []
         self._stress = {s for s, d in self.domains.items() if stress and _stressable(d)}
+        # Real variables too: |x| <= 3 alone would call abs(x - 10) and 10 - x the same. Their
+        # stress values come from a generator of their own, so every other value stays as it was.
+        self._stress_real = {s for s, d in self.domains.items() if stress and _real_line(d)}
+        self._real_rng = np.random.default_rng(seed + REAL_STREAM)
         self._points: list[dict[sympy.Symbol, float]] = []
 
     def point(self, i: int) -> dict[sympy.Symbol, float]:
@@ -104,7 +117,7 @@ class Sampler:
         return self._wide_points[i]
 
     def _draw(self, i: int) -> dict[sympy.Symbol, float]:
-        stress = self._stress and i % STRESS_EVERY == STRESS_EVERY - 1
+        stress = i % STRESS_EVERY == STRESS_EVERY - 1
         point = {}
         for symbol, domain in self.domains.items():
             if stress and symbol in self._stress:
@@ -113,5 +126,8 @@ class Sampler:
                 value = float(domain.sample(self._rng))
                 if not math.isfinite(value):  # a domain that cannot sample: fall back to 1
                     value = 1.0
+                if stress and symbol in self._stress_real:
+                    magnitude = 10.0 ** self._real_rng.uniform(-REAL_DECADES[0], REAL_DECADES[1])
+                    value = magnitude if self._real_rng.uniform() < 0.5 else -magnitude
             point[symbol] = value
         return point

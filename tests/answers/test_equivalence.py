@@ -196,3 +196,14 @@ def test_the_fast_paths_give_the_verdicts_of_the_older_ones(reference, answer):
                  "a": {"domain": [0.05, 1.5]}, "x": {"domain": "real"}}
     fast, slow = check(reference, answer, variables), check(reference, answer, variables, options=Options(fast=False))
     assert fast.verdict == slow.verdict and fast.verdict in ("equivalent", "not_equivalent")
+
+
+@pytest.mark.parametrize("reference, answer, expected", [
+    ("abs(x - 10)", "10 - x", "not_equivalent"),     # equal for every x <= 10, the ordinary samples' scale
+    ("abs(x - 10)", "abs(10 - x)", "equivalent"),
+    ("x/1000 + abs(x)", "0.001 x + sqrt(x^2)", "equivalent"),
+])
+def test_constants_beyond_the_sampling_scale_say_where_else_to_look(reference, answer, expected):
+    from grader.answers import check
+
+    assert check(reference, answer, X_REAL).verdict == expected

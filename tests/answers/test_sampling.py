@@ -41,3 +41,18 @@ def test_wide_points_do_not_change_the_ordinary_points():
     a, b = Sampler({x: parse_domain("real")}, seed=4), Sampler({x: parse_domain("real")}, seed=4)
     b.wide_point(10)
     assert [a.point(i) for i in range(8)] == [b.point(i) for i in range(8)]
+
+
+def test_real_variables_get_both_signs_and_every_scale_on_stress_points():
+    x = sympy.Symbol("x", real=True)
+    s = Sampler({x: parse_domain("real")}, seed=7)
+    stressed = [s.point(i)[x] for i in range(STRESS_EVERY - 1, 200, STRESS_EVERY)]
+    assert max(stressed) > 1e3 and min(stressed) < -1e3
+
+
+def test_stress_on_real_variables_leaves_the_other_points_as_they_were():
+    x, m = sympy.Symbol("x", real=True), sympy.Symbol("m", positive=True)
+    with_x = Sampler({x: parse_domain("real"), m: parse_domain("positive")}, seed=3)
+    without = Sampler({x: parse_domain("real"), m: parse_domain("positive")}, seed=3, stress=False)
+    ordinary = [i for i in range(12) if i % STRESS_EVERY != STRESS_EVERY - 1]
+    assert [with_x.point(i) for i in ordinary] == [without.point(i) for i in ordinary]
