@@ -315,6 +315,10 @@ def check(
     options: Options = DEFAULT_OPTIONS,
     feedback_detail: str = "kind",
     alternatives: Sequence[str] | None = None,
+    values: Mapping[str, float] | None = None,
+    unit: str = "",
+    tolerance: Mapping[str, Any] | None = None,
+    dimension: str | None = None,
 ) -> Verdict:
     """Check a student's answer against a reference answer (or any of its accepted alternatives).
 
@@ -328,7 +332,7 @@ def check(
     variables : mapping
         ``{name: {"dimension": str, "domain": "positive" | "nonnegative" | "real" | [lo, hi],
         "kind"?: "parameter" | "coordinate" | ...}}``: the names the texts may use.
-    kind : {"expression", "equation"}
+    kind : {"expression", "equation", "numeric"}
     feedback : list of {"expr", "message"}, optional
         Known wrong answers and what to tell a student who gives one.
     budget_s : float
@@ -345,6 +349,10 @@ def check(
         Other references that are also right (the mirror equilibrium -theta*, the other sign
         convention), in the reference's grammar. An answer matching one is ``equivalent``, and
         ``evidence["matched"]`` says which: 0 for ``reference``, i for the i-th alternative.
+    values, unit, tolerance, dimension
+        For ``kind="numeric"`` (`grader.answers.numeric`): the student's parameter values at which
+        the reference is evaluated, the answer's SI unit text, ``{relative?, absolute?, sig_figs?}``
+        and the answer's dimension.
 
     Returns
     -------
@@ -366,8 +374,11 @@ def check(
     started = time.monotonic()
     text = answer if isinstance(answer, str) else ""
     try:
+        if kind == "numeric":
+            return _numeric(reference, answer, variables, values, unit, tolerance, dimension, feedback, started)
         verdict = _check(reference, answer, variables, kind, feedback, budget_s, state, options, started,
                          feedback_detail)
+        _partial_credit(verdict, feedback)
         if alternatives is not None:
             verdict = _alternatives(verdict, alternatives, answer, variables, kind, feedback, budget_s, state,
                                     options, started, feedback_detail)
@@ -382,6 +393,41 @@ def check(
         verdict = Verdict.invalid(f"internal error while checking ({type(error).__name__})", text)
     verdict.ms = (time.monotonic() - started) * 1000
     return verdict
+
+
+def _numeric(reference, answer, variables, values, unit, tolerance, dimension, feedback, started) -> Verdict:
+    from grader.answers.numeric import NumericRequestError, check_numeric
+
+    text = answer if isinstance(answer, str) else ""
+    if not isinstance(reference, str) or not reference.strip():
+        verdict = Verdict.invalid("'reference' must be a non-empty string", text)
+    elif not isinstance(variables, Mapping) or (values is not None and not isinstance(values, Mapping)):
+        verdict = Verdict.invalid("'variables' and 'values' must be objects", text)
+    elif feedback is not None and not isinstance(feedback, (list, tuple)):
+        verdict = Verdict.invalid("'feedback' must be a list of {expr, message}", text)
+    else:
+        try:
+            verdict = check_numeric(reference, text, variables, values, unit if unit is not None else "", tolerance,
+                                    dimension, [f for f in feedback or () if isinstance(f, Mapping)])
+        except NumericRequestError as error:
+            verdict = Verdict.invalid(str(error), text)
+    verdict.ms = (time.monotonic() - started) * 1000
+    return verdict
+
+
+def _partial_credit(verdict: Verdict, feedback) -> None:
+    """A wrong answer that matched an instructor's entry with a ``score`` earns that score."""
+    if verdict.verdict != "not_equivalent" or not feedback:
+        return
+    scores = {}
+    for entry in feedback:
+        score = entry.get("score") if isinstance(entry, Mapping) else None
+        if isinstance(score, (int, float)) and not isinstance(score, bool) and 0 <= score <= 1:
+            scores[entry.get("message")] = max(float(score), scores.get(entry.get("message"), 0.0))
+    for item in verdict.feedback:
+        if item.get("code") == "instructor" and item.get("message") in scores:
+            item["score"] = scores[item["message"]]
+            verdict.score = max(item["score"], verdict.score or 0.0)
 
 
 def _alternatives(verdict: Verdict, alternatives, answer, variables, kind, feedback, budget_s, state, options,
@@ -479,7 +525,8 @@ def check_request(request: Any) -> dict:
     """`check` for one decoded JSON request; returns the verdict's JSON (never raises).
 
     The request is ``{"reference", "answer", "variables", "kind"?, "feedback"?, "state"?,
-    "budget_s"?, "feedback_detail"?}``, as read by ``grader check --jsonl`` and sent by the grading
+    "budget_s"?, "feedback_detail"?, "alternatives"?}``, and for ``kind="numeric"`` also
+    ``"values"``, ``"unit"``, ``"tolerance"``, ``"dimension"``, as read by ``grader check --jsonl`` and sent by the grading
     worker.
 
     Examples
@@ -510,6 +557,10 @@ def check_request(request: Any) -> dict:
                 state=request.get("state"),
                 feedback_detail=request.get("feedback_detail", "kind"),
                 alternatives=request.get("alternatives"),
+                values=request.get("values"),
+                unit=request.get("unit", ""),
+                tolerance=request.get("tolerance"),
+                dimension=request.get("dimension"),
             )
     verdict.ms = (time.monotonic() - started) * 1000
     return verdict.to_json()

@@ -19,13 +19,18 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = ["ReferenceAnswer", "ReferenceAnswerError", "KINDS", "DETAILS"]
+__all__ = ["ReferenceAnswer", "ReferenceAnswerError", "KINDS", "DETAILS", "EXPECTS"]
 
-KINDS = ("expression", "equation")
+KINDS = ("expression", "equation", "numeric")
+EXPECTS = ("equivalent", "not_equivalent", "invalid")  # what a question test may expect
 # How much a slip message may say: "kind" names the slip only; "full" adds factors and differences.
 # (Here, not in grader.answers.feedback, so reading the contract does not import sympy.)
 DETAILS = ("kind", "full")
 _TEXT_KEYS = ("name", "prompt", "kind", "reference", "dimension", "latex")
+
+
+def _is_number(value: Any, low: float, high: float = float("inf")) -> bool:
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and low <= value <= high
 
 
 class ReferenceAnswerError(ValueError):
@@ -42,7 +47,9 @@ class ReferenceAnswer:
         The answer's name in the scene (``tension``).
     prompt : str
         What the student is asked.
-    kind : {"expression", "equation"}
+    kind : {"expression", "equation", "numeric"}
+        ``numeric``: the student types a number with a unit, checked against ``reference``
+        evaluated at the student's parameter values (`grader.answers.numeric`).
     reference : str
         The reference in the checker's grammar (sympy's ``str()`` form, which our parser reads back).
     variables : dict
@@ -52,13 +59,26 @@ class ReferenceAnswer:
     latex : str
         The reference typeset, for instructors.
     feedback : tuple of dict
-        The instructor's ``{"expr", "message"}`` entries for known wrong answers.
+        The instructor's ``{"expr", "message", "score"?}`` entries for known wrong answers
+        (``score``: partial credit in [0, 1] for an answer that matches the entry).
     feedback_detail : {"kind", "full"}
         How much slip messages may say (``"kind"`` never states a value; see
         `grader.answers.feedback`); set per problem by ``[feedback] detail`` in the scene file.
     alternatives : tuple of str
         Other references that are also right (``alternatives`` in the scene file: the mirror
         equilibrium, the other sign convention); the verdict's ``evidence["matched"]`` says which.
+    unit : str
+        Numeric answers: the SI unit text the answer is asked in (``"N"``; ``""`` for a pure number).
+    tolerance : dict or None
+        Numeric answers: ``{"relative"?, "absolute"?, "sig_figs"?}`` (None: 1 % relative).
+    weight : float
+        The answer's weight in its problem's score (default 1: answers count equally).
+    parameters : dict
+        ``{name: {"value"? | "random"? | "choices"?, "dimension"}}``: the problem's parameters with
+        numbers, from which `grader.answers.randomised.draw_parameters` draws a student's values.
+    tests : tuple of dict
+        The instructor's question tests ``{"answer", "expect", "score"?, "values"?}``, run when the
+        problem is registered (`grader.answers.question_tests`).
 
     Examples
     --------
@@ -83,6 +103,11 @@ class ReferenceAnswer:
     feedback: tuple[dict[str, str], ...] = field(default_factory=tuple)
     feedback_detail: str = "kind"
     alternatives: tuple[str, ...] = ()
+    unit: str = ""
+    tolerance: dict[str, Any] | None = None
+    weight: float = 1.0
+    parameters: dict[str, dict[str, Any]] = field(default_factory=dict)
+    tests: tuple[dict[str, Any], ...] = ()
 
     @classmethod
     def from_json(cls, data: Any) -> "ReferenceAnswer":
@@ -123,22 +148,65 @@ class ReferenceAnswer:
         alternatives = data.get("alternatives") or []
         if not isinstance(alternatives, (list, tuple)) or not all(isinstance(a, str) for a in alternatives):
             raise fail("'alternatives' must be a list of reference texts")
+        for f in feedback:
+            if "score" in f and not _is_number(f["score"], 0, 1):
+                raise fail("a feedback 'score' must be a number from 0 to 1")
+        unit = data.get("unit", "")
+        if not isinstance(unit, str):
+            raise fail("'unit' must be a string")
+        tolerance = data.get("tolerance")
+        if tolerance is not None and (not isinstance(tolerance, Mapping) or set(tolerance) - {
+                "relative", "absolute", "sig_figs"} or not all(_is_number(v, 0) for v in tolerance.values())):
+            raise fail("'tolerance' must be {relative?, absolute?, sig_figs?} with numbers >= 0")
+        weight = data.get("weight", 1.0)
+        if not _is_number(weight, 0):
+            raise fail("'weight' must be a number >= 0")
+        parameters = data.get("parameters") or {}
+        if not isinstance(parameters, Mapping) or not all(
+                isinstance(k, str) and isinstance(v, Mapping) for k, v in parameters.items()):
+            raise fail("'parameters' must map names to {value | random | choices}")
+        tests = data.get("tests") or []
+        if not isinstance(tests, (list, tuple)) or not all(
+                isinstance(t, Mapping) and isinstance(t.get("answer"), str) and t.get("expect") in EXPECTS
+                for t in tests):
+            raise fail(f"'tests' must be a list of {{answer, expect}} with expect one of {', '.join(EXPECTS)}")
         return cls(**{k: data[k] for k in _TEXT_KEYS},
                    variables={k: dict(v) for k, v in variables.items()},
-                   feedback=tuple({"expr": f["expr"], "message": f["message"]} for f in feedback),
-                   feedback_detail=detail, alternatives=tuple(alternatives))
+                   feedback=tuple({"expr": f["expr"], "message": f["message"],
+                                   **({"score": float(f["score"])} if "score" in f else {})} for f in feedback),
+                   feedback_detail=detail, alternatives=tuple(alternatives), unit=unit,
+                   tolerance=dict(tolerance) if tolerance is not None else None, weight=float(weight),
+                   parameters={k: dict(v) for k, v in parameters.items()}, tests=tuple(dict(t) for t in tests))
 
     def to_json(self) -> dict[str, Any]:
         """The JSON object stored in ``problem_versions.references`` (`from_json` reads it back)."""
         return {"name": self.name, "prompt": self.prompt, "kind": self.kind, "reference": self.reference,
                 "variables": self.variables, "dimension": self.dimension, "latex": self.latex,
                 "feedback": [dict(f) for f in self.feedback], "feedback_detail": self.feedback_detail,
-                "alternatives": list(self.alternatives)}
+                "alternatives": list(self.alternatives), "unit": self.unit, "tolerance": self.tolerance,
+                "weight": self.weight, "parameters": self.parameters, "tests": [dict(t) for t in self.tests]}
 
-    def request(self, text: str) -> dict[str, Any]:
-        """The checker request (``grader check --jsonl`` line) for a student's ``text`` against this reference."""
+    def values(self, drawn: Mapping[str, Any] | None = None) -> dict[str, float]:
+        """The parameter values a numeric answer is checked at: the fixed ones, then ``drawn`` (the
+        student's draw, `grader.answers.randomised.draw_parameters`) or else the preview draw."""
+        from grader.answers.randomised import PREVIEW_SEED, draw_parameters, fixed_values
+
+        if drawn is None:
+            return draw_parameters(self.parameters, PREVIEW_SEED)
+        return {**fixed_values(self.parameters), **{k: v for k, v in drawn.items() if isinstance(k, str)}}
+
+    def request(self, text: str, values: Mapping[str, Any] | None = None) -> dict[str, Any]:
+        """The checker request (``grader check --jsonl`` line) for a student's ``text`` against this reference.
+
+        ``values``: the student's parameter values; used by numeric answers only (symbolic answers
+        of a randomised problem stay symbolic: the student writes ``m*g/3``).
+        """
         request = {"reference": self.reference, "answer": text, "variables": self.variables, "kind": self.kind,
                    "feedback": [dict(f) for f in self.feedback], "feedback_detail": self.feedback_detail}
         if self.alternatives:
             request["alternatives"] = list(self.alternatives)
+        if self.kind == "numeric":
+            request.update(values=self.values(values), unit=self.unit, dimension=self.dimension)
+            if self.tolerance is not None:
+                request["tolerance"] = dict(self.tolerance)
         return request

@@ -41,6 +41,9 @@ class Verdict:
         How the verdict was reached (method, points, digits).
     budget_exceeded : bool
         True when the time budget ran out (the check was stopped or its child process killed).
+    score : float or None
+        Partial credit in [0, 1] given by the instructor's feedback entry the wrong answer matched
+        (its ``score``); None otherwise (``grader.jobs.grading.score`` then scores by the verdict).
 
     Examples
     --------
@@ -61,6 +64,9 @@ class Verdict:
     # True when the checker itself failed (not the answer): the grading queue retries such checks
     # instead of storing them as the student's grade.
     checker_failure: bool = False
+    # Partial credit: the score of the instructor's feedback entry a wrong answer matched
+    # (``[[answers.feedback]] score``); None when no such entry matched.
+    score: float | None = None
 
     def __post_init__(self) -> None:
         if self.verdict not in VERDICTS:
@@ -85,6 +91,7 @@ class Verdict:
             "evidence": self.evidence,
             "budget_exceeded": self.budget_exceeded,
             **({"checker_failure": True} if self.checker_failure else {}),
+            **({"score": self.score} if self.score is not None else {}),
         }
 
     @classmethod
@@ -95,7 +102,7 @@ class Verdict:
         'proved'
         """
         keys = ("verdict", "certainty", "reason", "parsed", "counterexample", "feedback", "ms",
-                "evidence", "budget_exceeded", "checker_failure")
+                "evidence", "budget_exceeded", "checker_failure", "score")
         return cls(**{k: data[k] for k in keys if k in data and (data[k] is not None or k == "counterexample")})
 
     @classmethod
