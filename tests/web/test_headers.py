@@ -16,7 +16,7 @@ from tests.web.conftest_pages import (  # noqa: F401  (fixtures)
 TEMPLATES = Path(__file__).resolve().parents[2] / "grader" / "web" / "templates"
 # A value for every URL argument of every route; a new argument fails the test until it is added here.
 SAMPLE_ARGUMENTS = {"slug": "mech", "submission_id": 1, "job_id": 1, "number": 1, "filename": "css/lagrade.css",
-                    "code": "MECH", "assignment": "hw1"}
+                    "code": "MECH", "assignment": "hw1", "context_id": 1}
 
 
 def _assert_security_headers(response, where: str) -> None:
