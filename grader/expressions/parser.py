@@ -183,7 +183,7 @@ class _Parser:
                 return ExpressionError("empty brackets", before.pos, "syntax", "put an expression inside, or delete them")
         if token.kind == "op" and token.value == "=":
             return ExpressionError("'=' is only allowed once, between the two sides of an equation",
-                                   token.pos, "syntax")
+                                   token.pos, "syntax", "separate several equations with ';'")
         if token.kind == "op" and token.value == ",":
             return ExpressionError("a comma can only separate function arguments, as in atan2(y, x)",
                                    token.pos, "syntax")
@@ -548,7 +548,7 @@ def _prepare(text: str, limit: int = MAX_LENGTH) -> list[Token]:
     # Length first: nothing below runs on a megabyte of input.
     if len(text) > limit:
         raise ExpressionError(f"the text is too long ({len(text)} characters, at most {limit})",
-                              limit, "too_long")
+                              limit, "too_long", "simplify the expression")
     if not text.strip():
         raise ExpressionError("the answer is empty", 0, "empty", "type an expression")
     tokens = tokenize(text)
