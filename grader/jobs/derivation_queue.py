@@ -5,8 +5,8 @@ A job's life mirrors a submission's (:mod:`grader.jobs.queue`): ``enqueue`` comm
 ``claim``s it with a conditional UPDATE (``queued`` → ``running``, its worker id, a lease); derives it
 in its own sandbox child with no session open; then ``finish`` stores the problem version and sets
 ``done`` in one transaction, or ``fail`` records the scene's error, in both cases only while the
-claim is still the worker's. ``recover`` (at start) and ``requeue_expired`` put interrupted jobs
-back; a job claimed ``MAX_ATTEMPTS`` times without an outcome fails, so a scene that kills its
+claim is still the worker's. ``recover`` (at start: claims of dead processes on this host) and
+``requeue_expired`` (claims whose lease ran out) put interrupted jobs back; a job claimed ``MAX_ATTEMPTS`` times without an outcome fails, so a scene that kills its
 worker cannot loop.
 
 Each requester may have at most ``max_active`` jobs queued or running: one instructor's batch of
@@ -24,6 +24,7 @@ from typing import Callable
 from sqlalchemy import func, select, update
 from sqlalchemy.orm import Session, aliased
 
+from grader.jobs.processes import holder_is_dead
 from grader.store.db import Database
 from grader.store.models import DerivationJob, Problem, User, utcnow
 from grader.store.problems import DerivedProblem, problem_by_slug, save_problem
@@ -217,10 +218,20 @@ def release(db: Database, task: DerivationTask, worker_id: str) -> None:
 
 
 def recover(db: Database) -> int:
-    """At start-up: every ``running`` job was interrupted by a stop or a crash; queue it again."""
+    """At start-up: queue again the ``running`` jobs whose worker process has died on this host.
+
+    Safe with many processes on one database (:mod:`grader.jobs.processes`): a claim held by a live
+    process, here or on another host, is left alone; should that process die, its lease runs out.
+    """
     with db.write() as session:
-        count = session.execute(update(DerivationJob).where(DerivationJob.status == "running")
-                                .values(status="queued", worker_id=None, lease_until=None)).rowcount
+        running = session.execute(select(DerivationJob.id, DerivationJob.worker_id)
+                                  .where(DerivationJob.status == "running")).all()
+        count = 0
+        for job_id, worker_id in running:
+            if holder_is_dead(worker_id):
+                count += session.execute(update(DerivationJob).where(
+                    DerivationJob.id == job_id, DerivationJob.status == "running", DerivationJob.worker_id == worker_id)
+                    .values(status="queued", worker_id=None, lease_until=None)).rowcount
     if count:
         wake_workers()
     return count

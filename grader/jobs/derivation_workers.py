@@ -15,9 +15,10 @@ import time
 import uuid
 from typing import Callable
 
-from grader.sandbox import Sandbox
 from grader.jobs import derivation_queue as queue
 from grader.jobs.derivation import DERIVE_MEMORY_MB, DERIVE_TIMEOUT_S, DerivationError, derivation_sandbox, derive_source
+from grader.jobs.processes import process_tag
+from grader.sandbox import Sandbox
 from grader.store.db import Database
 from grader.store.problems import DerivedProblem
 
@@ -53,14 +54,14 @@ class DerivationWorkerPool:
         self.timeout_s, self.memory_mb = timeout_s, memory_mb
         self.lease_s = timeout_s + LEASE_MARGIN_S
         self.deriver_factory = deriver_factory
-        self.boot_id = f"{os.getpid()}-{uuid.uuid4().hex[:8]}"
+        self.boot_id = f"{process_tag()}:{uuid.uuid4().hex[:8]}"  # recover() reads host and pid from it
         self._stop = threading.Event()
         self._threads: list[threading.Thread] = []
         self._sandboxes: list[Sandbox] = []
         self.derived = 0
 
     def start(self, *, recover: bool = True) -> DerivationWorkerPool:
-        """Start the threads; with ``recover``, first queue again whatever a stop left ``running``."""
+        """Start the threads; with ``recover``, first queue again what dead processes left ``running``."""
         if recover:
             count = queue.recover(self.db)
             if count:

@@ -1,5 +1,6 @@
 """The derivation queue: uploads are stored as jobs, claimed once, finished or failed with a message."""
 
+import socket
 from datetime import timedelta
 
 import pytest
@@ -10,6 +11,8 @@ from grader.store.models import Course, DerivationJob, Problem, utcnow
 from grader.store.users import create_user
 
 SOURCE = 'id = "yoyo"\n'
+# Worker ids name their host and process: this one is on this host, in a process that does not exist.
+DEAD = f"{socket.gethostname()}:{2 ** 22 + 7}"
 
 
 def anyone_may_update(session, requester, problem):
@@ -106,23 +109,34 @@ def test_a_problem_id_the_requester_may_not_change_fails_the_job(database, peopl
 
 def test_an_outcome_from_a_worker_that_lost_its_claim_is_dropped(database, people, yoyo):
     queue.enqueue(database, requester_id=people["ine"], source=SOURCE)
-    task = queue.claim(database, "w1", lease_s=60)
-    assert queue.recover(database) == 1  # a restart: the job is queued again
+    task = queue.claim(database, f"{DEAD}:w1", lease_s=60)
+    assert queue.recover(database) == 1  # a restart found w1's process gone: the job is queued again
     again = queue.claim(database, "w2", lease_s=60)
-    assert not queue.finish(database, task, "w1", yoyo, anyone_may_update)
-    assert not queue.fail(database, task, "w1", "too late")
+    assert not queue.finish(database, task, f"{DEAD}:w1", yoyo, anyone_may_update)
+    assert not queue.fail(database, task, f"{DEAD}:w1", "too late")
     assert _job(database, task.job_id).status == "running" and again.attempts == 2
 
 
 def test_running_jobs_are_queued_again_after_a_restart_and_fail_after_max_attempts(database, people):
     job_id = queue.enqueue(database, requester_id=people["ine"], source=SOURCE, filename="chain.toml")
     for attempt in range(1, queue.MAX_ATTEMPTS + 1):
-        assert queue.claim(database, f"boot{attempt}", lease_s=60).attempts == attempt
+        assert queue.claim(database, f"{DEAD}:boot{attempt}", lease_s=60).attempts == attempt
         assert queue.recover(database) == 1
         assert _job(database, job_id).status == "queued"
     assert queue.claim(database, "last", lease_s=60) is None  # the scene that keeps stopping servers
     job = _job(database, job_id)
     assert job.status == "failed" and "interrupted" in job.error and job.error.startswith("chain.toml")
+
+
+@pytest.mark.parametrize("holder, recovered", [
+    (f"{DEAD}:pool/d0", 1),  # a process of this host that is gone: its job is taken back at once
+    (f"{socket.gethostname()}:1:pool/d0", 0),  # a live process (pid 1 always exists): left alone
+    ("other-host:123:pool/d0", 0),  # another host: its lease decides
+])
+def test_a_restart_takes_back_only_the_jobs_of_dead_processes(database, people, holder, recovered):
+    queue.enqueue(database, requester_id=people["ine"], source=SOURCE)
+    queue.claim(database, holder, lease_s=60)
+    assert queue.recover(database) == recovered
 
 
 def test_an_expired_lease_is_queued_again(database, people):

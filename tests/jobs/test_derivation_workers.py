@@ -1,5 +1,6 @@
 """Derivation workers: every queued scene ends done (a problem version) or failed (with the reason)."""
 
+import socket
 import time
 
 import pytest
@@ -65,7 +66,7 @@ def test_a_queued_scene_is_derived_by_a_worker(database, instructor, fake_derive
 
 def test_jobs_left_running_by_a_stopped_server_are_derived_after_the_restart(database, instructor, fake_deriver):
     job_id = queue.enqueue(database, requester_id=instructor, source='id = "yoyo"\n')
-    queue.claim(database, "old-boot/d0", lease_s=600)  # the server stopped while deriving it
+    queue.claim(database, f"{socket.gethostname()}:{2 ** 22 + 7}:old/d0", lease_s=600)  # its process is gone
     pool = DerivationWorkerPool(database, may_update=anyone_may_update, deriver_factory=fake_deriver,
                                 poll_s=0.05).start()
     try:
