@@ -4,4 +4,4 @@ from flask import Blueprint
 
 bp = Blueprint("student", __name__)
 
-from grader.web.student import filters, views  # noqa: E402,F401  (they register on bp)
+from grader.web.student import courses, filters, views  # noqa: E402,F401  (they register on bp)

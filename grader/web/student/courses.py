@@ -1,0 +1,79 @@
+"""Student course pages.
+
+``GET  /courses``                                      the courses I am in, with their assignments
+``GET  /courses/<code>/assignments/<assignment>``      what is open, due when, attempts left, the late cost,
+                                                       my scores; the worked solutions once it closes
+``POST /courses/<code>/assignments/<assignment>/submit``  hand in the typed answers of one problem
+"""
+
+from __future__ import annotations
+
+from flask import abort, current_app, flash, g, redirect, render_template, request, url_for
+
+from grader.jobs.assignment_submissions import HandInRefused, hand_in
+from grader.jobs.queue import SubmissionRejected
+from grader.store.db import Database, db
+from grader.web import clock
+from grader.web.auth.session import login_required
+from grader.web.coursework import assignment_view
+from grader.web.errors import ApiProblem
+from grader.web.policy import PAGE_ROLES, Action, allowed, current_principal, find_assignment, my_courses, require
+from grader.web.security import limiter
+from grader.web.student import bp
+
+FIELD = "answer-"
+
+
+@bp.get("/courses")
+@login_required(PAGE_ROLES)
+def courses():
+    principal = current_principal()
+    mine = my_courses(db.session, principal)
+    return render_template("courses/list.html", courses=mine, now=clock.now(),
+                           grading={c.id for c in mine if allowed(principal, Action.GRADE_COURSE, c)})
+
+
+@bp.get("/courses/<code>/assignments/<assignment>")
+@login_required(PAGE_ROLES)
+def assignment(code: str, assignment: str):
+    principal = current_principal()
+    found = find_assignment(db.session, principal, code, assignment)
+    grader_view = allowed(principal, Action.GRADE_COURSE, found)
+    view = assignment_view(db.session, found, clock.now(), student=None if grader_view else g.user)
+    return render_template("courses/assignment.html", a=view, code=code, grader_view=grader_view,
+                           manage=allowed(principal, Action.MANAGE_COURSE, found))
+
+
+@bp.post("/courses/<code>/assignments/<assignment>/submit")
+@login_required(PAGE_ROLES)
+def hand_in_page(code: str, assignment: str):
+    principal = current_principal()
+    with db.read() as session:
+        found = find_assignment(session, principal, code, assignment)
+        item = next((p for p in found.problems if p.problem.slug == request.form.get("problem", "")), None)
+        if item is None:
+            flash("Choose one of the assignment's problems.", "error")
+            return redirect(url_for("student.assignment", code=code, assignment=assignment))
+        require(principal, Action.SUBMIT, item.problem_version)
+        names = [r["name"] for r in item.problem_version.references]
+        assignment_id, problem_id, slug = found.id, item.problem_id, item.problem.slug
+        graders = allowed(principal, Action.GRADE_COURSE, found)
+    if graders:
+        abort(403, "Only the course's students hand in answers for its assignments.")
+    texts = {n: request.form.get(FIELD + n, "").strip() for n in names}
+    texts = {n: t for n, t in texts.items() if t}
+    if not texts:
+        flash("Type at least one answer before submitting.", "error")
+    sent, late = 0, 0
+    for name, text in texts.items():
+        try:
+            limiter.hit("submit", g.user.id)
+            _, late = hand_in(Database.current(), user=g.user, assignment_id=assignment_id, problem_id=problem_id,
+                              answer=name, text=text, now=clock.now(), secret=current_app.config["SECRET_KEY"])
+            sent += 1
+        except (HandInRefused, SubmissionRejected, ApiProblem) as error:
+            flash(f"{name}: {getattr(error, 'detail', None) or error}", "error")
+    if sent:
+        lateness = f" ({late} day{'s' if late != 1 else ''} late)" if late else ""
+        flash(f"Submitted {sent} answer{'s' if sent != 1 else ''} for grading{lateness}.", "success")
+    return redirect(url_for("student.assignment", code=code, assignment=assignment) + f"#problem-{slug}")

@@ -1,0 +1,140 @@
+"""Course pages: an instructor starts a course, enrols a CSV roster, builds an assignment; students
+see what is open, due when, their attempts left and the late cost, hand in, and see the solutions
+after the close; the gradebook page, the student's page, the API and the CSV show the same scores."""
+
+from __future__ import annotations
+
+import csv
+import io
+import re
+from datetime import datetime, timedelta, timezone
+
+import pytest
+from sqlalchemy import select
+
+from grader.store.models import User
+from grader.store.users import create_token, set_password
+from tests.web.conftest_pages import (  # noqa: F401  (fixtures)
+    PASSWORD, Account, accounts, as_instructor, csrf, grade_all, sign_in,
+)
+
+PARIS = "Europe/Paris"
+OPENS = datetime(2026, 12, 1, 9, 0, tzinfo=timezone.utc)
+DUE = datetime(2026, 12, 8, 17, 0, tzinfo=timezone.utc)  # 18:00 in Paris
+CLOSES = DUE + timedelta(days=2)
+ROSTER = b"email,name,external_id\ncy@example.org,Cy Young,s-cy\ndee@example.org,Dee Dirac,s-dee\n"
+
+
+class Clock:
+    def __init__(self, now: datetime):
+        self.now = now
+
+    def __call__(self) -> datetime:
+        return self.now
+
+
+@pytest.fixture
+def clock(app):
+    app.config["CLOCK"] = clock = Clock(OPENS)
+    return clock
+
+
+def _paris(moment: datetime) -> str:
+    """A datetime-local form value, in Paris time."""
+    return moment.astimezone(__import__("zoneinfo").ZoneInfo(PARIS)).strftime("%Y-%m-%dT%H:%M:%S")
+
+
+def _post(client, url, **data):
+    return client.post(url, data=dict(data, csrf_token=csrf(client)))
+
+
+@pytest.fixture
+def course(app, as_instructor, yoyo_version, clock):
+    """PHYS by Ine: Cy and Dee from a CSV file; homework hw1 over the yo-yo, 2 attempts, 10 %/day late."""
+    assert _post(as_instructor, "/instructor/courses", code="PHYS", title="Physics").status_code == 302
+    enrolled = as_instructor.post("/instructor/courses/PHYS/members", data={
+        "csrf_token": csrf(as_instructor), "roster": (io.BytesIO(ROSTER), "roster.csv")},
+        content_type="multipart/form-data")
+    assert enrolled.status_code == 302
+    made = _post(as_instructor, "/instructor/courses/PHYS/assignments", id="hw1", title="Homework 1",
+                 problems="yoyo", time_zone=PARIS, opens_at=_paris(OPENS), due_at=_paris(DUE),
+                 closes_at=_paris(CLOSES), late_penalty_percent="10", max_attempts="2", score_policy="best")
+    assert made.headers["Location"].endswith("/instructor/courses/PHYS/assignments/hw1"), made.headers["Location"]
+    return as_instructor
+
+
+def _student(app, email: str):
+    """A signed-in client for a rostered student (their account had no password: give it one)."""
+    with app.extensions["lagrade.db"].write() as session:
+        user = session.scalar(select(User).where(User.email == email))
+        set_password(user, PASSWORD)
+        user_id = user.id
+    client = app.test_client()
+    assert sign_in(client, Account(user_id, email, "student")).status_code == 302
+    return client
+
+
+def test_the_roster_page_lists_everyone_enrolled_from_the_csv(course):
+    page = course.get("/instructor/courses/PHYS").get_data(as_text=True)
+    assert "Cy Young" in page and "Dee Dirac" in page and "s-dee" in page
+    assert "Homework 1" in page
+
+
+def test_the_student_page_says_what_is_open_due_when_and_what_late_costs(app, course, clock):
+    cy = _student(app, "cy@example.org")
+    assert "Homework 1" in cy.get("/courses").get_data(as_text=True)
+    page = cy.get("/courses/PHYS/assignments/hw1").get_data(as_text=True)
+    assert "This assignment is open." in page
+    assert "Due Tue 08 Dec 2026, 18:00:00 (Europe/Paris)" in page  # 17:00 UTC, said in the course's zone
+    assert "each started day late costs 10% of the score" in page
+    assert "Each answer gets 2 attempts." in page and "Your score for an answer is your best attempt" in page
+
+
+def test_attempts_run_out_and_the_page_says_so(app, course, clock):
+    cy = _student(app, "cy@example.org")
+    for _ in range(2):
+        assert _post(cy, "/courses/PHYS/assignments/hw1/submit", problem="yoyo",
+                     **{"answer-tension": "m*g"}).status_code == 302
+    page = cy.get("/courses/PHYS/assignments/hw1").get_data(as_text=True)
+    assert re.search(r"2 attempts used, 0 left", page)
+    assert 'name="answer-tension"' not in page and 'name="answer-acceleration"' in page
+    _post(cy, "/courses/PHYS/assignments/hw1/submit", problem="yoyo", **{"answer-tension": "m*g/3"})
+    assert "No attempts left" in cy.get("/courses/PHYS/assignments/hw1").get_data(as_text=True)
+
+
+def test_after_the_close_nothing_is_accepted_and_the_solution_is_shown(app, course, clock):
+    cy = _student(app, "cy@example.org")
+    clock.now = CLOSES
+    assert 'class="card derivation solution"' not in cy.get("/courses/PHYS/assignments/hw1").get_data(as_text=True)
+    clock.now = CLOSES + timedelta(seconds=1)
+    _post(cy, "/courses/PHYS/assignments/hw1/submit", problem="yoyo", **{"answer-tension": "m*g/3"})
+    page = cy.get("/courses/PHYS/assignments/hw1").get_data(as_text=True)
+    assert "This assignment is closed." in page and "no more submissions are accepted" in page
+    assert 'class="card derivation solution"' in page and "<math" in page  # rendered as MathML
+
+
+def test_scores_agree_on_the_student_page_the_gradebook_page_the_api_and_the_csv(app, course, clock):
+    cy, dee = _student(app, "cy@example.org"), _student(app, "dee@example.org")
+    clock.now = DUE - timedelta(hours=1)
+    _post(cy, "/courses/PHYS/assignments/hw1/submit", problem="yoyo",
+          **{"answer-tension": "m*g/3", "answer-acceleration": "g"})
+    clock.now = DUE + timedelta(hours=30)  # 2 started days late: keeps 80 %
+    _post(dee, "/courses/PHYS/assignments/hw1/submit", problem="yoyo", **{"answer-tension": "g*m/3"})
+    assert grade_all(app) == 3
+    # Cy: tension 1, acceleration 0 -> 0.5; Dee: tension 0.8, acceleration untried -> 0.4.
+    expected = {"s-cy": 0.5, "s-dee": 0.4}
+    gradebook = course.get("/instructor/courses/PHYS/assignments/hw1").get_data(as_text=True)
+    for name, score in (("Cy Young", "0.5"), ("Dee Dirac", "0.4")):
+        row = gradebook[gradebook.index(name):]
+        assert re.search(r'<strong class="score">([0-9.]+)</strong>', row).group(1) == score
+    assert "2 days late" in gradebook
+    with app.extensions["lagrade.db"].write() as session:
+        ine = session.scalar(select(User).where(User.email == "ine@example.org"))
+        token = {"Authorization": f"Bearer {create_token(session, ine)}"}
+    api = app.test_client().get("/api/v1/courses/PHYS/gradebook", headers=token).get_json()["rows"]
+    assert {r["external_id"]: r["score"] for r in api} == expected
+    text = course.get("/instructor/courses/PHYS/gradebook.csv").get_data(as_text=True)
+    assert {r["external_id"]: float(r["score"]) for r in csv.DictReader(io.StringIO(text))} == expected
+    for client, key in ((cy, "s-cy"), (dee, "s-dee")):
+        page = client.get("/courses/PHYS/assignments/hw1").get_data(as_text=True)
+        assert re.search(r'id="assignment-score">([0-9.]+)<', page).group(1) == str(expected[key])
