@@ -15,6 +15,10 @@ from grader.web.lti.ags import deliverer
 from tests.web.lti_platform import CLAIM, LINEITEM_SCOPE, SCORE_SCOPE, launch, lms, tool  # noqa: F401
 
 
+# The outbox's uniqueness and savepoints on the two databases the service supports.
+BOTH_DATABASES = pytest.mark.parametrize("database_kind", ["sqlite", "postgresql"])
+
+
 def _db(app):
     return app.extensions["lagrade.db"]
 
@@ -48,7 +52,8 @@ def launched(tool, lms):
     return _student(tool)
 
 
-def test_a_verdict_sends_the_problem_score_to_the_lms_exactly_once(tool, lms, launched):
+@BOTH_DATABASES
+def test_a_verdict_sends_the_problem_score_to_the_lms_exactly_once(tool, lms, launched, database_kind):
     _grade(tool, launched, "tension", 1.0)
     assert _send(tool).sent == 1
     assert _send(tool).sent == 0  # nothing is sent twice
@@ -74,7 +79,8 @@ def test_a_score_the_lms_refused_is_retried_with_backoff_until_it_is_taken(tool,
         assert (row.attempts, row.sent_at is not None, row.last_error) == (3, True, None)
 
 
-def test_the_same_score_again_is_not_queued_and_a_new_score_is(tool, lms, launched):
+@BOTH_DATABASES
+def test_the_same_score_again_is_not_queued_and_a_new_score_is(tool, lms, launched, database_kind):
     _grade(tool, launched, "tension", 1.0)
     _grade(tool, launched, "tension", 0.0)  # a worse attempt: the best score stays 1 of 2
     _send(tool)
