@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = ["Verdict", "VERDICTS", "CERTAINTIES"]
+__all__ = ["Verdict", "VERDICTS", "CERTAINTIES", "points"]
 
 VERDICTS = ("equivalent", "not_equivalent", "invalid")
 CERTAINTIES = ("proved", "numeric", "none")
@@ -109,3 +109,25 @@ class Verdict:
     def invalid(cls, reason: str, text: str = "", **extra) -> "Verdict":
         """An ``invalid`` verdict for text that could not be checked."""
         return cls("invalid", "none", reason, parsed={"text": text, "latex": "", "notes": []}, **extra)
+
+
+def points(result: dict[str, Any]) -> float:
+    """The points a checked answer earns, from its verdict JSON: 1 for ``equivalent``; for a wrong
+    answer the partial credit of the instructor's feedback entry it matched (``score``), else 0.
+
+    The one rule for scoring an answer: the grading queue (`grader.jobs.grading.score`) and the
+    question tests use it.
+
+    Examples
+    --------
+    >>> points({"verdict": "equivalent"}), points({"verdict": "not_equivalent", "score": 0.5})
+    (1.0, 0.5)
+    >>> points({"verdict": "invalid", "score": 0.5})
+    0.0
+    """
+    if result.get("verdict") == "equivalent":
+        return 1.0
+    partial = result.get("score")
+    if result.get("verdict") == "not_equivalent" and isinstance(partial, (int, float)) and not isinstance(partial, bool):
+        return min(max(float(partial), 0.0), 1.0)
+    return 0.0

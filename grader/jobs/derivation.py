@@ -145,21 +145,31 @@ def _derive(source: str, filename: str) -> dict:
     import sympy
 
     import grader
+    from grader.answers.question_tests import require_passing, run_question_tests
+    from grader.answers.randomised import random_names
     from grader.answers.reference import ReferenceAnswer
     from grader.mechanics.lagrange import derive
+    from grader.mechanics.references import parameter_specs
     from grader.mechanics.report import steps_json
     from grader.mechanics.scene import parse_scene
 
     scene = parse_scene(source, source=filename)
     derivation = derive(scene)
+    # The engine emits plain data; the checker's typed contract validates it before it is stored.
+    references = [ReferenceAnswer.from_json(r) for r in derivation.references()]
+    # The instructor's question tests, with the checker that will grade the students: a failing
+    # one stops the registration (a ValueError: its message goes to the instructor).
+    tests = require_passing(run_question_tests(references), filename)
+    parameters = parameter_specs(scene)
     return {
         "slug": scene.id,
         "title": scene.title,
         "statement": scene.statement,
-        # The stored derivation adds the step-by-step working for the instructor's review page.
-        "derivation": {**derivation.to_json(), "steps": steps_json(derivation.steps)},
-        # The engine emits plain data; the checker's typed contract validates it before it is stored.
-        "references": [ReferenceAnswer.from_json(r).to_json() for r in derivation.references()],
+        # The stored derivation adds the step-by-step working for the instructor's review page, the
+        # question tests' results, and the parameters a student's numbers are drawn from.
+        "derivation": {**derivation.to_json(), "steps": steps_json(derivation.steps), "question_tests": tests,
+                       "parameters": parameters, "random_parameters": random_names(parameters)},
+        "references": [r.to_json() for r in references],
         "engine_version": f"{grader.__version__}+sympy{sympy.__version__}",
     }
 

@@ -15,14 +15,12 @@ from typing import Any, Callable, Iterator, Protocol
 
 from grader.answers.reference import ReferenceAnswer, ReferenceAnswerError
 from grader.answers.sandbox import DEFAULT_BUDGET_S, SandboxedChecker
+from grader.answers.verdict import points
 from grader.jobs.queue import Task
 
 __all__ = ["CHECK_BUDGET_S", "Checker", "CheckerFailure", "CheckerPool", "CheckersBusy", "check_task", "check_request", "sandbox_checker", "score"]
 
 CHECK_BUDGET_S = DEFAULT_BUDGET_S
-
-# Points per verdict; anything else (not_equivalent, invalid: unreadable or out of budget) earns 0.
-_SCORES = {"equivalent": 1.0}
 
 
 class Checker(Protocol):
@@ -36,13 +34,16 @@ def sandbox_checker() -> Checker:
     return SandboxedChecker(budget_s=CHECK_BUDGET_S)
 
 
-def check_request(reference: dict[str, Any], text: str) -> dict[str, Any]:
+def check_request(reference: dict[str, Any], text: str, values: dict[str, Any] | None = None) -> dict[str, Any]:
     """The checker request for ``text`` against a stored reference answer.
+
+    ``values``: the student's parameter values of a randomised problem (used by numeric answers;
+    None: the problem's fixed values and preview draw, `grader.answers.randomised`).
 
     The stored JSON is read through the contract, `grader.answers.reference.ReferenceAnswer`;
     raises :class:`grader.answers.reference.ReferenceAnswerError` when it breaks it.
     """
-    return ReferenceAnswer.from_json(reference).request(text)
+    return ReferenceAnswer.from_json(reference).request(text, values)
 
 
 class CheckerFailure(RuntimeError):
@@ -66,8 +67,17 @@ def check_task(checker: Checker, task: Task, *, budget_s: float = CHECK_BUDGET_S
 
 
 def score(result: dict[str, Any]) -> float:
-    """The points a checked answer earns (1 for an equivalent answer, else 0)."""
-    return _SCORES.get(result["verdict"], 0.0)
+    """The points a checked answer earns: 1 for an equivalent answer, the instructor's partial credit
+    for a wrong answer that matched a feedback entry with a ``score``, else 0.
+
+    Examples
+    --------
+    >>> score({"verdict": "equivalent"}), score({"verdict": "not_equivalent", "score": 0.5})
+    (1.0, 0.5)
+    >>> score({"verdict": "invalid"})
+    0.0
+    """
+    return points(result)
 
 
 class CheckersBusy(RuntimeError):

@@ -29,7 +29,7 @@ from grader.expressions import ExpressionError, Namespace, parse_expression
 from grader.mechanics.scene import SceneError
 from grader.mechanics.report import equation_text
 
-__all__ = ["reference_answers", "dimension_text", "domain_json"]
+__all__ = ["reference_answers", "dimension_text", "domain_json", "parameter_specs"]
 
 
 def dimension_text(dimension) -> str:
@@ -48,6 +48,27 @@ def dimension_text(dimension) -> str:
 def domain_json(domain):
     """A domain as the scene format writes it: "positive", "nonnegative", "real" or [lo, hi]."""
     return domain.to_json()
+
+
+def parameter_specs(scene) -> dict[str, dict[str, Any]]:
+    """The parameters that have numbers: ``{name: {"dimension", "value" | "random" | "choices"}}``.
+
+    What the service draws a student's numbers from (``grader.answers.randomised``); parameters
+    without a number stay symbolic and are left out.
+
+    Examples
+    --------
+    >>> from grader.mechanics.scene import load_scene
+    >>> parameter_specs(load_scene("problems/yoyo.toml"))["g"]
+    {'dimension': 'm*s^-2', 'value': 9.81}
+    """
+    specs = {}
+    for name, p in scene.parameters.items():
+        if p.draw is not None:
+            specs[name] = {"dimension": dimension_text(p.dimension), **p.draw}
+        elif p.value is not None:
+            specs[name] = {"dimension": dimension_text(p.dimension), "value": p.value}
+    return specs
 
 
 def reference_answers(derivation) -> list[dict[str, Any]]:
@@ -90,10 +111,25 @@ def reference_answers(derivation) -> list[dict[str, Any]]:
                 raise SceneError(scene.source, f"answers ({spec.name}).feedback[{i}].expr",
                                  f"{exc.message} in {f.expr!r} (feedback may use only "
                                  f"{', '.join(variables) or 'numbers'})") from None
-            feedback.append({"expr": f.expr, "message": f.message})
+            feedback.append({"expr": f.expr, "message": f.message,
+                             **({"score": f.score} if f.score is not None else {})})
         result.append({"name": spec.name, "prompt": spec.prompt, "kind": spec.kind, "reference": reference,
                        "variables": variables, "dimension": dimension_text(spec.dimension), "latex": latex,
                        "feedback": feedback, "feedback_detail": scene.feedback_detail})
         if alternatives:
             result[-1]["alternatives"] = alternatives
+        if spec.weight != 1.0:
+            result[-1]["weight"] = spec.weight
+        if spec.tests:
+            result[-1]["tests"] = [dict(t) for t in spec.tests]
+        if spec.numeric is not None:
+            numbers = parameter_specs(scene)
+            unknown = sorted(str(s) for s in value.free_symbols if str(s) not in numbers)
+            if unknown:
+                raise SceneError(scene.source, f"answers ({spec.name}).kind",
+                                 f"a numeric answer needs a number for everything its value depends on; "
+                                 f"give {', '.join(unknown)} a value, random range or choices")
+            result[-1].update(unit=spec.numeric.unit, parameters=numbers)
+            if spec.numeric.tolerance is not None:
+                result[-1]["tolerance"] = dict(spec.numeric.tolerance)
     return result

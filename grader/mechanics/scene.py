@@ -49,6 +49,7 @@ from grader.expressions import (
     parse_domain,
     parse_expression,
 )
+from grader.expressions.dimensions import parse_unit
 from grader.mechanics.geometry import Geometry, read_geometry
 from grader.mechanics.scene_schema import structure_problems
 
@@ -57,6 +58,7 @@ __all__ = [
     "Constraint",
     "Coordinate",
     "FeedbackSpec",
+    "NumericSpec",
     "Parameter",
     "Parametrization",
     "Scene",
@@ -87,6 +89,9 @@ class Parameter:
     dimension: Dimension
     domain: Domain
     value: float | None = None
+    # Drawn per student (docs/scene-format.md, "Randomised parameters"): {"random": {min, max, step}}
+    # or {"choices": [...]}, as in the file; the engine keeps the parameter symbolic.
+    draw: dict[str, Any] | None = None
 
 
 @dataclass(frozen=True)
@@ -130,6 +135,15 @@ class Parametrization:
 class FeedbackSpec:
     expr: str
     message: str
+    score: float | None = None  # partial credit for an answer that matches expr
+
+
+@dataclass(frozen=True)
+class NumericSpec:
+    """How a ``kind = "numeric"`` answer is checked: its unit and tolerance (grader.answers.numeric)."""
+
+    unit: str
+    tolerance: dict[str, Any] | None = None
 
 
 @dataclass(frozen=True)
@@ -145,6 +159,9 @@ class AnswerSpec:
     symbol: sympy.Symbol  # stands for this answer inside later answers and `where`
     source_expr: str
     alternatives: tuple[sympy.Expr, ...] = ()  # other values that are also right (in parameters)
+    numeric: NumericSpec | None = None  # kind = "numeric": unit and tolerance
+    weight: float = 1.0  # the answer's weight in the problem's score
+    tests: tuple[dict[str, Any], ...] = ()  # [[answers.tests]]: {answer, expect, score?, values?}
 
 
 @dataclass
@@ -366,9 +383,44 @@ class _SceneReader:
                 if not dom.contains(float(value)):
                     raise self.fail(f"{key}.value", f"{value} is outside the domain")
                 value = float(value)
+            draw = self.read_draw(key, spec, dom)
             symbol = self.add(Variable(name, dim, dom, "parameter"))
-            parameters[name] = Parameter(name, symbol, dim, dom, value)
+            parameters[name] = Parameter(name, symbol, dim, dom, value, draw)
         return parameters
+
+    def read_draw(self, key: str, spec: Mapping[str, Any], domain: Domain) -> dict[str, Any] | None:
+        """``random = {min, max, step}`` or ``choices = [...]``: values drawn per student."""
+        given = [k for k in ("value", "random", "choices") if spec.get(k) is not None]
+        if len(given) > 1:
+            raise self.fail(key, f"give one of value, random and choices, not {' and '.join(given)}")
+        if spec.get("random") is not None:
+            r = spec["random"]
+            numbers = {k: r.get(k) for k in ("min", "max", "step")} if isinstance(r, dict) else {}
+            for k, v in numbers.items():
+                if isinstance(v, bool) or not isinstance(v, (int, float)):
+                    raise self.fail(f"{key}.random.{k}", "must be a number")
+            if not numbers:
+                raise self.fail(f"{key}.random", "write random = { min = ..., max = ..., step = ... }")
+            if numbers["step"] <= 0:
+                raise self.fail(f"{key}.random.step", "must be positive")
+            if numbers["max"] < numbers["min"]:
+                raise self.fail(f"{key}.random", "max is less than min")
+            if (numbers["max"] - numbers["min"]) / numbers["step"] > 1e6:
+                raise self.fail(f"{key}.random.step", "allows more than a million values; use a larger step")
+            for k in ("min", "max"):
+                if not domain.contains(float(numbers[k])):
+                    raise self.fail(f"{key}.random.{k}", f"{numbers[k]} is outside the domain")
+            return {"random": numbers}
+        if spec.get("choices") is not None:
+            choices = spec["choices"]
+            if not isinstance(choices, list) or not choices or any(
+                    isinstance(c, bool) or not isinstance(c, (int, float)) for c in choices):
+                raise self.fail(f"{key}.choices", "must be a non-empty list of numbers")
+            outside = [c for c in choices if not domain.contains(float(c))]
+            if outside:
+                raise self.fail(f"{key}.choices", f"{outside[0]} is outside the domain")
+            return {"choices": list(choices)}
+        return None
 
     def read_coordinates(self, where: str, table: Mapping[str, Any]) -> dict[str, Coordinate]:
         coordinates = {}
@@ -549,8 +601,9 @@ class _SceneReader:
             source_expr = self.string(spec, "expr", key)
             expr = self.expression(f"{key}.expr", source_expr, namespace)
             kind = spec.get("kind", "expression")
-            if kind not in ("expression", "equation", "small_oscillation"):
-                raise self.fail(f"{key}.kind", "must be \"expression\", \"equation\" or \"small_oscillation\"")
+            if kind not in ("expression", "equation", "small_oscillation", "numeric"):
+                raise self.fail(f"{key}.kind", "must be \"expression\", \"equation\", \"small_oscillation\" "
+                                               "or \"numeric\"")
             if kind == "small_oscillation" and (spec.get("where") is None
                                                 or expr not in {v.symbol for v in self.variables
                                                                 if v.kind == "coordinate"}):
@@ -580,11 +633,76 @@ class _SceneReader:
             alternatives = self.read_alternatives(key, spec.get("alternatives", []), namespace, inferred,
                                                   {a.symbol for a in answers})
             prompt = self.string(spec, "prompt", key, default=name.replace("_", " "))
+            numeric = self.read_numeric(key, spec, kind, dimension or inferred)
+            weight = spec.get("weight", 1.0)
+            if isinstance(weight, bool) or not isinstance(weight, (int, float)) or not 0 <= weight < 1e6:
+                raise self.fail(f"{key}.weight", "must be a number >= 0")
+            tests = self.read_tests(key, spec.get("tests", []))
             symbol = self.add(Variable(name, inferred, parse_domain("real"), "answer"))
             known.add(name)
             answers.append(AnswerSpec(name, prompt, expr, kind, in_terms_of, dimension or inferred,
-                                      where, feedback, symbol, source_expr, alternatives))
+                                      where, feedback, symbol, source_expr, alternatives, numeric,
+                                      float(weight), tests))
         return answers
+
+    def read_numeric(self, key: str, spec: Mapping[str, Any], kind: str, dimension: Dimension) -> NumericSpec | None:
+        """``unit`` and ``tolerance`` of a numeric answer (checked by grader.answers.numeric)."""
+        if kind != "numeric":
+            extra = [k for k in ("unit", "tolerance") if k in spec]
+            if extra:
+                raise self.fail(f"{key}.{extra[0]}", 'applies to kind = "numeric" answers only')
+            return None
+        unit = spec.get("unit")
+        if unit is None:
+            if not dimension.is_dimensionless:
+                raise self.fail(f"{key}.unit", f"missing: a numeric answer that is {dimension.describe()} "
+                                               "states its unit (such as \"N\")")
+            unit = ""
+        try:
+            _, unit_dimension = parse_unit(unit)
+        except (ValueError, ExpressionError) as exc:
+            raise self.fail(f"{key}.unit", str(exc)) from None
+        if unit_dimension != dimension:
+            raise self.fail(f"{key}.unit", f"{unit!r} is {unit_dimension.describe()}, but the answer is "
+                                           f"{dimension.describe()}")
+        tolerance = spec.get("tolerance")
+        if tolerance is not None:
+            for k in ("relative", "absolute"):
+                v = tolerance.get(k)
+                if v is not None and not (isinstance(v, (int, float)) and not isinstance(v, bool) and 0 <= v < 1e300):
+                    raise self.fail(f"{key}.tolerance.{k}", "must be a number >= 0")
+            figures = tolerance.get("sig_figs")
+            if figures is not None and (isinstance(figures, bool) or not isinstance(figures, int)
+                                        or not 1 <= figures <= 15):
+                raise self.fail(f"{key}.tolerance.sig_figs", "must be a whole number from 1 to 15")
+            if not tolerance:
+                raise self.fail(f"{key}.tolerance", "give relative, absolute or sig_figs")
+            tolerance = dict(tolerance)
+        return NumericSpec(unit, tolerance)
+
+    def read_tests(self, key: str, raw: Any) -> tuple[dict[str, Any], ...]:
+        """``[[answers.tests]]``: example answers and the verdict each must get (grader.answers.question_tests)."""
+        if not isinstance(raw, list) or not all(isinstance(t, dict) for t in raw):
+            raise self.fail(f"{key}.tests", "write each test as [[answers.tests]] with answer and expect")
+        parameters = {v.name for v in self.variables if v.kind == "parameter"}
+        tests = []
+        for i, test in enumerate(raw):
+            where = f"{key}.tests[{i}]"
+            entry = {"answer": self.string(test, "answer", where), "expect": self.string(test, "expect", where)}
+            if entry["expect"] not in ("equivalent", "not_equivalent", "invalid"):
+                raise self.fail(f"{where}.expect", 'must be "equivalent", "not_equivalent" or "invalid"')
+            if test.get("score") is not None:
+                score = test["score"]
+                if isinstance(score, bool) or not isinstance(score, (int, float)) or not 0 <= score <= 1:
+                    raise self.fail(f"{where}.score", "must be a number from 0 to 1")
+                entry["score"] = float(score)
+            if test.get("values") is not None:
+                unknown = [n for n in test["values"] if n not in parameters]
+                if unknown:
+                    raise self.fail(f"{where}.values", f"{unknown[0]!r} is not a parameter")
+                entry["values"] = {n: float(v) for n, v in test["values"].items()}
+            tests.append(entry)
+        return tuple(tests)
 
     def read_alternatives(self, key: str, raw: Any, namespace: Namespace, dimension: Dimension,
                           answer_symbols: set) -> tuple[sympy.Expr, ...]:
@@ -615,6 +733,14 @@ class _SceneReader:
     def read_feedback(self, key: str, raw: Any) -> tuple[FeedbackSpec, ...]:
         if not isinstance(raw, list) or not all(isinstance(f, dict) for f in raw):
             raise self.fail(f"{key}.feedback", "write each entry as [[answers.feedback]] with expr and message")
-        return tuple(FeedbackSpec(self.string(f, "expr", f"{key}.feedback[{i}]"),
-                                  self.string(f, "message", f"{key}.feedback[{i}]"))
-                     for i, f in enumerate(raw))
+        entries = []
+        for i, f in enumerate(raw):
+            score = f.get("score")
+            if score is not None and (isinstance(score, bool) or not isinstance(score, (int, float))
+                                      or not 0 <= score <= 1):
+                raise self.fail(f"{key}.feedback[{i}].score", "must be a number from 0 to 1 (the share of the "
+                                                               "answer's points)")
+            entries.append(FeedbackSpec(self.string(f, "expr", f"{key}.feedback[{i}]"),
+                                        self.string(f, "message", f"{key}.feedback[{i}]"),
+                                        None if score is None else float(score)))
+        return tuple(entries)

@@ -52,7 +52,22 @@ _DOMAIN = {"anyOf": [_string(200), {"type": "array", "prefixItems": [{"type": "n
 _COORDINATE = {"type": "object", "additionalProperties": False,
                "properties": {"dimension": _DIMENSION, "domain": _DOMAIN}}
 _FEEDBACK = {"type": "object", "additionalProperties": False, "required": ["expr", "message"],
-             "properties": {"expr": _EXPRESSION, "message": _string(MAX_TEXT_CHARS)}}
+             "properties": {"expr": _EXPRESSION, "message": _string(MAX_TEXT_CHARS),
+                            "score": {"type": "number"}}}  # partial credit, 0..1 (the loader checks the range)
+# A parameter drawn per student (grader.answers.randomised): random = { min, max, step } or choices = [...]
+_RANDOM = {"type": "object", "additionalProperties": False, "required": ["min", "max", "step"],
+           "properties": {"min": {"type": "number"}, "max": {"type": "number"}, "step": {"type": "number"}}}
+_CHOICES = {"type": "array", "minItems": 1, "maxItems": MAX_ITEMS, "items": {"type": "number"}}
+# [[answers.tests]]: an example answer and the verdict it must get (grader.answers.question_tests)
+_TEST = {"type": "object", "additionalProperties": False, "required": ["answer", "expect"],
+         "properties": {"answer": _string(MAX_EXPRESSION_CHARS),
+                        "expect": {"enum": ["equivalent", "not_equivalent", "invalid"]},
+                        "score": {"type": "number"},
+                        "values": {"type": "object", "maxProperties": MAX_ITEMS,
+                                   "additionalProperties": {"type": "number"}}}}
+_TOLERANCE = {"type": "object", "additionalProperties": False,
+              "properties": {"relative": {"type": "number"}, "absolute": {"type": "number"},
+                             "sig_figs": {"type": "integer"}}}
 
 
 def _table(values: dict[str, Any]) -> dict[str, Any]:
@@ -78,9 +93,10 @@ SCENE_SCHEMA: dict[str, Any] = {
                       description="1-64 lowercase letters, digits, '-' or '_'"),
         "title": _string(MAX_TITLE_CHARS),
         "statement": _string(MAX_STATEMENT_CHARS),
-        # name = { dimension, domain, value }
+        # name = { dimension, domain, value | random | choices }
         "parameters": _table({"type": "object", "additionalProperties": False,
-                              "properties": {"dimension": _DIMENSION, "domain": _DOMAIN, "value": {"type": "number"}}}),
+                              "properties": {"dimension": _DIMENSION, "domain": _DOMAIN, "value": {"type": "number"},
+                                             "random": _RANDOM, "choices": _CHOICES}}),
         "coordinates": _table(_COORDINATE),
         "energy": {"type": "object", "additionalProperties": False,
                    "properties": {"kinetic": _NUMBER_OR_EXPRESSION, "potential": _NUMBER_OR_EXPRESSION}},
@@ -121,13 +137,18 @@ SCENE_SCHEMA: dict[str, Any] = {
                 "name": _string(MAX_NAME_CHARS),
                 "prompt": _string(MAX_TEXT_CHARS),
                 "expr": _EXPRESSION,
-                "kind": {"enum": ["expression", "equation", "small_oscillation"]},
+                "kind": {"enum": ["expression", "equation", "small_oscillation", "numeric"]},
                 "in_terms_of": {"type": "array", "maxItems": MAX_ITEMS, "items": _string(MAX_NAME_CHARS)},
                 "dimension": _DIMENSION,
                 "where": _string(MAX_EXPRESSION_CHARS, description='a condition such as "normal_force = 0"'),
                 "feedback": {"type": "array", "maxItems": MAX_ITEMS, "items": _FEEDBACK},
                 # other values that are also right (the mirror equilibrium, the other sign convention)
                 "alternatives": {"type": "array", "maxItems": MAX_ITEMS, "items": _EXPRESSION},
+                # kind = "numeric": the SI unit asked for and the tolerance (grader.answers.numeric)
+                "unit": _string(200),
+                "tolerance": _TOLERANCE,
+                "weight": {"type": "number"},  # the answer's share of the problem's score
+                "tests": {"type": "array", "maxItems": MAX_ITEMS, "items": _TEST},
             },
         }),
     },
