@@ -563,11 +563,17 @@ def _at_landmarks(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, options
     variables as at the first sample point.
     """
     values = set()
-    for expr in exprs:
-        for atom in expr.atoms(sympy.Rational):
-            c = abs(float(atom))
+    stack = list(exprs)
+    while stack:
+        node = stack.pop()
+        if node.is_Rational:
+            c = abs(float(node))
             if c and not LANDMARK_SCALE[0] <= c <= LANDMARK_SCALE[1]:
                 values.add(c)
+        elif node.is_Pow:
+            stack.append(node.base)  # an exponent is no scale of the variables
+        else:
+            stack.extend(node.args)
     if not values:
         return None
     free = [s for s, d in sampler.domains.items()
