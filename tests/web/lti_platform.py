@@ -59,6 +59,7 @@ class Platform:
     deep_link_answers: list[dict] = field(default_factory=list)
     members: list[dict] = field(default_factory=list)
     auth_requests: list[dict] = field(default_factory=list)
+    jwks_fetches: int = 0
 
     @property
     def issuer(self) -> str:
@@ -100,6 +101,7 @@ def make_app(platform: Platform) -> Flask:
 
     @app.get("/jwks")
     def jwks():
+        platform.jwks_fetches += 1
         return jsonify({"keys": [platform.key.as_dict(private=False)]})
 
     @app.get("/auth")

@@ -179,3 +179,29 @@ def test_an_unreachable_jwks_is_a_502_page_not_a_500(tool, lms):
         session.scalar(select(LtiPlatform)).jwks_url = "http://127.0.0.1:9/jwks"  # nothing listens on port 9
     response, _ = launch(tool.test_client(), lms)
     assert response.status_code == 502 and "could not be reached" in response.get_data(as_text=True)
+
+
+def test_a_platform_key_rotation_is_followed_by_one_refetch_of_its_jwks(tool, lms, monkeypatch):
+    from grader.web.lti import platforms
+    from tests.web.lti_platform import shared_key
+
+    monkeypatch.setattr(platforms, "REFRESH_MIN_S", 0.0)
+    assert launch(tool.test_client(), lms)[0].status_code == 302
+    assert launch(tool.test_client(), lms)[0].status_code == 302
+    assert lms.jwks_fetches == 1  # cached
+    lms.key = shared_key("platform-key-2")  # the LMS rotates its key
+    assert launch(tool.test_client(), lms)[0].status_code == 302
+    assert lms.jwks_fetches == 2
+
+
+def test_unknown_key_ids_do_not_make_the_tool_refetch_the_jwks_each_time(tool, lms):
+    from tests.web.lti_platform import shared_key
+
+    assert launch(tool.test_client(), lms)[0].status_code == 302
+    for _ in range(3):
+        lms.sign_with = shared_key("attacker")
+        lms.key, real = shared_key("made-up-kid"), lms.key  # a header kid the cache does not know
+        response, _ = launch(tool.test_client(), lms)
+        lms.key = real
+        assert response.status_code == 403
+    assert lms.jwks_fetches == 1  # at most one refetch every REFRESH_MIN_S (10 s)
