@@ -105,3 +105,20 @@ def test_an_orphaned_derivation_child_stops_by_itself(tmp_path):
     finally:
         child.kill()
         child.wait()
+
+
+def test_a_derivation_child_runs_at_a_lowered_cpu_priority_and_the_server_does_not():
+    import os
+
+    from grader.jobs.derivation import derivation_sandbox
+    from grader.jobs.derivation_child import DERIVE_NICENESS
+
+    own = os.getpriority(os.PRIO_PROCESS, 0)
+    sandbox = derivation_sandbox(timeout_s=30)
+    try:
+        with pytest.raises(DerivationError, match="not valid TOML"):
+            derive_source('id = "x"\n[energy\n', sandbox=sandbox)
+        assert os.getpriority(os.PRIO_PROCESS, sandbox.pid) == min(own + DERIVE_NICENESS, 19)
+    finally:
+        sandbox.close()
+    assert os.getpriority(os.PRIO_PROCESS, 0) == own
