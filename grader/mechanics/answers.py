@@ -202,7 +202,14 @@ class AnswerEvaluator:
         return signs.pop() if len(signs) == 1 else None
 
     def velocity_squared(self, u, key: str, momenta: dict | None = None) -> sympy.Expr:
-        """u̇² from h(u, u̇) = h(initial), with conserved momenta substituted first."""
+        """u̇² from h(u, u̇) = h(initial), with conserved momenta substituted first (computed once)."""
+        cache_key = (u.name, tuple(sorted((str(k), str(v)) for k, v in (momenta or {}).items())))
+        cache = self.__dict__.setdefault("_squared_cache", {})
+        if cache_key not in cache:
+            cache[cache_key] = self._velocity_squared(u, key, momenta)
+        return cache[cache_key]
+
+    def _velocity_squared(self, u, key: str, momenta: dict | None) -> sympy.Expr:
         h = self.reduction.jacobi_integral()
         if h is None:
             raise SceneError(self.scene.source, key,

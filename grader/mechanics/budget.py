@@ -11,8 +11,10 @@ the caller's own limit (a killed child process) applies.
 
 Examples
 --------
->>> import time
->>> attempt(lambda: time.sleep(5) or "slow", 0.05, fallback=lambda: "fallback")
+>>> def spin():
+...     while True:
+...         pass
+>>> attempt(spin, 0.05, fallback=lambda: "fallback")
 'fallback'
 >>> attempt(lambda: "quick", 1.0, fallback=lambda: "fallback")
 'quick'
@@ -22,7 +24,6 @@ from __future__ import annotations
 
 import signal
 import threading
-import time
 from contextlib import contextmanager
 from typing import Callable, TypeVar
 
@@ -57,11 +58,15 @@ def _can_interrupt() -> bool:
 
 
 @contextmanager
-def _alarm(seconds: float, token: object):
-    """Raise ``_Timeout(token)`` after ``seconds`` unless an outer alarm is due first."""
-    previous_handler = signal.getsignal(signal.SIGALRM)
-    remaining, _ = signal.getitimer(signal.ITIMER_REAL)
-    outer_deadline = time.monotonic() + remaining if remaining else None
+def _alarm(seconds: float, token: object, cpu: bool = False):
+    """Raise ``_Timeout(token)`` after ``seconds`` unless an outer alarm of the same clock is due first.
+
+    ``cpu``: count this process's CPU time (ITIMER_VIRTUAL) rather than wall-clock time, so that
+    a budget that decides *what* the engine computes does not depend on how loaded the machine is.
+    """
+    signum, timer = (signal.SIGVTALRM, signal.ITIMER_VIRTUAL) if cpu else (signal.SIGALRM, signal.ITIMER_REAL)
+    previous_handler = signal.getsignal(signum)
+    remaining, _ = signal.getitimer(timer)
     if remaining and remaining <= seconds:
         yield  # the outer budget is shorter: let it fire
         return
@@ -69,24 +74,30 @@ def _alarm(seconds: float, token: object):
     def handler(signum, frame):
         raise _Timeout(token)
 
-    signal.signal(signal.SIGALRM, handler)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
+    signal.signal(signum, handler)
+    signal.setitimer(timer, seconds)
     try:
         yield
     finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, previous_handler)
-        if outer_deadline is not None:
-            signal.setitimer(signal.ITIMER_REAL, max(outer_deadline - time.monotonic(), 1e-3))
+        left, _ = signal.getitimer(timer)
+        signal.setitimer(timer, 0)
+        signal.signal(signum, previous_handler)
+        if remaining:
+            # Give the outer budget back what is left of it.
+            used = seconds - left
+            signal.setitimer(timer, max(remaining - used, 1e-3))
 
 
 def attempt(function: Callable[[], T], seconds: float, fallback: Callable[[], T]) -> T:
-    """``function()`` if it finishes within ``seconds``, else ``fallback()`` (see the module example)."""
+    """``function()`` if it finishes within ``seconds`` of CPU time, else ``fallback()``.
+
+    CPU time, not wall-clock: what the engine derives must not depend on the machine's load.
+    """
     if not _can_interrupt():
         return function()
     token = object()
     try:
-        with _alarm(seconds, token):
+        with _alarm(seconds, token, cpu=True):
             return function()
     except _Timeout as exc:
         if exc.token is not token:

@@ -40,7 +40,7 @@ def _weight(expr: sympy.Expr, allowed_multiples: int) -> tuple[int, int]:
     return sympy.count_ops(expr, visual=False) + 4 * extra, len(str(expr))
 
 
-def human_form(expr: sympy.Expr, seconds: float = 0.5) -> sympy.Expr:
+def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
     """The most readable of a few equivalent rewritings of ``expr`` (see the module example).
 
     Cheap rewritings always run; the costly ones (``simplify``, factoring) run under a budget of
@@ -68,7 +68,8 @@ def human_form(expr: sympy.Expr, seconds: float = 0.5) -> sympy.Expr:
             candidates.extend([sympy.factor(sympy.cancel(_pythagorean(c, square))) for c in (expanded, simplified)
                                for square in (sympy.sin, sympy.cos)])
 
-    if sympy.count_ops(cancelled) < 120:
+    # simplify() rarely beats the cheap forms on a short expression, and costs the most there.
+    if 12 < min(sympy.count_ops(c) for c in candidates) and sympy.count_ops(cancelled) < 120:
         attempt(costly, seconds, fallback=lambda: None)
     return min((_positive_denominator(c) for c in candidates), key=lambda e: _weight(e, allowed))
 
@@ -128,8 +129,9 @@ def quick_form(expr: sympy.Expr, seconds: float = 0.1) -> sympy.Expr:
 
     def costly():
         candidates.append(sympy.factor(expr))
-        if expr.has(*_TRIG) and sympy.count_ops(expr) < 80:
-            candidates.append(sympy.factor(sympy.trigsimp(expr)))
+        if expr.has(*_TRIG):
+            numerator, denominator = sympy.fraction(expr)
+            candidates.append(sympy.factor(tidy_trig(numerator)) / readable_denominator(denominator))
 
     if sympy.count_ops(expr) < 60:
         attempt(costly, seconds, fallback=lambda: None)

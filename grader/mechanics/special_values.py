@@ -136,13 +136,27 @@ def _essential(condition: sympy.Expr) -> sympy.Expr:
 def solve_for(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> list[sympy.Expr]:
     """Closed-form roots of ``condition = 0`` in ``x``, under a time budget.
 
-    A condition in which x appears only through one of sin x, cos x, tan x is solved as a
-    polynomial in that function (S = sin θ), and the roots mapped back.
+    The condition is factored first (the ladder's (3 sin θ − 2 sin θ₀) cos θ is two easy
+    conditions, not one hard one). A factor in which x appears only through one of sin x, cos x,
+    tan x is solved as a polynomial in that function (S = sin θ), and the roots mapped back.
 
     >>> theta, a = sympy.symbols("theta a", positive=True)
     >>> solve_for(3*sympy.cos(theta) - 2, theta, "f.toml", "k")
     [acos(2/3), -acos(2/3)]
     """
+    factors = budget.attempt(lambda: [f for f, _ in sympy.factor_list(condition)[1]], _SOLVE_BUDGET_S,
+                             fallback=lambda: [condition])
+    roots = []
+    for factor in factors:
+        if x not in factor.free_symbols:
+            continue
+        for root in _solve_factor(factor, x, source, key):
+            if root not in roots:
+                roots.append(root)
+    return roots
+
+
+def _solve_factor(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> list[sympy.Expr]:
     S = sympy.Dummy("S")
     for function in _TRIG:
         substituted = condition.xreplace({function(x): S})

@@ -16,11 +16,24 @@ from grader.mechanics.scene import load_scene
 SCENES = Path(__file__).resolve().parent / "scenes"
 
 
-def test_attempt_falls_back_when_the_step_runs_out_and_restores_an_outer_budget():
+def spin(seconds: float) -> str:
+    """Busy work: CPU time, which is what an attempt's budget counts."""
+    end = time.process_time() + seconds
+    while time.process_time() < end:
+        pass
+    return "done"
+
+
+def test_attempt_falls_back_when_the_step_runs_out_of_cpu_time():
+    assert attempt(lambda: spin(5), 0.05, fallback=lambda: "fallback") == "fallback"
+    assert attempt(lambda: spin(0.01), 2.0, fallback=lambda: "fallback") == "done"
+
+
+def test_an_attempt_inside_an_overall_budget_leaves_it_in_force():
     with pytest.raises(BudgetExceeded, match="while outer work"):
         with overall_budget(0.6), step("outer work"):
-            assert attempt(lambda: time.sleep(2), 0.05, fallback=lambda: "fallback") == "fallback"
-            time.sleep(2)  # the outer budget still fires after the inner one was used
+            assert attempt(lambda: spin(5), 0.05, fallback=lambda: "fallback") == "fallback"
+            time.sleep(3)  # the overall (wall-clock) budget still fires
 
 
 def test_a_derivation_out_of_budget_names_the_step():
