@@ -30,7 +30,7 @@ from grader.expressions import DimensionError, ExpressionError, Namespace, parse
 from grader.expressions.dimensions import parse_unit
 
 __all__ = ["DEFAULT_TOLERANCE", "NumericRequestError", "Quantity", "QuantityError", "check_numeric",
-           "parse_quantity", "within_tolerance"]
+           "parse_quantity", "reference_value", "within_tolerance"]
 
 DEFAULT_TOLERANCE = {"relative": 0.01}
 _MAX_TEXT = 200
@@ -195,6 +195,18 @@ def _value(text: str, variables_json: str, values: Mapping[str, Any]) -> float:
     if abs(result.imag) > 1e-12 * max(1.0, abs(result.real)) or not math.isfinite(result.real):
         raise NumericRequestError("the reference is not a real number at these values")
     return result.real
+
+
+def reference_value(reference: str, variables: Mapping[str, Mapping], values: Mapping[str, Any]) -> float:
+    """The reference's value (SI units) at ``values``: for instructors (question tests), never for students.
+
+    Examples
+    --------
+    >>> reference_value("m*g/3", {"m": {"dimension": "mass", "domain": "positive"},
+    ...                           "g": {"dimension": "acceleration", "domain": "positive"}}, {"m": 0.3, "g": 9.81})
+    0.981
+    """
+    return _value(reference, json.dumps(variables, sort_keys=True), values)
 
 
 def _tolerance(raw: Any) -> dict[str, Any]:

@@ -13,6 +13,7 @@ from __future__ import annotations
 from typing import Any, Iterable, Mapping
 
 from grader.answers.checker import check_request
+from grader.answers.numeric import NumericRequestError, reference_value
 from grader.answers.randomised import PREVIEW_SEED, draw_parameters
 from grader.answers.reference import ReferenceAnswer
 from grader.answers.verdict import points
@@ -64,6 +65,10 @@ def run_question_tests(references: Iterable[Mapping[str, Any] | ReferenceAnswer]
                 result["expected_score"] = float(test["score"])
             if values is not None:
                 result["values"] = values
+                try:  # what the grader expected at these numbers: the instructor may see it
+                    result["expected_value"] = reference_value(reference.reference, reference.variables, values)
+                except (NumericRequestError, ValueError):
+                    pass
             results.append(result)
     return results
 
@@ -76,6 +81,8 @@ def failure_report(results: Iterable[Mapping[str, Any]]) -> str:
             continue
         wanted = r["expect"] + (f" with score {r['expected_score']:g}" if "expected_score" in r else "")
         said = f"{r['got']} (score {r['score']:g}): {r['reason']}"
+        if "expected_value" in r:
+            said += f" (expected {r['expected_value']:.6g} in SI units at {r['values']})"
         if r["feedback"]:
             said += f"; feedback: {' / '.join(r['feedback'])}"
         lines.append(f"answers ({r['answer_name']}): test {r['answer']!r} expects {wanted}, the grader said {said}")

@@ -1,4 +1,8 @@
-"""``grader derive FILE [--json]``: the engine's derivation of one scene file."""
+"""``grader derive FILE [--json]``: the engine's derivation of one scene file, and its question tests.
+
+Exit status: 2 for a scene error, 3 when the budget ran out, 4 when a question test
+(``[[answers.tests]]``) did not get the verdict it expects.
+"""
 
 from __future__ import annotations
 
@@ -30,8 +34,13 @@ def derive(path: str, as_json: bool, latex: bool, budget_s: float) -> None:
     except BudgetExceeded as exc:
         click.echo(f"error: {scene.source}: {exc}", err=True)
         sys.exit(3)
+    try:
+        tests = _question_tests(derivation)
+    except SceneError as exc:
+        click.echo(f"error: {exc}", err=True)
+        sys.exit(2)
     if as_json:
-        click.echo(json.dumps(derivation.to_json(), indent=2, ensure_ascii=False))
+        click.echo(json.dumps({**derivation.to_json(), "question_tests": tests}, indent=2, ensure_ascii=False))
     elif latex:
         for step in derivation.steps:
             click.echo(f"% {step.title}")
@@ -39,3 +48,22 @@ def derive(path: str, as_json: bool, latex: bool, budget_s: float) -> None:
                 click.echo(f"\\[ {line} \\]")
     else:
         click.echo(derivation_text(derivation), nl=False)
+        if tests:
+            click.echo("\nQuestion tests")
+            for t in tests:
+                wanted = t["expect"] + (f" (score {t['expected_score']:g})" if "expected_score" in t else "")
+                got = t["got"] + (f" (score {t['score']:g})" if "expected_score" in t or t["got"] != t["expect"] else "")
+                click.echo(f"  {'ok  ' if t['passed'] else 'FAIL'} {t['answer_name']}: {t['answer']!r} expects "
+                           f"{wanted}, got {got}" + ("" if t["passed"] else f": {t['reason']}"))
+    if any(not t["passed"] for t in tests):
+        from grader.answers.question_tests import failure_report
+
+        click.echo(f"error: {scene.source}: question tests failed:\n{failure_report(tests)}", err=True)
+        sys.exit(4)
+
+
+def _question_tests(derivation) -> list[dict]:
+    """The scene's ``[[answers.tests]]`` run with the checker (exit status 4 when one fails)."""
+    from grader.answers.question_tests import run_question_tests
+
+    return run_question_tests(derivation.references())
