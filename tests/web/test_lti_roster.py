@@ -60,4 +60,4 @@ def test_a_roster_service_that_fails_is_a_502_page(tool, lms):
         context.memberships_url = lms.url("/nothing-here")
         context_id = context.id
     response = client.post(f"/lti/contexts/{context_id}/roster", data={"csrf_token": form_token(page)})
-    assert response.status_code == 502 and "roster service answered 404" in response.get_data(as_text=True)
+    assert response.status_code == 502 and "nothing-here answered 404" in response.get_data(as_text=True)

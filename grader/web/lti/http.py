@@ -12,7 +12,7 @@ from typing import Any
 
 import requests
 
-__all__ = ["MAX_BODY", "PlatformUnreachable", "TIMEOUT", "get_json", "post"]
+__all__ = ["MAX_BODY", "PlatformUnreachable", "TIMEOUT", "get_json", "get_page", "post"]
 
 TIMEOUT = (3.05, 10.0)  # (connect, read) seconds
 MAX_BODY = 4 * 1024 * 1024
@@ -56,8 +56,13 @@ def _json(url: str, body: bytes) -> Any:
 
 def get_json(url: str, *, headers: dict[str, str] | None = None) -> Any:
     """``GET url`` and its JSON body."""
-    _, body = _call("GET", url, headers=headers or {})
-    return _json(url, body)
+    return get_page(url, headers=headers)[0]
+
+
+def get_page(url: str, *, headers: dict[str, str] | None = None) -> tuple[Any, str | None]:
+    """``GET url``: its JSON body and the URL of the next page (``Link: <...>; rel="next"``), if any."""
+    response, body = _call("GET", url, headers=headers or {})
+    return _json(url, body), response.links.get("next", {}).get("url")
 
 
 def post(url: str, *, headers: dict[str, str] | None = None, data: Any = None, json_body: Any = None) -> Any:

@@ -131,12 +131,15 @@ def login_redirect(session: Session, params: dict[str, str], *, launch_url: str,
 
 # --- leg 3: the launch -----------------------------------------------------------------------------------
 
+def _segment(part: str) -> Any:
+    return json.loads(base64.urlsafe_b64decode(part + "=" * (-len(part) % 4)))
+
+
 def _unverified(token: str) -> tuple[dict[str, Any], dict[str, Any]]:
     """The header and claims of a compact JWS, *not verified*: only to choose the keys to verify it with."""
     try:
         header, payload, _ = token.split(".")
-        decode = lambda part: json.loads(base64.urlsafe_b64decode(part + "=" * (-len(part) % 4)))  # noqa: E731
-        header_json, claims = decode(header), decode(payload)
+        header_json, claims = _segment(header), _segment(payload)
     except (ValueError, UnicodeDecodeError):
         raise LaunchRefused(400, "The launch's id_token is not a JSON Web Token.") from None
     if not isinstance(header_json, dict) or not isinstance(claims, dict):

@@ -10,14 +10,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-import requests
 from sqlalchemy.orm import Session
 
 from grader.store.db import Database
 from grader.store.lti_models import LtiContext, LtiPlatform
 from grader.store.models import utcnow
 from grader.web.lti.accounts import course_role, enrol, lti_user
-from grader.web.lti.http import MAX_BODY, TIMEOUT, PlatformUnreachable
+from grader.web.lti.http import PlatformUnreachable, get_page
 from grader.web.lti.tokens import PlatformAccess, access_token
 
 __all__ = ["MEMBERSHIP_SCOPE", "RosterResult", "fetch_members", "sync_roster"]
@@ -39,20 +38,10 @@ def fetch_members(url: str, token: str) -> list[dict]:
     """Every member of the membership container at ``url``, page after page."""
     members: list[dict] = []
     for _ in range(MAX_PAGES):
-        try:
-            response = requests.get(url, headers={"Authorization": f"Bearer {token}", "Accept": MEMBERSHIP_TYPE},
-                                    timeout=TIMEOUT, allow_redirects=False)
-        except requests.RequestException as error:
-            raise PlatformUnreachable(f"GET {url} failed: {type(error).__name__}") from error
-        if response.status_code >= 300 or len(response.content) > MAX_BODY:
-            raise PlatformUnreachable(f"the roster service answered {response.status_code}", status=response.status_code)
-        try:
-            page = response.json()
-        except ValueError as error:
-            raise PlatformUnreachable("the roster service answered something that is not JSON") from error
+        page, following = get_page(url, headers={"Authorization": f"Bearer {token}", "Accept": MEMBERSHIP_TYPE})
         found = page.get("members") if isinstance(page, dict) else None
-        members.extend(m for m in found or [] if isinstance(m, dict))
-        following = response.links.get("next", {}).get("url")
+        if isinstance(found, list):
+            members.extend(m for m in found if isinstance(m, dict))
         if not following:
             return members
         url = following
