@@ -24,7 +24,7 @@ from grader.store.assignments import late_days, late_factor
 from grader.store.models import Assignment, Enrolment, ProblemVersion, Submission, User
 
 __all__ = ["AnswerScore", "ProblemScore", "StudentRow", "answer_weight", "gradebook", "problem_score",
-           "practice_score", "DIGITS"]
+           "practice_score", "practice_scores", "DIGITS"]
 
 DIGITS = 4
 
@@ -137,3 +137,15 @@ def gradebook(session: Session, assignment: Assignment, user_id: int | None = No
     return [StudentRow(user, [problem_score(item.problem_version, mine.get((user.id, item.problem_id), []),
                                             assignment) for item in assignment.problems])
             for user in users]
+
+
+def practice_scores(session: Session, version: ProblemVersion) -> dict[int, ProblemScore]:
+    """Every student's practice score on ``version``'s problem (submissions outside assignments),
+    by user id: what the problem's results page, its grades API and its CSV show."""
+    versions = select(ProblemVersion.id).where(ProblemVersion.problem_id == version.problem_id)
+    mine: dict[int, list[Submission]] = {}
+    for submission in session.scalars(select(Submission).options(selectinload(Submission.verdicts))
+                                      .where(Submission.assignment_id.is_(None),
+                                             Submission.problem_version_id.in_(versions))):
+        mine.setdefault(submission.user_id, []).append(submission)
+    return {user_id: problem_score(version, submissions) for user_id, submissions in mine.items()}

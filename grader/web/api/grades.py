@@ -11,17 +11,19 @@ from sqlalchemy.orm import joinedload, selectinload
 from grader import jobs
 from grader.store.db import db
 from grader.store.models import ProblemVersion, Submission
+from grader.store.scores import practice_scores
 from grader.web.api import spec
 from grader.web.api.problems import INSTRUCTORS, visible_version
 from grader.web.csv_export import csv_response
 from grader.web.policy import Action
 
 CSV_COLUMNS = ["user_id", "external_id", "name", "answer", "submissions", "latest_submission", "latest_status",
-               "latest_verdict", "latest_score", "best_score"]
+               "latest_verdict", "latest_score", "best_score", "score", "problem_score"]
 
 _COLUMN_TYPES = {"user_id": "integer", "external_id": "string", "name": "string", "answer": "string",
                  "submissions": "integer", "latest_submission": "integer", "latest_status": "string",
-                 "latest_verdict": "string", "latest_score": "number", "best_score": "number"}
+                 "latest_verdict": "string", "latest_score": "number", "best_score": "number",
+                 "score": "number", "problem_score": "number"}
 GRADES = spec.schema("Grades", {"type": "object", "properties": {
     "problem": {"type": "string"},
     "grades": {"type": "array", "items": {"type": "object", "properties": {
@@ -50,6 +52,13 @@ def grade_rows(slug: str, action: Action = Action.READ_GRADES) -> list[dict[str,
                    latest_verdict=verdict.verdict if verdict else None, latest_score=verdict.score if verdict else None)
         if verdict is not None:
             row["best_score"] = max(row["best_score"] or 0.0, verdict.score)
+    # The scores every view shows (grader/store/scores.py): this answer's and the whole problem's,
+    # over practice submissions (outside assignments; the course gradebook has those).
+    scores = practice_scores(db.session, version)
+    for (user_id, answer), row in rows.items():
+        mine = scores.get(user_id)
+        row["score"] = mine.answers[answer].score if mine is not None and answer in mine.answers else None
+        row["problem_score"] = mine.score if mine is not None else None
     return list(rows.values())
 
 

@@ -21,6 +21,7 @@ from grader.jobs.grading import check_request
 from grader.store.db import Database, db
 from grader.store.models import Problem, ProblemVersion
 from grader.store.problems import latest_version, problem_by_slug
+from grader.store.scores import practice_scores
 from grader.web.auth.session import INSTRUCTOR_ROLES, login_required
 from grader.web.csv_export import csv_response
 from grader.web.instructor import bp
@@ -176,7 +177,10 @@ def problem(slug: str):
             reference, wrong, lambda a, b, ref=reference: cache.equivalent(ref, a, b, _checker_says(ref))))
         grouped[reference["name"]] = {"groups": groups[:SHOWN_GROUPS], "more": max(0, len(groups) - SHOWN_GROUPS),
                                       "wrong": len(wrong), "prompt": reference.get("prompt") or reference["name"]}
-    return render_template("instructor/problem.html", problem=found, version=version, grouped=grouped,
+    students = {r.user_id: r.student for r in rows}
+    scores = sorted(((students.get(user_id, ""), score) for user_id, score in
+                     practice_scores(db.session, version).items()), key=lambda item: (item[0].lower(), item[1].problem))
+    return render_template("instructor/problem.html", problem=found, version=version, grouped=grouped, scores=scores,
                            distribution=score_distribution(rows, names), answers=per_answer(rows, names),
                            recent=list(reversed(rows[-SHOWN_SUBMISSIONS:])), total=len(rows))
 

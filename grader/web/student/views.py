@@ -18,6 +18,7 @@ from flask import abort, flash, g, jsonify, redirect, render_template, request, 
 from grader.jobs import SubmissionRejected, submit
 from grader.store.db import Database, db
 from grader.store.models import ProblemVersion, Submission
+from grader.store.scores import practice_score
 from grader.web.api.bodies import validated_body
 from grader.web.auth.session import login_required
 from grader.web.errors import ApiProblem
@@ -76,7 +77,8 @@ def problems():
         names = [r["name"] for r in version.references]
         correct = sum(1 for n in names if n in latest and latest[n].verdict is not None
                       and latest[n].status == "done" and latest[n].verdict.verdict == "equivalent")
-        progress[version.id] = {"answers": len(names), "correct": correct, "tried": sum(n in latest for n in names)}
+        progress[version.id] = {"answers": len(names), "correct": correct, "tried": sum(n in latest for n in names),
+                                "score": practice_score(db.session, g.user.id, version).score}
     return render_template("student/problems.html", versions=versions, progress=progress)
 
 
