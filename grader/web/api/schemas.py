@@ -56,11 +56,15 @@ CHECK_REQUEST = {
         "answer": {"type": "string", "maxLength": MAX_ANSWER_CHARS},
         "variables": {"type": "object", "maxProperties": MAX_VARIABLES, "additionalProperties": _VARIABLE,
                       "description": "The names the texts may use (keys: letters, digits and _)."},
-        "kind": {"type": "string", "enum": ["expression", "equation"], "default": "expression"},
+        "kind": {"type": "string", "enum": ["expression", "equation", "numeric"], "default": "expression",
+                 "description": "'numeric': the answer is a number with a unit, checked against the reference "
+                                "evaluated at 'values'."},
         "feedback": {"type": "array", "maxItems": MAX_FEEDBACK, "items": {
             "type": "object", "required": ["expr", "message"], "additionalProperties": False, "properties": {
                 "expr": {"type": "string", "maxLength": MAX_REFERENCE_CHARS},
-                "message": {"type": "string", "maxLength": MAX_MESSAGE_CHARS}}},
+                "message": {"type": "string", "maxLength": MAX_MESSAGE_CHARS},
+                "score": {"type": "number", "minimum": 0, "maximum": 1,
+                          "description": "Partial credit for an answer that matches this entry."}}},
             "description": "Known wrong answers and what to tell a student who gives one. Each item costs "
                           "one more check against the rate limit."},
         "state": {"type": "array", "maxItems": MAX_VARIABLES, "items": {"type": "string", "maxLength": 64},
@@ -70,6 +74,16 @@ CHECK_REQUEST = {
         "feedback_detail": {"type": "string", "enum": ["kind", "full"], "default": "kind",
                             "description": "'kind': slip messages name the slip but no value that would "
                                            "reveal the reference; 'full': they also state factors and differences."},
+        # kind = "numeric" (grader.answers.numeric)
+        "values": {"type": "object", "maxProperties": MAX_VARIABLES, "additionalProperties": {"type": "number"},
+                   "description": "Numeric answers: the parameter values the reference is evaluated at (SI units)."},
+        "unit": {"type": "string", "maxLength": 200, "description": "Numeric answers: the SI unit asked for, e.g. 'N'."},
+        "dimension": {"type": "string", "maxLength": 200, "description": "Numeric answers: the answer's dimension."},
+        "tolerance": {"type": "object", "additionalProperties": False, "properties": {
+            "relative": {"type": "number", "minimum": 0}, "absolute": {"type": "number", "minimum": 0},
+            "sig_figs": {"type": "integer", "minimum": 1, "maximum": 15}},
+            "description": "Numeric answers: within relative or absolute (default 1 % relative); sig_figs: "
+                           "rounded to that many significant figures."},
     },
 }
 
@@ -104,6 +118,8 @@ CHECK_RESULT = {
         "ms": {"type": "number"},
         "evidence": {"type": "object"},
         "budget_exceeded": {"type": "boolean"},
+        "score": {"type": "number", "description": "Partial credit given by the instructor's feedback entry a "
+                                                   "wrong answer matched (absent otherwise)."},
     },
 }
 

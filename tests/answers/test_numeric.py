@@ -1,0 +1,250 @@
+"""Numeric answers (grader.answers.numeric): a number with its unit against the engine's value at the
+student's numbers, with the scene's tolerance; routed through check(), like every other answer."""
+
+import json
+import math
+
+import pytest
+from click.testing import CliRunner
+
+from grader.answers.checker import check, check_request
+from grader.answers.numeric import QuantityError, parse_quantity, within_tolerance
+from grader.answers.reference import ReferenceAnswer
+from grader.cli.check import check as check_cli
+
+VARIABLES = {"m": {"dimension": "mass", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"}}
+VALUES = {"m": 1.5, "g": 9.81}  # the weight m*g is 14.715 N
+WEIGHT = dict(reference="m*g", variables=VARIABLES, kind="numeric", values=VALUES, unit="N")
+
+
+# -- reading the student's number ---------------------------------------------------------------
+
+@pytest.mark.parametrize("text, number", [
+    ("14.7", 14.7), ("14.7 N", 14.7), ("14.7N", 14.7), ("  14.7   N ", 14.7),
+    ("1.47e1 N", 14.7), ("1.47E+1 N", 14.7), ("147e-1 N", 14.7),
+    ("1.47×10^1 N", 14.7), ("1.47 × 10^1 N", 14.7), ("1.47·10¹ N", 14.7), ("1.47*10**1 N", 14.7),
+    ("1.47 x 10^1 N", 14.7), ("1.47×10^(1) N", 14.7), ("1.47×10⁻¹ N", 0.147),
+    ("−14.7 N", -14.7), ("-14.7 N", -14.7), ("+14.7 N", 14.7), (".5 m", 0.5), ("5. m", 5.0), ("0 N", 0.0),
+])
+def test_number_forms(text, number):
+    assert parse_quantity(text).number == pytest.approx(number, rel=1e-15)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("14,7 N", "decimal point, not a comma: 14.7, not 14,7"),
+    ("1,000 N", "decimal point, not a comma"),
+    ("", "type a number"),
+    ("N", "type a number first"),
+    ("abc", "type a number first"),
+    ("one newton", "type a number first"),
+    ("1 000 N", "without spaces"),
+    ("3/2 N", "not a calculation"),
+    ("9.81*1.5 N", "not a calculation"),
+    ("14.7 + 1 N", "not a calculation"),
+    ("1e999 N", "too large"),
+    ("inf", "type a number first"),
+    ("nan N", "type a number first"),
+    ("14.7 Nm", "write a product with '*', as in N*m"),
+    ("14.7 xyz", "unknown unit 'xyz'"),
+    ("14.7 N^", "unit is not readable"),
+    ("1" * 300, "at most 200 characters"),
+])
+def test_unreadable_numbers_are_refused_with_what_to_type(text, message):
+    with pytest.raises(QuantityError, match=message.replace("*", r"\*").replace("+", r"\+")):
+        parse_quantity(text)
+
+
+@pytest.mark.parametrize("text, si, dimension", [
+    ("1 km", 1000.0, "length"), ("1 cm", 0.01, "length"), ("1 mm", 1e-3, "length"), ("1 µm", 1e-6, "length"),
+    ("1 g", 1e-3, "mass"), ("1 mg", 1e-6, "mass"), ("1 kg", 1.0, "mass"),
+    ("1 min", 60.0, "time"), ("1 h", 3600.0, "time"), ("1 ms", 1e-3, "time"), ("1 µs", 1e-6, "time"),
+    ("36 km/h", 10.0, "velocity"), ("1 m/s", 1.0, "velocity"), ("1 m s^-1", 1.0, "velocity"),
+    ("1 kN", 1000.0, "force"), ("1 kg*m/s^2", 1.0, "force"), ("1 kg m/s²", 1.0, "force"), ("1 kg·m·s⁻²", 1.0, "force"),
+    ("1 N*m", 1.0, "torque"), ("1 mJ", 1e-3, "energy"), ("1 kW", 1000.0, "power"), ("1 kPa", 1000.0, "kg/(m*s^2)"),
+    ("1 MHz", 1e6, "frequency"), ("1 /s", 1.0, "frequency"), ("1 rad/s", 1.0, "angular_velocity"),
+    ("180 deg", math.pi, "angle"), ("180°", math.pi, "angle"), ("1 mrad", 1e-3, "angle"), ("2", 2.0, "dimensionless"),
+])
+def test_units_convert_to_si(text, si, dimension):
+    from grader.expressions import parse_dimension
+
+    quantity = parse_quantity(text)
+    assert quantity.si == pytest.approx(si, rel=1e-12)
+    assert quantity.dimension == parse_dimension(dimension)
+
+
+@pytest.mark.parametrize("text, figures", [
+    ("14.7", 3), ("14.70", 4), ("0.0147", 3), ("1.47e1", 3), ("1500", 4), ("0.5", 1), ("0", 1), ("1.470×10^1", 4),
+])
+def test_significant_figures_are_counted_as_typed(text, figures):
+    assert parse_quantity(text).sig_figs == figures
+
+
+# -- tolerances ----------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("value, tolerance, ok", [
+    (14.8, {"relative": 0.01}, True), (14.86, {"relative": 0.01}, True), (14.87, {"relative": 0.01}, False),
+    (14.8, {}, True), (15.0, {}, False),  # no band given: 1 % relative
+    (14.8, {"absolute": 0.1}, True), (14.9, {"absolute": 0.1}, False),
+    (14.9, {"absolute": 0.1, "relative": 0.02}, True),  # either band is enough
+    (14.7, {"sig_figs": 3}, True), (14.72, {"sig_figs": 3}, True), (14.66, {"sig_figs": 3}, True),
+    (14.6, {"sig_figs": 3}, False), (14.8, {"sig_figs": 3}, False), (15.0, {"sig_figs": 2}, True),
+    (14.7, {"sig_figs": 4}, False), (14.72, {"sig_figs": 4}, True),
+    (14.7, {"sig_figs": 3, "relative": 1e-4}, False),  # both must hold when both are given
+])
+def test_tolerance(value, tolerance, ok):
+    assert within_tolerance(value, 14.715, tolerance) is ok
+
+
+def test_significant_figures_are_counted_in_the_students_unit():
+    # 0.0147 kN is 14.7 N: three figures either way.
+    assert within_tolerance(14.7, 14.715, {"sig_figs": 3}, size=1000.0)
+    assert not within_tolerance(15.0, 14.715, {"sig_figs": 3}, size=1000.0)
+
+
+# -- verdicts ------------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("answer", ["14.7 N", "14.715 N", "1.47e1 kg*m/s^2", "0.0147 kN", "1471.5 cN", "14.7 kg m/s²",
+                                    "1.4715×10^1 N"])
+def test_right_values_in_any_unit_of_a_force_are_equivalent(answer):
+    verdict = check(answer=answer, **WEIGHT)
+    assert (verdict.verdict, verdict.certainty) == ("equivalent", "numeric"), verdict.reason
+
+
+@pytest.mark.parametrize("answer, code, message", [
+    ("15.5 N", None, None),
+    ("-14.7 N", "sign", "sign"),
+    ("147 N", "power_of_ten", "power of ten"),
+    ("1.47 N", "power_of_ten", "power of ten"),
+    ("14.7 m", "dimension", "Your unit m is a length (m); the answer is a force (kg·m/s²)."),
+    ("14.7 kg", "dimension", "is a mass"),
+    ("14.7 J", "dimension", "an energy or torque"),
+])
+def test_wrong_values_and_wrong_units_are_not_equivalent(answer, code, message):
+    verdict = check(answer=answer, **WEIGHT)
+    assert verdict.verdict == "not_equivalent"
+    codes = [f["code"] for f in verdict.feedback]
+    assert codes == ([code] if code else [])
+    if message:
+        assert message in verdict.feedback[0]["message"]
+
+
+def test_a_missing_unit_is_invalid_and_says_which_quantity_is_asked():
+    verdict = check(answer="14.7", **WEIGHT)
+    assert verdict.verdict == "invalid"
+    assert verdict.reason == "give a unit: the answer is a force (kg·m/s²), for example in N"
+    assert verdict.feedback[0]["code"] == "missing_unit"
+
+
+def test_a_pure_number_needs_no_unit_and_refuses_one():
+    pure = dict(WEIGHT, reference="m*g/(m*g)", unit="")
+    assert check(answer="1.0", **pure).verdict == "equivalent"
+    assert check(answer="1.0 N", **pure).feedback[0]["message"] == (
+        "Your unit N is a force (kg·m/s²); the answer is a pure number.")
+
+
+def test_an_angle_in_degrees_converts():
+    angle = dict(WEIGHT, reference="asin(m/(2*m))", unit="rad")
+    assert check(answer="30°", **angle).verdict == "equivalent"
+    assert check(answer="0.5236 rad", **angle).verdict == "equivalent"
+    assert check(answer="30", **angle).verdict == "not_equivalent"  # 30 rad: no unit on a pure number is radians
+
+
+def test_a_decimal_comma_is_invalid_with_the_corrected_number():
+    verdict = check(answer="14,7 N", **WEIGHT)
+    assert verdict.verdict == "invalid" and "14.7, not 14,7" in verdict.reason
+
+
+def test_too_few_significant_figures_are_refused_when_the_scene_asks_for_them():
+    verdict = check(answer="15 N", tolerance={"sig_figs": 3}, **WEIGHT)
+    assert verdict.verdict == "not_equivalent" and verdict.feedback[0]["code"] == "sig_figs"
+    assert check(answer="14.7 N", tolerance={"sig_figs": 3}, **WEIGHT).verdict == "equivalent"
+
+
+def test_the_students_own_numbers_decide():
+    # The same text is right for one student and wrong for another.
+    assert check(answer="14.7 N", **WEIGHT).verdict == "equivalent"
+    assert check(answer="14.7 N", **dict(WEIGHT, values={"m": 2.0, "g": 9.81})).verdict == "not_equivalent"
+
+
+@pytest.mark.parametrize("answer", ["15.5 N", "-14.7 N", "147 N", "14.7 m", "14.7"])
+def test_messages_never_state_the_expected_value(answer):
+    text = json.dumps(check(answer=answer, **WEIGHT).to_json())
+    assert "14.715" not in text and "14.72" not in text
+
+
+def test_instructor_feedback_is_matched_numerically_at_the_students_numbers():
+    feedback = [{"expr": "m*g/3", "message": "That is a third of the weight.", "score": 0.5}]
+    verdict = check(answer="4.9 N", feedback=feedback, **WEIGHT)
+    assert verdict.verdict == "not_equivalent" and verdict.score == 0.5
+    assert verdict.feedback == [{"code": "instructor", "message": "That is a third of the weight.", "score": 0.5}]
+    assert check(answer="5.5 N", feedback=feedback, **WEIGHT).score is None
+
+
+@pytest.mark.parametrize("change, reason", [
+    ({"values": {"m": 1.5}}, "no number for 'g'"),
+    ({"unit": "m"}, "is not a force"),
+    ({"unit": "furlong"}, "bad unit"),
+    ({"tolerance": {"relative": -1}}, "tolerance.relative"),
+    ({"tolerance": {"sig_figs": 0}}, "sig_figs"),
+    ({"tolerance": {"ulps": 3}}, "tolerance"),
+    ({"reference": "m*g*"}, "the reference does not parse"),
+    ({"reference": "sqrt(-m)"}, "not a real number"),
+])
+def test_a_wrong_request_is_invalid_not_a_crash(change, reason):
+    request = {**WEIGHT, "dimension": "force", **change}
+    verdict = check(answer="14.7 N", **request)
+    assert verdict.verdict == "invalid" and reason in verdict.reason
+
+
+def test_check_request_and_grader_check_jsonl_handle_numeric_answers():
+    line = {"answer": "14.7 N", **WEIGHT, "tolerance": {"relative": 0.01}, "dimension": "force"}
+    assert check_request(line)["verdict"] == "equivalent"
+    lines = [json.dumps(line), json.dumps({**line, "answer": "14.7 m"})]
+    result = CliRunner().invoke(check_cli, ["--jsonl", "--no-sandbox"], input="\n".join(lines) + "\n")
+    assert result.exit_code == 0, result.output
+    assert [json.loads(r)["verdict"] for r in result.output.splitlines()] == ["equivalent", "not_equivalent"]
+
+
+# -- the stored reference ------------------------------------------------------------------------
+
+REFERENCE = {"name": "tension_value", "prompt": "T", "kind": "numeric", "reference": "g*m/3", "variables": VARIABLES,
+             "dimension": "kg*m*s^-2", "latex": "", "unit": "N", "tolerance": {"relative": 0.01}, "weight": 2,
+             "parameters": {"m": {"random": {"min": 0.1, "max": 0.5, "step": 0.05}}, "g": {"value": 9.81}}}
+
+
+def test_a_numeric_request_carries_the_students_numbers_with_the_fixed_ones():
+    request = ReferenceAnswer.from_json(REFERENCE).request("0.981 N", values={"m": 0.3})
+    assert request["values"] == {"g": 9.81, "m": 0.3} and request["unit"] == "N"
+    assert check_request(request)["verdict"] == "equivalent"
+
+
+def test_without_a_draw_the_preview_numbers_are_used():
+    from grader.answers.randomised import PREVIEW_SEED, draw_parameters
+
+    request = ReferenceAnswer.from_json(REFERENCE).request("1 N")
+    assert request["values"] == draw_parameters(REFERENCE["parameters"], PREVIEW_SEED)
+
+
+def test_symbolic_answers_of_a_randomised_problem_stay_symbolic():
+    symbolic = ReferenceAnswer.from_json({**REFERENCE, "kind": "expression"})
+    request = symbolic.request("m g/3", values={"m": 0.3})
+    assert "values" not in request and check_request(request)["verdict"] == "equivalent"
+
+
+def test_the_reference_round_trips_with_its_new_keys():
+    ref = ReferenceAnswer.from_json(REFERENCE)
+    assert ReferenceAnswer.from_json(ref.to_json()) == ref and ref.weight == 2.0
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"tolerance": {"relative": "1%"}}, "'tolerance'"),
+    ({"weight": -1}, "'weight'"),
+    ({"feedback": [{"expr": "m*g", "message": "w", "score": 2}]}, "score"),
+    ({"tests": [{"answer": "1 N", "expect": "right"}]}, "'tests'"),
+    ({"unit": 3}, "'unit'"),
+])
+def test_the_contract_refuses_bad_new_keys(change, message):
+    from grader.answers.reference import ReferenceAnswerError
+
+    with pytest.raises(ReferenceAnswerError, match=message):
+        ReferenceAnswer.from_json({**REFERENCE, **change})
