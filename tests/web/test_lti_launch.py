@@ -205,3 +205,21 @@ def test_unknown_key_ids_do_not_make_the_tool_refetch_the_jwks_each_time(tool, l
         lms.key = real
         assert response.status_code == 403
     assert lms.jwks_fetches == 1  # at most one refetch every REFRESH_MIN_S (10 s)
+
+
+def test_a_link_to_a_problem_the_learner_may_not_see_is_a_404_page_by_the_policy(tool, lms):
+    from grader.store.models import ProblemVersion
+
+    with _db(tool).write() as session:
+        session.scalar(select(ProblemVersion)).published = False  # a draft: only its managers see it
+    client = tool.test_client()
+    response, _ = launch(client, lms)
+    assert response.status_code == 404 and "There is no problem" in response.get_data(as_text=True)
+    assert client.get("/problems").status_code == 302  # not signed in
+
+
+def test_an_error_the_lms_posts_back_is_shown_not_followed(tool, lms):
+    client = tool.test_client()
+    response = client.post("/lti/launch", data={"error": "login_required",
+                                                "error_description": "Sign in to the LMS first."})
+    assert response.status_code == 403 and "Sign in to the LMS first." in response.get_data(as_text=True)
