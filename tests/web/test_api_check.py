@@ -83,3 +83,22 @@ def test_a_checker_whose_child_dies_on_start_up_is_a_503_not_a_500(app, client, 
                            json={"reference": "x", "answer": "x", "variables": DIMENSIONLESS})
     assert response.status_code == 503 and response.headers["Retry-After"] == "1"
     app.extensions["lagrade.checkers"].close()
+
+
+@pytest.mark.parametrize("answer, verdict", [("14.7 N", "equivalent"), ("0.0147 kN", "equivalent"),
+                                             ("14.7 m", "not_equivalent"), ("14,7 N", "invalid")])
+def test_numeric_answers_are_checked_at_the_given_values(client, make_token, answer, verdict):
+    _, student = make_token("student")
+    response = client.post("/api/v1/check", headers=student, json={
+        "reference": "m*g", "answer": answer, "variables": VARIABLES, "kind": "numeric",
+        "values": {"m": 1.5, "g": 9.81}, "unit": "N", "tolerance": {"relative": 0.01}})
+    assert response.status_code == 200 and response.get_json()["verdict"] == verdict
+
+
+def test_partial_credit_of_a_matched_feedback_entry_is_in_the_verdict(client, make_token):
+    _, student = make_token("student")
+    response = client.post("/api/v1/check", headers=student, json={
+        "reference": "m*g/3", "answer": "m g", "variables": VARIABLES,
+        "feedback": [{"expr": "m*g", "message": "That is the weight.", "score": 0.25}]})
+    body = response.get_json()
+    assert response.status_code == 200 and body["verdict"] == "not_equivalent" and body["score"] == 0.25
