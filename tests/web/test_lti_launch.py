@@ -3,9 +3,13 @@ every launch that cannot be trusted is refused with a page saying why (4xx, neve
 
 from __future__ import annotations
 
+import base64
+import json
 import time
 
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from sqlalchemy import select
 
 from grader.store.lti_models import LtiAccount, LtiContext, LtiLaunch, LtiNonce, LtiResourceLink
@@ -223,3 +227,38 @@ def test_an_error_the_lms_posts_back_is_shown_not_followed(tool, lms):
     response = client.post("/lti/launch", data={"error": "login_required",
                                                 "error_description": "Sign in to the LMS first."})
     assert response.status_code == 403 and "Sign in to the LMS first." in response.get_data(as_text=True)
+
+
+
+def _segment(value) -> str:
+    return base64.urlsafe_b64encode(json.dumps(value).encode()).decode().rstrip("=")
+
+
+JSON = st.recursive(st.none() | st.integers() | st.text(max_size=20),
+                    lambda children: st.lists(children, max_size=3) | st.dictionaries(
+                        st.sampled_from(["iss", "aud", "exp", "iat", "nonce", "sub", "kid", "alg", "azp",
+                                         CLAIM + "deployment_id", CLAIM + "version"]), children, max_size=5),
+                    max_leaves=8)
+TOKENS = st.one_of(st.text(max_size=60), st.tuples(JSON, JSON, st.text(max_size=10)))
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(token=TOKENS, ours=st.booleans(), extra=st.dictionaries(
+    st.sampled_from(["error", "error_description", "state"]), st.text(max_size=30), max_size=2))
+def test_any_posted_launch_is_refused_with_a_4xx_page_never_a_500(tool, lms, token, ours, extra):
+    from grader.store.lti_models import LtiPlatform
+    from grader.web.lti.launch import _serializer
+
+    client = tool.test_client()
+    with _db(tool).read() as session:
+        platform_id = session.scalar(select(LtiPlatform.id))
+    # A state cookie the tool really issued, so the token itself is what gets judged.
+    client.set_cookie(STATE_COOKIE + "s1", _serializer(tool.secret_key).dumps(
+        {"state": "s1", "nonce": "n1", "platform": platform_id}), path="/lti")
+    if isinstance(token, tuple):  # header and claims of any shape, maybe naming our platform and its key
+        header, claims, signature = token
+        if ours and isinstance(header, dict) and isinstance(claims, dict):
+            header, claims = {**header, "kid": lms.key.kid}, {**claims, "iss": lms.issuer}
+        token = f"{_segment(header)}.{_segment(claims)}.{signature}"
+    response = client.post("/lti/launch", data={"state": "s1", "id_token": token, **extra})
+    assert 400 <= response.status_code < 500, response.get_data(as_text=True)[-400:]
