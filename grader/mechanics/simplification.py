@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import sympy
 
-__all__ = ["human_form", "quick_form", "readable_denominator", "tidy_trig"]
+__all__ = ["human_form", "quick_form", "readable_denominator", "signs_in_front", "tidy_trig"]
 
 _TRIG = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc)
 
@@ -71,16 +71,16 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
     # simplify() rarely beats the cheap forms on a short expression, and costs the most there.
     if 12 < min(sympy.count_ops(c) for c in candidates) and sympy.count_ops(cancelled) < 120:
         attempt(costly, seconds, fallback=lambda: None)
-    return min((_positive_denominator(c) for c in candidates), key=lambda e: _weight(e, allowed))
+    return min((signs_in_front(c) for c in candidates), key=lambda e: _weight(e, allowed))
 
 
-def _positive_denominator(expr: sympy.Expr) -> sympy.Expr:
+def signs_in_front(expr: sympy.Expr) -> sympy.Expr:
     """-a/(b + c) rather than a/(-b - c), and (r - r0)(…) rather than -(-r + r0)(…).
 
     A minus sign belongs in front of the whole, not inside a denominator or a factor.
 
     >>> r, r0, a = sympy.symbols("r r0 a", positive=True)
-    >>> _positive_denominator(-(-r + r0)*(a - r)/(-a - r))
+    >>> signs_in_front(-(-r + r0)*(a - r)/(-a - r))
     -(a - r)*(r - r0)/(a + r)
     """
     numerator, denominator = sympy.fraction(expr)

@@ -47,7 +47,7 @@ from scipy.optimize import brentq
 
 from grader.mechanics import budget
 from grader.mechanics.scene import AnswerSpec, SceneError
-from grader.mechanics.simplification import human_form
+from grader.mechanics.simplification import human_form, signs_in_front
 
 __all__ = ["special_value", "solve_for"]
 
@@ -77,7 +77,10 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
         result = human_form(value.xreplace({unknown: chosen}))
         if spec.kind == "small_oscillation":
             _check_stable(scene, spec, result)
-            result = human_form(sympy.sqrt(result))
+            # √(2g/(3(R − r))) as written, rather than sympy's √6·√g·√(1/(R − r))/3.
+            candidates = [human_form(sympy.sqrt(result)),
+                          sympy.Pow(signs_in_front(sympy.factor(result)), sympy.S.Half, evaluate=False)]
+            result = min(candidates, key=lambda e: (sympy.count_ops(e), len(str(e))))
     leftover = result.free_symbols - target
     if leftover:
         raise SceneError(scene.source, f"answers ({spec.name})",
