@@ -42,7 +42,7 @@ def login():
         record_failed_sign_in(username, request.remote_addr)
         # One message for an unknown user and a wrong password: no hint about which accounts exist.
         return render_template("auth/login.html", next=next_url, username=username,
-                               error="That username and password do not match an account."), 401
+                               error="That email and password do not match an account."), 401
     sign_in(user)
     return redirect(next_url or home_for(user))
 

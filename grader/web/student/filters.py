@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
-from datetime import datetime
+from datetime import datetime, timezone
+
+from markupsafe import Markup
 
 from grader.web.student import bp
 from grader.web.student.statement import render_inline, render_math, render_statement
@@ -25,9 +27,14 @@ def _math(tex: str | None, display: bool = False):
 
 
 @bp.app_template_filter("when")
-def _when(moment: datetime | None) -> str:
-    """A stored UTC time, short: "2026-11-21 13:04 UTC"."""
-    return moment.strftime("%Y-%m-%d %H:%M UTC") if moment else ""
+def _when(moment: datetime | None) -> Markup:
+    """A stored UTC time as ``<time>``: "2026-11-21 13:04 UTC", which ``static/js/local-time.js``
+    rewrites in the reader's own time zone (without script the UTC text stays, and says so)."""
+    if moment is None:
+        return Markup("")
+    stamp = moment.replace(tzinfo=timezone.utc) if moment.tzinfo is None else moment.astimezone(timezone.utc)
+    return Markup('<time datetime="{}" data-local>{}</time>').format(
+        stamp.isoformat(timespec="seconds").replace("+00:00", "Z"), stamp.strftime("%Y-%m-%d %H:%M UTC"))
 
 
 @bp.app_template_filter("verdict_label")
