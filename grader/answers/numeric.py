@@ -83,6 +83,18 @@ class Quantity:
         """The value in SI units."""
         return self.number * self.size
 
+    @property
+    def latex(self) -> str:
+        """The quantity typeset (``14.7\\,\\mathrm{N}``)."""
+        number = f"{self.number:g}"
+        if "e" in number:
+            mantissa, exponent = number.split("e")
+            number = rf"{mantissa} \times 10^{{{int(exponent)}}}"
+        if not self.unit:
+            return number
+        unit = self.unit.replace("*", r"\cdot ").replace("·", r"\cdot ").replace("°", r"^\circ")
+        return rf"{number}\,\mathrm{{{unit}}}"
+
 
 def parse_quantity(text: str) -> Quantity:
     """Read ``"14.7 N"``, ``"1.47e1 kg*m/s^2"``, ``"−3.2×10^-2 m"``; raises :class:`QuantityError`.
@@ -273,7 +285,7 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
     except QuantityError as error:
         return Verdict.invalid(str(error), text, feedback=[{"code": "number", "message": f"{str(error)[:1].upper()}"
                                                                                            f"{str(error)[1:]}."}])
-    parsed = {"text": text.strip(), "latex": _latex(quantity), "notes": []}
+    parsed = {"text": text.strip(), "latex": quantity.latex, "notes": []}
     if quantity.unit == "" and not expected_dim.is_dimensionless:
         reason = f"give a unit: the answer is {expected_dim.describe()}, for example in {unit}"
         return Verdict("invalid", "none", reason, parsed=parsed,
@@ -327,14 +339,3 @@ def _numeric_feedback(value: float, target: float, tol: Mapping[str, Any], size:
             return [{"code": "power_of_ten", "message": "Your value is off by a power of ten: check unit prefixes "
                                                         "and conversions."}]
     return []
-
-
-def _latex(quantity: Quantity) -> str:
-    number = f"{quantity.number:g}"
-    if "e" in number:
-        mantissa, exponent = number.split("e")
-        number = rf"{mantissa} \times 10^{{{int(exponent)}}}"
-    if not quantity.unit:
-        return number
-    unit = quantity.unit.replace("*", r"\cdot ").replace("·", r"\cdot ").replace("°", r"^\circ")
-    return rf"{number}\,\mathrm{{{unit}}}"

@@ -37,3 +37,19 @@ def test_the_preview_never_carries_the_reference():
 def test_the_names_and_dimension_a_student_may_know():
     assert [n["name"] for n in allowed_names(TENSION)] == ["g", "m"]
     assert expected_dimension(TENSION) == "a force (kg·m/s²)"
+
+
+NUMERIC = {**TENSION, "name": "tension_value", "kind": "numeric", "unit": "N"}
+
+
+def test_a_numeric_answer_is_read_as_a_number_with_its_unit():
+    result = preview(NUMERIC, "1.47e1 kN")
+    assert result["ok"] and result["latex"] == r"14.7\,\mathrm{kN}" and result["warning"] is None
+    assert result["dimension"] == "a force (kg·m/s²)"
+
+
+def test_a_numeric_answer_warns_of_a_missing_or_wrong_unit_and_refuses_a_decimal_comma():
+    assert preview(NUMERIC, "14.7")["warning"] == "Give a unit: the answer is a force (kg·m/s²)."
+    assert "The unit m/s is a velocity" in preview(NUMERIC, "14.7 m/s")["warning"]
+    comma = preview(NUMERIC, "14,7 N")
+    assert not comma["ok"] and "14.7, not 14,7" in comma["error"]["message"]

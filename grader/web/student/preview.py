@@ -30,6 +30,31 @@ def allowed_names(answer: dict[str, Any]) -> list[dict[str, str]]:
     return [{"name": v.name, "latex": v.latex, "meaning": v.dimension.describe()} for v in namespace.variables]
 
 
+def _numeric_preview(answer: dict[str, Any], text: str, result: dict[str, Any]) -> dict[str, Any]:
+    """A number with its unit, read with the checker's own grammar (`grader.answers.numeric`)."""
+    from grader.answers.numeric import QuantityError, parse_quantity
+
+    try:
+        quantity = parse_quantity(text)
+    except QuantityError as error:
+        message = str(error)
+        result["error"] = {"message": message[:1].upper() + message[1:] + ".", "position": None, "code": "number",
+                           "hint": None}
+        return result
+    result.update(ok=True, latex=quantity.latex,
+                  dimension="a pure number" if quantity.dimension.is_dimensionless else quantity.dimension.describe())
+    try:
+        wanted = parse_dimension(answer.get("dimension") or "dimensionless")
+    except (ValueError, KeyError):
+        return result
+    if not quantity.unit and not wanted.is_dimensionless:
+        result["warning"] = f"Give a unit: the answer is {wanted.describe()}."
+    elif quantity.dimension != wanted:
+        result["warning"] = (f"The unit {quantity.unit} is {result['dimension']}, but the answer should be "
+                             f"{'a pure number' if wanted.is_dimensionless else wanted.describe()}.")
+    return result
+
+
 def expected_dimension(answer: dict[str, Any]) -> str | None:
     """The answer's dimension in words ("a force (kg·m/s²)"); the prompt says as much already."""
     try:
@@ -53,6 +78,8 @@ def preview(answer: dict[str, Any], text: str) -> dict[str, Any]:
         result["error"] = {"message": f"The answer is {len(text)} characters long; the limit is "
                                       f"{MAX_PREVIEW_CHARS}.", "position": None, "code": "too_long", "hint": None}
         return result
+    if answer.get("kind") == "numeric":
+        return _numeric_preview(answer, text, result)
     try:
         namespace = _namespace(answer)
         if answer.get("kind") == "equation":

@@ -45,7 +45,9 @@ def _answers(version: ProblemVersion, texts: dict[str, str], previews: dict[str,
         last = latest.get(name)
         answers.append({
             "name": name, "prompt": reference.get("prompt") or name, "kind": reference.get("kind", "expression"),
-            "dimension": expected_dimension(reference), "names": allowed_names(reference),
+            "dimension": expected_dimension(reference), "unit": reference.get("unit", ""),
+            # A numeric answer is a number with its unit: no names to use.
+            "names": allowed_names(reference) if reference.get("kind") != "numeric" else [],
             "text": texts.get(name, last.text if last is not None else ""),
             "preview": previews.get(name), "latest": verdict_view(last) if last is not None else None,
         })
