@@ -84,3 +84,22 @@ def test_an_instructor_may_link_only_problems_they_manage(tool, lms):
     assert 'value="yoyo"' not in page
     answer = client.post("/lti/deep-link", data={"problem": "yoyo", "csrf_token": form_token(page)})
     assert answer.status_code == 404
+
+
+def test_the_tool_makes_its_key_on_first_use_when_answering(tool, lms):
+    import requests
+    from sqlalchemy import delete
+
+    from grader.store.lti_models import LtiToolKey
+
+    with tool.extensions["lagrade.db"].write() as session:
+        session.execute(delete(LtiToolKey))
+    client = tool.test_client()
+    launch(client, lms, _deep_linking(lms))
+    page = client.get("/lti/deep-link").get_data(as_text=True)
+    answer = client.post("/lti/deep-link", data={"problem": "yoyo", "csrf_token": form_token(page)})
+    assert answer.status_code == 200
+    lms.tool_jwks = client.get("/lti/jwks").get_json()  # the LMS reads the new key from the tool's JWKS
+    token = re.search(r'name="JWT" value="([^"]+)"', answer.get_data(as_text=True)).group(1)
+    requests.post(lms.url("/deep_link_return"), data={"JWT": token}, timeout=10)
+    assert len(lms.deep_link_answers) == 1

@@ -34,6 +34,7 @@ from sqlalchemy import delete, select
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
+from grader.store.db import Database
 from grader.store.lti_models import LtiContext, LtiLaunch, LtiNonce, LtiPlatform, LtiResourceLink
 from grader.store.models import Course, Problem, utcnow
 from grader.store.problems import problem_by_slug
@@ -147,11 +148,13 @@ def _unverified(token: str) -> tuple[dict[str, Any], dict[str, Any]]:
     return header_json, claims
 
 
-def validate(session: Session, form: dict[str, str], cookies: dict[str, str], *, secret_key: str,
-             now: float | None = None) -> Launch:
+def validate(database: Database, session: Session, form: dict[str, str], cookies: dict[str, str], *,
+             secret_key: str, now: float | None = None) -> Launch:
     """Check a launch (``form``: the posted fields; ``cookies``: the request's) and use up its nonce.
 
-    Runs in the request's write session; the nonce row is flushed, committed with the rest.
+    The platform is read in a short session of ``database`` and its keys fetched before ``session``
+    (the request's writer) is touched: no write transaction waits on the LMS. The nonce row is
+    flushed in ``session`` and committed with the rest of the launch.
     """
     if form.get("error"):
         description = str(form.get("error_description") or form["error"])[:300]
@@ -170,7 +173,9 @@ def validate(session: Session, form: dict[str, str], cookies: dict[str, str], *,
     if not isinstance(bound, dict) or bound.get("state") != state:
         raise LaunchRefused(400, "The launch's state does not match this browser's.")
     header, unverified = _unverified(token)
-    platform = session.get(LtiPlatform, bound.get("platform"))
+    with database.read() as reading:
+        platform = reading.get(LtiPlatform, bound.get("platform"))
+        deployments = {d.deployment_id for d in platform.deployments} if platform is not None else set()
     if platform is None or unverified.get("iss") != platform.issuer:
         raise LaunchRefused(403, "The launch's issuer is not the LMS that started the login; it is refused.")
     key_set = platform_keys(platform.jwks_url, header.get("kid") if isinstance(header.get("kid"), str) else None)
@@ -179,12 +184,14 @@ def validate(session: Session, form: dict[str, str], cookies: dict[str, str], *,
     except (keys.JoseError, ValueError, TypeError):
         raise LaunchRefused(403, "The launch's signature does not verify with the LMS's published keys: it may be "
                                  "forged. It is refused.") from None
-    _check_claims(platform, claims, expected_nonce=bound.get("nonce"), now=time.time() if now is None else now)
+    _check_claims(platform, deployments, claims, expected_nonce=bound.get("nonce"),
+                  now=time.time() if now is None else now)
     _use_nonce(session, platform, claims)
     return Launch(platform.id, claims)
 
 
-def _check_claims(platform: LtiPlatform, claims: dict[str, Any], *, expected_nonce: str | None, now: float) -> None:
+def _check_claims(platform: LtiPlatform, deployments: set[str], claims: dict[str, Any], *,
+                  expected_nonce: str | None, now: float) -> None:
     if claims.get("iss") != platform.issuer:
         raise LaunchRefused(403, "The launch's issuer is not the LMS that started the login; it is refused.")
     audience = claims.get("aud")
@@ -207,7 +214,7 @@ def _check_claims(platform: LtiPlatform, claims: dict[str, Any], *, expected_non
     if claims.get(CLAIM + "message_type") not in MESSAGE_TYPES:
         raise LaunchRefused(400, f"This tool serves resource links and deep linking, not "
                                  f"{str(claims.get(CLAIM + 'message_type'))[:60]!r}.")
-    if claims.get(CLAIM + "deployment_id") not in {d.deployment_id for d in platform.deployments}:
+    if claims.get(CLAIM + "deployment_id") not in deployments:
         raise LaunchRefused(403, "This deployment of the tool in the LMS is not registered with lagrade. An administrator "
                                  "adds it with `grader lti add-platform --deployment ...`.")
     if not isinstance(claims.get("sub"), str) or not claims["sub"] or len(claims["sub"]) > 255:

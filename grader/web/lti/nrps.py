@@ -1,7 +1,7 @@
 """Names and Role Provisioning: fill a course's roster from its LMS course's members.
 
-:func:`sync_roster` reads every page of the context's membership container (following ``Link:
-rel="next"``) and gives each active member an account (the same one their launch would give) and an
+:func:`fetch_roster` reads every page of the context's membership container (following ``Link:
+rel="next"``) and :func:`apply_roster` gives each active member an account (the same one their launch would give) and an
 enrolment in the mapped course in their LMS role. Members no longer active are left as they are: a
 student's work is never removed by a roster sync.
 """
@@ -19,7 +19,7 @@ from grader.web.lti.accounts import course_role, enrol, lti_user
 from grader.web.lti.http import PlatformUnreachable, get_page
 from grader.web.lti.tokens import PlatformAccess, access_token
 
-__all__ = ["MEMBERSHIP_SCOPE", "RosterResult", "fetch_members", "sync_roster"]
+__all__ = ["MEMBERSHIP_SCOPE", "RosterResult", "apply_roster", "fetch_members", "fetch_roster"]
 
 MEMBERSHIP_SCOPE = "https://purl.imsglobal.org/spec/lti-nrps/scope/contextmembership.readonly"
 MEMBERSHIP_TYPE = "application/vnd.ims.lti-nrps.v2.membershipcontainer+json"
@@ -48,15 +48,27 @@ def fetch_members(url: str, token: str) -> list[dict]:
     raise PlatformUnreachable(f"the roster has more than {MAX_PAGES} pages")
 
 
-def sync_roster(database: Database, session: Session, context: LtiContext) -> RosterResult:
-    """Enrol every active member of ``context``'s LMS course in its lagrade course (in ``session``)."""
-    if not context.memberships_url:
+def fetch_roster(database: Database, context_id: int) -> list[dict]:
+    """The members of LMS course ``context_id`` (our row id), from its roster service.
+
+    Reads what it needs in a short session and calls the LMS with no transaction open.
+    """
+    with database.read() as session:
+        context = session.get(LtiContext, context_id)
+        platform = session.get(LtiPlatform, context.platform_id)
+        url = context.memberships_url
+        access = PlatformAccess(platform.id, platform.issuer, platform.client_id, platform.token_url)
+    if not url:
         raise PlatformUnreachable("this LMS course offered no roster service at its launches")
+    return fetch_members(url, access_token(database, access, {MEMBERSHIP_SCOPE}))
+
+
+def apply_roster(session: Session, context_id: int, members: list[dict]) -> RosterResult:
+    """Give every active member an account and an enrolment in the course in their LMS role (in ``session``)."""
+    context = session.get(LtiContext, context_id)
     platform = session.get(LtiPlatform, context.platform_id)
-    token = access_token(database, PlatformAccess(platform.id, platform.issuer, platform.client_id,
-                                                  platform.token_url), {MEMBERSHIP_SCOPE})
     result = RosterResult()
-    for member in fetch_members(context.memberships_url, token):
+    for member in members:
         sub, roles = member.get("user_id"), member.get("roles")
         if not isinstance(sub, str) or not sub or len(sub) > 255 or member.get("status", "Active") != "Active":
             result.skipped += 1

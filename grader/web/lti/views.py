@@ -24,7 +24,7 @@ from grader.web.lti.deep_linking import DeepLinkRequest, content_item, pending_r
 from grader.web.lti.http import PlatformUnreachable
 from grader.web.lti.launch import (DEEP_LINKING_REQUEST, STATE_COOKIE, LaunchRefused, login_redirect, open_context,
                                    open_resource_link, validate)
-from grader.web.lti.nrps import sync_roster
+from grader.web.lti.nrps import apply_roster, fetch_roster
 from grader.web.policy import (INSTRUCTOR_ROLES, Action, Principal, current_principal, find_problem, find_version,
                                managed_problems)
 from grader.web.security import csrf_exempt
@@ -103,7 +103,7 @@ def launch():
     form = {k: v for k, v in request.form.items()}
     writing = db.session
     try:
-        result = validate(writing, form, request.cookies, secret_key=current_app.secret_key)
+        result = validate(db, writing, form, request.cookies, secret_key=current_app.secret_key)
         platform = writing.get(LtiPlatform, result.platform_id)
         frame = _frame_for(platform)
         user, context = open_context(writing, result)
@@ -156,6 +156,7 @@ def deep_link():
 def deep_link_choose():
     """Send the chosen problem back to the LMS: a signed deep-linking response, posted by the browser."""
     pending = _pending()
+    key = keys.active_key(db)  # first: it may write (a first key) in a transaction of its own
     slug = request.form.get("problem", "")[:100]
     if not slug:
         abort(400, "Choose a problem first.")
@@ -166,8 +167,7 @@ def deep_link_choose():
     return_origin = _origin(pending.return_url)
     if return_origin is None:
         abort(400, "The LMS's return address cannot be used.")
-    token = response_token(pending, [content_item(version, url_for("lti.launch", _external=True))],
-                           keys.active_key(db))
+    token = response_token(pending, [content_item(version, url_for("lti.launch", _external=True))], key)
     session.pop(DEEP_LINK, None)
     response = current_app.make_response(render_template(
         "lti/deep_link_return.html", return_url=pending.return_url, jwt=token, title=version.title))
@@ -202,17 +202,19 @@ def config():
 @login_required(INSTRUCTOR_ROLES)
 def roster(context_id: int):
     """Fill the course's roster from the LMS (Names and Role Provisioning)."""
-    context = db.session.get(LtiContext, context_id)
+    with db.read() as reading:  # a short read: the LMS is called with no transaction open
+        context = reading.get(LtiContext, context_id)
     if context is None or not current_principal().manages_course(context.course_id):
         abort(404, f"There is no LMS course {context_id}.")
     if not context.memberships_url:
         abort(409, "This LMS course offered no roster service at its launches; launch the tool from it once, "
                    "with Names and Role Provisioning enabled for the tool.")
     try:
-        result = sync_roster(db, db.session, context)
-        db.session.commit()
+        members = fetch_roster(db, context.id)
     except PlatformUnreachable as error:
         _refuse(error)
+    result = apply_roster(db.session, context.id, members)
+    db.session.commit()
     flash(f"Roster of {context.title}: {result.members} members ({result.students} students, "
           f"{result.instructors} instructors), {result.skipped} skipped.", "success")
     return redirect(url_for("lti.config"))
