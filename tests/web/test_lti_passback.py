@@ -12,7 +12,7 @@ from grader.jobs import lti_passback, queue
 from grader.store.lti_models import LtiAccount, LtiResourceLink, LtiScorePassback
 from grader.store.models import ProblemVersion, User, utcnow
 from grader.web.lti.ags import deliverer
-from tests.web.lti_platform import CLAIM, LINEITEM_SCOPE, SCORE_SCOPE, launch, lms, tool  # noqa: F401
+from tests.web.lti_platform import LINEITEM_SCOPE, SCORE_SCOPE, launch, lms, tool  # noqa: F401
 
 
 # The outbox's uniqueness and savepoints on the two databases the service supports.
