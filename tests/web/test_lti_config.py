@@ -66,3 +66,24 @@ def test_after_a_launch_the_lms_and_only_it_may_frame_the_pages(tool, lms):
     other = tool.test_client().get("/login")
     assert "frame-ancestors 'none'" in other.headers["Content-Security-Policy"]
     assert other.headers["X-Frame-Options"] == "DENY"
+
+
+def test_an_lms_course_mapped_to_a_course_opens_that_courses_problems(tool, lms, monkeypatch):
+    from grader.cli.lti import lti
+    from grader.store.models import Course, Enrolment, Problem
+    from tests.web.lti_platform import launch
+
+    with tool.extensions["lagrade.db"].write() as session:
+        course = Course(code="MECH", title="Mechanics")
+        session.add(course)
+        session.flush()
+        session.query(Problem).filter_by(slug="yoyo").update({"course_id": course.id})  # only MECH sees it
+        course_id = course.id
+    monkeypatch.setenv("DATABASE_URL", tool.config["DATABASE_URL"])
+    mapped = CliRunner().invoke(lti, ["map-context", "--platform", "1", "--context", "course-7", "--course", "MECH"])
+    assert mapped.exit_code == 0, mapped.output
+    client = tool.test_client()
+    response, _ = launch(client, lms)
+    assert response.status_code == 302 and client.get("/problems/yoyo").status_code == 200
+    with tool.extensions["lagrade.db"].read() as session:
+        assert session.scalar(select(Enrolment.course_id)) == course_id
