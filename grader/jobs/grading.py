@@ -57,7 +57,7 @@ def check_task(checker: Checker, task: Task, *, budget_s: float = CHECK_BUDGET_S
     the worker gives the task back to the queue rather than recording it.
     """
     try:
-        request = check_request(task.reference, task.text)
+        request = check_request(task.reference, task.text, task.values)
     except ReferenceAnswerError as error:  # a stored reference that breaks the contract: no grade
         raise CheckerFailure(str(error)) from None
     result = checker.run(request, budget_s)

@@ -30,6 +30,7 @@ from sqlalchemy.orm import Session
 from grader.jobs.processes import holder_is_dead
 from grader.jobs import lti_passback
 from grader.store.db import Database
+from grader.store.draws import submission_values
 from grader.store.models import ProblemVersion, Submission, User, Verdict, utcnow
 
 log = logging.getLogger(__name__)
@@ -199,6 +200,9 @@ class Task:
     text: str
     reference: dict[str, Any] | None
     received_at: datetime
+    # The student's parameter values when the submission was handed in for an assignment of a
+    # randomised problem (numeric answers are checked at them); None: the problem's own values.
+    values: dict[str, Any] | None = None
 
 
 def claim(db: Database, worker_id: str, *, lease_s: float = LEASE_S) -> Task | None:
@@ -265,7 +269,7 @@ def _claimed_task(db: Database, submission_id: int, worker_id: str) -> Task | No
         version = submission.grading_version
         task = Task(submission.id, submission.grading_round, version.id, submission.attempts,
                     submission.answer_name, submission.text, version.reference(submission.answer_name),
-                    submission.received_at)
+                    submission.received_at, submission_values(session, submission))
     if task.reference is None:
         _fail(db, task, worker_id, f"version {version.number} has no answer {task.answer!r}")
     elif task.attempts > MAX_ATTEMPTS:
