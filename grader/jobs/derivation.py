@@ -152,6 +152,7 @@ def _derive(source: str, filename: str) -> dict:
     from grader.mechanics.references import parameter_specs
     from grader.mechanics.report import steps_json
     from grader.mechanics.scene import parse_scene
+    from grader.simulate.motion import motion_of
 
     scene = parse_scene(source, source=filename)
     derivation = derive(scene)
@@ -168,6 +169,7 @@ def _derive(source: str, filename: str) -> dict:
         # The stored derivation adds the step-by-step working for the instructor's review page, the
         # question tests' results, and the parameters a student's numbers are drawn from.
         "derivation": {**derivation.to_json(), "steps": steps_json(derivation.steps), "question_tests": tests,
+                       "motion": motion_of(scene),
                        "parameters": parameters, "random_parameters": random_names(parameters)},
         "references": [r.to_json() for r in references],
         "engine_version": f"{grader.__version__}+sympy{sympy.__version__}",

@@ -115,6 +115,11 @@ SCENE_SCHEMA: dict[str, Any] = {
         }),
         # coordinate or velocity name = number or expression in parameters
         "initial": _table(_NUMBER_OR_EXPRESSION),
+        # the motion shown on the problem page (grader/simulate/motion.py)
+        "simulation": {"type": "object", "additionalProperties": False, "properties": {
+            "t_end": {"type": "number", "exclusiveMinimum": 0, "maximum": 600},
+            "show_students": {"type": "boolean"},
+        }},
         # where to draw bodies (pictures only, grader/mechanics/geometry.py): x right, y up
         "geometry": {"type": "object", "additionalProperties": False, "properties": {
             "points": _table({"type": "array", "minItems": 2, "maxItems": 2, "items": _NUMBER_OR_EXPRESSION}),
@@ -137,7 +142,7 @@ SCENE_SCHEMA: dict[str, Any] = {
                 "name": _string(MAX_NAME_CHARS),
                 "prompt": _string(MAX_TEXT_CHARS),
                 "expr": _EXPRESSION,
-                "kind": {"enum": ["expression", "equation", "small_oscillation", "numeric"]},
+                "kind": {"enum": ["expression", "equation", "small_oscillation", "maximum", "minimum", "numeric"]},
                 "in_terms_of": {"type": "array", "maxItems": MAX_ITEMS, "items": _string(MAX_NAME_CHARS)},
                 "dimension": _DIMENSION,
                 "where": _string(MAX_EXPRESSION_CHARS, description='a condition such as "normal_force = 0"'),
