@@ -69,7 +69,11 @@ class AnswerEvaluator:
 
     def evaluate(self, spec: AnswerSpec) -> sympy.Expr:
         key = f"answers ({spec.name})"
-        if spec.where is not None:
+        if spec.kind in ("maximum", "minimum"):
+            from grader.mechanics.extremes import extreme_value
+
+            value = extreme_value(self, spec)
+        elif spec.where is not None:
             from grader.mechanics.special_values import special_value
 
             value = special_value(self, spec)

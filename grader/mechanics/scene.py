@@ -601,9 +601,9 @@ class _SceneReader:
             source_expr = self.string(spec, "expr", key)
             expr = self.expression(f"{key}.expr", source_expr, namespace)
             kind = spec.get("kind", "expression")
-            if kind not in ("expression", "equation", "small_oscillation", "numeric"):
-                raise self.fail(f"{key}.kind", "must be \"expression\", \"equation\", \"small_oscillation\" "
-                                               "or \"numeric\"")
+            if kind not in ("expression", "equation", "small_oscillation", "maximum", "minimum", "numeric"):
+                raise self.fail(f"{key}.kind", "must be \"expression\", \"equation\", \"small_oscillation\", "
+                                               "\"maximum\", \"minimum\" or \"numeric\"")
             if kind == "small_oscillation" and (spec.get("where") is None
                                                 or expr not in {v.symbol for v in self.variables
                                                                 if v.kind == "coordinate"}):

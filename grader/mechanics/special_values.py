@@ -160,9 +160,14 @@ def solve_for(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> 
 
 
 def _solve_factor(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> list[sympy.Expr]:
+    from grader.mechanics.simplification import _pythagorean
+
     S = sympy.Dummy("S")
     for function in _TRIG:
-        substituted = condition.xreplace({function(x): S})
+        # cos²x + sin x is a polynomial in sin x once cos²x = 1 − sin²x.
+        rewritten = condition if function is sympy.tan else sympy.expand(
+            _pythagorean(condition, function))
+        substituted = rewritten.xreplace({function(x): S})
         if substituted != condition and x not in substituted.free_symbols:
             values = _budgeted_solve(substituted, S)
             if values is None:

@@ -131,6 +131,8 @@ def test_textbook_scenes(derived, scene, answer, expected):
         ("cylinder_in_cylinder", "normal_force", "m*g*(7*cos(phi) - 4*cos(phi0))/3"),
         ("cylinder_in_cylinder", "friction_force", "m*g*sin(phi)/3"),
         ("cylinder_in_cylinder", "small_oscillation_frequency", "sqrt(2*g/(3*(R - r)))"),
+        # Largest normal force over the swing: at the bottom, N(0) = m g (7 - 4 cos(phi0))/3.
+        ("cylinder_in_cylinder", "largest_normal_force", "m*g*(7 - 4*cos(phi0))/3"),
     ],
 )
 def test_constraint_chapter_scenes(derived, scene, answer, expected):
@@ -186,3 +188,16 @@ def test_constraint_forces_follow_the_papers_convention(derived):
 )
 def test_answers_are_in_the_form_a_person_writes(derived, scene, answer, written):
     assert sympy.sstr(derived(scene).answers[answer]) == written
+
+
+def test_largest_wall_force_on_the_ladder_is_at_the_stationary_point(derived):
+    """dN/dθ = 0 for N = 3/4 m g cos θ (3 sin θ − 2 sin θ₀) gives 6 sin²θ − 2 sin θ₀ sin θ − 3 = 0,
+    so sin θ* = (sin θ₀ + √(sin²θ₀ + 18))/6 (inside the slide from θ₀ down), and N there."""
+    d = derived("ladder_wall")
+    value = d.answers["largest_wall_force"]
+    m, g, theta0 = (d.scene.namespace.symbol(n) for n in ("m", "g", "theta0"))
+    s0 = sympy.sin(theta0)
+    star = (s0 + sympy.sqrt(s0 ** 2 + 18)) / 6
+    expected = sympy.Rational(3, 4) * m * g * sympy.sqrt(1 - star ** 2) * (3 * star - 2 * s0)
+    for point in ({m: 10, g: 9.81, theta0: 1.2}, {m: 2.5, g: 3.7, theta0: 0.6}):
+        assert abs(float((value - expected).subs(point))) < 1e-12 * float(expected.subs(point))

@@ -58,6 +58,8 @@ CONFIRMED_ELSEWHERE = {
     ("cylinder_in_cylinder", "small_oscillation_frequency"),
     ("loop_inside_track", "top_normal_force"),
     ("loop_inside_track", "least_launch_speed"),
+    ("cylinder_in_cylinder", "largest_normal_force"),
+    ("ladder_wall", "largest_wall_force"),
 }
 
 

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
 from grader.simulate.constrained import Event, multiplier_zero, simulate
 from grader.simulate.lagrangian_numeric import snapshot
@@ -128,3 +128,58 @@ def test_normal_force_at_the_top_for_a_launch_that_gets_there():
     assert top is not None and motion.first("lambda_track = 0") is None
     expected = closed_form(model, answers, "top_normal_force", v0=6.0)
     assert abs(top.multiplier("track") - expected) < 1e-6 * abs(expected)
+
+
+def _largest_multiplier_over_the_swing(model, constraint: str, state_at, low: float, high: float) -> float:
+    """max over u in [low, high] of the numeric λ at the state the motion has there.
+
+    The speed at u comes from the scene's own numeric T and V: T is quadratic in the velocity, so
+    with the direction of motion fixed, u̇² = (E₀ − V(u)) / T(u, u̇ = 1).
+    """
+    numeric = model.numeric
+    q_start, _ = state_at(high, 0.0)
+    energy = float(numeric.potential(q_start, 0.0))
+
+    def multiplier(u: float) -> float:
+        q, _ = state_at(u, 0.0)
+        _, unit = state_at(u, 1.0)
+        kinetic_per_unit = float(numeric.kinetic(q, unit, 0.0))
+        speed = math.sqrt(max(energy - float(numeric.potential(q, 0.0)), 0.0) / kinetic_per_unit)
+        q, qdot = state_at(u, -speed)
+        return snapshot(numeric, 0.0, q, qdot).multiplier(constraint)
+
+    grid = np.linspace(low, high, 401)
+    values = [multiplier(u) for u in grid]
+    i = int(np.argmax(values))
+    bounds = (grid[max(i - 1, 0)], grid[min(i + 1, len(grid) - 1)])
+    if bounds[0] == bounds[1]:
+        return values[i]
+    best = minimize_scalar(lambda u: -multiplier(u), bounds=bounds, method="bounded",
+                           options={"xatol": 1e-10})
+    return max(-best.fun, values[i])
+
+
+def test_largest_normal_force_on_a_cylinder_rolling_inside_a_cylinder():
+    model, answers = engine("cylinder_in_cylinder")
+    R, r, phi0 = model.values["R"], model.values["r"], model.values["phi0"]
+
+    def state_at(phi, phidot):  # in contact and rolling
+        return [R - r, phi, -(R - r) * phi / r], [0.0, phidot, -(R - r) * phidot / r]
+
+    measured = _largest_multiplier_over_the_swing(model, "contact", state_at, -phi0, phi0)
+    expected = closed_form(model, answers, "largest_normal_force")
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_largest_wall_force_on_a_sliding_ladder():
+    """Released at θ₀, the ladder slides down to the floor; the wall force peaks on the way."""
+    model, answers = engine("ladder_wall")
+    l, theta0 = model.values["l"], model.values["theta0"]
+
+    def state_at(theta, thetadot):  # coordinates (theta, xc, yc) on the wall and the floor
+        return ([theta, l / 2 * math.cos(theta), l / 2 * math.sin(theta)],
+                [thetadot, -l / 2 * math.sin(theta) * thetadot, l / 2 * math.cos(theta) * thetadot])
+
+    measured = _largest_multiplier_over_the_swing(model, "wall", state_at, 1e-3, theta0)
+    expected = closed_form(model, answers, "largest_wall_force")
+    assert abs(measured - expected) < 1e-6 * expected

@@ -1,0 +1,129 @@
+"""Extremes over the motion: ``kind = "maximum"`` or ``"minimum"``.
+
+The answer is the largest (smallest) value that ``expr`` takes along the motion from
+``[initial]``. The engine writes ``expr`` in one independent coordinate u (velocities removed with
+the first integrals), finds its stationary points dA/du = 0 and the turning points of the motion
+(u̇² = 0) in closed form (:func:`~grader.mechanics.special_values.solve_for`, under a budget), keeps
+those inside the range the motion covers (followed as for special values: until energy turns it
+back or it leaves the domain, both ways), and takes the candidate with the largest (smallest)
+value at two parameter points, checking that it is the same closed form at both.
+
+Examples
+--------
+>>> from grader.mechanics.lagrange import derive
+>>> from grader.mechanics.scene import load_scene
+>>> derive(load_scene("tests/mechanics/scenes/cylinder_in_cylinder.toml")).answers["largest_normal_force"]
+g*m*(7 - 4*cos(phi0))/3
+"""
+
+from __future__ import annotations
+
+import math
+
+import sympy
+
+from grader.mechanics import budget
+from grader.mechanics.scene import AnswerSpec, SceneError
+from grader.mechanics.simplification import human_form
+from grader.mechanics.special_values import (
+    _direction,
+    _evaluate,
+    _parameter_points,
+    _periodic,
+    _speed_squared,
+    _travel,
+    solve_for,
+)
+
+__all__ = ["extreme_value"]
+
+
+def extreme_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
+    """Closed form of the maximum or minimum of ``spec.expr`` over the motion from [initial]."""
+    scene = evaluator.scene
+    key = f"answers ({spec.name})"
+    with budget.step("writing the quantity in one coordinate", spec.name):
+        allowed = evaluator.parameters | evaluator.state_symbols(velocities=False) | {scene.time}
+        value = evaluator.reduce(spec.expr, allowed, key)
+    coordinates = [u for u in evaluator.reduction.independent.values() if u.symbol in value.free_symbols]
+    if len(coordinates) != 1 or scene.time in value.free_symbols:
+        raise SceneError(scene.source, key,
+                         "an extreme over the motion needs the quantity as a function of one coordinate "
+                         "(after removing velocities with the first integrals)")
+    u = coordinates[0]
+    if u.name not in scene.initial:
+        raise SceneError(scene.source, key, f"an extreme over the motion follows it from [initial]; give {u.name}")
+    with budget.step(f"solving for the stationary and turning points in {u.name}", spec.name):
+        candidates = solve_for(sympy.diff(value, u.symbol), u.symbol, scene.source, key)
+        squared = _turning_condition(evaluator, u, key)
+        if squared is not None:
+            candidates += [r for r in solve_for(squared, u.symbol, scene.source, key) if r not in candidates]
+    periodic = _periodic(value, u.symbol)
+    want_max = spec.kind == "maximum"
+    chosen = None
+    for point in _parameter_points(scene):
+        low, high = _motion_range(evaluator, u, point, key)
+        best = None
+        for index, candidate in enumerate(candidates):
+            position = _evaluate(candidate, point)
+            if position is None or not _inside(position, low, high, periodic):
+                continue
+            amount = _evaluate(value.xreplace({u.symbol: candidate}), point)
+            if amount is None:
+                continue
+            if best is None or (amount > best[0] + 1e-12 * abs(amount) if want_max
+                                else amount < best[0] - 1e-12 * abs(amount)):
+                best = (amount, index)
+        if best is None:
+            raise SceneError(scene.source, key,
+                             f"{spec.expr} has no {spec.kind} on the motion from [initial] (no stationary or "
+                             f"turning point between {u.name} = {low:.6g} and {high:.6g})"
+                             if low is not None and high is not None else
+                             f"{spec.expr} has no {spec.kind} on the motion from [initial]: the motion runs away")
+        if chosen is None:
+            chosen = best[1]
+        elif _evaluate(candidates[chosen], point) is None or abs(
+                _evaluate(value.xreplace({u.symbol: candidates[chosen]}), point) - best[0]) > 1e-9 * max(1, abs(best[0])):
+            raise SceneError(scene.source, key, f"where the {spec.kind} lies depends on the parameter values")
+    result = human_form(value.xreplace({u.symbol: candidates[chosen]}))
+    leftover = result.free_symbols - evaluator.target(spec, default_state=False)
+    if leftover:
+        raise SceneError(scene.source, key, f"the {spec.kind} still depends on {', '.join(sorted(map(str, leftover)))}")
+    return result
+
+
+def _turning_condition(evaluator, u, key: str) -> sympy.Expr | None:
+    """u̇² = 0 as a condition in u, when energy gives u̇²."""
+    reduction = evaluator.reduction
+    h = reduction.jacobi_integral()
+    if h is None or reduction.initial_value(h) is None:
+        return None
+    try:
+        squared = evaluator.velocity_squared(u, key, evaluator.momentum_substitution(set(), key))
+    except SceneError:
+        return None
+    return sympy.numer(sympy.together(squared))
+
+
+def _motion_range(evaluator, u, point: dict, key: str) -> tuple[float | None, float | None]:
+    u0 = _evaluate(evaluator.scene.initial[u.name], point)
+    direction = _direction(evaluator, u, point)
+    speed2 = _speed_squared(evaluator, u, point, key)
+    end, why = _travel(u, u0, direction, speed2)
+    other = u0
+    if why == "turns back" or why == "leaves the domain":
+        back, _ = _travel(u, end, -direction, speed2, skip=True) if why == "turns back" else (None, "")
+        other = back if back is not None else (u0 if why == "leaves the domain" else None)
+    ends = [e for e in (end, other) if e is not None]
+    if len(ends) < 2:
+        return (min(u0, end), max(u0, end)) if end is not None else (None, None)
+    return min(ends), max(ends)
+
+
+def _inside(x: float, low: float | None, high: float | None, periodic: bool) -> bool:
+    if low is None or high is None:
+        return False
+    if periodic and high - low >= 2 * math.pi:
+        return True
+    images = [x + 2 * math.pi * k for k in range(-3, 4)] if periodic else [x]
+    return any(low - 1e-9 <= y <= high + 1e-9 for y in images)
