@@ -13,6 +13,8 @@ from typing import Any
 from flask import current_app
 from sqlalchemy.orm import Session
 
+from grader.answers.numeric import reference_value
+from grader.answers.reference import ReferenceAnswer
 from grader.store.assignments import deadline_state, late_days, late_factor, local_time, solutions_open
 from grader.store.db import Database
 from grader.store.draws import parameters_for
@@ -90,9 +92,11 @@ def assignment_view(session: Session, assignment: Assignment, now: datetime, *, 
                                                  current_app.config["SECRET_KEY"])
             entry["score"] = score.score if score is not None else 0.0
         if solutions:
+            drawn = entry.get("parameters") or None
             entry["solution"] = {"steps": version.derivation.get("steps") or [],
                                  "answers": [{"name": r["name"], "prompt": r.get("prompt"), "latex": r.get("latex"),
-                                              "reference": r.get("reference")} for r in version.references]}
+                                              "reference": r.get("reference"), "value": _value_at(r, drawn)}
+                                             for r in version.references]}
         problems.append(entry)
     view: dict[str, Any] = {
         "id": assignment.slug, "title": assignment.title, "course": assignment.course.code,
@@ -108,6 +112,19 @@ def assignment_view(session: Session, assignment: Assignment, now: datetime, *, 
     if row is not None:
         view["score"] = row.total
     return view
+
+
+def _value_at(reference: dict[str, Any], drawn: dict[str, Any] | None) -> str | None:
+    """A numeric answer's value at the student's numbers (their draw, else the problem's own), as
+    the solution states it: "0.981 N". None for symbolic answers."""
+    if reference.get("kind") != "numeric":
+        return None
+    try:
+        answer = ReferenceAnswer.from_json(reference)
+        value = reference_value(answer.reference, answer.variables, answer.values(drawn))
+    except (ValueError, ArithmeticError):  # a reference that has no number here: say nothing
+        return None
+    return f"{value:.4g} {answer.unit or ''}".strip()
 
 
 GRADEBOOK_COLUMNS = ["course", "assignment", "user_id", "external_id", "email", "name", "problem", "score",

@@ -161,6 +161,8 @@ def test_a_course_from_roster_to_gradebook(sync_playwright, course_server, tmp_p
             ada.goto(f"{base}/courses/PHYS/assignments/hw1")
             assert "This assignment is closed." in ada.inner_text("#rules")
             assert ada.query_selector("details.solution math") is not None  # the worked solution, as MathML
+            mine = dict(re.findall(r"(\w+) = ([0-9.]+)", ada_numbers))  # with her own numbers: T = m g / 3
+            assert f"{float(mine['m']) * float(mine['g']) / 3:.4g} N" in ada.inner_text("details.solution")
             assert ada.query_selector("#input-yoyo-randomised-acceleration") is None
 
             html = _graded_gradebook(prof, base)
