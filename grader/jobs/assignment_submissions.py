@@ -11,7 +11,7 @@ from datetime import datetime
 
 from sqlalchemy import select
 
-from grader.jobs.queue import MAX_ANSWER_CHARS, SubmissionRejected, wake_workers
+from grader.jobs.queue import MAX_ANSWER_CHARS, SubmissionRejected, _by_key, _fingerprint, _replay, wake_workers
 from grader.store.assignments import attempts_used, deadline_state, late_days, to_utc
 from grader.store.db import Database
 from grader.store.draws import draw_in
@@ -30,9 +30,13 @@ class HandInRefused(ValueError):
 
 
 def hand_in(database: Database, *, user: User, assignment_id: int, problem_id: int, answer: str, text: str,
-            now: datetime, requester: User | None = None, secret: str = "") -> tuple[int, int]:
+            now: datetime, requester: User | None = None, secret: str = "",
+            idempotency_key: str | None = None) -> tuple[int, int, bool]:
     """Store ``text`` as ``user``'s answer ``answer`` to problem ``problem_id`` of the assignment,
-    received at ``now`` (the server's clock), queued for grading; returns (submission id, late days).
+    received at ``now`` (the server's clock), queued for grading; returns (submission id, late days,
+    created). With an ``idempotency_key`` (scoped to the requester), a retry of the same request returns
+    the stored submission (``created`` False), even after the close; another request with the same key
+    raises :class:`~grader.jobs.queue.IdempotencyConflict`.
     A randomised problem's parameter values for the student are drawn (from ``secret`` and the ids)
     if they were not yet, so the worker grades with the numbers the student was shown.
 
@@ -51,6 +55,11 @@ def hand_in(database: Database, *, user: User, assignment_id: int, problem_id: i
         if assignment is None or item is None:
             raise SubmissionRejected("this problem is not part of this assignment")
         version = item.problem_version
+        if idempotency_key is not None:
+            existing = _by_key(session, (requester or user).id, idempotency_key)
+            if existing is not None:
+                replayed = _replay(existing, _fingerprint(version, user.id, answer, text))
+                return replayed, late_days(assignment, existing.received_at), False
         if version.reference(answer) is None:
             names = ", ".join(r["name"] for r in version.references)
             raise SubmissionRejected(f"this problem has no answer {answer!r}; its answers: {names}")
@@ -66,9 +75,11 @@ def hand_in(database: Database, *, user: User, assignment_id: int, problem_id: i
         draw_in(session, assignment_id, user.id, item, secret)
         submission = Submission(user_id=user.id, requester_id=(requester or user).id, problem_version_id=version.id,
                                 grading_version_id=version.id, answer_name=answer, text=text, status="queued",
-                                received_at=received, assignment_id=assignment_id)
+                                received_at=received, assignment_id=assignment_id,
+                                idempotency_key=idempotency_key,
+                                request_sha256=_fingerprint(version, user.id, answer, text))
         session.add(submission)
         session.flush()
         submission_id, late = submission.id, late_days(assignment, received)
     wake_workers()
-    return submission_id, late
+    return submission_id, late, True

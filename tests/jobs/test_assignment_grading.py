@@ -73,7 +73,7 @@ def test_each_students_number_is_checked_at_their_own_values(database, setting):
     sent = {}
     for student, other in ((ada, bob), (bob, ada)):
         for whose in (student, other):
-            submission_id, _ = hand_in(database, user=student, assignment_id=ids["assignment"],
+            submission_id, _, _ = hand_in(database, user=student, assignment_id=ids["assignment"],
                                        problem_id=ids["problem"], answer="tension_value",
                                        text=f"{tensions[whose.id][1]:.6g} N", now=NOW, secret="s")
             sent[submission_id] = (student.id, whose.id)

@@ -150,6 +150,6 @@ def test_a_late_hand_in_is_stamped_with_the_servers_time(database, course, stude
     assignment_id = _make(database, course)
     with database.read() as session:
         problem_id = session.get(Assignment, assignment_id).problems[0].problem_id
-    _, late = hand_in(database, user=student, assignment_id=assignment_id, problem_id=problem_id, answer="tension",
+    _, late, _ = hand_in(database, user=student, assignment_id=assignment_id, problem_id=problem_id, answer="tension",
                       text="m*g/3", now=DUE + SECOND)
     assert late == 1

@@ -211,3 +211,16 @@ def test_the_gradebook_json_csv_and_the_students_view_agree(client, clock, cours
         assert view["problems"][0]["score"] == view["score"] == scores[who][0]
         own = client.get("/api/v1/courses/MECH/gradebook", headers=headers).get_json()["rows"]
         assert [r["external_id"] for r in own] == [who]
+
+
+def test_a_retry_with_the_same_idempotency_key_uses_no_attempt_even_after_the_close(client, clock, student):
+    ada = student("s-ada")
+    keyed = {**ada, "Idempotency-Key": "hw1-tension-1"}
+    first = _hand_in(client, keyed)
+    assert first.status_code == 202
+    clock.now = CLOSES + SECOND  # the answer to the first request was lost; the retry comes late
+    again = _hand_in(client, keyed)
+    assert again.status_code in (200, 202) and again.get_json()["id"] == first.get_json()["id"]
+    assert _hand_in(client, keyed, text="m*g").status_code == 422  # the same key for another answer
+    view = client.get("/api/v1/courses/MECH/assignments/hw1", headers=ada).get_json()
+    assert {a["name"]: a["attempts_used"] for a in view["problems"][0]["answers"]}["tension"] == 1

@@ -16,7 +16,7 @@ from flask import current_app, g, request, url_for
 from sqlalchemy.exc import IntegrityError
 
 from grader.jobs.assignment_submissions import HandInRefused, hand_in
-from grader.jobs.queue import MAX_ANSWER_CHARS, SubmissionRejected
+from grader.jobs.queue import MAX_ANSWER_CHARS, IdempotencyConflict, SubmissionRejected
 from grader.store.assignments import MAX_PROBLEMS, AssignmentError, create_assignment
 from grader.store.courses import CourseError, Member, add_member, create_course, parse_roster, roster
 from grader.store.db import db
@@ -24,7 +24,7 @@ from grader.store.models import (ENROLMENT_ROLES, SCORE_POLICIES, Assignment, Co
 from grader.web import clock
 from grader.web.api import spec
 from grader.web.api.schemas import NAME_PATTERN
-from grader.web.api.submissions import SUBMISSION, submission_json
+from grader.web.api.submissions import _LOCATION, MAX_KEY_CHARS, SUBMISSION, submission_json
 from grader.web.coursework import GRADEBOOK_COLUMNS, assignment_view, gradebook_rows, stamp
 from grader.web.csv_export import csv_response
 from grader.web.errors import ApiProblem
@@ -276,9 +276,15 @@ def release_solutions(code: str, assignment: str):
 @spec.route("/courses/<code>/assignments/<assignment>/submissions", "POST", roles=API_ROLES,
             errors=(400, 404, 409, 413, 415, 422, 429), rate_limit="submit",
             request={"application/json": spec.schema("HandInRequest", HAND_IN_REQUEST)},
+            parameters=[{"name": "Idempotency-Key", "in": "header", "required": False, "schema": {
+                "type": "string", "minLength": 1, "maxLength": MAX_KEY_CHARS},
+                "description": "Makes retries safe: the same key and body return the same submission (even "
+                               "after the close, and without using an attempt); another body is refused (422)."}],
             responses={202: ("Accepted: stored and queued for grading; poll the Location.",
+                             {"application/json": SUBMISSION}),
+                       200: ("A retry of a request already handed in: the stored submission.",
                              {"application/json": SUBMISSION})},
-            headers={202: {"Location": {"schema": {"type": "string"}, "description": "Where to poll it."}}})
+            headers={202: _LOCATION, 200: _LOCATION})
 def hand_in_route(code: str, assignment: str):
     """Hand in an answer for an assignment (its students).
 
@@ -298,17 +304,22 @@ def hand_in_route(code: str, assignment: str):
     if principal.role == "lms" or allowed(principal, Action.GRADE_COURSE, found):
         raise ApiProblem(403, "Only the course's students hand in answers for its assignments.", kind="forbidden")
     try:
-        submission_id, late = hand_in(db, user=g.api_user, assignment_id=assignment_id, problem_id=problem_id,
-                                      answer=body["answer"], text=body["text"], now=clock.now(),
-                                      secret=current_app.config["SECRET_KEY"])
+        submission_id, late, created = hand_in(
+            db, user=g.api_user, assignment_id=assignment_id, problem_id=problem_id, answer=body["answer"],
+            text=body["text"], now=clock.now(), secret=current_app.config["SECRET_KEY"],
+            idempotency_key=request.headers.get("Idempotency-Key"))
     except HandInRefused as refused:
         raise ApiProblem(_REFUSED[refused.reason], str(refused), kind=refused.reason.replace("_", "-")) from None
     except SubmissionRejected as error:
         raise ApiProblem(422, str(error), kind="invalid-submission") from None
+    except IdempotencyConflict as error:
+        raise ApiProblem(422, str(error), kind="idempotency-key-reused") from None
     with db.read() as session:
         submission = submission_json(session.get(Submission, submission_id))
     submission.update(assignment=assignment, late_days=late)
-    return submission, 202, {"Location": url_for("api.get_submission", submission_id=submission_id)}
+    pending = submission["status"] in ("queued", "running")
+    return submission, (202 if created or pending else 200), {
+        "Location": url_for("api.get_submission", submission_id=submission_id)}
 
 
 @spec.route("/courses/<code>/gradebook", "GET", roles=API_ROLES, errors=(404,),

@@ -68,7 +68,7 @@ def hand_in_page(code: str, assignment: str):
     for name, text in texts.items():
         try:
             limiter.hit("submit", g.user.id)
-            _, late = hand_in(Database.current(), user=g.user, assignment_id=assignment_id, problem_id=problem_id,
+            _, late, _ = hand_in(Database.current(), user=g.user, assignment_id=assignment_id, problem_id=problem_id,
                               answer=name, text=text, now=clock.now(), secret=current_app.config["SECRET_KEY"])
             sent += 1
         except (HandInRefused, SubmissionRejected, ApiProblem) as error:
