@@ -145,7 +145,7 @@ def url_for_op(op, draw) -> str:
 
 def documented(op) -> dict[str, dict | None]:
     """Status -> the documented content of the response (None: no content documented)."""
-    document = op.to_openapi(tuple(sorted(set(((401, 403) if op.roles is not None else ()) + op.errors + (500,)))))
+    document = op.to_openapi(op.documented_errors())
     out = {}
     for status, response in document["responses"].items():
         out[int(status)] = response.get("content") if "$ref" not in response else {
@@ -183,9 +183,12 @@ def test_any_request_to_any_operation_gets_a_documented_json_answer(fuzz_app, da
         if data.draw(st.booleans(), label="idempotency key"):
             headers["Idempotency-Key"] = data.draw(header_text, label="key")
         url = url_for_op(op, data.draw)
+        query = data.draw(st.dictionaries(st.sampled_from([p["name"] for p in op.parameters if p["in"] == "query"]
+                                                          + ["x", "format", "version"]), header_text, max_size=2),
+                          label="query")
 
         started = time.monotonic()
-        response = client.open(url, method=op.method, data=body, headers=headers)
+        response = client.open(url, method=op.method, data=body, headers=headers, query_string=query)
         elapsed = time.monotonic() - started
         event(f"{op.view.__name__} -> {response.status_code}")
 

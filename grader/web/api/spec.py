@@ -48,6 +48,22 @@ class Operation:
     rate_limit: str | None = None  # the limiter's action charged for each call
     cost: Callable[[Any], float] | None = None  # tokens a valid body costs (default 1)
 
+    def documented_errors(self) -> tuple[int, ...]:
+        """The problem statuses this operation may answer: its own, and those of the registry's
+        checks before the view (token, path, parameters, body, rate limit) and 500."""
+        errors = set(self.errors) | {500}
+        if self.roles is not None:
+            errors |= {401, 403}
+        if _CONVERTER.search(self.rule):
+            errors.add(404)
+        if any(p["in"] == "header" or p.get("schema", {}).get("type") == "string" for p in self.parameters):
+            errors.add(422)
+        if self.request and "application/json" in self.request:
+            errors |= {400, 413, 415, 422}
+        if self.rate_limit is not None:
+            errors.add(429)
+        return tuple(sorted(errors))
+
     @property
     def path(self) -> str:
         return _CONVERTER.sub(r"{\2}", self.rule)
@@ -166,8 +182,7 @@ class ApiSpec:
     def openapi(self, server_url: str) -> dict[str, Any]:
         paths: dict[str, dict] = {}
         for op in self.operations:
-            errors = ((401, 403) if op.roles is not None else ()) + op.errors + (500,)
-            paths.setdefault(op.path, {})[op.method.lower()] = op.to_openapi(tuple(sorted(set(errors))))
+            paths.setdefault(op.path, {})[op.method.lower()] = op.to_openapi(op.documented_errors())
         problem_content = {"application/problem+json": {"schema": _PROBLEM}}
         return {
             "openapi": "3.0.3",
