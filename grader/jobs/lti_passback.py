@@ -29,14 +29,15 @@ from dataclasses import dataclass
 from datetime import datetime, timedelta
 from typing import Callable
 
-from sqlalchemy import func, select, update
+from sqlalchemy import select, update
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
 from grader.store.db import Database
 from grader.store.lti_models import LtiAccount, LtiContext, LtiLaunch, LtiPlatform, LtiResourceLink, LtiScorePassback
-from grader.store.models import Problem, ProblemVersion, Submission, Verdict, utcnow
+from grader.store.models import Problem, Submission, utcnow
 from grader.store.problems import latest_version
+from grader.store.scores import practice_score
 
 __all__ = ["BACKOFF_MAX_S", "BACKOFF_S", "DeliveryReport", "PassbackSender", "ScoreToSend", "backoff_s",
            "deliver_due", "enqueue_for_verdict", "problem_score"]
@@ -54,21 +55,12 @@ def backoff_s(attempts: int) -> float:
 
 
 def problem_score(session: Session, user_id: int, problem_id: int) -> tuple[float, float]:
-    """(score given, maximum) of ``user_id`` on a problem: for each answer of its newest published
-    version, the best score of the verdicts in effect of their submissions to that answer (0 when
-    none); the maximum is the number of answers (each verdict scores 0 to 1)."""
+    """(score given, maximum) of ``user_id`` on a problem, out of 1: the one score rule of
+    :mod:`grader.store.scores` (best attempt per answer, weighted) against the newest published version."""
     version = latest_version(session, session.get(Problem, problem_id), published_only=True)
     if version is None:
-        return 0.0, 0.0
-    names = [r["name"] for r in version.references]
-    best = dict(session.execute(
-        select(Submission.answer_name, func.max(Verdict.score))
-        .join(Verdict, (Verdict.submission_id == Submission.id) & (Verdict.grading_round == Submission.grading_round))
-        .join(ProblemVersion, Submission.problem_version_id == ProblemVersion.id)
-        .where(Submission.user_id == user_id, ProblemVersion.problem_id == problem_id,
-               Submission.answer_name.in_(names))
-        .group_by(Submission.answer_name)).all())
-    return float(sum(best.get(name) or 0.0 for name in names)), float(len(names))
+        return 0.0, 1.0
+    return practice_score(session, user_id, version).score, 1.0
 
 
 def enqueue_for_verdict(session: Session, submission_id: int) -> int:

@@ -42,7 +42,7 @@ def test_an_instructor_picks_a_problem_and_the_lms_receives_a_signed_link(tool, 
     assert claims[CLAIM + "message_type"] == "LtiDeepLinkingResponse"
     assert claims["https://purl.imsglobal.org/spec/lti-dl/claim/data"] == "opaque-42"
     [item] = claims[CONTENT_ITEMS]
-    assert (item["type"], item["custom"], item["lineItem"]["scoreMaximum"]) == ("ltiResourceLink", {"problem": "yoyo"}, 2)
+    assert (item["type"], item["custom"], item["lineItem"]["scoreMaximum"]) == ("ltiResourceLink", {"problem": "yoyo"}, 1)
     assert item["url"] == "http://localhost/lti/launch?problem=yoyo"
     assert client.get("/lti/deep-link").status_code == 400  # the selection was used up
 

@@ -62,7 +62,7 @@ def test_a_verdict_sends_the_problem_score_to_the_lms_exactly_once(tool, lms, la
     assert _send(tool).sent == 0  # nothing is sent twice
     assert lms.score_urls == ["/lineitems/1/scores"]
     [score] = lms.scores
-    assert (score["userId"], score["scoreGiven"], score["scoreMaximum"]) == ("student-1", 1.0, 2.0)
+    assert (score["userId"], score["scoreGiven"], score["scoreMaximum"]) == ("student-1", 0.5, 1.0)  # 1 of 2 answers
     assert (score["activityProgress"], score["gradingProgress"]) == ("Completed", "FullyGraded")
     assert score["timestamp"].endswith("Z")
 
@@ -85,11 +85,11 @@ def test_a_score_the_lms_refused_is_retried_with_backoff_until_it_is_taken(tool,
 @BOTH_DATABASES
 def test_the_same_score_again_is_not_queued_and_a_new_score_is(tool, lms, launched, database_kind):
     _grade(tool, launched, "tension", 1.0)
-    _grade(tool, launched, "tension", 0.0, "m*g/2")  # a worse attempt: the best score stays 1 of 2
+    _grade(tool, launched, "tension", 0.0, "m*g/2")  # a worse attempt: the best score stays 1 answer of 2
     _send(tool)
     _grade(tool, launched, "acceleration", 1.0)
     _send(tool)
-    assert [s["scoreGiven"] for s in lms.scores] == [1.0, 2.0]
+    assert [s["scoreGiven"] for s in lms.scores] == [0.5, 1.0]
     with _db(tool).read() as session:
         versions = session.scalars(select(LtiScorePassback.score_version).order_by(LtiScorePassback.id)).all()
     assert versions == [1, 2]
@@ -103,7 +103,7 @@ def test_an_unsent_score_is_superseded_by_a_newer_one(tool, lms, launched):
     _grade(tool, launched, "acceleration", 1.0)
     assert _send(tool, start + timedelta(seconds=1)).sent == 1  # the newer score; the older one is dropped
     assert _send(tool, start + timedelta(hours=2)).sent == 0
-    assert [s["scoreGiven"] for s in lms.scores] == [2.0]
+    assert [s["scoreGiven"] for s in lms.scores] == [1.0]
 
 
 def test_a_student_who_never_came_through_the_lms_has_nothing_sent(tool, lms, launched):
@@ -123,7 +123,7 @@ def test_a_link_without_a_line_item_gets_one_made_on_the_platform(tool, lms):
     _grade(tool, _student(tool), "tension", 1.0)
     assert _send(tool).sent == 1
     [item] = lms.lineitems
-    assert (item["resourceLinkId"], item["resourceId"], item["scoreMaximum"]) == ("link-1", "yoyo", 2.0)
+    assert (item["resourceLinkId"], item["resourceId"], item["scoreMaximum"]) == ("link-1", "yoyo", 1.0)
     assert lms.score_urls == ["/lineitems/100/scores"]
     with _db(tool).read() as session:
         assert session.scalar(select(LtiResourceLink.lineitem_url)) == item["id"]

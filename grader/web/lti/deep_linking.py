@@ -69,11 +69,11 @@ def pending_request(launch: Launch, issuer: str, client_id: str) -> DeepLinkRequ
 
 
 def content_item(version: ProblemVersion, launch_url: str) -> dict[str, Any]:
-    """The ``ltiResourceLink`` for a problem version, scored out of its number of answers."""
+    """The ``ltiResourceLink`` for a problem version, scored out of 1 (as grader.store.scores scores a problem)."""
     slug = version.problem.slug
     return {"type": "ltiResourceLink", "title": version.title, "url": f"{launch_url}?problem={slug}",
             "custom": {"problem": slug},
-            "lineItem": {"scoreMaximum": len(version.references), "label": version.title, "resourceId": slug,
+            "lineItem": {"scoreMaximum": 1, "label": version.title, "resourceId": slug,
                          "tag": "lagrade"}}
 
 
