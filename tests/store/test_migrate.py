@@ -72,11 +72,34 @@ def test_upgrading_a_database_in_use_keeps_its_rows_and_adds_the_derivation_jobs
         engine.dispose()
 
 
-def test_upgrading_a_database_with_submissions_keeps_every_one_and_adds_assignments(url):
+@pytest.fixture
+def empty_url(request, database_kind, tmp_path):
+    """An empty database (no tables) of the kind under test: SQLite, or a new PostgreSQL database."""
+    if database_kind == "sqlite":
+        yield f"sqlite:///{tmp_path / 'old.sqlite'}"
+        return
+    import uuid
+
+    from sqlalchemy.engine import make_url
+
+    server = request.getfixturevalue("postgres_server")
+    admin = create_engine(server, isolation_level="AUTOCOMMIT")
+    name = f"m_{uuid.uuid4().hex[:16]}"
+    with admin.connect() as connection:
+        connection.exec_driver_sql(f"CREATE DATABASE {name}")
+    yield make_url(server).set(database=name).render_as_string(hide_password=False)
+    with admin.connect() as connection:
+        connection.exec_driver_sql(f"DROP DATABASE IF EXISTS {name} WITH (FORCE)")
+    admin.dispose()
+
+
+def test_upgrading_a_database_with_submissions_keeps_every_one_and_adds_assignments(empty_url, database_kind):
     """A database made by revision 0002, with a graded submission in it, gains the assignment tables;
     the submission, its verdict and its text are all still there, in no assignment."""
+    url = empty_url
     upgrade(url, "0002")
     engine = create_engine(url)
+    true = "true" if database_kind == "postgresql" else "1"
     try:
         with engine.begin() as connection:
             run = connection.exec_driver_sql
@@ -84,7 +107,7 @@ def test_upgrading_a_database_with_submissions_keeps_every_one_and_adds_assignme
             run("INSERT INTO problems (id, slug, created_at) VALUES (1, 'yoyo', '2026-11-21 00:00:00')")
             run("INSERT INTO problem_versions (id, problem_id, number, title, statement, source, source_sha256, "
                 "derivation, \"references\", engine_version, published, created_at) VALUES (1, 1, 1, 'Yo-yo', 's', "
-                "'src', 'x', '{}', '[]', 'test', 1, '2026-11-21 00:00:00')")
+                f"'src', 'x', '{{}}', '[]', 'test', {true}, '2026-11-21 00:00:00')")
             run("INSERT INTO submissions (id, user_id, requester_id, problem_version_id, grading_version_id, "
                 "answer_name, text, received_at, status, grading_round, attempts, updated_at) VALUES "
                 "(1, 1, 1, 1, 1, 'tension', 'm*g/3', '2026-11-21 00:00:00', 'done', 1, 1, '2026-11-21 00:00:00')")
