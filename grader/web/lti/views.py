@@ -25,8 +25,8 @@ from grader.web.lti.http import PlatformUnreachable
 from grader.web.lti.launch import (DEEP_LINKING_REQUEST, STATE_COOKIE, LaunchRefused, login_redirect, open_context,
                                    open_resource_link, validate)
 from grader.web.lti.nrps import apply_roster, fetch_roster
-from grader.web.policy import (INSTRUCTOR_ROLES, Action, Principal, current_principal, find_problem, find_version,
-                               managed_problems)
+from grader.web.policy import (INSTRUCTOR_ROLES, Action, Principal, allowed, current_principal, find_problem,
+                               find_version, managed_problems, require)
 from grader.web.security import csrf_exempt
 
 FRAME_ORIGIN = "lti_frame_origin"  # session key: the LMS origin allowed to frame this session's pages
@@ -186,7 +186,7 @@ def config():
     key = keys.active_key(db)
     platforms = db.session.scalars(select(LtiPlatform).order_by(LtiPlatform.name)).all()
     contexts = [c for c in db.session.scalars(select(LtiContext).order_by(LtiContext.title))
-                if principal.manages_course(c.course_id)]
+                if allowed(principal, Action.MANAGE_COURSE, c.course)]
     urls = {
         "OIDC login initiation URL": url_for("lti.login", _external=True),
         "Redirect (launch) URL": url_for("lti.launch", _external=True),
@@ -204,8 +204,9 @@ def roster(context_id: int):
     """Fill the course's roster from the LMS (Names and Role Provisioning)."""
     with db.read() as reading:  # a short read: the LMS is called with no transaction open
         context = reading.get(LtiContext, context_id)
-    if context is None or not current_principal().manages_course(context.course_id):
-        abort(404, f"There is no LMS course {context_id}.")
+        if context is None:
+            abort(404, f"There is no LMS course {context_id}.")
+        require(current_principal(), Action.MANAGE_COURSE, context.course)  # 404 outside it, 403 inside
     if not context.memberships_url:
         abort(409, "This LMS course offered no roster service at its launches; launch the tool from it once, "
                    "with Names and Role Provisioning enabled for the tool.")
