@@ -240,7 +240,7 @@ PROBLEM_DOCUMENT = {
 _ERROR_RESPONSES = {
     400: "The request is malformed (not JSON, wrong types).",
     401: "No bearer token, or an unknown one.",
-    403: "The token's role may not do this.",
+    403: "The token's role, or the access policy for this resource, does not allow this.",
     404: "No such resource (or not one this token may see).",
     409: "The request conflicts with the resource's state.",
     413: "The body is too large.",
