@@ -9,13 +9,17 @@
 from __future__ import annotations
 
 from flask import abort, current_app, flash, g, redirect, render_template, request, url_for
+from sqlalchemy import select
 
 from grader.jobs.assignment_submissions import HandInRefused, hand_in
 from grader.jobs.queue import SubmissionRejected
+from grader.store.assignments import deadline_state
 from grader.store.db import Database, db
+from grader.store.models import Submission
 from grader.web import clock
 from grader.web.auth.session import login_required
-from grader.web.coursework import assignment_view
+from grader.web.coursework import STATE_WORDS, assignment_view, rules_in_words
+from grader.web.student.verdicts import verdict_view
 from grader.web.errors import ApiProblem
 from grader.web.policy import PAGE_ROLES, Action, allowed, current_principal, find_assignment, my_courses, require
 from grader.web.security import limiter
@@ -28,8 +32,10 @@ FIELD = "answer-"
 @login_required(PAGE_ROLES)
 def courses():
     principal = current_principal()
-    mine = my_courses(db.session, principal)
-    return render_template("courses/list.html", courses=mine, now=clock.now(),
+    mine, now = my_courses(db.session, principal), clock.now()
+    states = {a.id: (STATE_WORDS[deadline_state(a, now)], rules_in_words(a)[1])
+              for c in mine for a in c.assignments}  # ("open", "Due Tue 08 Dec 2026, ...")
+    return render_template("courses/list.html", courses=mine, states=states,
                            grading={c.id for c in mine if allowed(principal, Action.GRADE_COURSE, c)})
 
 
@@ -40,7 +46,14 @@ def assignment(code: str, assignment: str):
     found = find_assignment(db.session, principal, code, assignment)
     grader_view = allowed(principal, Action.GRADE_COURSE, found)
     view = assignment_view(db.session, found, clock.now(), student=None if grader_view else g.user)
-    return render_template("courses/assignment.html", a=view, code=code, grader_view=grader_view,
+    latest: dict[tuple[str, str], dict] = {}  # (problem, answer) -> the student's latest attempt's verdict
+    if not grader_view:
+        for submission in db.session.scalars(select(Submission).where(
+                Submission.assignment_id == found.id, Submission.user_id == g.user.id).order_by(Submission.id.desc())):
+            latest.setdefault((submission.problem_version.problem.slug, submission.answer_name),
+                              verdict_view(submission))
+    return render_template("courses/assignment.html", a=view, code=code, grader_view=grader_view, latest=latest,
+                           pending=any(v["pending"] for v in latest.values()),
                            manage=allowed(principal, Action.MANAGE_COURSE, found))
 
 
