@@ -146,3 +146,32 @@ def load_problems(directory: str) -> None:
     finally:
         close_shared_sandboxes()
         database.dispose()
+
+
+@db.command("reset-password")
+@click.option("--email", required=True, help="The account's sign-in email.")
+@click.option("--password", help="The new password (default: a random one, printed once).")
+def reset_password(email: str, password: str | None) -> None:
+    """Give the account with EMAIL a new password (it is signed out of every browser)."""
+    from sqlalchemy import select
+
+    from grader.store.migrate import upgrade as run_upgrade
+    from grader.store.models import User
+    from grader.store.users import new_password_problem, set_password
+
+    if password is not None and (problem := new_password_problem(password)) is not None:
+        raise click.ClickException(problem)
+    chosen = password or secrets.token_urlsafe(12)
+    url = default_url()
+    run_upgrade(url)
+    database = Database(url)
+    try:
+        with database.write() as session:
+            user = session.scalar(select(User).where(User.email == email))
+            if user is None:
+                raise click.ClickException(f"there is no account with the email {email!r}")
+            set_password(user, chosen)
+    finally:
+        database.dispose()
+    # A password typed on the command line is the caller's already: it is not echoed back.
+    click.echo(f"new password of {email}: {chosen}" if password is None else f"changed the password of {email}")

@@ -3,12 +3,15 @@
 from __future__ import annotations
 
 import logging
+import os
 import secrets
 import signal
 import sys
 from pathlib import Path
 
 import click
+
+PASSWORDS_FILE = "first-start-passwords.txt"
 
 
 @click.command()
@@ -42,7 +45,7 @@ def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, 
         click.echo(f"problem {name}: {outcome}")
     close_shared_sandboxes()  # uploads are derived by the derivation workers' own children
     if demo:
-        for line in _demo_accounts(database):
+        for line in _show_once(_demo_accounts(database), Path(app.instance_path), sys.stdout.isatty()):
             click.echo(line)
 
     background = start_background(app, grading_workers=workers)
@@ -81,6 +84,22 @@ def _demo_accounts(database) -> list[str]:
             create_user(session, role=role, name=f"Demo {role}", email=f"{role}@example.org", password=password)
             lines.append(f"  {role}: {role}@example.org  password: {password}")
     return lines
+
+
+def _show_once(lines: list[str], instance: Path, terminal: bool) -> list[str]:
+    """What to print of the first start's demo passwords: all of it on a terminal; otherwise (stdout
+    is a log file or a pipe, which outlive the passwords' usefulness) only where they were written, a
+    file readable by its owner alone (mode 0600) in the instance folder."""
+    if not lines or terminal:
+        return lines
+    instance.mkdir(parents=True, exist_ok=True)
+    path = instance / PASSWORDS_FILE
+    fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
+    with os.fdopen(fd, "w", encoding="utf-8") as out:
+        os.fchmod(fd, 0o600)  # also when the file was there before, with wider modes
+        out.write("\n".join(lines) + "\n")
+    return [f"first start: created demo accounts; their passwords are in {path} (readable by you only; "
+            "delete it once read, and change them with `grader db reset-password`)"]
 
 
 def _sign_in_path(app) -> str:

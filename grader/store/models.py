@@ -127,6 +127,8 @@ class Problem(Base):
     slug: Mapped[str] = mapped_column(String(100), unique=True)  # the scene's `id`
     course_id: Mapped[int | None] = mapped_column(ForeignKey("courses.id", ondelete="SET NULL"))
     created_at: Mapped[datetime] = mapped_column(default=utcnow)
+    # Archived: kept for the record, but seen and answered by its managers only (grader.web.policy).
+    archived_at: Mapped[datetime | None]
 
     course: Mapped[Course | None] = relationship(back_populates="problems")
     versions: Mapped[list[ProblemVersion]] = relationship(

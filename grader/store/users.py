@@ -17,17 +17,22 @@ from werkzeug.security import check_password_hash, generate_password_hash
 from grader.store.models import ROLES, ApiToken, User, utcnow
 
 __all__ = [
+    "MAX_PASSWORD_LENGTH",
+    "MIN_PASSWORD_LENGTH",
     "TOKEN_PREFIX",
     "authenticate",
     "create_token",
     "create_user",
     "hash_secret",
+    "new_password_problem",
     "set_password",
     "student_for_external_id",
     "user_for_token",
 ]
 
 TOKEN_PREFIX = "lg_"
+MIN_PASSWORD_LENGTH = 10
+MAX_PASSWORD_LENGTH = 1024  # what the sign-in form reads of a password
 
 
 def hash_secret(secret: str) -> str:
@@ -45,6 +50,21 @@ def create_user(session: Session, *, role: str, name: str, email: str | None = N
     session.add(user)
     session.flush()
     return user
+
+
+def new_password_problem(password: str) -> str | None:
+    """Why ``password`` may not become an account's password (one sentence), or None if it may.
+
+    The one rule for a new password, on the account page and in ``grader db reset-password``.
+
+    >>> new_password_problem("short"), new_password_problem("long enough, surely")
+    ('A password needs at least 10 characters.', None)
+    """
+    if len(password) < MIN_PASSWORD_LENGTH:
+        return f"A password needs at least {MIN_PASSWORD_LENGTH} characters."
+    if len(password) > MAX_PASSWORD_LENGTH:
+        return f"A password may have at most {MAX_PASSWORD_LENGTH} characters."
+    return None
 
 
 def set_password(user: User, password: str) -> None:

@@ -16,7 +16,8 @@ action                 who, besides admins
                        else only a *published* version, and only of a problem in no course or
                        in a course they are enrolled in (as student or instructor). An LMS is
                        "enrolled" in the courses its account is linked to by an Enrolment.
-``submit``             the same as ``see``: whoever sees a version may answer it.
+``submit``             the same as ``see``: whoever sees a version may answer it. An *archived*
+                       problem is seen by its managers only, and answered by nobody.
 ``submit_for_others``  an LMS for a published problem it sees (its linked courses or no course);
                        an instructor for a problem they manage. A student only ever for itself.
 ``manage``             instructors, for problems of courses they teach (``Enrolment.role ==
@@ -184,6 +185,10 @@ def _published(resource: Problem | ProblemVersion) -> bool:
     return any(v.published for v in resource.versions)
 
 
+def _archived(resource: Resource) -> bool:
+    return isinstance(resource, (Problem, ProblemVersion)) and _problem(resource).archived_at is not None
+
+
 def allowed(principal: Principal, action: Action, resource: Resource = None) -> bool:
     """Whether ``principal`` may do ``action`` to ``resource`` (a problem, a version or a submission).
 
@@ -197,6 +202,8 @@ def allowed(principal: Principal, action: Action, resource: Resource = None) -> 
         return principal.role in _ROLE_ONLY[action]
     if resource is None:
         return False
+    if action in (Action.SUBMIT, Action.SUBMIT_FOR_OTHERS) and _archived(resource):
+        return False  # kept for the record; nobody answers it any more, admins neither
     if principal.is_admin:
         return True
     if isinstance(resource, (Course, Assignment)):
@@ -213,7 +220,7 @@ def allowed(principal: Principal, action: Action, resource: Resource = None) -> 
     manages = principal.manages_course(course)
     if action in (Action.MANAGE, Action.REGRADE, Action.EXPORT):
         return manages
-    open_to_me = manages or (_published(resource) and principal.in_scope(course))
+    open_to_me = manages or (_published(resource) and not _archived(resource) and principal.in_scope(course))
     if action in (Action.SEE, Action.SUBMIT):
         return open_to_me
     if action is Action.SUBMIT_FOR_OTHERS:

@@ -4,4 +4,4 @@ from flask import Blueprint
 
 bp = Blueprint("auth", __name__)
 
-from grader.web.auth import session, views  # noqa: E402,F401  (they register on bp)
+from grader.web.auth import account, session, views  # noqa: E402,F401  (they register on bp)

@@ -4,4 +4,4 @@ from flask import Blueprint
 
 bp = Blueprint("instructor", __name__, url_prefix="/instructor")
 
-from grader.web.instructor import courses, views  # noqa: E402,F401  (they register on bp)
+from grader.web.instructor import courses, docs, versions, views  # noqa: E402,F401  (they register on bp)

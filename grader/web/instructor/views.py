@@ -7,7 +7,9 @@
 ``POST /problems/<slug>/versions/<n>/publish``   let students see version n
 ``GET  /problems/<slug>``                        results: scores, grouped wrong answers, submissions
 ``GET  /problems/<slug>/submissions.csv``        every submission with its verdict in effect
-``POST /problems/<slug>/regrade``                grade every submission again against the newest version
+``POST /problems/<slug>/regrade``                grade every submission again against the newest published
+                                                 version (confirmed on ``GET``, followed on ``.../progress``:
+                                                 :mod:`grader.web.instructor.versions`)
 """
 
 from __future__ import annotations
@@ -220,4 +222,4 @@ def regrade(slug: str):
     queued = queue_regrade(Database.current(), version)
     flash(f"Queued {queued} submission{'s' if queued != 1 else ''} for regrading against version "
           f"{version.number}.", "success")
-    return redirect(url_for("instructor.problem", slug=slug))
+    return redirect(url_for("instructor.regrade_progress", slug=slug))
