@@ -26,6 +26,7 @@ from pathlib import Path
 from sqlalchemy import func, select
 from sqlalchemy.orm import aliased
 
+from grader.mechanics.budget import BudgetExceeded
 from grader.sandbox import Sandbox
 from grader.store.models import ProblemVersion
 from grader.store.problems import DerivedProblem, save_problem
@@ -129,7 +130,11 @@ def derive_request(request: dict) -> dict:
     if budget:
         signal.alarm(math.ceil(float(budget)) + ORPHAN_MARGIN_S)  # SIGALRM's default action ends the process
     try:
-        return {"outcome": "ok", "problem": _derive(request["source"], filename)}
+        # The engine's own budget, a little inside the parent's kill, names the step that ran out.
+        engine_budget = float(budget) * 0.9 if budget else None
+        return {"outcome": "ok", "problem": _derive(request["source"], filename, engine_budget)}
+    except BudgetExceeded as error:
+        return {"outcome": "error", "message": f"{filename}: {error}"}
     except MemoryError:
         raise  # the sandbox child answers for it and restarts
     except ValueError as error:  # SceneError and the expression errors: a message for the instructor
@@ -141,7 +146,7 @@ def derive_request(request: dict) -> dict:
             signal.alarm(0)
 
 
-def _derive(source: str, filename: str) -> dict:
+def _derive(source: str, filename: str, budget_s: float | None = None) -> dict:
     import sympy
 
     import grader
@@ -155,7 +160,7 @@ def _derive(source: str, filename: str) -> dict:
     from grader.simulate.motion import motion_of
 
     scene = parse_scene(source, source=filename)
-    derivation = derive(scene)
+    derivation = derive(scene, budget_s=budget_s)
     # The engine emits plain data; the checker's typed contract validates it before it is stored.
     references = [ReferenceAnswer.from_json(r) for r in derivation.references()]
     # The instructor's question tests, with the checker that will grade the students: a failing

@@ -34,8 +34,10 @@ def test_an_invalid_scene_is_refused_with_its_error(source, message):
 
 
 def test_a_derivation_over_its_time_limit_is_stopped_and_the_next_one_works():
-    # The sphere on a hemisphere takes about a second to derive: far more than 0.2 s.
-    with pytest.raises(DerivationError, match="longer than 0.2 s"):
+    # The sphere on a hemisphere takes about a second to derive: far more than 0.2 s. The engine's
+    # own budget (0.18 s) names the step it stopped in; should a step not return to Python in time,
+    # the parent's kill at 0.2 s stops it instead. Which one comes first depends on the machine's load.
+    with pytest.raises(DerivationError, match=r"ran out of its 0.18 s budget while|longer than 0.2 s"):
         derive_source((PROBLEMS / "sphere.toml").read_text(), timeout_s=0.2)
     assert derive_source((PROBLEMS / "yoyo.toml").read_text()).slug == "yoyo"
 
@@ -83,7 +85,8 @@ def test_every_sandbox_outcome_becomes_a_scene_error_or_a_retry(outcome, error, 
 
 @pytest.mark.slow
 def test_an_orphaned_derivation_child_stops_by_itself(tmp_path):
-    """If the server dies mid-derivation (kill -9), its child must not derive on for minutes."""
+    """If the server dies mid-derivation (kill -9), its child must not derive on for minutes: the
+    engine's budget stops it and says where (an alarm that kills the child backs that up)."""
     import subprocess
     import sys
     import time
@@ -99,9 +102,13 @@ def test_an_orphaned_derivation_child_stops_by_itself(tmp_path):
         child.stdin.write((request + "\n").encode())
         child.stdin.flush()  # nobody will kill it: this parent "died" and only waits
         started = time.monotonic()
-        child.wait(timeout=30)
+        reply = child.stdout.readline()
         assert time.monotonic() - started < 1 + 5 + 5  # its budget rounded up, the margin, start-up slack
-        assert child.returncode == -signal.SIGALRM
+        if reply:  # the engine's budget stopped the derivation and named the step
+            assert "ran out of its 0.45 s budget while" in json.loads(reply)["reply"]["message"]
+        else:  # the backstop: the alarm ended the child
+            child.wait(timeout=5)
+            assert child.returncode == -signal.SIGALRM
     finally:
         child.kill()
         child.wait()
