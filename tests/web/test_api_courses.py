@@ -185,7 +185,8 @@ def test_solutions_appear_once_the_assignment_closes_or_is_released(client, cloc
     assert "solution" not in client.get("/api/v1/courses/MECH/assignments/hw1", headers=ada).get_json()["problems"][0]
     clock.now = CLOSES + SECOND
     closed = client.get("/api/v1/courses/MECH/assignments/hw1", headers=ada).get_json()
-    assert closed["solutions_available"] and closed["problems"][0]["solution"]["answers"][1]["latex"] == r"\frac{g m}{3}"
+    solution = closed["problems"][0]["solution"]
+    assert closed["solutions_available"] and solution["answers"][1]["latex"] == r"\frac{g m}{3}"
     clock.now = OPENS
     assert client.post("/api/v1/courses/MECH/assignments/hw1/release", headers=course["ine"]).status_code == 200
     assert "solution" in client.get("/api/v1/courses/MECH/assignments/hw1", headers=ada).get_json()["problems"][0]

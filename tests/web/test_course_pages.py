@@ -8,6 +8,7 @@ import csv
 import io
 import re
 from datetime import datetime, timedelta, timezone
+from zoneinfo import ZoneInfo
 
 import pytest
 from sqlalchemy import select
@@ -41,7 +42,7 @@ def clock(app):
 
 def _paris(moment: datetime) -> str:
     """A datetime-local form value, in Paris time."""
-    return moment.astimezone(__import__("zoneinfo").ZoneInfo(PARIS)).strftime("%Y-%m-%dT%H:%M:%S")
+    return moment.astimezone(ZoneInfo(PARIS)).strftime("%Y-%m-%dT%H:%M:%S")
 
 
 def _post(client, url, **data):
