@@ -330,6 +330,51 @@ def counterexample(point: dict, result: PointResult) -> dict:
     return record
 
 
+def round_values(point: dict, domains: dict) -> list[dict]:
+    """Points near ``point`` with round values (2, 0.5, -1...) inside each variable's domain, the
+    roundest first: a counterexample a student can check by hand reads "at θ = 0.5", not 0.4871.
+
+    >>> import sympy
+    >>> class Half:                                   # a stand-in for grader.expressions.Domain
+    ...     def contains(self, x): return x > 0
+    >>> x, y = sympy.symbols("x y")
+    >>> [list(p.values()) for p in round_values({x: 1.8994, y: 0.0421}, {x: Half(), y: Half()})]
+    [[2.0, 0.5], [2.0, 0.04]]
+    """
+    def roundest(v: float) -> float:
+        # A whole number or a half near v's size (never 0: a zero hides most differences).
+        if abs(v) >= 0.75:
+            return float(math.copysign(max(1, round(abs(v))), v))
+        return math.copysign(0.5, v)
+
+    def one_figure(v: float) -> float:
+        return float(f"{v:.1g}") if v else v
+
+    found: list[dict] = []
+    for rounding in (roundest, one_figure):
+        candidate = {}
+        for symbol, value in point.items():
+            nice = rounding(value) if isinstance(value, float) and math.isfinite(value) else value
+            domain = domains.get(symbol)
+            candidate[symbol] = nice if domain is None or domain.contains(nice) else value
+        if candidate != point and candidate not in found:
+            found.append(candidate)
+    return found
+
+
+def _rounder_witness(ref: Compiled, ans: Compiled, sampler: Sampler, point: dict, result: PointResult,
+                     options: Options, deadline: float | None) -> tuple[dict, PointResult]:
+    """The same kind of difference at a rounder point when one shows it, else the point found."""
+    for candidate in round_values(point, sampler.domains):
+        if deadline is not None and time.monotonic() > deadline:
+            break
+        # No cache key: the cache is keyed by sample index, and this point is none of them.
+        there = compare_at(ref, ans, candidate, None, options, deadline)
+        if there.kind == result.kind:
+            return candidate, there
+    return point, result
+
+
 def _points_evidence(options: Options, agreed: int, digits: float, unresolved: int) -> dict:
     evidence = {"method": options.describe(), "points": agreed}
     if options.method == "arb":
@@ -373,6 +418,7 @@ def compare_numeric(
             if agreed >= needed:
                 break
         elif result.kind in ("differ", "answer_undefined", "answer_defined"):
+            point, result = _rounder_witness(ref, ans, sampler, point, result, options, deadline)
             example = counterexample(point, result)
             if result.kind == "differ":
                 reason = "your answer and the correct one differ at the point in the counterexample"

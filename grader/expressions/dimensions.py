@@ -269,7 +269,7 @@ class _UnitParser:
             match = _DIM_TOKEN.match(stripped, pos)
             if not match:
                 what = "unit" if scaled else "dimension"
-                raise DimensionError(f"cannot read {what} {text!r} at position {pos}")
+                raise DimensionError(f"cannot read {what} {text!r} at character {pos + 1}")
             number, name, op = match.groups()
             self.tokens.append(("num", number) if number else ("name", name) if name else ("op", op))
             pos = match.end()

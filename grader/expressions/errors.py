@@ -36,7 +36,7 @@ class ExpressionError(ValueError):
     >>> print(err.show("cos(thta)"))
     cos(thta)
         ^
-    unknown name 'thta' at position 4; did you mean 'theta'?
+    unknown name 'thta' at character 5; did you mean 'theta'?
     """
 
     def __init__(self, message: str, position: int | None = None,
@@ -52,7 +52,8 @@ class ExpressionError(ValueError):
     def _full(self) -> str:
         text = self.message
         if self.position is not None:
-            text += f" at position {self.position}"
+            # Counted as the caret shows it and as every page says it: 1-based characters.
+            text += f" at character {self.position + 1}"
         if self.hint:
             text += f"; {self.hint}"
         return text

@@ -64,7 +64,7 @@ def guarded_pow(base: sympy.Expr, exponent: sympy.Expr, position: int | None) ->
     >>> guarded_pow(sympy.Integer(9), sympy.Integer(387420489), 1)
     Traceback (most recent call last):
     ...
-    grader.expressions.errors.ExpressionError: exponent too large at position 1; no answer here needs numbers that size
+    grader.expressions.errors.ExpressionError: exponent too large at character 2; no answer here needs numbers that size
     """
     if exponent.is_Rational:
         # |p/q| > MAX_EXPONENT in integers (q > 0): sympy's own comparison sympifies and is slower.
@@ -96,7 +96,7 @@ def checked(expr: sympy.Expr, position: int | None) -> sympy.Expr:
     >>> checked(sympy.Integer(1) / 0, 4)
     Traceback (most recent call last):
     ...
-    grader.expressions.errors.ExpressionError: this is undefined (a division by zero?) at position 4; check what divides by zero here
+    grader.expressions.errors.ExpressionError: this is undefined (a division by zero?) at character 5; check what divides by zero here
     """
     for node in (expr, *expr.args):
         if id(node) in _UNDEFINED_IDS:

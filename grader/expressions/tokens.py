@@ -418,8 +418,8 @@ def check_brackets(tokens: list[Token]) -> None:
                                       f"add a '{opener}' or delete this '{token.value}'")
             top = stack.pop()
             if top.value != opener:
-                raise ExpressionError(f"'{token.value}' does not match the '{top.value}' at position {top.pos}",
-                                      token.pos, "unbalanced", f"close it with '{_PAIRS[top.value]}'")
+                raise ExpressionError(f"'{token.value}' does not match the '{top.value}' at character "
+                                      f"{top.pos + 1}", token.pos, "unbalanced", f"close it with '{_PAIRS[top.value]}'")
     if stack:
         top = stack[-1]
         raise ExpressionError(f"'{top.value}' is never closed", top.pos, "unbalanced",

@@ -27,6 +27,7 @@ from sqlalchemy import select, update
 from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
+from grader.answers.readable import read_error
 from grader.jobs.processes import holder_is_dead
 from grader.jobs import lti_passback
 from grader.store.db import Database
@@ -36,6 +37,7 @@ from grader.store.models import ProblemVersion, Submission, User, Verdict, utcno
 log = logging.getLogger(__name__)
 
 __all__ = [
+    "AnswerUnreadable",
     "IdempotencyConflict",
     "MAX_ANSWER_CHARS",
     "MAX_ATTEMPTS",
@@ -51,6 +53,7 @@ __all__ = [
     "regrade",
     "release",
     "requeue_expired",
+    "same_attempt",
     "submit",
     "wake_workers",
 ]
@@ -97,6 +100,33 @@ class SubmissionRejected(ValueError):
     """A submission that cannot be accepted (unknown answer, text too long); the message says why."""
 
 
+class AnswerUnreadable(SubmissionRejected):
+    """An answer text the grader cannot read: a typo to fix, not an attempt, so nothing is stored.
+
+    ``error`` is :func:`grader.answers.readable.read_error`'s ``{"message", "position", "column",
+    "code", "hint"}`` (``column`` 1-based, as the caret shows it).
+    """
+
+    def __init__(self, error: dict[str, Any]):
+        where = f" (at character {error['column']})" if error.get("column") else ""
+        hint = f"; {error['hint']}" if error.get("hint") else ""
+        super().__init__(f"the grader cannot read this answer: {error['message']}{where}{hint}")
+        self.error = error
+
+
+def same_attempt(session: Session, user_id: int, version_id: int, answer: str, text: str,
+                 assignment_id: int | None = None) -> Submission | None:
+    """The student's earlier submission of exactly this text for this answer (same problem version,
+    same assignment or none), if any: sending it again is the same attempt, not a new one. A
+    submission that could not be graded (``failed``) does not count, so sending it again retries.
+    """
+    where = Submission.assignment_id.is_(None) if assignment_id is None else Submission.assignment_id == assignment_id
+    return session.scalar(select(Submission).where(
+        Submission.user_id == user_id, Submission.problem_version_id == version_id,
+        Submission.answer_name == answer, Submission.text == text, Submission.status != "failed", where)
+        .order_by(Submission.id.desc()).limit(1))
+
+
 class IdempotencyConflict(ValueError):
     """An Idempotency-Key reused with a different request."""
 
@@ -119,13 +149,21 @@ def submit(database: Database, *, user: User, version: ProblemVersion, answer: s
     references are read. With an ``idempotency_key`` (scoped to the requester), a retry of the same
     request returns the stored submission (``created`` False) and a different request with the same
     key raises :class:`IdempotencyConflict`.
+
+    A text the grader cannot read raises :class:`AnswerUnreadable` and stores nothing; the same text
+    the student already sent for this answer returns that submission (``created`` False): neither
+    is a new attempt.
     """
     requester_id = (requester or user).id
-    if version.reference(answer) is None:
+    reference = version.reference(answer)
+    if reference is None:
         names = ", ".join(r["name"] for r in version.references)
         raise SubmissionRejected(f"this problem has no answer {answer!r}; its answers: {names}")
     if len(text) > MAX_ANSWER_CHARS:
         raise SubmissionRejected(f"the answer is {len(text)} characters long; the limit is {MAX_ANSWER_CHARS}")
+    unreadable = read_error(reference, text)
+    if unreadable is not None:
+        raise AnswerUnreadable(unreadable)
     fingerprint = _fingerprint(version, user.id, answer, text)
     try:
         with database.write() as session:
@@ -133,6 +171,9 @@ def submit(database: Database, *, user: User, version: ProblemVersion, answer: s
                 existing = _by_key(session, requester_id, idempotency_key)
                 if existing is not None:
                     return _replay(existing, fingerprint), False
+            earlier = same_attempt(session, user.id, version.id, answer, text)
+            if earlier is not None:
+                return earlier.id, False
             submission = Submission(user_id=user.id, requester_id=requester_id, problem_version_id=version.id,
                                     grading_version_id=version.id, answer_name=answer, text=text, status="queued",
                                     idempotency_key=idempotency_key, request_sha256=fingerprint)

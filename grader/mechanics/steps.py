@@ -61,7 +61,8 @@ def derivation_steps(derivation) -> list[Step]:
 
     for q in scene.coordinates.values():
         p = eom.partials[q.name]
-        s = Step(f"Partial derivatives for {q.name}")
+        # Titles are text with $...$ math (the pages render it): the coordinate as θ, not "theta".
+        s = Step(f"Partial derivatives for ${tex(q.symbol)}$")
         s.add(*eq(f"dL/d{q.name}", rf"\frac{{\partial L}}{{\partial {tex(q.symbol)}}}", p["dL_dq"]))
         s.add(*eq(f"dL/d{q.dot.name}", rf"\frac{{\partial L}}{{\partial {tex(q.dot)}}}", p["dL_dqdot"]))
         s.add(*eq(f"d/dt dL/d{q.dot.name}", rf"\frac{{d}}{{dt}}\frac{{\partial L}}{{\partial {tex(q.dot)}}}",
@@ -85,7 +86,7 @@ def derivation_steps(derivation) -> list[Step]:
     steps.append(s)
 
     if scene.constraints:
-        s = Step("Generalized constraint forces Q = lambda * df/dq")
+        s = Step(r"Generalized constraint forces $Q = \lambda\, \partial f/\partial q$")
         for k in scene.constraints:
             for q in scene.coordinates.values():
                 symbol = scene.forces[(k.name, q.name)]

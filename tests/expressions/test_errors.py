@@ -9,7 +9,8 @@ def test_expression_error_fields_and_text():
     err = ExpressionError("unknown name 'thta'", 4, "unknown_name", "did you mean 'theta'?")
     assert (err.message, err.position, err.code, err.hint) == ("unknown name 'thta'", 4, "unknown_name",
                                                                "did you mean 'theta'?")
-    assert str(err) == "unknown name 'thta' at position 4; did you mean 'theta'?"
+    # The text counts characters from 1, as the caret shows them; `position` is the 0-based index.
+    assert str(err) == "unknown name 'thta' at character 5; did you mean 'theta'?"
     assert err.to_json() == {"message": "unknown name 'thta'", "position": 4, "code": "unknown_name",
                              "hint": "did you mean 'theta'?"}
     assert isinstance(err, ValueError)

@@ -23,11 +23,34 @@ def test_a_submission_is_accepted_at_once_and_graded_in_the_background(client, m
     assert (graded["verdict"]["verdict"], graded["verdict"]["score"]) == ("equivalent", 1.0)
 
 
-@pytest.mark.parametrize("text, verdict", [("m*g", "not_equivalent"), ("m g /", "invalid")])
-def test_wrong_and_unreadable_answers_get_their_verdict(client, make_token, yoyo_version, workers, poll, text, verdict):
+def test_a_wrong_answer_gets_its_verdict(client, make_token, yoyo_version, workers, poll):
     _, student = make_token("student")
-    graded = poll(_submit(client, student, text=text).headers["Location"], student)
-    assert graded["verdict"]["verdict"] == verdict and graded["verdict"]["score"] == 0.0
+    graded = poll(_submit(client, student, text="m*g").headers["Location"], student)
+    assert graded["verdict"]["verdict"] == "not_equivalent" and graded["verdict"]["score"] == 0.0
+
+
+@pytest.mark.parametrize("text, column, code", [("m g /", 5, "syntax"), ("m*g/(3", 5, "unbalanced"),
+                                                ("m*q", 3, "unknown_name")])
+def test_an_unreadable_answer_is_refused_and_is_not_an_attempt(client, make_token, yoyo_version, text, column, code):
+    _, student = make_token("student")
+    response = _submit(client, student, text=text)
+    assert response.status_code == 422 and "Location" not in response.headers
+    body = response.get_json()
+    assert body["type"] == "urn:lagrade:error:unreadable-answer"
+    # 1-based, as the caret shows it; the detail says the same place in words.
+    assert (body["error"]["code"], body["error"]["column"], body["error"]["position"]) == (code, column, column - 1)
+    assert f"at character {column}" in body["detail"]
+    assert client.get("/api/v1/submissions/1", headers=student).status_code == 404  # nothing was stored
+
+
+def test_the_same_text_again_is_the_same_attempt(client, make_token, yoyo_version, workers, poll):
+    _, student = make_token("student")
+    first = _submit(client, student, text="m*g")
+    poll(first.headers["Location"], student)
+    again = _submit(client, student, text="m*g")
+    assert again.status_code == 200 and again.get_json()["id"] == first.get_json()["id"]
+    other = _submit(client, student, text="m*g/2")
+    assert other.status_code == 202 and other.get_json()["id"] != first.get_json()["id"]
 
 
 def test_the_same_idempotency_key_and_body_return_the_same_submission(client, make_token, yoyo_version):

@@ -121,7 +121,7 @@ def test_a_submitted_answer_is_queued_then_graded_with_feedback(app, as_student,
     assert "The tension must be less than the weight." in page and "data-poll" not in page
     assert "http-equiv" not in page
     detail = as_student.get("/submissions/1").get_data(as_text=True)
-    assert "The tension must be less than the weight." in detail and "where yours is" in detail
+    assert "The tension must be less than the weight." in detail and "your answer gives" in detail
     with app.extensions["lagrade.db"].read() as session:
         reference_value = session.scalars(select(Verdict)).one().counterexample["reference"]
     for page_html in (page, detail, status["html"]):

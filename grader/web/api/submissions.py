@@ -112,13 +112,16 @@ def _whose(session: Session, requester: User, version: ProblemVersion, external_
                                "the same key with another body is refused (422)."}],
             responses={202: ("Accepted: stored and queued for grading; poll the Location.",
                              {"application/json": SUBMISSION}),
-                       200: ("A retry of a request already graded: the stored submission.",
+                       200: ("A retry, or the same text sent again, already graded: the stored submission.",
                              {"application/json": SUBMISSION})},
             headers={202: _LOCATION, 200: _LOCATION})
 def create_submission(slug: str):
     """Submit an answer for grading.
 
-    The submission is committed before this returns; a worker grades it in the background.
+    The submission is committed before this returns; a worker grades it in the background. A text
+    the grader cannot read is refused (422, ``unreadable-answer``, with the reader's ``error``:
+    message, 0-based ``position``, 1-based ``column``) and is not an attempt; the same text the
+    student already sent for this answer returns that submission (200 once graded) instead of a new one.
     """
     requester = g.api_user
     body = read_json(SUBMISSION_REQUEST)
@@ -133,6 +136,8 @@ def create_submission(slug: str):
     try:
         submission_id, created = jobs.submit(db, user=user, requester=requester, version=version,
                                              answer=body["answer"], text=body["text"], idempotency_key=key)
+    except jobs.AnswerUnreadable as error:  # a typo to fix, not an attempt: nothing was stored
+        raise ApiProblem(422, str(error), kind="unreadable-answer", error=error.error) from None
     except jobs.SubmissionRejected as error:
         raise ApiProblem(422, str(error), kind="invalid-submission") from None
     except jobs.IdempotencyConflict as error:

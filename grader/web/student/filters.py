@@ -7,7 +7,7 @@ from datetime import datetime, timezone
 from markupsafe import Markup
 
 from grader.web.student import bp
-from grader.web.student.statement import render_inline, render_math, render_statement
+from grader.web.student.statement import render_inline, render_math, render_statement, render_text
 from grader.web.student.verdicts import VERDICT_LABELS, status_label
 
 
@@ -19,6 +19,12 @@ def _statement(text: str):
 @bp.app_template_filter("inline")
 def _inline(text: str):
     return render_inline(text or "")
+
+
+@bp.app_template_filter("message")
+def _message(text: str | None):
+    """Feedback, a verdict's reason, a scene error: plain text with ``$...$`` math."""
+    return render_text(text or "")
 
 
 @bp.app_template_filter("math")

@@ -63,6 +63,9 @@ _ENVIRONMENTS = {"matrix": None, "pmatrix": ("(", ")"), "bmatrix": ("[", "]"),
                  "vmatrix": ("|", "|"), "Bmatrix": ("{", "}"), "cases": ("{", None),
                  "aligned": None, "align": None, "align*": None, "array": None, "smallmatrix": None}
 
+_LETTER = re.compile(r"[A-Za-z]")
+_WORD = re.compile(r"([A-Za-z]{2,})")
+_ROMAN_WORD = re.compile(r"\\(?:mathrm|text|textrm)\s*\{\s*([A-Za-z]{2,})\s*\}")
 _TOKEN = re.compile(r"\\([A-Za-z]+\*?|.)|(\d+(?:\.\d+)?|\.\d+)|(\s+)|(.)", re.S)
 
 
@@ -122,6 +125,44 @@ class _Parser:
         atom = self.atom()
         return atom if atom is not None else "<mrow></mrow>"
 
+    def word(self) -> str | None:
+        """A subscript that is a word (``_{surface}``, ``_{\\mathrm{surface}}``, or bare ``_surface`` as
+        authors write it) as one upright ``<mtext>``: a label, not a product of italic letters."""
+        token = self.peek()
+        if token is None:
+            return None
+        if token == ("chr", "{"):
+            start, end = self.starts[self.i] + 1, self._closing(self.i)
+            if end is None:
+                return None
+            inner = self.tex[start:self.starts[end]].strip()
+            found = _WORD.fullmatch(inner) or _ROMAN_WORD.fullmatch(inner)
+            if found is None:
+                return None
+            self.i = end + 1
+            return f"<mtext>{escape(found.group(1))}</mtext>"
+        if token[0] != "chr" or not _LETTER.fullmatch(token[1]):
+            return None
+        # Letters typed together right after "_": contiguous in the source, so "x_a b" stays x_a b.
+        j, letters = self.i, ""
+        while (j < len(self.tokens) and self.tokens[j][0] == "chr" and _LETTER.fullmatch(self.tokens[j][1])
+               and self.starts[j] == self.starts[self.i] + len(letters)):
+            letters += self.tokens[j][1]
+            j += 1
+        if len(letters) < 2:
+            return None
+        self.i = j
+        return f"<mtext>{escape(letters)}</mtext>"
+
+    def _closing(self, i: int) -> int | None:
+        """The index of the token closing the ``{`` at token ``i``."""
+        depth = 0
+        for j in range(i, len(self.tokens)):
+            depth += (self.tokens[j] == ("chr", "{")) - (self.tokens[j] == ("chr", "}"))
+            if depth == 0:
+                return j
+        return None
+
     def optional(self) -> str | None:
         if self.peek() != ("chr", "["):
             return None
@@ -178,7 +219,7 @@ class _Parser:
             if token[1] == "^":
                 sup = self.argument()
             else:
-                sub = self.argument()
+                sub = self.word() or self.argument()
         large = base.startswith("<mo largeop")
         under, over, both = ("munder", "mover", "munderover") if large else ("msub", "msup", "msubsup")
         if sub is not None and sup is not None:
@@ -238,6 +279,12 @@ class _Parser:
         if name in _SPACES:
             return f'<mspace width="{_SPACES[name]}"></mspace>'
         if name in _STYLES:
+            if name == "mathrm" and self.peek() == ("chr", "{"):
+                end = self._closing(self.i)
+                inner = self.tex[self.starts[self.i] + 1:self.starts[end]].strip() if end is not None else ""
+                if _WORD.fullmatch(inner):  # an upright word is text: "surface", not s·u·r·f·a·c·e
+                    self.i = end + 1
+                    return f"<mtext>{escape(inner)}</mtext>"
             body = self.argument()
             # A class, not style="": the Content-Security-Policy allows no inline style (lagrade.css has it).
             style = ' class="bold"' if _STYLES[name] == "bold" else ""

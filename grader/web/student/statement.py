@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import re
 from functools import lru_cache
+from html import escape
 
 import markdown
 import nh3
@@ -23,7 +24,7 @@ from markupsafe import Markup
 
 from grader.web.student.mathml import to_mathml, unsupported
 
-__all__ = ["render_inline", "render_math", "render_statement", "sanitize", "statement_problems"]
+__all__ = ["render_inline", "render_math", "render_statement", "render_text", "sanitize", "statement_problems"]
 
 # $$...$$ first, then $...$ that neither starts nor ends with a space (so "costs $5 or $6" is text);
 # a backslash-escaped \$ is a literal dollar.
@@ -90,6 +91,29 @@ def render_inline(text: str) -> Markup:
     if html.startswith("<p>") and html.endswith("</p>") and html.count("<p>") == 1:
         html = html[3:-4]
     return Markup(html)
+
+
+@lru_cache(maxsize=1024)
+def render_text(text: str) -> Markup:
+    """A message (feedback, a verdict's reason, a scene error) as safe HTML: its ``$...$`` as MathML,
+    everything else as plain text. No Markdown: in "m*g*l" or "lambda_surface" outside math the
+    stars and underscores are what was typed, not emphasis; line breaks are kept by the page's CSS.
+
+    >>> str(render_text("Check $N$ & <b>"))[:56]
+    'Check <math display="inline"><semantics><mrow><mi>N</mi>'
+    >>> str(render_text("costs $5 or $6 & <b>"))
+    'costs $5 or $6 &amp; &lt;b&gt;'
+    """
+    text = text or ""
+    parts, last = [], 0
+    for match in _MATH.finditer(text):
+        parts.append(escape(text[last:match.start()].replace(r"\$", "$")))
+        display, inline = match.group(1), match.group(2)
+        tex = (display if display is not None else inline).replace(r"\$", "$")
+        parts.append(to_mathml(tex, display=display is not None))
+        last = match.end()
+    parts.append(escape(text[last:].replace(r"\$", "$")))
+    return Markup("".join(parts))
 
 
 def render_math(tex: str | None, display: bool = False) -> Markup:

@@ -15,7 +15,7 @@ from typing import Any
 
 from flask import abort, flash, g, jsonify, redirect, render_template, request, url_for
 
-from grader.jobs import SubmissionRejected, submit
+from grader.jobs import AnswerUnreadable, SubmissionRejected, submit
 from grader.store.db import Database, db
 from grader.store.models import ProblemVersion, Submission
 from grader.store.scores import practice_score
@@ -110,17 +110,31 @@ def submit_answers(slug: str):
     if not texts:
         flash("Type at least one answer before submitting.", "error")
         return _problem_page(find_version(db.session, me, slug, Action.SUBMIT), status=422)
-    sent = 0
+    sent, again, unreadable = 0, 0, {}
     for name, text in texts.items():
         try:
             limiter.hit("submit", g.user.id)
-            submit(Database.current(), user=g.user, version=version, answer=name, text=text.strip())
-            sent += 1
+            _, created = submit(Database.current(), user=g.user, version=version, answer=name, text=text.strip())
+            sent += created
+            again += not created
+        except AnswerUnreadable:
+            # Not an attempt: shown next to its input, with the caret, as the preview shows it.
+            unreadable[name] = preview(version.reference(name), text)
         except (SubmissionRejected, ApiProblem) as error:
             flash(getattr(error, "detail", None) or str(error), "error")
             break
     if sent:
         flash(f"Submitted {sent} answer{'s' if sent != 1 else ''} for grading.", "success")
+    if again:
+        flash("You had already sent " + ("this answer" if again == 1 else "these answers")
+              + " exactly as typed: " + ("its" if again == 1 else "their") + " verdict is shown below, and "
+              "it is not counted as another attempt.", "success")
+    if unreadable:
+        flash("The grader cannot read " + ("an answer" if len(unreadable) == 1 else f"{len(unreadable)} answers")
+              + ": fix what is marked next to it and submit again. Nothing was counted as an attempt for it.",
+              "error")
+        return _problem_page(find_version(db.session, me, slug, Action.SUBMIT), _typed(version), unreadable,
+                             status=422)
     return redirect(url_for("student.problem", slug=slug) + "#answers")
 
 
