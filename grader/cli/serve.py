@@ -78,7 +78,8 @@ def _demo_accounts(database) -> list[str]:
     with database.write() as session:
         if session.scalar(select(User.id).where(User.password_hash.is_not(None)).limit(1)) is not None:
             return []
-        lines = ["first start: created demo accounts (change them, or make your own with `grader db create-user`):"]
+        lines = ["first start: created demo accounts (change their passwords on /account, or make your own accounts "
+                 "with `grader db create-user`):"]
         for role in ("instructor", "student"):
             password = secrets.token_urlsafe(9)
             create_user(session, role=role, name=f"Demo {role}", email=f"{role}@example.org", password=password)
