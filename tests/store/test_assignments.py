@@ -7,6 +7,8 @@ import dataclasses
 from datetime import datetime, timedelta, timezone
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from grader.jobs.assignment_submissions import HandInRefused, hand_in
 from grader.store.assignments import (AssignmentError, attempts_used, create_assignment, deadline_state, late_days,
@@ -153,3 +155,14 @@ def test_a_late_hand_in_is_stamped_with_the_servers_time(database, course, stude
     _, late, _ = hand_in(database, user=student, assignment_id=assignment_id, problem_id=problem_id, answer="tension",
                       text="m*g/3", now=DUE + SECOND)
     assert late == 1
+
+
+@settings(max_examples=200, deadline=None)
+@given(earlier=st.integers(-10 * 86400, 10 * 86400), later=st.integers(0, 3 * 86400),
+       penalty=st.floats(0, 1, allow_nan=False))
+def test_a_later_hand_in_never_keeps_more_and_every_started_day_counts(earlier, later, penalty):
+    assignment = _rules(late_penalty_per_day=penalty)
+    first, second = DUE + timedelta(seconds=earlier), DUE + timedelta(seconds=earlier + later)
+    assert late_factor(assignment, second) <= late_factor(assignment, first)
+    assert 0.0 <= late_factor(assignment, second) <= 1.0
+    assert late_days(assignment, first) == max(0, -(-earlier // 86400))  # ceil of the days after due
