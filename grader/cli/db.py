@@ -86,8 +86,9 @@ def create_course(code: str, title: str | None) -> None:
 @click.argument("code")
 @click.option("--user", "user_id", type=int, required=True,
               help="The user's id, as create-user or token create printed it.")
-@click.option("--as", "role", type=click.Choice(["student", "instructor", "lms"]), default="student",
-              show_default=True, help="instructor: manages the course's problems; lms: links an LMS account, which may then submit "
+@click.option("--as", "role", type=click.Choice(["student", "ta", "instructor", "lms"]), default="student",
+              show_default=True, help="instructor: manages the course's problems; ta: reads its roster and "
+                   "gradebook, never publishes; lms: links an LMS account, which may then submit "
                    "for students and read grades of the course's problems.")
 def enrol(code: str, user_id: int, role: str) -> None:
     """Enrol a user in the course CODE (again: change their role in it). Access rules: grader.web.policy."""

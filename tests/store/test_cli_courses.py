@@ -72,3 +72,11 @@ def test_mistakes_are_refused_in_one_line(url, users, args, message):
     _run("create-course", "MECH")
     result = _run(*args)
     assert result.exit_code == 1 and message in result.output and "Traceback" not in result.output
+
+
+def test_a_teaching_assistant_grades_but_does_not_manage(url, users):
+    _run("create-course", "MECH")
+    result = _run("enrol", "MECH", "--user", str(users["student"]), "--as", "ta")
+    assert result.exit_code == 0 and "as ta" in result.output
+    ta = _principal(url, users["student"])
+    assert ta.assisted == {1} and ta.taught == frozenset() and not ta.manages_course(1)
