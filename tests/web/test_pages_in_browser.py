@@ -32,10 +32,14 @@ SHOTS = Path("/tmp/lagrade-pages")
 WIDTHS = {"desktop": 1280, "phone": 390}
 PAGES = {
     None: ["/login"],
-    STUDENT: ["/problems", "/problems/yoyo", "/courses"],
+    STUDENT: ["/problems", "/problems/yoyo", "/courses", "/account"],
     INSTRUCTOR: ["/instructor/", "/instructor/problems/yoyo", "/instructor/problems/yoyo/review",
-                 "/instructor/problems/new", "/instructor/courses"],
+                 "/instructor/problems/new", "/instructor/courses", "/instructor/problems/yoyo/edit",
+                 "/instructor/problems/yoyo/diff", "/instructor/problems/yoyo/regrade",
+                 "/instructor/problems/yoyo/regrade/progress", "/instructor/docs/scene-format", "/account"],
 }
+# Pages whose text documents the math syntax itself, so a "$" there is meant to be read as typed.
+LITERAL_DOLLARS = {"/instructor/docs/scene-format"}
 WCAG = ["wcag2a", "wcag2aa", "wcag21a", "wcag21aa", "wcag22aa"]
 
 # Tables that are wider than the screen must sit in something that scrolls sideways.
@@ -89,7 +93,7 @@ def test_every_page_is_accessible_rendered_and_readable_on_a_phone(sync_playwrig
                         page.screenshot(path=str(SHOTS / f"{name}.png"), full_page=True)
                         problems += [f"{where}: {v}" for v in _audit(page, axe)]
                         text = page.evaluate("() => document.body.innerText")
-                        if "$" in text:
+                        if "$" in text and path not in LITERAL_DOLLARS:
                             problems.append(f"{where}: raw math left unrendered: "
                                             f"{text[max(0, text.index('$') - 40):text.index('$') + 40]!r}")
                         problems += [f"{where}: table clipped on a {width}px screen: {t}"
