@@ -2,6 +2,7 @@
 versions, regrade after a confirmation and follow its progress, read the scene-file format."""
 
 import re
+from datetime import datetime
 from pathlib import Path
 
 import pytest
@@ -9,6 +10,7 @@ from sqlalchemy import select
 
 from grader.store.models import Problem, ProblemVersion, Submission
 from grader.web.instructor.versions import reference_changes
+from grader.web.policy import Action, Principal, allowed
 from tests.web.conftest_pages import (  # noqa: F401  (fixtures)
     accounts, as_instructor, as_other_student, as_student, csrf, form_token, grade_all, problems, sign_in,
     submit_answers,
@@ -163,3 +165,18 @@ def test_the_scene_format_is_served_as_a_page_linked_from_the_navigation(as_inst
     assert page.status_code == 200 and "<table>" in html and "<code>id</code>" in html
     assert "<script" not in html.split("</main>")[0].split("<main>")[1]
     assert as_student.get("/instructor/docs/scene-format").status_code == 403
+
+
+@pytest.mark.parametrize("who, sees, submits", [
+    (Principal(user_id=1, role="student", enrolled=frozenset({1})), False, False),
+    (Principal(user_id=2, role="lms", enrolled=frozenset({1})), False, False),
+    (Principal(user_id=3, role="instructor", enrolled=frozenset({1}), taught=frozenset({1})), True, False),
+    (Principal(user_id=4, role="admin"), True, False),
+])
+def test_the_policy_keeps_an_archived_problem_for_its_managers_and_lets_nobody_answer_it(who, sees, submits):
+    version = ProblemVersion(published=True, problem=Problem(slug="old", course_id=1, archived_at=datetime(2026, 1, 1)))
+    assert allowed(who, Action.SEE, version) is sees and allowed(who, Action.SEE, version.problem) is sees
+    assert allowed(who, Action.SUBMIT, version) is submits
+    assert allowed(who, Action.SUBMIT_FOR_OTHERS, version) is submits
+    version.problem.archived_at = None  # the same principals, before the archive
+    assert allowed(who, Action.SEE, version) and allowed(who, Action.SUBMIT, version)
