@@ -74,3 +74,24 @@ def test_guessing_the_current_password_is_throttled_like_signing_in(app, as_stud
     assert refused.status_code == 429 and "Retry-After" in refused.headers
     assert _signs_in(app, "ada@example.org", PASSWORD)
 
+
+
+def test_an_account_that_signs_in_through_an_lms_has_no_password_to_change(app):
+    from grader.store.users import create_user
+    from grader.web.auth.session import _password_stamp
+
+    with app.extensions["lagrade.db"].write() as session:
+        user = create_user(session, role="student", name="From the LMS", external_id="lms-42")
+        user_id, stamp = user.id, _password_stamp(user)
+    browser = app.test_client()
+    with browser.session_transaction() as cookie:  # what an LTI launch leaves behind
+        cookie.update(user_id=user_id, stamp=stamp)
+    page = browser.get("/account")
+    assert page.status_code == 200 and "LMS; it has no password here" in page.get_data(as_text=True)
+    assert 'name="current"' not in page.get_data(as_text=True)
+    refused = browser.post("/account", data={"current": "", "new": NEW, "again": NEW, "csrf_token": csrf(browser)})
+    assert refused.status_code == 403
+    with app.extensions["lagrade.db"].read() as session:
+        from grader.store.models import User
+
+        assert session.get(User, user_id).password_hash is None

@@ -28,14 +28,17 @@ __all__ = ["account"]
 @login_required(PAGE_ROLES)
 def account():
     me = current_principal()  # the policy says whose account this is: the caller's own, never another's
+    with db.read() as session:
+        user = session.get(User, me.user_id)
+    if user.password_hash is None:  # signed in through an LMS: there is no password here to change
+        return _page("Your account signs in through your course's LMS; it has no password here.",
+                     status=200 if request.method == "GET" else 403, has_password=False)
     if request.method == "GET":
         return _page()
     current = request.form.get("current", "")[:MAX_PASSWORD_LENGTH + 1]
     new, again = (request.form.get(name, "")[:MAX_PASSWORD_LENGTH + 1] for name in ("new", "again"))
-    with db.read() as session:
-        user = session.get(User, me.user_id)
     try:
-        refuse_if_throttled(user.email or "", request.remote_addr)
+        refuse_if_throttled(user.email or f"user {user.id}", request.remote_addr)
     except ApiProblem as problem:
         return _page(problem.detail, field="current", status=429, headers=problem.headers)
     if not current or not new or not again:
@@ -45,8 +48,8 @@ def account():
         return _page(problem, field="new")
     if new != again:
         return _page("The two new passwords differ; type the same one twice.", field="again")
-    if user.password_hash is None or not check_password_hash(user.password_hash, current):
-        record_failed_sign_in(user.email or "", request.remote_addr)
+    if not check_password_hash(user.password_hash, current):
+        record_failed_sign_in(user.email or f"user {user.id}", request.remote_addr)
         return _page("That is not your current password.", field="current", status=403)
     with db.write() as session:
         stored = session.get(User, me.user_id)
@@ -57,9 +60,9 @@ def account():
     return redirect(url_for("auth.account"))
 
 
-def _page(error: str | None = None, *, field: str | None = None, status: int = 200,
-          headers: dict[str, str] | None = None):
-    if error is not None and status == 200:
-        status = 422
-    return (render_template("auth/account.html", error=error, field=field, min_length=MIN_PASSWORD_LENGTH),
-            status, headers or {})
+def _page(error: str | None = None, *, field: str | None = None, status: int | None = None,
+          headers: dict[str, str] | None = None, has_password: bool = True):
+    if status is None:
+        status = 200 if error is None else 422
+    return (render_template("auth/account.html", error=error, field=field, min_length=MIN_PASSWORD_LENGTH,
+                            has_password=has_password), status, headers or {})
