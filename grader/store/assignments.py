@@ -24,11 +24,12 @@ from zoneinfo import ZoneInfo, ZoneInfoNotFoundError
 from sqlalchemy import func, select
 from sqlalchemy.orm import Session
 
-from grader.store.models import SCORE_POLICIES, Assignment, AssignmentProblem, Course, Problem, Submission
+from grader.store.models import SCORE_POLICIES, Assignment, AssignmentProblem, Course, Enrolment, Problem, Submission
 from grader.store.problems import latest_version, problem_by_slug
 
 __all__ = ["AssignmentError", "MAX_PROBLEMS", "assignment_by_slug", "attempts_used", "create_assignment",
-           "deadline_state", "late_days", "late_factor", "local_time", "solutions_open", "to_utc", "zone"]
+           "deadline_state", "late_days", "late_factor", "local_time", "pending_assignment", "solutions_open",
+           "to_utc", "zone"]
 
 DAY = timedelta(days=1)
 MAX_PROBLEMS = 50
@@ -134,6 +135,18 @@ def attempts_used(session: Session, assignment_id: int, user_id: int, problem_id
             & (AssignmentProblem.problem_version_id == Submission.problem_version_id))
         .where(Submission.assignment_id == assignment_id, Submission.user_id == user_id,
                AssignmentProblem.problem_id == problem_id, Submission.answer_name == answer)) or 0
+
+
+def pending_assignment(session: Session, user_id: int, problem_id: int, now: datetime) -> Assignment | None:
+    """An assignment set to ``user_id`` (a student of its course) that holds ``problem_id`` and has not
+    closed yet, if any. Until it closes, the problem is answered there, not as practice: practice
+    verdicts would get round its attempt limit (and answer before it opens).
+    """
+    candidates = session.scalars(
+        select(Assignment).join(AssignmentProblem, AssignmentProblem.assignment_id == Assignment.id)
+        .join(Enrolment, (Enrolment.course_id == Assignment.course_id) & (Enrolment.user_id == user_id))
+        .where(AssignmentProblem.problem_id == problem_id, Enrolment.role == "student"))
+    return next((a for a in candidates if deadline_state(a, now) != "closed"), None)
 
 
 def assignment_by_slug(session: Session, course: Course, slug: str) -> Assignment | None:

@@ -10,7 +10,7 @@ One ``Row`` per request: ``Row(method, rule, url, expect, send)``.
 - ``url`` is the concrete path; ``{name}`` is filled in from ``world.ids``: ``mech``/``other`` (the
   courses' ids), ``stu``... ``adm`` (users), ``mech_version``, ``submission`` (Ada's, sent by the LMS),
   ``job`` (Ine's queued upload), ``lti_context``. Problems: ``mech`` is published in course MECH,
-  ``mech-draft`` a draft in MECH. Course MECH has an assignment ``hw1`` over ``mech``, open now.
+  ``mech-draft`` a draft in MECH. Course MECH has an assignment ``hw1`` over ``mech``, closed in 2021.
 - ``expect`` holds eight outcomes, one per principal, in the order of ``PRINCIPALS``:
 
   ========== ==========================================================================
@@ -181,7 +181,7 @@ ROWS = [
     Row("POST", "/api/v1/courses/<code>/assignments/<assignment>/release", "/api/v1/courses/MECH/assignments/hw1/release",
                                                                                        "401   401   403   403   ok    404   403   ok"),
     Row("POST", "/api/v1/courses/<code>/assignments/<assignment>/submissions",
-        "/api/v1/courses/MECH/assignments/hw1/submissions",                            "401   401   ok    404   403   404   403   403",
+        "/api/v1/courses/MECH/assignments/hw1/submissions",                            "401   401   409   404   403   404   403   403",
         {"json": {"problem": "mech", "answer": "tension", "text": "m*g/3"}}),
     Row("GET", "/api/v1/courses/<code>/gradebook", "/api/v1/courses/MECH/gradebook",   "401   401   ok    404   ok    404   403   ok"),
     Row("GET", "/api/v1/courses/<code>/gradebook", "/api/v1/courses/MECH/gradebook?format=csv",
@@ -276,10 +276,11 @@ def world(tmp_path_factory) -> World:
             version.problem.course_id = mech.id
             ids[f"{slug}_version"] = version.id  # ids["mech"] is the course MECH
         session.flush()
-        # MECH's homework hw1 over the problem mech: open from long ago until long after.
+        # MECH's homework hw1 over the problem mech, closed long ago: mech is open to practice again,
+        # and a hand-in for hw1 gets past the policy to the deadline (409).
         create_assignment(session, mech, slug="hw1", title="Homework 1", problems=["mech"],
                           opens_at=datetime(2020, 1, 1, tzinfo=timezone.utc),
-                          due_at=datetime(2100, 1, 1, tzinfo=timezone.utc))
+                          due_at=datetime(2021, 1, 1, tzinfo=timezone.utc))
         ids.update({key: user.id for key, user in users.items()}, mech=mech.id, other=other.id)
     with database.read() as session:
         mech_version = session.get(ProblemVersion, ids["mech_version"])

@@ -225,3 +225,21 @@ def test_a_retry_with_the_same_idempotency_key_uses_no_attempt_even_after_the_cl
     assert _hand_in(client, keyed, text="m*g").status_code == 422  # the same key for another answer
     view = client.get("/api/v1/courses/MECH/assignments/hw1", headers=ada).get_json()
     assert {a["name"]: a["attempts_used"] for a in view["problems"][0]["answers"]}["tension"] == 1
+
+
+@pytest.mark.parametrize("now, status", [(OPENS - SECOND, 409), (DUE, 409), (CLOSES, 409), (CLOSES + SECOND, 202)])
+def test_a_problem_in_an_assignment_is_not_practised_until_it_closes(client, clock, student, now, status):
+    """Practice verdicts would get round the attempt limit: the problem is answered in the assignment."""
+    clock.now = now
+    response = client.post("/api/v1/problems/yoyo/submissions", json={"answer": "tension", "text": "m*g/3"},
+                           headers=student("s-ada"))
+    assert response.status_code == status
+    if status == 409:
+        assert "/api/v1/courses/MECH/assignments/hw1/submissions" in response.get_json()["detail"]
+
+
+def test_students_outside_the_course_still_practise_the_problem(client, make_token, course):
+    _, outsider = make_token("student")
+    response = client.post("/api/v1/problems/yoyo/submissions", json={"answer": "tension", "text": "m*g/3"},
+                           headers=outsider)
+    assert response.status_code == 202

@@ -139,3 +139,10 @@ def test_scores_agree_on_the_student_page_the_gradebook_page_the_api_and_the_csv
     for client, key in ((cy, "s-cy"), (dee, "s-dee")):
         page = client.get("/courses/PHYS/assignments/hw1").get_data(as_text=True)
         assert re.search(r'id="assignment-score">([0-9.]+)<', page).group(1) == str(expected[key])
+
+
+def test_the_practice_page_sends_a_student_to_the_open_assignment(app, course, clock):
+    cy = _student(app, "cy@example.org")
+    response = _post(cy, "/problems/yoyo/submit", **{"answer-tension": "m*g/3"})
+    assert response.headers["Location"].endswith("/courses/PHYS/assignments/hw1")
+    assert "hand it in there" in cy.get(response.headers["Location"]).get_data(as_text=True)

@@ -10,9 +10,11 @@ from sqlalchemy.exc import IntegrityError
 from sqlalchemy.orm import Session
 
 from grader import jobs
+from grader.store.assignments import pending_assignment
 from grader.store.db import db
 from grader.store.models import ProblemVersion, Submission, User, Verdict
 from grader.store.users import student_for_external_id
+from grader.web import clock
 from grader.web.api import spec
 from grader.web.api.problems import EVERYONE, visible_version
 from grader.web.api.schemas import PARSED, SUBMISSION_REQUEST, read_json
@@ -103,7 +105,17 @@ def _whose(session: Session, requester: User, version: ProblemVersion, external_
     return student
 
 
-@spec.route("/problems/<slug>/submissions", "POST", roles=EVERYONE, errors=(400, 404, 413, 415, 422, 429),
+def _not_in_an_open_assignment(session: Session, user: User, version: ProblemVersion) -> None:
+    """Refuse (409) practice on a problem the student has in an assignment that is not closed yet."""
+    assignment = pending_assignment(session, user.id, version.problem_id, clock.now())
+    if assignment is not None:
+        raise ApiProblem(409, f"This problem is part of assignment {assignment.slug!r} of course "
+                              f"{assignment.course.code!r}: hand it in there "
+                              f"(/api/v1/courses/{assignment.course.code}/assignments/{assignment.slug}/submissions) "
+                              "until the assignment closes.", kind="in-assignment")
+
+
+@spec.route("/problems/<slug>/submissions", "POST", roles=EVERYONE, errors=(400, 404, 409, 413, 415, 422, 429),
             rate_limit="submit",
             request={"application/json": spec.schema("SubmissionRequest", SUBMISSION_REQUEST)},
             parameters=[{"name": "Idempotency-Key", "in": "header", "required": False, "schema": {
@@ -133,6 +145,7 @@ def create_submission(slug: str):
     with db.read() as session:
         version = visible_version(slug, session, Action.SUBMIT)
         user = _whose(session, requester, version, body.get("user"))
+        _not_in_an_open_assignment(session, user, version)
     try:
         submission_id, created = jobs.submit(db, user=user, requester=requester, version=version,
                                              answer=body["answer"], text=body["text"], idempotency_key=key)

@@ -16,10 +16,12 @@ from typing import Any
 from flask import abort, flash, g, jsonify, redirect, render_template, request, url_for
 
 from grader.jobs import AnswerUnreadable, SubmissionRejected, submit
+from grader.store.assignments import pending_assignment
 from grader.store.db import Database, db
 from grader.store.models import ProblemVersion, Submission
 from grader.store.scores import practice_score
 from grader.web.api.bodies import validated_body
+from grader.web import clock
 from grader.web.auth.session import login_required
 from grader.web.errors import ApiProblem
 from grader.web.security import limiter
@@ -106,6 +108,10 @@ def submit_answers(slug: str):
     me = current_principal()
     with db.read() as session:
         version = find_version(session, me, slug, Action.SUBMIT)
+        assignment = pending_assignment(session, g.user.id, version.problem_id, clock.now())
+        if assignment is not None:  # answered there until it closes (its attempt limit holds)
+            flash(f"This problem is part of {assignment.title}: hand it in there.", "error")
+            return redirect(url_for("student.assignment", code=assignment.course.code, assignment=assignment.slug))
     texts = {name: text for name, text in _typed(version).items() if text.strip()}
     if not texts:
         flash("Type at least one answer before submitting.", "error")
