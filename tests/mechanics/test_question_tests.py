@@ -146,3 +146,18 @@ def test_a_numeric_answer_needs_a_number_for_everything_it_depends_on():
     symbolic_m = broken(M_RANDOM, 'm = { dimension = "mass", domain = "positive" }')
     with pytest.raises(SceneError, match="give m a value, random range or choices"):
         derive(parse_scene(symbolic_m, source="y.toml")).references()
+
+
+def test_grader_derive_prints_the_tests_and_fails_on_a_failing_one(tmp_path):
+    from click.testing import CliRunner
+
+    from grader.cli.derive import derive as derive_cli
+
+    passing = CliRunner().invoke(derive_cli, [str(ROOT / "problems" / "yoyo.toml")])
+    assert passing.exit_code == 0, passing.output
+    assert "Question tests\n  ok   acceleration: '2g/3' expects equivalent, got equivalent" in passing.output
+    failing = tmp_path / "yoyo.toml"
+    failing.write_text((ROOT / "problems" / "yoyo.toml").read_text().replace('answer = "2g/3"', 'answer = "g/3"'))
+    result = CliRunner().invoke(derive_cli, [str(failing)])
+    assert result.exit_code == 4
+    assert "FAIL acceleration: 'g/3' expects equivalent, got not_equivalent" in result.output
