@@ -66,7 +66,7 @@ def test_animate_draws_the_scenes_geometry(tmp_path):
 
 
 def test_animate_without_geometry_is_refused_in_one_line(tmp_path):
-    result = run(str(ROOT / "problems" / "yoyo.toml"), "--t-end", "1", "--animate", str(tmp_path / "x.svg"))
+    result = run(str(ROOT / "problems" / "half_atwood.toml"), "--t-end", "1", "--animate", str(tmp_path / "x.svg"))
     assert result.exit_code == 2 and "[geometry]" in result.output
 
 
