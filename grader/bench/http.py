@@ -29,12 +29,21 @@ from pathlib import Path
 
 import click
 
-__all__ = ["LoadResult", "Server", "accounted", "bench_http", "make_tokens", "run_load"]
+__all__ = ["LoadResult", "Server", "accounted", "bench_http", "make_tokens", "run_load", "submission_bodies"]
 
 ROOT = Path(__file__).resolve().parents[2]
 YOYO = ROOT / "problems" / "yoyo.toml"
-# Answers to the yo-yo's tension (T = mg/3): right, wrong, unreadable, in rotation.
-ANSWERS = ["m*g/3", "m g / 3", "m*g", "(m*g)/3 + 0", "2*m*g/3", "m*g*(1/3)", "mg/", "g*m/3"]
+# Answers to the yo-yo's tension (T = mg/3): right and wrong, in rotation. (An unreadable answer is
+# refused with 422 before it is stored: it is no submission to grade.)
+ANSWERS = ["m*g/3", "m g / 3", "m*g", "(m*g)/3 + 0", "2*m*g/3", "m*g*(1/3)", "m*g/2", "g*m/3"]
+
+
+def submission_bodies(count: int = len(ANSWERS) * 3990) -> list[dict]:
+    """``count`` submission bodies, each a new attempt: the same text again would be the same attempt
+    (answered 200 with the stored submission), so the rotation of :data:`ANSWERS` is made distinct
+    by trailing spaces, which the parser ignores: every body is graded like its answer."""
+    return [{"answer": "tension", "text": ANSWERS[i % len(ANSWERS)] + " " * (i // len(ANSWERS))}
+            for i in range(count)]
 CHECK_BODY = {"reference": "m*g*(3*cos(theta) - 2)", "variables": {
     "m": {"dimension": "mass", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"},
     "theta": {"dimension": "angle", "domain": "real"}}, "kind": "expression"}
@@ -259,7 +268,7 @@ def bench_http(clients: int, duration: float, max_requests: int, workers: int, t
                          duration_s=duration, max_requests=max_requests)
         submit = run_load("POST /problems/yoyo/submissions", server.base_url, tokens,
                           path="/api/v1/problems/yoyo/submissions",
-                          bodies=[{"answer": "tension", "text": a} for a in ANSWERS], ok={202},
+                          bodies=submission_bodies(), ok={202},
                           duration_s=duration, max_requests=max_requests)
         grading = accounted(database_url, submit.accepted, timeout_s=max(120.0, duration * 4))
     lost = len(grading["missing"]) + len(grading["not_graded"])

@@ -109,7 +109,7 @@ def _student(database):
 
 
 def _queue_submissions(url: str, count: int) -> list[int]:
-    from grader.bench.http import ANSWERS
+    from grader.bench.http import submission_bodies
     from grader.jobs import queue
     from grader.store.db import Database
     from grader.store.models import ProblemVersion, User
@@ -122,8 +122,7 @@ def _queue_submissions(url: str, count: int) -> list[int]:
         version = session.get(ProblemVersion, version.id)
         student = session.get(User, student_id)
         _ = version.references
-    ids = [queue.submit(database, user=student, version=version, answer="tension", text=ANSWERS[i % len(ANSWERS)])[0]
-           for i in range(count)]
+    ids = [queue.submit(database, user=student, version=version, **body)[0] for body in submission_bodies(count)]
     database.dispose()
     return ids
 

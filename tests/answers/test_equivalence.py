@@ -207,3 +207,24 @@ def test_constants_beyond_the_sampling_scale_say_where_else_to_look(reference, a
     from grader.answers import check
 
     assert check(reference, answer, X_REAL).verdict == expected
+
+
+@pytest.mark.parametrize("reference, answer, domains", [
+    (m * g * sympy.cos(theta), m * g * sympy.sin(theta), {"m": "positive", "g": "positive", "theta": "real"}),
+    (T, m1 * g, {"m1": "positive", "m2": "positive", "g": "positive"}),
+    (m * l * theta**2, m * l * theta**2 + m * g * l, {"m": "positive", "l": "positive", "g": "positive",
+                                                        "theta": "real"}),
+])
+def test_a_counterexample_uses_round_values_a_student_can_check(reference, answer, domains):
+    c = compare_expressions(reference, answer, sampler(**domains), Options(symbolic=False))
+    assert c.equivalent is False and c.certainty == "proved"
+    for value in c.counterexample["values"].values():
+        assert value * 2 == round(value * 2) and value != 0, c.counterexample  # whole numbers or halves
+
+
+def test_round_points_stay_inside_each_domain():
+    from grader.answers.equivalence import round_values
+
+    x = sympy.Symbol("x")
+    narrow = parse_domain([0.1, 0.2])
+    assert round_values({x: 0.1234}, {x: narrow}) == [{x: 0.1}]  # 0.5 is outside: only one figure fits

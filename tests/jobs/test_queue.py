@@ -206,3 +206,45 @@ def test_a_claim_skips_a_row_another_transaction_has_locked(database, setup):
         holder.rollback()
         holder.close()
     assert queue.claim(database, "w2").submission_id == first  # free again once the lock is gone
+
+
+@pytest.mark.parametrize("text, code, column", [("m*g/", "syntax", 4), ("m*g/(3", "unbalanced", 5),
+                                                ("m*q", "unknown_name", 3)])
+def test_an_unreadable_answer_is_refused_and_stores_nothing(database, setup, text, code, column):
+    with pytest.raises(queue.AnswerUnreadable, match=f"at character {column}") as refused:
+        _submit(database, setup, text=text)
+    assert (refused.value.error["code"], refused.value.error["column"]) == (code, column)
+    assert isinstance(refused.value, queue.SubmissionRejected)  # callers that refuse any bad submission still do
+    with database.read() as session:
+        assert session.scalar(select(func.count(Submission.id))) == 0  # not an attempt
+
+
+def test_the_same_text_again_is_the_same_attempt(database, setup):
+    first, created = _submit(database, setup, text="m*g")
+    again, created_again = _submit(database, setup, text="m*g")
+    other, created_other = _submit(database, setup, text="m*g/2")
+    as_tension, _ = _submit(database, setup, text="g")
+    as_acceleration, _ = _submit(database, setup, text="g", answer="acceleration")
+    assert (again, created, created_again) == (first, True, False)
+    # Another text, or the same text for another answer: new attempts.
+    assert created_other and len({first, other, as_tension, as_acceleration}) == 4
+    with database.write() as session:
+        other_student = create_user(session, role="student", name="Bob").id
+    assert _submit(database, setup, text="m*g", user=other_student)[0] != first
+
+
+def test_a_submission_that_could_not_be_graded_may_be_sent_again(database, setup):
+    first, _ = _submit(database, setup, text="m*g")
+    with database.write() as session:
+        session.get(Submission, first).status = "failed"
+    again, created = _submit(database, setup, text="m*g")
+    assert created and again != first
+
+
+def test_same_attempt_keeps_assignments_and_practice_apart(database, setup):
+    first, _ = _submit(database, setup, text="m*g")
+    with database.read() as session:
+        found = queue.same_attempt(session, setup["student"], setup["version"], "tension", "m*g")
+        in_assignment = queue.same_attempt(session, setup["student"], setup["version"], "tension", "m*g",
+                                           assignment_id=1)
+    assert (found.id, in_assignment) == (first, None)

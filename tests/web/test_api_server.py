@@ -13,13 +13,13 @@ import pytest
 import requests
 from sqlalchemy import create_engine, text
 
-from grader.bench.http import ANSWERS, Server, accounted, make_tokens, run_load
+from grader.bench.http import Server, accounted, make_tokens, run_load, submission_bodies
 
 pytestmark = [pytest.mark.server, pytest.mark.slow]
 
 YOYO = Path(__file__).resolve().parents[2] / "problems" / "yoyo.toml"
 SUBMIT = "/api/v1/problems/yoyo/submissions"
-BODIES = [{"answer": "tension", "text": a} for a in ANSWERS]
+BODIES = submission_bodies()  # each one a new attempt: the same text again would be the same submission
 
 
 @pytest.fixture

@@ -55,3 +55,23 @@ def test_tex_takes_one_digit_as_an_argument():
 
 def test_display_math_is_a_block():
     assert to_mathml("x", display=True).startswith('<math display="block">')
+
+
+@pytest.mark.parametrize("tex, subscript", [
+    (r"\lambda_{surface}", "<msub><mi>λ</mi><mtext>surface</mtext></msub>"),
+    (r"\lambda_surface", "<msub><mi>λ</mi><mtext>surface</mtext></msub>"),  # as authors type it
+    (r"\lambda_{\mathrm{surface}}", "<msub><mi>λ</mi><mtext>surface</mtext></msub>"),  # as latex_name writes it
+    (r"f_{\mathrm{unwind}}", "<msub><mi>f</mi><mtext>unwind</mtext></msub>"),
+    (r"x_{ab}^{2}", "<msubsup><mi>x</mi><mtext>ab</mtext><mn>2</mn></msubsup>"),
+])
+def test_a_word_subscript_is_upright_text_not_a_product_of_letters(tex, subscript):
+    assert subscript in to_mathml(tex)
+
+
+@pytest.mark.parametrize("tex, subscript", [
+    (r"m_{1}", "<msub><mi>m</mi><mn>1</mn></msub>"),
+    (r"\lambda_{s}", "<msub><mi>λ</mi><mi>s</mi></msub>"),
+    (r"x_a b", "<msub><mi>x</mi><mi>a</mi></msub><mi>b</mi>"),  # letters apart are apart
+])
+def test_one_letter_and_number_subscripts_stay_as_they_were(tex, subscript):
+    assert subscript in to_mathml(tex)

@@ -153,3 +153,40 @@ def test_the_history_lists_my_attempts_newest_first(app, as_student, problems):
     history = html[html.index('id="history"'):]
     assert re.search(r"m\*g/2</code>.*m\*g</code>", history, re.S)
     assert history.count("badge incorrect") == 2
+
+
+def test_an_unreadable_answer_is_shown_at_its_input_and_is_not_an_attempt(app, as_student, problems):
+    response = submit_answers(as_student, "yoyo", tension="m*g/(3", acceleration="2*g/3")
+    html = response.get_data(as_text=True)
+    assert response.status_code == 422 and submissions(app) == 1  # the readable one was sent, this one not
+    block = html[html.index('id="answer-tension"'):html.index('class="buttons"')]
+    assert 'class="preview error"' in block and '<span class="caret">^</span>' in block
+    assert "(at character 5)" in block and 'value="m*g/(3"' in block  # kept in its input, to fix
+    assert "Nothing was counted as an attempt" in html
+
+
+def test_sending_the_same_text_again_is_the_same_attempt(app, as_student, problems):
+    submit_answers(as_student, "yoyo", tension="m*g")
+    again = submit_answers(as_student, "yoyo", tension="m*g")
+    assert again.status_code == 302 and submissions(app) == 1
+    page = as_student.get("/problems/yoyo").get_data(as_text=True)
+    assert "not counted as another attempt" in page
+
+
+def test_a_verdict_shows_its_feedback_once_and_the_point_with_math(app, as_student, problems):
+    submit_answers(as_student, "yoyo", tension="m*g/2")
+    grade_all(app)
+    detail = as_student.get("/submissions/1").get_data(as_text=True)
+    verdict = detail[detail.index('class="verdict"'):]
+    assert "ball arithmetic" not in verdict and "counterexample" not in verdict  # the instructor's words
+    point = verdict[verdict.index('class="small point"'):]
+    assert point.startswith('class="small point">At') and "<math" in point and "your answer gives" in point
+    assert re.search(r"</math> = \d+(\.5)? (kg|m/s²)", point)  # round values, with their units
+
+
+def test_the_history_names_each_answer_by_its_prompt(app, as_student, problems):
+    submit_answers(as_student, "yoyo", tension="m*g")
+    grade_all(app)
+    html = as_student.get("/problems/yoyo").get_data(as_text=True)
+    row = html[html.index('id="history"'):].split("<tr>")[2]
+    assert "Tension" in row and ">tension<" not in row

@@ -7,7 +7,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from grader.web.student.statement import ALLOWED_TAGS, render_inline, render_statement, statement_problems
+from grader.web.student.statement import ALLOWED_TAGS, render_inline, render_statement, render_text, statement_problems
 
 
 def test_inline_and_display_math_become_mathml_inside_markdown():
@@ -137,7 +137,7 @@ def _script_vectors(html: str) -> list[str]:
     return found
 
 
-@pytest.mark.parametrize("render", [render_statement, render_inline], ids=["statement", "inline"])
+@pytest.mark.parametrize("render", [render_statement, render_inline, render_text], ids=["statement", "inline", "text"])
 @pytest.mark.parametrize("vector", XSS_VECTORS)
 def test_no_xss_vector_survives_rendering(render, vector):
     html = str(render(vector))
@@ -185,3 +185,24 @@ _FRAGMENTS = ["[x](", ")", "![i](", "<", ">", "javascript", "&#58;", "&colon;", 
 @given(st.lists(st.sampled_from(_FRAGMENTS), max_size=25).map("".join))
 def test_no_mix_of_vector_fragments_yields_script(text):
     assert _script_vectors(str(render_statement(text))) == []
+
+
+@pytest.mark.parametrize("message, maths", [
+    ("The tension $T$ must be less than the weight $mg$.", 2),
+    (r"Check $\dot\theta^2$ and $m\ell\dot\theta^2$.", 2),
+    ("$$T = m g$$ is the weight, not the tension", 1),
+    ("no math at all", 0),
+])
+def test_a_message_shows_its_math_as_mathml_and_no_dollar_sign(message, maths):
+    html = str(render_text(message))
+    assert html.count("<math") == maths
+    assert "$" not in re.sub(r"<annotation[^>]*>.*?</annotation>", "", html)
+
+
+@pytest.mark.parametrize("message, shown", [
+    ("m*g*l and lambda_surface are not emphasis", "m*g*l and lambda_surface are not emphasis"),
+    ("costs $5 or $6", "costs $5 or $6"),
+    ("a <b>bold</b> & <script>x</script>", "a &lt;b&gt;bold&lt;/b&gt; &amp; &lt;script&gt;x&lt;/script&gt;"),
+])
+def test_a_message_outside_its_math_is_plain_text(message, shown):
+    assert str(render_text(message)) == shown
