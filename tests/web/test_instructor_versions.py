@@ -9,27 +9,30 @@ import pytest
 from sqlalchemy import select
 
 from grader.store.models import Problem, ProblemVersion, Submission
+from grader.store.problems import save_problem
 from grader.web.instructor.versions import reference_changes
 from grader.web.policy import Action, Principal, allowed
 from tests.web.conftest_pages import (  # noqa: F401  (fixtures)
     accounts, as_instructor, as_other_student, as_student, csrf, form_token, grade_all, problems, sign_in,
     submit_answers,
 )
-from tests.web.derive_in_process import derive_all
+from tests.web.derive_in_process import derive_all, derive_in_process
 
 ROOT = Path(__file__).resolve().parents[2]
 YOYO_SCENE = (ROOT / "problems" / "yoyo.toml").read_text()
 
 
+@pytest.fixture(scope="module")
+def derived_yoyo():
+    """The real yo-yo scene file, derived once for the module (the engine takes a few seconds)."""
+    return derive_in_process(YOYO_SCENE, "yoyo.toml")
+
+
 @pytest.fixture
-def yoyo_from_file(app, as_instructor):
-    """The yo-yo registered from its real scene file (version 1, published), so it can be edited."""
-    response = as_instructor.post("/instructor/problems/new", data={"source": YOYO_SCENE,
-                                                                    "csrf_token": csrf(as_instructor)})
-    assert response.status_code == 302
-    derive_all(app)
-    assert as_instructor.post("/instructor/problems/yoyo/versions/1/publish",
-                              data={"csrf_token": csrf(as_instructor)}).status_code == 302
+def yoyo_from_file(app, accounts, derived_yoyo):
+    """The yo-yo stored from its real scene file (version 1, published, in no course), so it can be edited."""
+    with app.extensions["lagrade.db"].write() as session:
+        save_problem(session, derived_yoyo, published=True)
     return "yoyo"
 
 
