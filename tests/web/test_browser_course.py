@@ -4,7 +4,8 @@ An instructor starts a course, enrols two students from a CSV file and builds an
 randomised problem (one attempt per answer, half the score per day late); the two students see
 different numbers and hand in, one on time (and then out of attempts), one late; the deadline
 passes (the server's clock is a file this test rewrites); the solutions appear; and the gradebook
-page, the API and the CSV give every student the same score. Screenshots go to /tmp
+page, the API and the CSV give every student the same score. axe-core finds no serious or critical
+WCAG violation on the filled pages (roster, assignment, solution, gradebook). Screenshots go to /tmp
 (lagrade-course-student.png, lagrade-course-gradebook.png).
 """
 
@@ -23,6 +24,7 @@ import time
 import pytest
 
 from tests.web.test_browser_flow import CHROMIUM, CHROMIUM_ARGS, ROOT, _grader, _require_browser, _sign_in
+from tests.web.test_pages_in_browser import _audit, _axe_source
 
 pytestmark = [pytest.mark.browser, pytest.mark.server, pytest.mark.slow]
 
@@ -108,10 +110,19 @@ def _graded_gradebook(page, base: str) -> str:
 
 def test_a_course_from_roster_to_gradebook(sync_playwright, course_server, tmp_path):
     base, clock, database_url = course_server
+    axe, violations = _axe_source(), []
+
+    def audit(page) -> None:  # axe-core: no serious or critical WCAG 2.2 AA violation on a filled page
+        violations.extend(f"{page.url}: {v}" for v in _audit(page, axe))
+
     with sync_playwright() as playwright:
         browser = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+
+        def new_page():  # bypass_csp only so that axe can be injected; the pages run under their CSP
+            return browser.new_context(bypass_csp=True).new_page()
+
         try:
-            prof = browser.new_page()
+            prof = new_page()
             _sign_in(prof, base, INSTRUCTOR)
             prof.goto(f"{base}/instructor/courses")
             prof.fill("#course-code", "PHYS")
@@ -123,6 +134,7 @@ def test_a_course_from_roster_to_gradebook(sync_playwright, course_server, tmp_p
             prof.click("#enrol button[type=submit]")
             assert "Enrolled 2 people" in prof.inner_text(".flash")
             assert "Ada Lovelace" in prof.inner_text("table.roster") and "Bob Hooke" in prof.inner_text("table.roster")
+            audit(prof)
             prof.fill("#a-id", "hw1")
             prof.fill("#a-title", "Homework 1")
             prof.check("input[name=problems][value=yoyo-randomised]")
@@ -134,7 +146,7 @@ def test_a_course_from_roster_to_gradebook(sync_playwright, course_server, tmp_p
             prof.click("#new-assignment + form button[type=submit]")
             prof.wait_for_url(f"{base}/instructor/courses/PHYS/assignments/hw1")
 
-            ada = browser.new_page()
+            ada = new_page()
             _sign_in(ada, base, STUDENTS["ada"])
             ada.goto(f"{base}/courses")
             ada.click("text=Homework 1")
@@ -145,9 +157,10 @@ def test_a_course_from_roster_to_gradebook(sync_playwright, course_server, tmp_p
             assert "1 attempt used, 0 left" in ada.inner_text("#attempts-yoyo-randomised-tension")
             assert ada.query_selector("#input-yoyo-randomised-tension") is None  # out of attempts
             ada.screenshot(path="/tmp/lagrade-course-student.png", full_page=True)
+            audit(ada)
 
             clock.write_text("2026-12-09T12:00:00+00:00")  # past due: one started day late
-            bob = browser.new_page()
+            bob = new_page()
             _sign_in(bob, base, STUDENTS["bob"])
             bob.goto(f"{base}/courses/PHYS/assignments/hw1")
             assert "keeps 50% of its score" in bob.inner_text("#rules")
@@ -163,9 +176,11 @@ def test_a_course_from_roster_to_gradebook(sync_playwright, course_server, tmp_p
             mine = dict(re.findall(r"(\w+) = ([0-9.]+)", ada_numbers))  # with her own numbers: T = m g / 3
             assert f"{float(mine['m']) * float(mine['g']) / 3:.4g} N" in ada.inner_text("details.solution")
             assert ada.query_selector("#input-yoyo-randomised-acceleration") is None
+            audit(ada)
 
             html = _graded_gradebook(prof, base)
             prof.screenshot(path="/tmp/lagrade-course-gradebook.png", full_page=True)
+            audit(prof)
             page_scores = {name: float(score) for name, score in re.findall(
                 r'<td>(Ada Lovelace|Bob Hooke)<div.*?<strong class="score">([0-9.]+)</strong>', html, re.S)}
             csv_text = prof.request.get(f"{base}/instructor/courses/PHYS/gradebook.csv").text()
@@ -173,6 +188,7 @@ def test_a_course_from_roster_to_gradebook(sync_playwright, course_server, tmp_p
             ada_page = {"Ada Lovelace": float(ada.inner_text("#assignment-score"))}
         finally:
             browser.close()
+    assert violations == []
     csv_scores = {r["name"]: float(r["score"]) for r in csv.DictReader(io.StringIO(csv_text))}
 
     from sqlalchemy import select
