@@ -1,0 +1,42 @@
+"""Registering a scene runs its question tests: the review page shows what the grader said, and a
+failing test stops the registration with the grader's words (nothing to publish)."""
+
+from html import unescape
+from pathlib import Path
+
+from tests.web.derive_in_process import derive_all
+from tests.web.conftest_pages import (  # noqa: F401  (fixtures)
+    InProcessChecker, accounts, as_instructor, as_other_student, as_student, checkers, csrf, form_token, grade_all,
+    problems, sign_in, submit_answers,
+)
+
+ROOT = Path(__file__).resolve().parents[2]
+RANDOMISED = (ROOT / "tests" / "mechanics" / "randomised" / "yoyo_randomised.toml").read_text()
+
+
+def register(app, as_instructor, accounts, source):
+    form = as_instructor.get("/instructor/problems/new").get_data(as_text=True)
+    response = as_instructor.post("/instructor/problems/new", data={
+        "source": source, "course": str(accounts["course"]), "csrf_token": form_token(form)})
+    assert response.status_code == 302
+    derive_all(app)
+    return as_instructor.get(response.headers["Location"]).get_data(as_text=True)
+
+
+def test_the_review_shows_the_question_tests_and_the_drawn_parameters(app, as_instructor, accounts):
+    progress = register(app, as_instructor, accounts, RANDOMISED)
+    assert "as draft version 1" in progress
+    review = as_instructor.get("/instructor/problems/yoyo-randomised/review?version=1").get_data(as_text=True)
+    assert "Question tests" in review and "<code>98.1 cN</code>" in review
+    assert "✗" not in review and review.count("✓") == 11
+    assert "Drawn for each student" in review and "0.1 to 0.5 in steps of 0.05" in review
+    assert "one of 0.02, 0.03, 0.04" in review
+    assert "in N, tolerance relative 0.01, weight 2.0" in review and "(score 0.5)" in review
+
+
+def test_a_failing_question_test_stops_the_registration_with_the_graders_words(app, as_instructor, accounts):
+    failing = RANDOMISED.replace('answer = "m g/3"', 'answer = "m g/2"', 1)
+    progress = register(app, as_instructor, accounts, failing)
+    assert "question tests failed, so the problem cannot be published" in progress
+    assert "answers (tension): test 'm g/2' expects equivalent, the grader said not_equivalent" in unescape(progress)
+    assert as_instructor.get("/instructor/problems/yoyo-randomised/review").status_code == 404
