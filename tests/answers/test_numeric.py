@@ -6,6 +6,8 @@ import math
 
 import pytest
 from click.testing import CliRunner
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from grader.answers.checker import check, check_request
 from grader.answers.numeric import QuantityError, parse_quantity, within_tolerance
@@ -248,3 +250,26 @@ def test_the_contract_refuses_bad_new_keys(change, message):
 
     with pytest.raises(ReferenceAnswerError, match=message):
         ReferenceAnswer.from_json({**REFERENCE, **change})
+
+
+# -- hostile text --------------------------------------------------------------------------------
+
+_PIECES = st.sampled_from(["1", "4.7", "e", "E", "-", "−", "+", ".", ",", " ", "×", "·", "x", "10", "^", "**", "(",
+                           ")", "/", "*", "N", "kg", "m", "s", "²", "⁻", "µ", "°", "min", "Nm", "1e999", "\ud800"])
+
+
+@given(text=st.one_of(st.text(max_size=40), st.lists(_PIECES, max_size=12).map("".join)))
+@settings(max_examples=300, deadline=None)
+def test_any_text_is_a_quantity_or_a_quantity_error(text):
+    try:
+        quantity = parse_quantity(text)
+    except QuantityError as error:
+        assert str(error)  # a message to show
+    else:
+        assert math.isfinite(quantity.si) and quantity.sig_figs >= 1
+
+
+@given(text=st.lists(_PIECES, max_size=12).map("".join))
+@settings(max_examples=150, deadline=None)
+def test_any_text_gets_a_verdict(text):
+    assert check(answer=text, **WEIGHT).verdict in ("equivalent", "not_equivalent", "invalid")
