@@ -40,10 +40,11 @@ def check(jsonl, source, reference, answer, variables, kind, budget, memory_mb, 
     \b
     With --jsonl, reads SOURCE (default stdin), one request per line:
       {"reference", "answer", "variables": {name: {"dimension", "domain"}},
-       "kind": "expression"|"equation", "feedback"?: [{"expr", "message"}], "state"?: [names],
-       "feedback_detail"?: "kind"|"full"}
+       "kind": "expression"|"equation"|"numeric", "feedback"?: [{"expr", "message", "score"?}],
+       "state"?: [names], "feedback_detail"?: "kind"|"full",
+       numeric only: "values": {name: number}, "unit": "N", "tolerance"?: {...}, "dimension"?}
     and writes one line per request:
-      {"verdict", "certainty", "reason", "parsed", "counterexample", "feedback", "ms", ...}
+      {"verdict", "certainty", "reason", "parsed", "counterexample", "feedback", "ms", "score"?, ...}
     A line that is not UTF-8, not JSON or not an object gets an "invalid" line of its own; the
     batch goes on. Every check runs in a sandboxed child process with a hard time and memory limit.
     """
