@@ -63,7 +63,8 @@ def test_every_export_neutralises_a_hostile_name_and_answer(app, accounts, probl
         session.get(User, accounts["ada"].id).name = hostile_name
         session.get(User, accounts["ada"].id).external_id = "@ada"
         instructor_token = create_token(session, session.get(User, accounts["ine"].id))
-    submit_answers(as_student, "mech", tension="-m*g", acceleration="=1+1")
+    # Answers that start like formulas and are readable ("=1+1" is refused before it is stored).
+    submit_answers(as_student, "mech", tension="-m*g", acceleration="+g")
     grade_all(app)
     exports = {
         "instructor page": as_instructor.get("/instructor/problems/mech/submissions.csv"),
@@ -75,4 +76,4 @@ def test_every_export_neutralises_a_hostile_name_and_answer(app, accounts, probl
         text = response.get_data(as_text=True)
         assert "'" + hostile_name in _cells(text) and "'@ada" in _cells(text), where
         assert _live_formulas(text) == [], where
-    assert {"'-m*g", "'=1+1"} <= set(_cells(exports["instructor page"].get_data(as_text=True)))
+    assert {"'-m*g", "'+g"} <= set(_cells(exports["instructor page"].get_data(as_text=True)))
