@@ -28,6 +28,7 @@ _BENCHMARKS = {
     "accuracy": "grader.bench.accuracy:bench_accuracy",
     "load": "grader.bench.load:bench_load",
     "simulate": "grader.bench.simulate:bench_simulate",
+    "gradebook": "grader.bench.gradebook:bench_gradebook",
 }
 
 
