@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import sympy
 
-__all__ = ["human_form", "quick_form", "readable_denominator", "signs_in_front", "tidy_trig"]
+__all__ = ["gathered_roots", "human_form", "quick_form", "readable_denominator", "signs_in_front", "tidy_trig"]
 
 _TRIG = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc)
 
@@ -71,7 +71,52 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
     # simplify() rarely beats the cheap forms on a short expression, and costs the most there.
     if 12 < min(sympy.count_ops(c) for c in candidates) and sympy.count_ops(cancelled) < 120:
         attempt(costly, seconds, fallback=lambda: None)
+    if expr.has(sympy.Pow):
+        candidates.extend([gathered_roots(c) for c in candidates])
     return min((signs_in_front(c) for c in candidates), key=lambda e: _weight(e, allowed))
+
+
+def _is_root(factor: sympy.Expr) -> bool:
+    return factor.is_Pow and factor.exp in (sympy.S.Half, -sympy.S.Half)
+
+
+def gathered_roots(expr: sympy.Expr) -> sympy.Expr:
+    """Square roots gathered into one, over a radicand with common factors taken out of its sums.
+
+    sympy splits √(2d/(g sin α)) into √2·√d·√(1/sin α)/√g and multiplies 3 into 3R − 3r; on a
+    blackboard both are written once: √(2d/(g sin α)), √(2g/(3(R − r))). Gathering √a·√b into
+    √(ab) is exact wherever the answer is real, which is where it is an answer. The root is kept
+    unevaluated, else sympy splits it again.
+
+    >>> d, g, a, R, r = sympy.symbols("d g alpha R r", positive=True)
+    >>> gathered_roots(sympy.sqrt(2)*sympy.sqrt(d)*sympy.sqrt(1/sympy.sin(a))/sympy.sqrt(g))
+    sqrt(2*d/(g*sin(alpha)))
+    >>> gathered_roots(sympy.sqrt(2*g/(3*R - 3*r)))
+    sqrt(2*g/(3*(R - r)))
+    """
+    if expr.is_Add:
+        return sympy.Add(*[gathered_roots(a) for a in expr.args])
+    factors = sympy.Mul.make_args(expr)
+    roots = [f for f in factors if _is_root(f)]
+    if not roots or (len(roots) == 1 and roots[0].exp < 0):
+        return expr
+    rest = [gathered_roots(f) if f.is_Add else f for f in factors if not _is_root(f)]
+    radicand = sympy.Mul(*[f.base ** (2 * f.exp) for f in roots])
+    return sympy.Mul(*rest) * sympy.Pow(_tidy_radicand(radicand), sympy.S.Half, evaluate=False)
+
+
+def _tidy_radicand(expr: sympy.Expr) -> sympy.Expr:
+    """A fraction with the common factors of numerator and denominator sums taken out."""
+    numerator, denominator = sympy.fraction(sympy.cancel(expr))
+    (a, numerator), (b, denominator) = (sympy.factor_terms(part).as_coeff_Mul() for part in (numerator, denominator))
+    # Signs and numbers in front as a whole: 2g/(3(R − r)), not −2g/(3(r − R)) or 2g/(3R − 3r)
+    # (sympy distributes a number over a sum it multiplies, so the two are kept apart).
+    for part in (numerator, denominator):
+        if part.is_Add and part.could_extract_minus_sign():
+            a = -a
+    numerator = -numerator if numerator.is_Add and numerator.could_extract_minus_sign() else numerator
+    denominator = -denominator if denominator.is_Add and denominator.could_extract_minus_sign() else denominator
+    return sympy.Mul(a / b, numerator, sympy.Pow(denominator, -1))
 
 
 def signs_in_front(expr: sympy.Expr) -> sympy.Expr:

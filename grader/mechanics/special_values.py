@@ -61,6 +61,9 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     scene = evaluator.scene
     key = f"answers ({spec.name}).where"
     target = evaluator.target(spec, default_state=False)
+    asks_time = scene.time in spec.expr.xreplace(evaluator.values).free_symbols
+    if asks_time and scene.time not in target and spec.kind != "small_oscillation":
+        return _at_time(evaluator, spec, target, key)
     with budget.step("reducing the condition", spec.name):
         condition, unknown = _condition(evaluator, spec, target, key)
     with budget.step(f"solving the condition for {unknown}", spec.name):
@@ -81,11 +84,63 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
             candidates = [human_form(sympy.sqrt(result)),
                           sympy.Pow(signs_in_front(sympy.factor(result)), sympy.S.Half, evaluate=False)]
             result = min(candidates, key=lambda e: (sympy.count_ops(e), len(str(e))))
+    return _no_leftover(scene, spec, result, target)
+
+
+def _no_leftover(scene, spec, result: sympy.Expr, target: set) -> sympy.Expr:
     leftover = result.free_symbols - target
     if leftover:
         raise SceneError(scene.source, f"answers ({spec.name})",
                          f"at the special point it still depends on {', '.join(sorted(map(str, leftover)))}")
     return result
+
+
+# -- a moment of the motion in time ---------------------------------------------------------------
+def _at_time(evaluator, spec, target: set, key: str) -> sympy.Expr:
+    """The answer at the first moment t > 0 the condition holds on the motion from [initial].
+
+    Used when the answer asks for t (``expr = "t"``: the time to reach the end of a rod) and
+    ``in_terms_of`` does not allow it: the coordinates are replaced by the motion in closed form
+    (:mod:`grader.mechanics.motion`), which leaves t as the condition's one unknown.
+    """
+    from grader.mechanics.motion import motion_in_time
+
+    scene = evaluator.scene
+    t = scene.time
+    everything = evaluator.parameters | evaluator.state_symbols() | {t}
+    with budget.step("reducing the condition", spec.name):
+        motion = motion_in_time(evaluator, key)
+        lhs, rhs = spec.where
+        condition = _essential(human_form(evaluator.reduce(lhs - rhs, everything, key).xreplace(motion)))
+    others = sorted(map(str, condition.free_symbols - target - {t}))
+    if t not in condition.free_symbols or others:
+        raise SceneError(scene.source, key,
+                         "along the motion in time the condition must leave t as its one unknown; it "
+                         f"leaves {', '.join(others) or 'no t'}")
+    with budget.step("solving the condition for t", spec.name):
+        roots = solve_for(condition, t, scene.source, key)
+    with budget.step("evaluating the answer at the roots", spec.name):
+        value = evaluator.reduce(spec.expr, everything, f"answers ({spec.name}).expr").xreplace(motion)
+        chosen = _first_time(scene, roots, t, key)
+        result = human_form(value.xreplace({t: chosen}))
+    return _no_leftover(scene, spec, result, target)
+
+
+def _first_time(scene, roots: list[sympy.Expr], t: sympy.Symbol, key: str) -> sympy.Expr:
+    """The root the motion reaches first: the least t > 0, the same root at two parameter points."""
+    chosen = None
+    for point in _parameter_points(scene):
+        times = {i: v for i, r in enumerate(roots) if (v := _evaluate(r, point)) is not None and v > 1e-12}
+        if not times:
+            listed = ", ".join(sympy.sstr(r) for r in roots) or "none in closed form"
+            raise SceneError(scene.source, key,
+                             f"the motion from [initial] never reaches the condition at a time t > 0 (roots: "
+                             f"{listed})")
+        first = min(times, key=times.get)
+        if chosen is not None and chosen != first:
+            raise SceneError(scene.source, key, "which root is reached first depends on the parameter values")
+        chosen = first
+    return roots[chosen]
 
 
 # -- the condition --------------------------------------------------------------------------------
