@@ -375,7 +375,8 @@ def check(
     text = answer if isinstance(answer, str) else ""
     try:
         if kind == "numeric":
-            return _numeric(reference, answer, variables, values, unit, tolerance, dimension, feedback, started)
+            return _numeric(reference, answer, variables, values, unit, tolerance, dimension, feedback, started,
+                            alternatives)
         verdict = _check(reference, answer, variables, kind, feedback, budget_s, state, options, started,
                          feedback_detail)
         _partial_credit(verdict, feedback)
@@ -395,7 +396,8 @@ def check(
     return verdict
 
 
-def _numeric(reference, answer, variables, values, unit, tolerance, dimension, feedback, started) -> Verdict:
+def _numeric(reference, answer, variables, values, unit, tolerance, dimension, feedback, started,
+             alternatives=None) -> Verdict:
     from grader.answers.numeric import NumericRequestError, check_numeric
 
     text = answer if isinstance(answer, str) else ""
@@ -406,9 +408,19 @@ def _numeric(reference, answer, variables, values, unit, tolerance, dimension, f
     elif feedback is not None and not isinstance(feedback, (list, tuple)):
         verdict = Verdict.invalid("'feedback' must be a list of {expr, message}", text)
     else:
+        entries = [f for f in feedback or () if isinstance(f, Mapping)]
+        unit = unit if unit is not None else ""
         try:
-            verdict = check_numeric(reference, text, variables, values, unit if unit is not None else "", tolerance,
-                                    dimension, [f for f in feedback or () if isinstance(f, Mapping)])
+            verdict = check_numeric(reference, text, variables, values, unit, tolerance, dimension, entries)
+            # Another accepted value (the mirror equilibrium) counts too; a wrong unit stays wrong.
+            others = alternatives if isinstance(alternatives, (list, tuple)) else ()
+            if verdict.verdict == "not_equivalent" and verdict.evidence.get("method") == "numeric_value":
+                for index, other in enumerate(o for o in others if isinstance(o, str)):
+                    matched = check_numeric(other, text, variables, values, unit, tolerance, dimension)
+                    if matched.verdict == "equivalent":
+                        matched.evidence = {**matched.evidence, "matched": index + 1}
+                        verdict = matched
+                        break
         except NumericRequestError as error:
             verdict = Verdict.invalid(str(error), text)
     verdict.ms = (time.monotonic() - started) * 1000

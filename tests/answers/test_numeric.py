@@ -273,3 +273,11 @@ def test_any_text_is_a_quantity_or_a_quantity_error(text):
 @settings(max_examples=150, deadline=None)
 def test_any_text_gets_a_verdict(text):
     assert check(answer=text, **WEIGHT).verdict in ("equivalent", "not_equivalent", "invalid")
+
+
+def test_an_accepted_alternative_value_is_right_too():
+    # The mirror equilibrium: +asin(1/2) or -asin(1/2), both accepted by the scene.
+    angle = dict(WEIGHT, reference="asin(m/(2*m))", unit="rad", alternatives=["-asin(m/(2*m))"])
+    verdict = check(answer="-30°", **angle)
+    assert verdict.verdict == "equivalent" and verdict.evidence["matched"] == 1
+    assert check(answer="45°", **angle).verdict == "not_equivalent"
