@@ -22,6 +22,7 @@ Examples
 
 from __future__ import annotations
 
+import gc
 import signal
 import threading
 from contextlib import contextmanager
@@ -51,6 +52,14 @@ class BudgetExceeded(RuntimeError):
 
 
 _state = threading.local()
+_collecting = [False]  # inside a garbage collection (see _alarm's handler)
+
+
+def _track_collection(phase: str, _info: dict) -> None:
+    _collecting[0] = phase == "start"
+
+
+gc.callbacks.append(_track_collection)
 
 
 def _can_interrupt() -> bool:
@@ -71,7 +80,18 @@ def _alarm(seconds: float, token: object, cpu: bool = False):
         yield  # the outer budget is shorter: let it fire
         return
 
+    armed = [True]
+
     def handler(signum, frame):
+        if not armed[0]:
+            return  # the step has finished: a late tick changes nothing
+        if _collecting[0]:
+            # An exception raised inside a garbage-collection callback would be lost (and reported
+            # as unraisable); come back right after the collection instead.
+            signal.setitimer(timer, 0.005)
+            return
+        # Should this exception be swallowed anyway (a __del__ that runs now), fire again shortly.
+        signal.setitimer(timer, 0.05)
         raise _Timeout(token)
 
     signal.signal(signum, handler)
@@ -79,6 +99,7 @@ def _alarm(seconds: float, token: object, cpu: bool = False):
     try:
         yield
     finally:
+        armed[0] = False
         left, _ = signal.getitimer(timer)
         signal.setitimer(timer, 0)
         signal.signal(signum, previous_handler)
