@@ -184,6 +184,15 @@ def test_constraint_forces_follow_the_papers_convention(derived):
         ("problems/sphere.toml", "normal_force", "g*m*(3*cos(theta) - 2)"),
         ("problems/incline_general.toml", "friction_force", "beta*g*m*sin(alpha)/(beta + 1)"),
         ("wedge", "wedge_acceleration", "-g*m*sin(alpha)*cos(alpha)/(M + m*sin(alpha)**2)"),
+        # One square root over a radicand with the common factor out of its sums, not
+        # sqrt(2*g/(3*R - 3*r)) or sqrt(2)*sqrt(d)*sqrt(1/sin(alpha))/sqrt(g).
+        ("cylinder_in_cylinder", "small_oscillation_frequency", "sqrt(2*g/(3*(R - r)))"),
+        ("block_incline_time", "time_to_slide", "sqrt(2*d/(g*sin(alpha)))"),
+        ("table_hole_orbit", "steady_angular_velocity", "sqrt(g*m2/(m1*r))"),
+        ("loop_inside_track", "least_launch_speed", "sqrt(5*R*g)"),
+        ("bead_rotating_rod", "speed_at_end", "omega*sqrt(L**2 - r0**2)"),
+        # The motion in time with hyperbolic functions, not r0*exp(omega*t)/2 + r0*exp(-omega*t)/2.
+        ("bead_rotating_rod", "radius_in_time", "r0*cosh(omega*t)"),
     ],
 )
 def test_answers_are_in_the_form_a_person_writes(derived, scene, answer, written):

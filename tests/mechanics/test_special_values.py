@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import time
 from pathlib import Path
 
@@ -71,3 +72,70 @@ def test_a_condition_that_does_not_fix_what_the_answer_needs_is_refused():
                       ('where = "thetaddot = 0"\n\n[[answers]]', 'where = "thetadot = omega"\n\n[[answers]]'))
     with pytest.raises(SceneError, match="still depends on theta"):
         derive(parse_scene(text, "hoop.toml"))
+
+
+# -- the motion in time ------------------------------------------------------------------------------
+def _numbers(expr, **values):
+    return complex(expr.xreplace({s: values[s.name] for s in expr.free_symbols}).evalf())
+
+
+@pytest.mark.parametrize(
+    "scene, answer, expected",
+    [
+        # r̈ = ω² r from rest at r₀: r = r₀ cosh ωt; the motor's torque 2 m r ṙ ω = m ω² r₀² sinh 2ωt.
+        ("bead_rotating_rod", "radius_in_time", "r0*cosh(omega*t)"),
+        ("bead_rotating_rod", "drive_torque_in_time", "m*omega^2*r0^2*sinh(2*omega*t)"),
+        # r₀ cosh ωt* = L: t* = acosh(L/r₀)/ω, the positive root (the other, −t*, is in the past).
+        ("bead_rotating_rod", "time_to_end", "acosh(L/r0)/omega"),
+        ("bead_rotating_rod", "speed_at_end", "omega*sqrt(L^2 - r0^2)"),
+        # s̈ = g sin α from rest: s = g sin α t²/2, so d is slid at t = √(2d/(g sin α)).
+        ("block_incline_time", "distance_in_time", "g*sin(alpha)*t^2/2"),
+        ("block_incline_time", "time_to_slide", "sqrt(2*d/(g*sin(alpha)))"),
+    ],
+)
+def test_values_in_time_and_the_time_a_condition_is_reached(derived, scene, answer, expected):
+    d = derived(scene)
+    value = d.answers[answer]
+    want = parse_expression(expected, d.scene.namespace).expr
+    assert d.scene.time not in value.free_symbols or "in_time" in answer
+    # acosh(L/r₀) and log((L + √(L² − r₀²))/r₀) agree where L > r₀; compare at generic points.
+    for point in ({"L": 1.7, "r0": 0.4, "omega": 2.3, "m": 0.3, "t": 0.7, "g": 9.81, "alpha": 0.4, "d": 1.9},
+                  {"L": 0.9, "r0": 0.2, "omega": 0.8, "m": 1.1, "t": 1.3, "g": 3.0, "alpha": 1.1, "d": 0.5}):
+        assert abs(_numbers(value, **point) - _numbers(want, **point)) < 1e-12 * max(1.0, abs(_numbers(want, **point)))
+
+
+def test_the_time_is_the_root_after_the_start():
+    """Started inwards (ṙ₀ = −ω r₀/2), r = r₀ (cosh ωt − sinh(ωt)/2) shrinks, then grows: of the two
+    roots of r(t) = L one lies in the past; the engine takes the one after the start."""
+    text = scene_text("bead_rotating_rod", ("rdot = 0", 'rdot = "-omega*r0/2"'))
+    value = derive(parse_scene(text, "rod.toml")).answers["time_to_end"]
+    omega, r0, L = 2.0, 0.3, 1.1
+    t = _numbers(value, omega=omega, r0=r0, L=L).real
+    assert t > 0
+    r = r0 * (math.cosh(omega * t) - math.sinh(omega * t) / 2)
+    assert abs(r - L) < 1e-12
+    assert r0 * omega * (math.sinh(omega * t) - math.cosh(omega * t) / 2) > 0
+
+
+def test_a_condition_the_motion_never_reaches_in_time_is_refused():
+    """Sliding down, the block never gets to s = −d (up the incline)."""
+    text = scene_text("block_incline_time", ('where = "s = d"', 'where = "s = -d"'))
+    with pytest.raises(SceneError, match="never reaches the condition at a time t > 0") as caught:
+        derive(parse_scene(text, "block.toml"))
+    assert caught.value.key == "answers (time_to_slide).where"
+
+
+def test_a_motion_without_a_closed_form_in_time_is_named():
+    """A pendulum's θ̈ = −g sin θ / l is not linear: no θ(t), so no time to reach θ = 0."""
+    text = (Path(__file__).resolve().parents[2] / "problems" / "pendulum.toml").read_text(encoding="utf-8")
+    text += '\n[[answers]]\nname = "quarter"\nexpr = "t"\nwhere = "theta = 0"\nin_terms_of = ["g", "l", "theta0"]\n'
+    with pytest.raises(SceneError, match="not linear in the coordinates and velocities"):
+        derive(parse_scene(text, "pendulum.toml"))
+
+
+def test_a_value_in_time_without_a_closed_form_keeps_the_first_error():
+    """θ in terms of t for a pendulum: the error still says what the answer depends on."""
+    text = (Path(__file__).resolve().parents[2] / "problems" / "pendulum.toml").read_text(encoding="utf-8")
+    text += '\n[[answers]]\nname = "angle"\nexpr = "theta"\nin_terms_of = ["g", "l", "theta0", "t"]\n'
+    with pytest.raises(SceneError, match="still depends on theta"):
+        derive(parse_scene(text, "pendulum.toml"))

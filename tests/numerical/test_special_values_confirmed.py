@@ -183,3 +183,35 @@ def test_largest_wall_force_on_a_sliding_ladder():
     measured = _largest_multiplier_over_the_swing(model, "wall", state_at, 1e-3, theta0)
     expected = closed_form(model, answers, "largest_wall_force")
     assert abs(measured - expected) < 1e-6 * expected
+
+
+# -- the motion in time: values as functions of t, and the time a condition is first reached --------
+def test_bead_on_a_rotating_rod_follows_the_closed_form_in_time_and_reaches_the_end_when_it_says():
+    """r(t), the motor's torque λ(t) and the time to reach r = L, against the integrated motion."""
+    model, answers = engine("bead_rotating_rod")
+    omega, r0, L = (model.values[n] for n in ("omega", "r0", "L"))
+    end = Event("end", lambda s: s.q[0] - L, terminal=True)
+    times = np.linspace(0.0, 0.6, 7)
+    motion = simulate(model.numeric, [r0, 0.0], [0.0, omega], 5.0, events=[end], sample_times=times)
+    assert len(motion.samples) == len(times)
+    for s in motion.samples:
+        assert abs(s.q[0] - closed_form(model, answers, "radius_in_time", t=s.t)) < 1e-8 * L
+        torque = closed_form(model, answers, "drive_torque_in_time", t=s.t)
+        assert abs(s.multiplier("drive") - torque) < 1e-7 * max(1.0, abs(torque))
+    reached = motion.first("end")
+    assert reached is not None
+    assert abs(reached.t - closed_form(model, answers, "time_to_end")) < 1e-8
+    assert abs(reached.qdot[0] - closed_form(model, answers, "speed_at_end")) < 1e-7 * omega * L
+
+
+def test_a_block_slides_the_distance_d_down_a_smooth_incline_in_the_time_the_engine_gives():
+    model, answers = engine("block_incline_time")
+    alpha, d = model.values["alpha"], model.values["d"]
+    # s is the distance along the incline: x = s cos α, y = −s sin α.
+    slid = Event("slid", lambda s: math.hypot(s.q[0], s.q[1]) - d, terminal=True)
+    motion = simulate(model.numeric, [0.0, 0.0], [0.0, 0.0], 10.0, events=[slid], sample_times=[0.2, 0.4])
+    for s in motion.samples:
+        assert abs(s.q[0] / math.cos(alpha) - closed_form(model, answers, "distance_in_time", t=s.t)) < 1e-9
+    reached = motion.first("slid")
+    assert reached is not None
+    assert abs(reached.t - closed_form(model, answers, "time_to_slide")) < 1e-8
