@@ -4,6 +4,10 @@ failing test stops the registration with the grader's words (nothing to publish)
 from html import unescape
 from pathlib import Path
 
+from sqlalchemy import select
+
+from grader.store.models import Submission
+
 from tests.web.derive_in_process import derive_all
 from tests.web.conftest_pages import (  # noqa: F401  (fixtures)
     InProcessChecker, accounts, as_instructor, as_other_student, as_student, checkers, csrf, form_token, grade_all,
@@ -40,3 +44,23 @@ def test_a_failing_question_test_stops_the_registration_with_the_graders_words(a
     assert "question tests failed, so the problem cannot be published" in progress
     assert "answers (tension): test 'm g/2' expects equivalent, the grader said not_equivalent" in unescape(progress)
     assert as_instructor.get("/instructor/problems/yoyo-randomised/review").status_code == 404
+
+
+def test_a_student_outside_an_assignment_sees_the_numbers_the_grader_uses(app, as_instructor, as_student, accounts):
+    from grader.answers.randomised import PREVIEW_SEED, draw_parameters
+    from grader.mechanics.references import parameter_specs
+    from grader.mechanics.scene import parse_scene
+
+    register(app, as_instructor, accounts, RANDOMISED)
+    as_instructor.post("/instructor/problems/yoyo-randomised/versions/1/publish", data={"csrf_token": csrf(as_instructor)})
+    numbers = draw_parameters(parameter_specs(parse_scene(RANDOMISED, "y.toml")), PREVIEW_SEED)
+    page = as_student.get("/problems/yoyo-randomised").get_data(as_text=True)
+    assert "The numbers for this problem:" in page and f"m = {numbers['m']:g}" in page
+    assert "A number with its unit, for example in N" in page
+    tension = numbers["m"] * numbers["g"] / 3
+    response = submit_answers(as_student, "yoyo-randomised", tension_value=f"{tension:.4g} N", tension="m*g")
+    assert response.status_code in (200, 302)
+    assert grade_all(app) == 2
+    with app.extensions["lagrade.db"].read() as session:
+        graded = {s.answer_name: (s.verdict.verdict, s.verdict.score) for s in session.scalars(select(Submission))}
+    assert graded == {"tension_value": ("equivalent", 1.0), "tension": ("not_equivalent", 0.25)}

@@ -62,7 +62,19 @@ def _problem_page(version: ProblemVersion, texts: dict[str, str] | None = None,
     answers = _answers(version, texts or {}, previews or {}, attempts)
     pending = any(a["latest"] and a["latest"]["pending"] for a in answers)
     return render_template("student/problem.html", version=version, answers=answers, pending=pending,
+                           numbers=_numbers(version),
                            attempts=[dict(verdict_view(s), received_at=s.received_at) for s in attempts]), status
+
+
+def _numbers(version: ProblemVersion) -> dict[str, float]:
+    """The numbers a numeric or randomised problem is checked with outside an assignment: the fixed
+    values and the preview draw (`grader.answers.randomised`), as the grader uses them; else none."""
+    from grader.answers.randomised import PREVIEW_SEED, draw_parameters, is_randomised
+
+    specs = (version.derivation or {}).get("parameters") or {}
+    if not (is_randomised(specs) or any(r.get("kind") == "numeric" for r in version.references)):
+        return {}
+    return draw_parameters(specs, PREVIEW_SEED)
 
 
 def _typed(version: ProblemVersion) -> dict[str, str]:
