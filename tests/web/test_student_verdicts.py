@@ -71,6 +71,13 @@ def test_one_slip_gets_one_feedback_line():
     assert view["feedback"] == [message] and view["summary"] is None  # the feedback says it: no second line
 
 
+def test_the_instructors_message_for_a_known_wrong_answer_replaces_the_graders_guess():
+    feedback = [{"code": "instructor", "message": "The tension must be less than the weight $mg$."},
+                {"code": "factor", "message": "Your answer is off by a constant factor: check the numerical factors."}]
+    view = verdict_view(_submission(_verdict(feedback=feedback)))
+    assert view["feedback"] == ["The tension must be less than the weight $mg$."]
+
+
 def test_a_counterexample_shows_the_point_with_units_and_the_students_value_only():
     example = {"values": {"theta": 0.5, "m": 1.0, "g": 2.0}, "answer": 2.1234567, "reference": 0.3333333}
     view = verdict_view(_submission(_verdict(reason="your answer and the correct one differ at the point in the "
