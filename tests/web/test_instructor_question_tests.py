@@ -55,7 +55,7 @@ def test_a_student_outside_an_assignment_sees_the_numbers_the_grader_uses(app, a
     as_instructor.post("/instructor/problems/yoyo-randomised/versions/1/publish", data={"csrf_token": csrf(as_instructor)})
     numbers = draw_parameters(parameter_specs(parse_scene(RANDOMISED, "y.toml")), PREVIEW_SEED)
     page = as_student.get("/problems/yoyo-randomised").get_data(as_text=True)
-    assert "The numbers for this problem:" in page and f"m = {numbers['m']:g}" in page
+    assert "The numbers for this problem:" in page and f"m = {numbers['m']:g} kg" in page and "g = 9.81 m/s²" in page
     assert "A number with its unit, for example in N" in page
     tension = numbers["m"] * numbers["g"] / 3
     response = submit_answers(as_student, "yoyo-randomised", tension_value=f"{tension:.4g} N", tension="m*g")

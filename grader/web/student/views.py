@@ -66,15 +66,25 @@ def _problem_page(version: ProblemVersion, texts: dict[str, str] | None = None,
                            attempts=[dict(verdict_view(s), received_at=s.received_at) for s in attempts]), status
 
 
-def _numbers(version: ProblemVersion) -> dict[str, float]:
-    """The numbers a numeric or randomised problem is checked with outside an assignment: the fixed
-    values and the preview draw (`grader.answers.randomised`), as the grader uses them; else none."""
+def _numbers(version: ProblemVersion) -> dict[str, str]:
+    """The numbers a numeric or randomised problem is checked with outside an assignment (the fixed
+    values and the preview draw, `grader.answers.randomised`, as the grader uses them), with their SI
+    units: ``{"g": "9.81 m/s²"}``; none for other problems."""
     from grader.answers.randomised import PREVIEW_SEED, draw_parameters, is_randomised
+    from grader.expressions import parse_dimension
 
     specs = (version.derivation or {}).get("parameters") or {}
     if not (is_randomised(specs) or any(r.get("kind") == "numeric" for r in version.references)):
         return {}
-    return draw_parameters(specs, PREVIEW_SEED)
+    shown = {}
+    for name, value in draw_parameters(specs, PREVIEW_SEED).items():
+        try:
+            dimension = parse_dimension(specs[name].get("dimension") or "dimensionless")
+        except ValueError:
+            dimension = None
+        unit = "" if dimension is None or dimension.is_dimensionless else f" {dimension.unit()}"
+        shown[name] = f"{value:g}{unit}"
+    return shown
 
 
 def _typed(version: ProblemVersion) -> dict[str, str]:
