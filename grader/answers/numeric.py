@@ -145,8 +145,7 @@ def parse_quantity(text: str) -> Quantity:
     return Quantity(number, rest, size, dimension, max(len(digits), 1))
 
 
-def within_tolerance(value: float, reference: float, tolerance: Mapping[str, Any], size: float = 1.0,
-                     sig_figs_given: int | None = None) -> bool:
+def within_tolerance(value: float, reference: float, tolerance: Mapping[str, Any], size: float = 1.0) -> bool:
     """Whether ``value`` (SI) matches ``reference`` (SI) under the answer's tolerance.
 
     ``relative`` and ``absolute`` (SI units): within either is enough. ``sig_figs = n``: the value,
@@ -261,7 +260,7 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
     if not isinstance(unit, str):
         raise NumericRequestError("'unit' must be a string")
     try:
-        expected_size, expected_dim = parse_unit(unit)
+        _, expected_dim = parse_unit(unit)
         if dimension:
             declared = parse_dimension(dimension)
             if declared != expected_dim:
@@ -308,7 +307,7 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
     if within_tolerance(quantity.si, target, tol, quantity.size):
         return Verdict("equivalent", "numeric", "within the tolerance of the expected value", parsed=parsed,
                        evidence={"method": "numeric_value", "tolerance": tol})
-    items = _numeric_feedback(quantity.si, target, tol, quantity.size, feedback or (), variables_json, values)
+    items = _numeric_feedback(quantity.si, target, tol, feedback or (), variables_json, values)
     verdict = Verdict("not_equivalent", "numeric", "outside the tolerance of the expected value", parsed=parsed,
                       feedback=items, evidence={"method": "numeric_value", "tolerance": tol})
     scores = [item["score"] for item in items if "score" in item]
@@ -317,7 +316,7 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
     return verdict
 
 
-def _numeric_feedback(value: float, target: float, tol: Mapping[str, Any], size: float, feedback, variables_json: str,
+def _numeric_feedback(value: float, target: float, tol: Mapping[str, Any], feedback, variables_json: str,
                       values: Mapping[str, Any]) -> list[dict[str, Any]]:
     """The instructor's message for a known wrong value, else a slip we can name (never the value)."""
     band = {k: tol[k] for k in ("relative", "absolute") if tol.get(k) is not None} or DEFAULT_TOLERANCE
