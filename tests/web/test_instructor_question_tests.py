@@ -9,10 +9,8 @@ from sqlalchemy import select
 from grader.store.models import Submission
 
 from tests.web.derive_in_process import derive_all
-from tests.web.conftest_pages import (  # noqa: F401  (fixtures)
-    InProcessChecker, accounts, as_instructor, as_other_student, as_student, checkers, csrf, form_token, grade_all,
-    problems, sign_in, submit_answers,
-)
+from tests.web.conftest_pages import accounts, as_instructor, as_student  # noqa: F401  (fixtures)
+from tests.web.conftest_pages import csrf, form_token, grade_all, submit_answers
 
 ROOT = Path(__file__).resolve().parents[2]
 RANDOMISED = (ROOT / "tests" / "mechanics" / "randomised" / "yoyo_randomised.toml").read_text()
