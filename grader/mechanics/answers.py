@@ -31,8 +31,10 @@ from grader.mechanics.simplification import human_form
 __all__ = ["AnswerEvaluator", "evaluate_answers"]
 
 
-def evaluate_answers(scene: Scene, eom) -> tuple[dict[str, sympy.Expr], dict[str, sympy.Equality]]:
-    """Closed form of every answer, and for ``kind = "equation"`` answers the reference equation."""
+def evaluate_answers(scene: Scene, eom) -> tuple[dict[str, sympy.Expr], dict[str, sympy.Equality],
+                                                 dict[str, list[sympy.Expr]]]:
+    """Closed form of every answer, for ``kind = "equation"`` answers the reference equation, and
+    the derived alternatives (a special value at several roots that nothing decides between)."""
     evaluator = AnswerEvaluator(scene, eom)
     answers, equations = {}, {}
     for spec in scene.answers:
@@ -40,7 +42,7 @@ def evaluate_answers(scene: Scene, eom) -> tuple[dict[str, sympy.Expr], dict[str
         answers[spec.name] = value
         if spec.kind == "equation":
             equations[spec.name] = sympy.Eq(spec.expr, value, evaluate=False)
-    return answers, equations
+    return answers, equations, evaluator.alternatives
 
 
 class AnswerEvaluator:
@@ -56,6 +58,8 @@ class AnswerEvaluator:
         subs.update(self.reduction.accelerations)
         self.dynamics = subs
         self.values: dict[sympy.Symbol, sympy.Expr] = {}
+        # Other right values of an answer, derived (special values at several admissible roots).
+        self.alternatives: dict[str, list[sympy.Expr]] = {}
 
     @property
     def parameters(self) -> set[sympy.Symbol]:

@@ -164,6 +164,8 @@ class Derivation:
     equations: dict[str, sympy.Equality] = field(default_factory=dict)
     steps: list = field(default_factory=list)
     references_cache: list | None = None
+    # Derived alternatives: other right values of an answer (a special value with several roots).
+    alternatives: dict[str, list[sympy.Expr]] = field(default_factory=dict)
 
     def to_json(self) -> dict:
         """The contract of ``grader derive --json``: every expression in sympy's str() syntax."""
@@ -193,8 +195,8 @@ def derive(scene: Scene, budget_s: float | None = None) -> Derivation:
     with budget.overall_budget(budget_s):
         with budget.step("solving the equations of motion"):
             eom = equations_of_motion(scene)
-        answers, equations = evaluate_answers(scene, eom)
-        derivation = Derivation(scene, eom, answers, equations)
+        answers, equations, alternatives = evaluate_answers(scene, eom)
+        derivation = Derivation(scene, eom, answers, equations, alternatives=alternatives)
         with budget.step("writing the step-by-step derivation"):
             derivation.steps = derivation_steps(derivation)
     return derivation

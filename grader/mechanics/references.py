@@ -93,7 +93,7 @@ def reference_answers(derivation) -> list[dict[str, Any]]:
             reference = sympy.sstr(value)
             latex = sympy.latex(value, symbol_names=names)
         alternatives = []
-        for alternative in spec.alternatives:
+        for alternative in [*derivation.alternatives.get(spec.name, ()), *spec.alternatives]:
             symbols |= alternative.free_symbols
             alternatives.append(equation_text(spec.expr, alternative) if spec.kind == "equation"
                                 else sympy.sstr(alternative))

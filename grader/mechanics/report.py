@@ -28,6 +28,10 @@ def derivation_json(derivation) -> dict:
         value = derivation.answers[spec.name]
         answers[spec.name] = (equation_text(spec.expr, value) if spec.kind == "equation"
                               else sympy.sstr(value))
+    # Other right values the engine derived (a special value at several roots nothing decides).
+    alternatives = {spec.name: [equation_text(spec.expr, v) if spec.kind == "equation" else sympy.sstr(v)
+                                for v in derivation.alternatives[spec.name]]
+                    for spec in scene.answers if derivation.alternatives.get(spec.name)}
     return {
         "id": scene.id,
         "equations_of_motion": [equation_text(eom.lhs[q], eom.rhs[q]) for q in scene.coordinates],
@@ -36,6 +40,7 @@ def derivation_json(derivation) -> dict:
                               for k, forces in eom.constraint_forces.items()},
         "accelerations": {q: sympy.sstr(v) for q, v in eom.accelerations.items()},
         "answers": answers,
+        **({"alternatives": alternatives} if alternatives else {}),
     }
 
 

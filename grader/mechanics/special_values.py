@@ -76,8 +76,12 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
             # at φ = -h/b); the final check below catches those that do not.
             value = evaluator.reduce(spec.expr, target | evaluator.parameters | {unknown},
                                      f"answers ({spec.name}).expr")
-        chosen = _choose_root(evaluator, spec, condition, unknown, roots, value, key)
+        chosen, *others = _choose_root(evaluator, spec, condition, unknown, roots, value, key)
         result = human_form(value.xreplace({unknown: chosen}))
+        if others:
+            # Several admissible roots, none singled out: every one is a right answer.
+            evaluator.alternatives[spec.name] = [
+                _no_leftover(scene, spec, human_form(value.xreplace({unknown: r})), target) for r in others]
         if spec.kind == "small_oscillation":
             _check_stable(scene, spec, result)
             # √(2g/(3(R − r))) as written, rather than sympy's √6·√g·√(1/(R − r))/3.
@@ -252,12 +256,17 @@ def _budgeted_solve(expr: sympy.Expr, x) -> list[sympy.Expr] | None:
 
 
 # -- choosing among roots ---------------------------------------------------------------------------
-def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> sympy.Expr:
+def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> list[sympy.Expr]:
+    """The root the answer is at; several when the domain admits several and nothing decides.
+
+    The first is the reference, the others its alternatives. An answer that must be one value
+    (see :func:`_must_be_one_value`) gets the error naming the roots instead.
+    """
     scene = evaluator.scene
     variable = _variable(evaluator, x)
     if not roots:
         raise SceneError(scene.source, key, f"the condition has no solution for {x} in closed form")
-    chosen_index = None
+    chosen = None
     for point in _parameter_points(scene):
         point = _with_state(evaluator, point, (condition.free_symbols | value.free_symbols) - {x})
         numeric = _numeric_roots(roots, point, variable)
@@ -288,13 +297,38 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> sympy
                 raise SceneError(scene.source, key, _ambiguous(x, roots, numeric))
             index = matching[0]
         else:
-            raise SceneError(scene.source, key, _ambiguous(x, roots, numeric))
-        group = next(g for g in groups if index in g) if index in values else {index}
-        if chosen_index is None:
-            chosen_index = index
-        elif chosen_index not in group:
+            reason = _must_be_one_value(scene, spec)
+            if reason is not None:
+                raise SceneError(scene.source, key, f"{_ambiguous(x, roots, numeric)} ({reason})")
+            index = None
+        indices = [index] if index is not None else [min(g) for g in groups]
+
+        def group_of(i):
+            return frozenset(next((g for g in groups if i in g), {i}))
+
+        if chosen is None:
+            chosen = indices
+        elif sorted(map(sorted, map(group_of, chosen))) != sorted(map(sorted, map(group_of, indices))):
             raise SceneError(scene.source, key, "which root holds depends on the parameter values")
-    return roots[chosen_index]
+    return [roots[i] for i in chosen]
+
+
+def _must_be_one_value(scene, spec) -> str | None:
+    """Why an answer cannot accept several values, or None when it can (then they are alternatives).
+
+    A small-oscillation frequency or an extreme is about one point; a numeric answer is one
+    number; an answer that a later answer or condition uses must give it one value.
+    """
+    reasons = {"small_oscillation": "a small-oscillation frequency is about one equilibrium",
+               "maximum": "a largest value is one value", "minimum": "a smallest value is one value",
+               "numeric": "a numeric answer is one number"}
+    if spec.kind in reasons or spec.numeric is not None:
+        return reasons.get(spec.kind, reasons["numeric"])
+    for other in scene.answers:
+        used = other.expr.free_symbols | (set().union(*(e.free_symbols for e in other.where)) if other.where else set())
+        if other is not spec and spec.symbol in used:
+            return f"answer '{other.name}' uses it, so it must be one value"
+    return None
 
 
 def _one_motion(evaluator, spec, u) -> bool:

@@ -49,12 +49,60 @@ def test_the_sign_of_a_steady_orbits_velocity_is_the_one_the_motion_gives():
     assert sympy.simplify(value - expected) == 0
 
 
-def test_roots_with_different_values_and_no_motion_to_decide_are_named():
-    """Without [initial], θ̈ = 0 holds at 0, π and ±acos(g/(a ω²)), where cos θ differs."""
-    text = scene_text("bead_hoop_equilibrium", ("[initial]\ntheta = 0.3\nthetadot = 0\n", ""))
+HOOP_WITHOUT_INITIAL = ("[initial]\ntheta = 0.3\nthetadot = 0\n", "")
+ANGLE_INSTEAD_OF_FREQUENCY = (('name = "small_oscillation_frequency"', 'name = "equilibrium_angle"'),
+                              ('kind = "small_oscillation"\nexpr = "theta"', 'expr = "theta"'))
+
+
+def test_roots_that_nothing_decides_between_are_all_right_answers():
+    """Without [initial], θ̈ = 0 holds at 0, π and ±acos(g/(a ω²)): each is a relative equilibrium
+    of the bead, so each value is right; the first is the reference, the others alternatives."""
+    text = scene_text("bead_hoop_equilibrium", HOOP_WITHOUT_INITIAL,
+                      *ANGLE_INSTEAD_OF_FREQUENCY)
+    d = derive(parse_scene(text, "hoop.toml"))
+    namespace = d.scene.namespace
+    star = parse_expression("acos(g/(a*omega^2))", namespace).expr
+    assert [d.answers["equilibrium_cos"], *d.alternatives["equilibrium_cos"]] == [
+        1, -1, parse_expression("g/(a*omega^2)", namespace).expr]  # cos θ is the same at ±θ*: one value
+    assert [d.answers["equilibrium_angle"], *d.alternatives["equilibrium_angle"]] == [
+        0, sympy.pi, star, -star]
+    references = {r["name"]: r for r in d.references()}
+    assert references["equilibrium_angle"]["alternatives"] == [
+        "pi", "acos(g/(a*omega**2))", "-acos(g/(a*omega**2))"]
+    assert d.to_json()["alternatives"]["equilibrium_cos"] == ["-1", "g/(a*omega**2)"]
+
+
+def test_the_checker_accepts_every_root_and_says_which_matched():
+    from grader.answers.checker import check_request
+    from grader.answers.reference import ReferenceAnswer
+
+    text = scene_text("bead_hoop_equilibrium", HOOP_WITHOUT_INITIAL, *ANGLE_INSTEAD_OF_FREQUENCY)
+    reference = next(ReferenceAnswer.from_json(r) for r in derive(parse_scene(text, "hoop.toml")).references()
+                     if r["name"] == "equilibrium_angle")
+    verdicts = {answer: check_request(reference.request(answer)) for answer in ("-acos(g/(a*omega^2))", "0", "pi/2")}
+    assert verdicts["-acos(g/(a*omega^2))"]["verdict"] == "equivalent"
+    assert verdicts["-acos(g/(a*omega^2))"]["evidence"]["matched"] == 3
+    assert verdicts["0"]["verdict"] == "equivalent" and verdicts["0"]["evidence"].get("matched", 0) == 0
+    assert verdicts["pi/2"]["verdict"] != "equivalent"
+
+
+@pytest.mark.parametrize(
+    "answer, addition, reason",
+    [
+        # A small-oscillation frequency is about one equilibrium.
+        ("small_oscillation_frequency", "", "a small-oscillation frequency is about one equilibrium"),
+        # An answer that a later one uses must be one value.
+        ("equilibrium_cos", '\n[[answers]]\nname = "twice"\nexpr = "2*equilibrium_cos"\n',
+         "answer 'twice' uses it, so it must be one value"),
+    ],
+)
+def test_roots_that_must_be_one_value_are_named(answer, addition, reason):
+    text = scene_text("bead_hoop_equilibrium", HOOP_WITHOUT_INITIAL) + addition
     with pytest.raises(SceneError, match="several roots for theta with different answers") as caught:
         derive(parse_scene(text, "hoop.toml"))
-    assert caught.value.key == "answers (equilibrium_cos).where"
+    assert caught.value.key == f"answers ({answer}).where"
+    assert "0, pi, acos(g/(a*omega**2)), -acos(g/(a*omega**2))" in caught.value.problem
+    assert reason in caught.value.problem
 
 
 def test_small_oscillations_about_an_unstable_equilibrium_are_refused():
@@ -68,7 +116,7 @@ def test_small_oscillations_about_an_unstable_equilibrium_are_refused():
 
 def test_a_condition_that_does_not_fix_what_the_answer_needs_is_refused():
     """θ̇ = ω fixes a velocity, but cos θ needs θ (no [initial], so no energy to tie them)."""
-    text = scene_text("bead_hoop_equilibrium", ("[initial]\ntheta = 0.3\nthetadot = 0\n", ""),
+    text = scene_text("bead_hoop_equilibrium", HOOP_WITHOUT_INITIAL,
                       ('where = "thetaddot = 0"\n\n[[answers]]', 'where = "thetadot = omega"\n\n[[answers]]'))
     with pytest.raises(SceneError, match="still depends on theta"):
         derive(parse_scene(text, "hoop.toml"))
