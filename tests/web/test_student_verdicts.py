@@ -105,3 +105,13 @@ def test_the_history_names_an_answer_by_its_prompt():
 def test_a_submission_that_failed_says_it_is_not_the_students_fault():
     view = verdict_view(_submission(None, status="failed"))
     assert view["label"] == "could not be graded" and "not your fault" in view["summary"]
+
+
+def test_an_equation_counterexample_says_where_but_no_residual():
+    equation = dict(REFERENCE, kind="equation", dimension=None)
+    example = {"values": {"theta": 2.0}, "answer": 0.917, "reference": 0.25}
+    view = verdict_view(_submission(_verdict(reason="your equation is not the reference multiplied by a factor free "
+                                                    "of the state: the ratio changes between two states",
+                                             counterexample=example), references=(equation,)))
+    assert view["point"]["kind"] == "equation" and view["point"]["answer"] is None
+    assert "0.917" not in repr(view["point"]) and "constant multiple" in view["summary"]

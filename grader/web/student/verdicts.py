@@ -90,6 +90,10 @@ _NOT_EQUIVALENT = (
      "check each term."),
     ("your equations are not combinations", "Your equations do not follow from the correct ones: check "
      "each of them."),
+    ("your equations are not independent", "Your equations are not independent: together they say less than "
+     "the question asks for."),
+    ("your equation holds where", "Your equation holds at states where the correct one does not: check each "
+     "term."),
 )
 _INVALID = (
     ("budget exceeded", "The grader ran out of time on this answer. Write it more simply (cancel what "
@@ -157,6 +161,9 @@ def _point(example: dict[str, Any], reference: dict[str, Any]) -> dict[str, Any]
     answer = example.get("answer")
     kind = "undefined" if answer == "undefined" else "reference_undefined" \
         if example.get("reference") == "undefined" else "differ"
+    if reference.get("kind") == "equation" and kind == "differ":
+        # An equation's "value" is its residual (one per equation), a number nobody wrote: say where only.
+        return {"values": values, "answer": None, "unit": "", "kind": "equation"}
     unit = "" if reference.get("kind") == "equation" else _unit(reference.get("dimension"))
     return {"values": values, "answer": None if answer is None or kind == "undefined" else _short(answer),
             "unit": unit, "kind": kind}
