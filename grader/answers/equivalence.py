@@ -340,11 +340,16 @@ def round_values(point: dict, domains: dict) -> list[dict]:
     >>> x, y = sympy.symbols("x y")
     >>> [list(p.values()) for p in round_values({x: 1.8994, y: 0.0421}, {x: Half(), y: Half()})]
     [[2.0, 0.5], [2.0, 0.04]]
+    >>> [list(p.values()) for p in round_values({x: 12345.6, y: 3.3}, {x: Half(), y: Half()})]
+    [[10000.0, 3.0]]
     """
     def roundest(v: float) -> float:
-        # A whole number or a half near v's size (never 0: a zero hides most differences).
+        # A small whole number or a half near v's size (never 0: a zero hides most differences); a
+        # stress point's 12345.6 becomes 10000, not 12346.
+        if abs(v) >= 10:
+            return float(f"{v:.0e}")
         if abs(v) >= 0.75:
-            return float(math.copysign(max(1, round(abs(v))), v))
+            return float(math.copysign(round(abs(v)), v))
         return math.copysign(0.5, v)
 
     def one_figure(v: float) -> float:
