@@ -93,6 +93,11 @@ def gathered_roots(expr: sympy.Expr) -> sympy.Expr:
     sqrt(2*d/(g*sin(alpha)))
     >>> gathered_roots(sympy.sqrt(2*g/(3*R - 3*r)))
     sqrt(2*g/(3*(R - r)))
+    >>> x, y = sympy.symbols("x y", real=True)
+    >>> gathered_roots(sympy.sqrt(x + 2)*sympy.sqrt(y + 3))
+    sqrt((x + 2)*(y + 3))
+    >>> gathered_roots(sympy.sqrt(x - 2)*sympy.sqrt(y - 3))  # -sqrt((x - 2)*(y - 3)) for x < 2, y < 3
+    sqrt(x - 2)*sqrt(y - 3)
     """
     if expr.is_Add:
         return sympy.Add(*[gathered_roots(a) for a in expr.args])
@@ -102,12 +107,34 @@ def gathered_roots(expr: sympy.Expr) -> sympy.Expr:
         return expr
     rest = [gathered_roots(f) if f.is_Add else f for f in factors if not _is_root(f)]
     radicand = sympy.Mul(*[f.base ** (2 * f.exp) for f in roots])
-    return sympy.Mul(*rest) * sympy.Pow(_tidy_radicand(radicand), sympy.S.Half, evaluate=False)
+    gathered = sympy.Mul(*rest) * sympy.Pow(_tidy_radicand(radicand), sympy.S.Half, evaluate=False)
+    # √a·√b = −√(ab) when a and b are both negative: keep the split form unless the two agree
+    # at generic points.
+    return gathered if _agree(expr, gathered) else expr
+
+
+def _agree(a: sympy.Expr, b: sympy.Expr) -> bool:
+    symbols = sorted(a.free_symbols | b.free_symbols, key=str)
+    for shift in (0.0, 0.61):
+        point = {s: sympy.Float(0.7 + 0.13 * k + shift * (k % 2), 20) for k, s in enumerate(symbols)}
+        try:
+            x, y = complex(a.xreplace(point).evalf(20)), complex(b.xreplace(point).evalf(20))
+        except (TypeError, ValueError):
+            return False
+        if not abs(x - y) <= 1e-12 * max(1.0, abs(x)):
+            return False
+    return True
 
 
 def _tidy_radicand(expr: sympy.Expr) -> sympy.Expr:
     """A fraction with the common factors of numerator and denominator sums taken out."""
-    numerator, denominator = sympy.fraction(sympy.cancel(expr))
+    # cancel() removes common factors but multiplies out products of sums; together() keeps them.
+    return min((_fraction_in_front(f(expr)) for f in (sympy.together, sympy.cancel)),
+               key=lambda e: (sympy.count_ops(e), len(str(e))))
+
+
+def _fraction_in_front(expr: sympy.Expr) -> sympy.Expr:
+    numerator, denominator = sympy.fraction(expr)
     (a, numerator), (b, denominator) = (sympy.factor_terms(part).as_coeff_Mul() for part in (numerator, denominator))
     # Signs and numbers in front as a whole: 2g/(3(R − r)), not −2g/(3(r − R)) or 2g/(3R − 3r)
     # (sympy distributes a number over a sum it multiplies, so the two are kept apart).

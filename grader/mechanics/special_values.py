@@ -22,7 +22,12 @@ roots are kept where they are real and inside the unknown's domain, at two param
   reached. Periodic images of an angle are followed turn after turn: there is no fixed range;
 - for a velocity, the sign the motion from ``[initial]`` gives it decides;
 - otherwise, if the answer has the same value at every root (cos θ = 2/3 at θ = ±48.19°), that
-  value is the answer; if not, the roots are named and the file is refused.
+  value is the answer; if not, every root is a right answer (the first the reference, the others
+  alternatives), unless the answer must be one value (:func:`_must_be_one_value`): then the roots
+  are named and the file is refused.
+
+An answer that asks for the time (``expr = "t"`` with ``t`` not in ``in_terms_of``) is taken at the
+first moment t > 0 the condition holds on the motion in closed form (:mod:`grader.mechanics.motion`).
 
 ``kind = "small_oscillation"`` gives the angular frequency of small oscillations of the coordinate
 in ``expr`` about the equilibrium ``where`` names: ω² = −∂ü/∂u at rest at the equilibrium, by
