@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import sympy
 
-__all__ = ["gathered_roots", "human_form", "quick_form", "readable_denominator", "signs_in_front", "tidy_trig"]
+__all__ = ["gathered_roots", "human_form", "inverse_hyperbolic", "quick_form", "readable_denominator", "signs_in_front", "tidy_trig"]
 
 _TRIG = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc)
 
@@ -73,7 +73,31 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
         attempt(costly, seconds, fallback=lambda: None)
     if expr.has(sympy.Pow):
         candidates.extend([gathered_roots(c) for c in candidates])
+    if expr.has(sympy.log):
+        candidates.append(inverse_hyperbolic(expr))
     return min((signs_in_front(c) for c in candidates), key=lambda e: _weight(e, allowed))
+
+
+def inverse_hyperbolic(expr: sympy.Expr) -> sympy.Expr:
+    """log(y + √(y² − 1)) as acosh(y), log(y + √(y² + 1)) as asinh(y), as a textbook writes them.
+
+    ``solve`` gives the time a bead reaches the end of a rotating rod, r₀ cosh ωt = L, as
+    log((L + √(L² − r₀²))/r₀)/ω; for u = y + √(y² ∓ 1), (u ± 1/u)/2 = y, and the rewriting is kept
+    where the two forms agree at generic points.
+
+    >>> L, r0, w = sympy.symbols("L r0 omega", positive=True)
+    >>> inverse_hyperbolic(sympy.log((L + sympy.sqrt(L**2 - r0**2))/r0)/w)
+    acosh(L/r0)/omega
+    """
+    def rewrite(e):
+        u = e.args[0]
+        for function, sign in ((sympy.acosh, 1), (sympy.asinh, -1)):
+            y = sympy.cancel(sympy.radsimp((u + sign / u) / 2))
+            if sympy.count_ops(y) < sympy.count_ops(u) and _agree(e, function(y)):
+                return function(y)
+        return e
+
+    return expr.replace(lambda e: isinstance(e, sympy.log), rewrite)
 
 
 def _is_root(factor: sympy.Expr) -> bool:

@@ -193,6 +193,8 @@ def test_constraint_forces_follow_the_papers_convention(derived):
         ("bead_rotating_rod", "speed_at_end", "omega*sqrt(L**2 - r0**2)"),
         # The motion in time with hyperbolic functions, not r0*exp(omega*t)/2 + r0*exp(-omega*t)/2.
         ("bead_rotating_rod", "radius_in_time", "r0*cosh(omega*t)"),
+        # acosh(L/r0) rather than the log((L + sqrt(L**2 - r0**2))/r0) that solve() returns.
+        ("bead_rotating_rod", "time_to_end", "acosh(L/r0)/omega"),
     ],
 )
 def test_answers_are_in_the_form_a_person_writes(derived, scene, answer, written):

@@ -187,3 +187,22 @@ def test_a_value_in_time_without_a_closed_form_keeps_the_first_error():
     text += '\n[[answers]]\nname = "angle"\nexpr = "theta"\nin_terms_of = ["g", "l", "theta0", "t"]\n'
     with pytest.raises(SceneError, match="still depends on theta"):
         derive(parse_scene(text, "pendulum.toml"))
+
+
+@pytest.mark.parametrize(
+    "answer, student, right",
+    [
+        ("time_to_end", "acosh(L/r0)/omega", True),
+        ("time_to_end", "log((L + sqrt(L^2 - r0^2))/r0)/omega", True),
+        ("time_to_end", "asinh(L/r0)/omega", False),
+        ("radius_in_time", "r0*(exp(omega*t) + exp(-omega*t))/2", True),
+        ("radius_in_time", "r0*sinh(omega*t)", False),
+    ],
+)
+def test_the_checker_reads_the_values_in_time(derived, answer, student, right):
+    from grader.answers.checker import check_request
+    from grader.answers.reference import ReferenceAnswer
+
+    reference = next(ReferenceAnswer.from_json(r) for r in derived("bead_rotating_rod").references()
+                     if r["name"] == answer)
+    assert (check_request(reference.request(student))["verdict"] == "equivalent") == right
