@@ -187,6 +187,7 @@ class Scene:
     # [feedback] detail: "kind" (slip messages state no value) or "full" (grader.answers.feedback)
     feedback_detail: str = "kind"
     geometry: Geometry | None = None  # where to draw bodies (pictures only; see geometry.py)
+    simulation: dict[str, Any] = field(default_factory=dict)  # [simulation]: t_end, show_students (pictures)
 
     @property
     def lagrangian(self) -> sympy.Expr:
@@ -356,7 +357,8 @@ class _SceneReader:
             parameters=parameters, coordinates=coordinates, kinetic=kinetic, potential=potential,
             constraints=constraints, initial=initial, parametrization=parametrization,
             answers=answers, time=time, namespace=Namespace(self.variables), forces=forces,
-            geometry=geometry, feedback_detail=self.table("feedback").get("detail", "kind"),
+            geometry=geometry, simulation=dict(self.table("simulation")),
+            feedback_detail=self.table("feedback").get("detail", "kind"),
         )
 
     def read_geometry(self) -> Geometry | None:
