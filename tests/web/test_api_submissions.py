@@ -27,6 +27,8 @@ def test_a_wrong_answer_gets_its_verdict(client, make_token, yoyo_version, worke
     _, student = make_token("student")
     graded = poll(_submit(client, student, text="m*g").headers["Location"], student)
     assert graded["verdict"]["verdict"] == "not_equivalent" and graded["verdict"]["score"] == 0.0
+    # The feedback speaks to the student; the technical reason stays for instructors and programs.
+    assert graded["verdict"]["feedback"] and graded["verdict"]["summary"] is None and graded["verdict"]["reason"]
 
 
 @pytest.mark.parametrize("text, column, code", [("m g /", 5, "syntax"), ("m*g/(3", 5, "unbalanced"),

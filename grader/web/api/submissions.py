@@ -20,6 +20,7 @@ from grader.web.api.problems import EVERYONE, visible_version
 from grader.web.api.schemas import PARSED, SUBMISSION_REQUEST, read_json
 from grader.web.errors import ApiProblem
 from grader.web.policy import Action, current_principal, find_submission, require
+from grader.web.student.verdicts import student_summary
 
 __all__ = ["submission_json"]
 
@@ -27,7 +28,10 @@ MAX_KEY_CHARS = 200
 
 VERDICT = spec.schema("Verdict", {"type": "object", "nullable": True, "properties": {
     "verdict": {"type": "string"}, "certainty": {"type": "string", "nullable": True},
-    "score": {"type": "number"}, "reason": {"type": "string", "nullable": True},
+    "score": {"type": "number"},
+    "reason": {"type": "string", "nullable": True, "description": "The checker's technical account."},
+    "summary": {"type": "string", "nullable": True,
+                "description": "One sentence a student can act on when the feedback says nothing (else null)."},
     "feedback": {"nullable": True}, "counterexample": {"type": "object", "nullable": True},
     "parsed": {**PARSED, "nullable": True}, "ms": {"type": "number", "nullable": True},
     "graded_at": {"type": "string", "format": "date-time"},
@@ -62,8 +66,11 @@ def _student_counterexample(example: dict | None) -> dict | None:
 def verdict_json(verdict: Verdict | None) -> dict[str, Any] | None:
     if verdict is None:
         return None
+    example = verdict.counterexample or {}
+    summary = None if verdict.feedback else student_summary(verdict.verdict, verdict.reason,
+                                                            point=bool(example.get("values")))
     return {"verdict": verdict.verdict, "certainty": verdict.certainty, "score": verdict.score,
-            "reason": verdict.reason, "feedback": verdict.feedback,
+            "reason": verdict.reason, "summary": summary, "feedback": verdict.feedback,
             "counterexample": _student_counterexample(verdict.counterexample),
             "parsed": verdict.parsed, "ms": verdict.check_ms, "graded_at": _time(verdict.graded_at),
             "version": verdict.problem_version.number}
