@@ -32,6 +32,9 @@ from grader.mechanics.report import equation_text
 __all__ = ["reference_answers", "dimension_text", "domain_json", "parameter_specs"]
 
 
+# Kinds of answer the engine computes differently but the checker compares as expressions.
+_CHECKED_AS = {"small_oscillation": "expression", "maximum": "expression", "minimum": "expression"}
+
 def dimension_text(dimension) -> str:
     """A dimension as an ASCII SI expression that ``parse_dimension`` reads back ("kg*m/s^2")."""
     if dimension.is_dimensionless:
@@ -113,7 +116,8 @@ def reference_answers(derivation) -> list[dict[str, Any]]:
                                  f"{', '.join(variables) or 'numbers'})") from None
             feedback.append({"expr": f.expr, "message": f.message,
                              **({"score": f.score} if f.score is not None else {})})
-        result.append({"name": spec.name, "prompt": spec.prompt, "kind": spec.kind, "reference": reference,
+        result.append({"name": spec.name, "prompt": spec.prompt, "kind": _CHECKED_AS.get(spec.kind, spec.kind),
+                       "reference": reference,
                        "variables": variables, "dimension": dimension_text(spec.dimension), "latex": latex,
                        "feedback": feedback, "feedback_detail": scene.feedback_detail})
         if alternatives:

@@ -12,6 +12,7 @@ from grader.sandbox import Outcome
 from grader.store.models import ProblemVersion
 
 PROBLEMS = Path(__file__).resolve().parents[2] / "problems"
+TEXTBOOK = Path(__file__).resolve().parents[1] / "mechanics" / "scenes"
 
 
 def test_a_scene_is_derived_into_references_the_checker_takes():
@@ -129,3 +130,15 @@ def test_a_derivation_child_runs_at_a_lowered_cpu_priority_and_the_server_does_n
     finally:
         sandbox.close()
     assert os.getpriority(os.PRIO_PROCESS, 0) == own
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("path", sorted(PROBLEMS.glob("*.toml")) + sorted(TEXTBOOK.glob("*.toml")), ids=lambda p: p.name)
+def test_every_shipped_and_textbook_scene_registers(path):
+    # What an instructor's upload goes through (the derivation child's handler, in this process):
+    # every kind of answer the engine computes must fit the checker's reference contract.
+    from grader.jobs.derivation import derive_request
+
+    reply = derive_request({"source": path.read_text(), "filename": path.name})
+    assert reply["outcome"] == "ok", reply.get("message") or reply.get("trace")
+    assert {r["kind"] for r in reply["problem"]["references"]} <= {"expression", "equation", "numeric"}
