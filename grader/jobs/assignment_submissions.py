@@ -11,7 +11,9 @@ from datetime import datetime
 
 from sqlalchemy import select
 
-from grader.jobs.queue import MAX_ANSWER_CHARS, SubmissionRejected, _by_key, _fingerprint, _replay, wake_workers
+from grader.answers.readable import read_error
+from grader.jobs.queue import (MAX_ANSWER_CHARS, AnswerUnreadable, SubmissionRejected, _by_key, _fingerprint, _replay,
+                               announce, same_attempt)
 from grader.store.assignments import attempts_used, deadline_state, late_days, to_utc
 from grader.store.db import Database
 from grader.store.draws import draw_in
@@ -60,9 +62,18 @@ def hand_in(database: Database, *, user: User, assignment_id: int, problem_id: i
             if existing is not None:
                 replayed = _replay(existing, _fingerprint(version, user.id, answer, text))
                 return replayed, late_days(assignment, existing.received_at), False
-        if version.reference(answer) is None:
+        reference = version.reference(answer)
+        if reference is None:
             names = ", ".join(r["name"] for r in version.references)
             raise SubmissionRejected(f"this problem has no answer {answer!r}; its answers: {names}")
+        # As for practice (grader.jobs.queue.submit): an unreadable text is a typo to fix and the
+        # same text again is the same attempt; neither uses up an attempt.
+        unreadable = read_error(reference, text)
+        if unreadable is not None:
+            raise AnswerUnreadable(unreadable)
+        earlier = same_attempt(session, user.id, version.id, answer, text, assignment_id=assignment_id)
+        if earlier is not None:
+            return earlier.id, late_days(assignment, earlier.received_at), False
         state = deadline_state(assignment, received)
         if state == "not_open":
             raise HandInRefused(state, "This assignment is not open yet.")
@@ -81,5 +92,5 @@ def hand_in(database: Database, *, user: User, assignment_id: int, problem_id: i
         session.add(submission)
         session.flush()
         submission_id, late = submission.id, late_days(assignment, received)
-    wake_workers()
+    announce([(submission_id, 1)])
     return submission_id, late, True

@@ -44,6 +44,7 @@ __all__ = [
     "SubmissionRejected",
     "Task",
     "add_publisher",
+    "announce",
     "claim",
     "claim_submission",
     "holder_lease",
@@ -81,7 +82,8 @@ def add_publisher(publisher: Callable[[list[tuple[int, int]]], None]) -> None:
         _publishers.append(publisher)
 
 
-def _announce(work: list[tuple[int, int]]) -> None:
+def announce(work: list[tuple[int, int]]) -> None:
+    """Tell the workers (in-process, and a broker's when one is set) that this work is queued."""
     wake_workers()
     for publisher in _publishers:
         try:
@@ -187,7 +189,7 @@ def submit(database: Database, *, user: User, version: ProblemVersion, answer: s
             if existing is None:
                 raise
             return _replay(existing, fingerprint), False
-    _announce([(submission_id, 1)])
+    announce([(submission_id, 1)])
     return submission_id, True
 
 
@@ -225,7 +227,7 @@ def regrade(database: Database, version: ProblemVersion) -> int:
         work = [(row[0], row[1]) for row in session.execute(
             select(Submission.id, Submission.grading_round)
             .where(Submission.problem_version_id.in_(problem_versions), Submission.status == "queued"))]
-    _announce(work)
+    announce(work)
     return queued
 
 
@@ -383,7 +385,7 @@ def release(db: Database, task: Task, worker_id: str) -> None:
                         .where(Submission.id == task.submission_id, Submission.worker_id == worker_id,
                                Submission.status == "running", Submission.grading_round == task.grading_round)
                         .values(status="queued", worker_id=None, lease_until=None, updated_at=utcnow()))
-    _announce([(task.submission_id, task.grading_round)])
+    announce([(task.submission_id, task.grading_round)])
 
 
 def recover(db: Database) -> int:
@@ -403,7 +405,7 @@ def recover(db: Database) -> int:
                 Submission.id == submission_id, Submission.status == "running", Submission.worker_id == worker_id)
                 .values(status="queued", worker_id=None, lease_until=None)).rowcount
     if count:
-        _announce([(submission_id, grading_round) for submission_id, _, grading_round in dead])
+        announce([(submission_id, grading_round) for submission_id, _, grading_round in dead])
     return count
 
 

@@ -126,8 +126,10 @@ def test_hand_ins_count_per_answer_and_stop_at_the_limit(database, course, stude
     send = dict(user=student, assignment_id=assignment_id, problem_id=problem_id, now=OPENS)
     hand_in(database, answer="tension", text="m*g", **send)
     hand_in(database, answer="tension", text="m*g/3", **send)
+    again = hand_in(database, answer="tension", text="m*g/3", **send)  # the same text: the same attempt
+    assert again[2] is False
     with pytest.raises(HandInRefused, match="No attempts left") as refused:
-        hand_in(database, answer="tension", text="m*g/3", **send)
+        hand_in(database, answer="tension", text="m*g/2", **send)
     assert refused.value.reason == "no_attempts_left"
     hand_in(database, answer="acceleration", text="2*g/3", **send)
     with database.read() as session:

@@ -163,7 +163,7 @@ def test_the_deadlines_hold_to_the_second(client, clock, student, now, status, l
 def test_each_answer_gets_its_attempts_and_no_more(client, clock, student):
     clock.now = OPENS + timedelta(hours=1)
     ada = student("s-ada")
-    assert [_hand_in(client, ada).status_code for _ in range(3)] == [202, 202, 409]
+    assert [_hand_in(client, ada, text=t).status_code for t in ("m*g/3", "m*g/2", "m*g/4")] == [202, 202, 409]
     assert _hand_in(client, ada, answer="acceleration", text="2*g/3").status_code == 202  # another answer
     assert _hand_in(client, student("s-bob")).status_code == 202  # another student
     view = client.get("/api/v1/courses/MECH/assignments/hw1", headers=ada).get_json()
@@ -243,3 +243,16 @@ def test_students_outside_the_course_still_practise_the_problem(client, make_tok
     response = client.post("/api/v1/problems/yoyo/submissions", json={"answer": "tension", "text": "m*g/3"},
                            headers=outsider)
     assert response.status_code == 202
+
+
+def test_an_unreadable_text_or_the_same_text_again_uses_no_attempt(client, clock, student):
+    clock.now = OPENS + timedelta(hours=1)
+    ada = student("s-ada")
+    unreadable = _hand_in(client, ada, text="m*g/")
+    assert unreadable.status_code == 422 and unreadable.get_json()["type"].endswith("unreadable-answer")
+    first, again = _hand_in(client, ada, text="m*g/2"), _hand_in(client, ada, text="m*g/2")
+    assert first.status_code == 202 and again.status_code in (200, 202)
+    assert again.get_json()["id"] == first.get_json()["id"]
+    view = client.get("/api/v1/courses/MECH/assignments/hw1", headers=ada).get_json()
+    tension = next(a for a in view["problems"][0]["answers"] if a["name"] == "tension")
+    assert tension["attempts_used"] == 1

@@ -16,7 +16,7 @@ from flask import current_app, g, request, url_for
 from sqlalchemy.exc import IntegrityError
 
 from grader.jobs.assignment_submissions import HandInRefused, hand_in
-from grader.jobs.queue import MAX_ANSWER_CHARS, IdempotencyConflict, SubmissionRejected
+from grader.jobs.queue import MAX_ANSWER_CHARS, AnswerUnreadable, IdempotencyConflict, SubmissionRejected
 from grader.store.assignments import MAX_PROBLEMS, AssignmentError, create_assignment
 from grader.store.courses import CourseError, Member, add_member, create_course, parse_roster, roster
 from grader.store.db import db
@@ -310,6 +310,8 @@ def hand_in_route(code: str, assignment: str):
             idempotency_key=request.headers.get("Idempotency-Key"))
     except HandInRefused as refused:
         raise ApiProblem(_REFUSED[refused.reason], str(refused), kind=refused.reason.replace("_", "-")) from None
+    except AnswerUnreadable as error:  # a typo to fix, not an attempt: nothing was stored
+        raise ApiProblem(422, str(error), kind="unreadable-answer", error=error.error) from None
     except SubmissionRejected as error:
         raise ApiProblem(422, str(error), kind="invalid-submission") from None
     except IdempotencyConflict as error:

@@ -81,9 +81,13 @@ def hand_in_page(code: str, assignment: str):
     for name, text in texts.items():
         try:
             limiter.hit("submit", g.user.id)
-            _, late, _ = hand_in(Database.current(), user=g.user, assignment_id=assignment_id, problem_id=problem_id,
-                              answer=name, text=text, now=clock.now(), secret=current_app.config["SECRET_KEY"])
-            sent += 1
+            _, late, created = hand_in(Database.current(), user=g.user, assignment_id=assignment_id,
+                                       problem_id=problem_id, answer=name, text=text, now=clock.now(),
+                                       secret=current_app.config["SECRET_KEY"])
+            if created:
+                sent += 1
+            else:
+                flash(f"{name}: you already sent exactly this answer; it was not counted again.", "info")
         except (HandInRefused, SubmissionRejected, ApiProblem) as error:
             flash(f"{name}: {getattr(error, 'detail', None) or error}", "error")
     if sent:
