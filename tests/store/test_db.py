@@ -66,7 +66,30 @@ def test_the_migrations_match_the_models(database):
 
     with database.engine.connect() as connection:
         diff = compare_metadata(MigrationContext.configure(connection), Base.metadata)
+        if connection.dialect.name == "sqlite":
+            diff = _without_inline_foreign_keys(connection, diff)
     assert diff == []
+
+
+def _without_inline_foreign_keys(connection, diff):
+    """SQLite: a foreign key added with its column (ALTER TABLE ADD COLUMN ... REFERENCES, as 0003 does
+    to keep the verdicts) is reflected without its name and ON DELETE. Drop that remove/add pair when
+    SQLite's own PRAGMA shows the key the model declares."""
+    def key(fk):
+        return (fk.parent.name, tuple(c.name for c in fk.columns), tuple(e.target_fullname for e in fk.elements))
+
+    added = {key(item[1]): item[1] for item in diff if item[0] == "add_fk"}
+    kept, matched = [], set()
+    for item in diff:
+        if item[0] == "remove_fk" and key(item[1]) in added and item[1].name is None:
+            model = added[key(item[1])]
+            pragma = connection.exec_driver_sql(f"PRAGMA foreign_key_list({model.parent.name})").fetchall()
+            if any(row[2] == model.elements[0].column.table.name and row[3] == model.columns[0].name
+                   and row[6] == (model.ondelete or "NO ACTION") for row in pragma):
+                matched.add(key(item[1]))
+                continue
+        kept.append(item)
+    return [item for item in kept if not (item[0] == "add_fk" and key(item[1]) in matched)]
 
 
 def test_default_url_is_the_instance_file_under_the_cwd(tmp_path, monkeypatch):
