@@ -255,7 +255,7 @@ def _solve_small(A: sympy.Matrix, b: sympy.Matrix) -> list[sympy.Expr]:
 
 def _vanishes(expr: sympy.Expr) -> bool:
     """Whether an expression is identically zero: numerically at generic points, then symbolically."""
-    expr = sympy.sympify(expr)
+    expr = sympy.sympify(expr, strict=True)  # an expression or a number, never text
     if expr == 0:
         return True
     symbols = sorted(expr.free_symbols, key=str)

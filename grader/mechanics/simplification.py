@@ -49,7 +49,7 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
     """
     from grader.mechanics.budget import attempt
 
-    expr = sympy.sympify(expr)
+    expr = sympy.sympify(expr, strict=True)  # an expression or a number, never text
     if expr.is_Atom:
         return expr
     allowed = _multiple_angles(expr)
@@ -220,7 +220,7 @@ def quick_form(expr: sympy.Expr, seconds: float = 0.1) -> sympy.Expr:
     """
     from grader.mechanics.budget import attempt
 
-    expr = sympy.cancel(sympy.sympify(expr))
+    expr = sympy.cancel(sympy.sympify(expr, strict=True))
     candidates = [expr, sympy.factor_terms(expr)]
 
     def costly():

@@ -316,7 +316,7 @@ class SceneModel:
             When the expression uses a name that ``values`` (and the parameters) do not give.
         """
         if expr not in self._compiled:
-            expanded = self.definition(sympy.sympify(expr))
+            expanded = self.definition(sympy.sympify(expr, strict=True))
             symbols = sorted(expanded.free_symbols, key=lambda s: s.name)
             self._compiled[expr] = ([s.name for s in symbols], _lambdify(symbols, expanded))
         names, function = self._compiled[expr]
