@@ -16,14 +16,12 @@ import io
 import os
 import re
 import shutil
-import signal
 import subprocess
-import threading
 import time
 
 import pytest
 
-from tests.web.test_browser_flow import CHROMIUM, CHROMIUM_ARGS, ROOT, _grader, _require_browser, _sign_in
+from tests.web.test_browser_flow import CHROMIUM, CHROMIUM_ARGS, ROOT, _grader, _require_browser, _sign_in, serving
 from tests.web.test_pages_in_browser import _audit, _axe_source
 
 pytestmark = [pytest.mark.browser, pytest.mark.server, pytest.mark.slow]
@@ -57,34 +55,8 @@ def course_server(tmp_path):
         subprocess.run(_grader("db", "create-user", "--role", role, "--email", email, "--name", name,
                                "--password", password), env=env, cwd=tmp_path, check=True, capture_output=True,
                        timeout=120)
-    process = subprocess.Popen(_grader("serve", "--host", "127.0.0.1", "--port", "0", "--workers", "1",
-                                       "--no-demo", "--problems", str(problems)),
-                               env=env, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    lines: list[str] = []
-    base: list[str] = []
-    ready = threading.Event()
-
-    def read_output():
-        for line in process.stdout:
-            lines.append(line)
-            found = re.search(r"serving on (http://127\.0\.0\.1:\d+)/", line)
-            if found:
-                base.append(found.group(1))
-                ready.set()
-        ready.set()
-
-    threading.Thread(target=read_output, daemon=True).start()
-    try:
-        ready.wait(300)
-        assert base, "grader serve did not start:\n" + "".join(lines)
-        yield base[0], clock, database_url
-    finally:
-        process.send_signal(signal.SIGTERM)
-        try:
-            process.wait(20)
-        except subprocess.TimeoutExpired:
-            process.kill()
-            process.wait(5)
+    with serving(env, tmp_path, problems) as base:
+        yield base, clock, database_url
 
 
 def _numbers(page) -> str:

@@ -17,7 +17,7 @@ import signal
 import subprocess
 import sys
 import threading
-import time
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
@@ -66,9 +66,16 @@ def server(tmp_path):
         subprocess.run(_grader("db", "create-user", "--role", role, "--email", email, "--name",
                                f"Demo {role}", "--password", password),
                        env=env, cwd=tmp_path, check=True, capture_output=True, timeout=120)
+    with serving(env, tmp_path, problems) as base:
+        yield base
+
+
+@contextmanager
+def serving(env: dict[str, str], cwd: Path, problems: Path, timeout: float = 300):
+    """``grader serve`` on a free port of 127.0.0.1 in ``cwd``; yields its base URL, stops it after."""
     process = subprocess.Popen(_grader("serve", "--host", "127.0.0.1", "--port", "0", "--workers", "1",
                                        "--no-demo", "--problems", str(problems)),
-                               env=env, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+                               env=env, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     lines: list[str] = []
     base: list[str] = []
     ready = threading.Event()
@@ -84,7 +91,7 @@ def server(tmp_path):
 
     threading.Thread(target=read_output, daemon=True).start()
     try:
-        ready.wait(180)
+        ready.wait(timeout)
         assert base, "grader serve did not start:\n" + "".join(lines)
         yield base[0]
     finally:
