@@ -18,6 +18,7 @@ from typing import Callable
 from grader.jobs import derivation_queue as queue
 from grader.jobs.derivation import DERIVE_MEMORY_MB, DERIVE_TIMEOUT_S, DerivationError, derivation_sandbox, derive_source
 from grader.jobs.processes import process_tag
+from grader.jobs.threads import start_threads
 from grader.sandbox import Sandbox
 from grader.store.db import Database
 from grader.store.problems import DerivedProblem
@@ -66,11 +67,7 @@ class DerivationWorkerPool:
             count = queue.recover(self.db)
             if count:
                 log.warning("queued %d scene derivations again that were running when the server stopped", count)
-        for number in range(self.workers):
-            thread = threading.Thread(target=self._run, args=(f"{self.boot_id}/d{number}",),
-                                      name=f"derivation-worker-{number}", daemon=True)
-            thread.start()
-            self._threads.append(thread)
+        self._threads += start_threads(self._run, self.workers, self.boot_id, "derivation-worker", "d")
         return self
 
     def stop(self, timeout: float = 10.0) -> None:

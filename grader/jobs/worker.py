@@ -7,7 +7,6 @@ record the verdict in a new short transaction. It never holds a session while gr
 from __future__ import annotations
 
 import logging
-import os
 import threading
 import time
 import uuid
@@ -15,6 +14,7 @@ from typing import Callable
 
 from grader.jobs import queue
 from grader.jobs.processes import process_tag
+from grader.jobs.threads import start_threads
 from grader.jobs.grading import CHECK_BUDGET_S, Checker, check_task, sandbox_checker, score
 from grader.store.db import Database
 from grader.store.models import utcnow
@@ -50,11 +50,7 @@ class WorkerPool:
             count = queue.recover(self.db)
             if count:
                 log.warning("queued %d submissions again that were being graded when the server stopped", count)
-        for number in range(self.workers):
-            thread = threading.Thread(target=self._run, args=(f"{self.boot_id}/{number}",),
-                                      name=f"grader-worker-{number}", daemon=True)
-            thread.start()
-            self._threads.append(thread)
+        self._threads += start_threads(self._run, self.workers, self.boot_id, "grader-worker")
         return self
 
     def stop(self, timeout: float = 10.0) -> None:
