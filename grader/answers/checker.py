@@ -22,7 +22,7 @@ from typing import Any, Mapping, Sequence
 
 import sympy
 
-from grader.answers.equations import compare_equations, state_symbols
+from grader.answers.equations import compare_equations, state_symbols, unknown_symbols
 from grader.answers.equivalence import Comparison, Compiled, Options, compare_expressions
 from grader.answers.evaluate import ArbBackend, Undefined, Unresolved, Unsupported
 from grader.answers.feedback import diagnose
@@ -71,6 +71,7 @@ class _Reference:
     compiled: dict = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     conditions: tuple = ()  # the reference's real domain as typed (Parsed.conditions)
+    unknowns: tuple = ()  # equations: the accelerations they are solved for (unknown_symbols)
     # Values of reference-side feedback candidates (the reference less a term, ...) at the first
     # sample point, for the one-point screen: every wrong answer to this reference tries the same ones.
     screen: dict = field(default_factory=dict)
@@ -147,6 +148,7 @@ def _prepare(reference: str, kind: str, variables_json: str, state_json: str, fe
         ref.sampler = Sampler(domains, seed)
     else:
         state = state_symbols(variables, symbols, json.loads(state_json))
+        ref.unknowns = unknown_symbols(variables, symbols, json.loads(state_json))
         ref.parameters = Sampler({s: d for s, d in domains.items() if s not in state}, seed)
         ref.states = Sampler({s: d for s, d in domains.items() if s in state}, seed + 1)
     for entry in json.loads(feedback_json):
@@ -212,7 +214,7 @@ def _compare(ref: _Reference, exprs: list[sympy.Expr], options: Options, deadlin
         return compare_expressions(ref.exprs[0], exprs[0], ref.sampler, options, deadline, compiled[0],
                                    conditions, ref.conditions)
     return compare_equations(ref.exprs, exprs, ref.parameters, ref.states, options, deadline, compiled,
-                             conditions)
+                             conditions, ref.unknowns)
 
 
 SCREEN_PREC = 64

@@ -4,7 +4,10 @@ An equation of motion is right when it is the reference multiplied by a nonzero 
 state: ``thetaddot + g/l*sin(theta) = 0``, ``l*thetaddot = -g*sin(theta)`` and
 ``m*l**2*thetaddot + m*g*l*sin(theta) = 0`` are one equation. A system is right when it spans the
 same equations: the student's residuals are ``M @`` the reference's residuals for a matrix ``M``
-that is invertible and free of the state.
+that is invertible and free of the state, or, for equations of motion, ``A(state) @`` them for a
+mixing matrix that depends on the state and is provably invertible on the whole declared domain
+(the unsolved Euler-Lagrange equations ``M(q) qddot = F(q, qdot)`` against the solved reference
+``qddot = M(q)**-1 F``): see `state_dependent_mixing`.
 
 Numerically: fix the parameters at a sample point, take ``k + 2`` states (``k`` equations), solve
 ``M`` from the first ``k`` states and check, in ball arithmetic, that the others satisfy
@@ -31,7 +34,7 @@ from grader.answers.equivalence import (
 )
 from grader.answers.sampling import Sampler
 
-__all__ = ["compare_equations", "state_symbols"]
+__all__ = ["compare_equations", "state_dependent_mixing", "state_symbols", "unknown_symbols"]
 
 STATE_KINDS = {"coordinate", "velocity", "acceleration", "multiplier", "force", "time", "answer"}
 
@@ -63,6 +66,31 @@ def state_symbols(variables: dict[str, dict], symbols: dict[str, sympy.Symbol], 
     return chosen or set(symbols.values())
 
 
+def unknown_symbols(variables: dict[str, dict], symbols: dict[str, sympy.Symbol],
+                    state: list[str] | None = None) -> tuple:
+    """The accelerations: what equations of motion are solved for (sorted by name).
+
+    Taken from each variable's ``kind`` ("acceleration"); with no kinds at all, from names ending
+    in ``ddot``. Only state variables count (`state_symbols`), so a declared ``state`` narrows them.
+
+    Examples
+    --------
+    >>> import sympy
+    >>> names = ["m", "theta", "thetadot", "thetaddot", "xddot"]
+    >>> syms = {n: sympy.Symbol(n) for n in names}
+    >>> [s.name for s in unknown_symbols({n: {} for n in names}, syms)]
+    ['thetaddot', 'xddot']
+    >>> unknown_symbols({n: {} for n in names}, syms, state=["theta", "thetadot"])
+    ()
+    """
+    states = state_symbols(variables, symbols, state)
+    if any((spec or {}).get("kind") for spec in variables.values()):
+        chosen = {symbols[n] for n, spec in variables.items() if (spec or {}).get("kind") == "acceleration"}
+    else:
+        chosen = {s for n, s in symbols.items() if n.endswith("ddot")}
+    return tuple(sorted(chosen & states, key=lambda s: s.name))
+
+
 def _residuals_equal_symbolically(ref: list[sympy.Expr], ans: list[sympy.Expr]) -> bool:
     if len(ref) != 1 or len(ans) != 1:
         return False
@@ -79,6 +107,7 @@ def compare_equations(
     deadline: float | None = None,
     compiled_reference: list[Compiled] | None = None,
     answer_conditions: tuple = (),
+    unknowns: tuple = (),
 ) -> Comparison:
     """Compare systems of equations given as residuals (``lhs - rhs``).
 
@@ -92,6 +121,10 @@ def compare_equations(
         ``options.points`` parameter points are used, each with ``k + 2`` states.
     answer_conditions : tuple of sympy.Expr
         The answer's real domain as typed (`grader.expressions.Parsed.conditions`).
+    unknowns : tuple of sympy.Symbol
+        The accelerations (`unknown_symbols`). A system of as many equations, linear in them, may
+        also be a combination of the reference with coefficients that depend on the state
+        (`state_dependent_mixing`).
 
     Examples
     --------
@@ -144,6 +177,14 @@ def compare_equations(
                                                 (parameters, states), deadline)
                 if factor is not None:
                     return factor
+            if k > 1 and options.factors and unknowns and outcome[1].startswith(_NOT_A_COMBINATION) \
+                    and not answer_conditions:
+                # Not a state-free combination; it may still be A(state) times the reference with
+                # A invertible on the whole domain (the unsolved Euler-Lagrange equations).
+                mixed = state_dependent_mixing(reference, answer, unknowns, {**parameters.domains, **states.domains},
+                                               (parameters, states), options, deadline)
+                if mixed is not None:
+                    return mixed
             return Comparison(
                 False,
                 outcome[3] if len(outcome) > 3 else "proved",
@@ -253,14 +294,14 @@ def _not_a_multiple(k, points, R, S, j, i):
                    "other_state": _named(points[0]), "answer_there": as_float(S[0][0]),
                    "reference_there": as_float(R[0][0])}
     else:
-        reason = ("your equations are not combinations of the reference equations with coefficients "
-                  f"free of the state (equation {i + 1} fails at the counterexample)")
+        reason = (f"{_NOT_A_COMBINATION} (equation {i + 1} fails at the counterexample)")
         example = {"values": _named(points[j]), "answer": [as_float(v) for v in S[j]],
                    "reference": [as_float(v) for v in R[j]]}
     return reason, example
 
 
 _NOT_A_MULTIPLE = "your equation is not the reference multiplied by a factor free of the state"
+_NOT_A_COMBINATION = "your equations are not combinations of the reference equations with coefficients free of the state"
 # Largest residuals (in nodes) whose ratio is worth a symbolic cancellation.
 FACTOR_MAX_NODES = 200
 # Highest integer power worth cancelling symbolically.
@@ -332,14 +373,268 @@ def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: d
                       evidence={"method": "symbolic"})
 
 
-def _nodes(expr: sympy.Expr) -> int:
-    """Nodes of ``expr`` (past the limit when a high power makes cancelling it costly: x**1000)."""
+# Largest system whose mixing matrix is worth symbolic determinants.
+MIXING_MAX_EQUATIONS = 4
+# Largest residual (in nodes) worth splitting into coefficients of the accelerations.
+MIXING_MAX_NODES = 600
+# Largest identity row (in nodes) worth the symbolic proof.
+IDENTITY_MAX_NODES = 4000
+# Parameter points and states per parameter point of the numeric screen of the combination.
+MIXING_POINTS, MIXING_STATES = 3, 3
+
+
+def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr], unknowns: tuple, domains: dict,
+                           samplers: tuple[Sampler, Sampler], options: Options = Options(),
+                           deadline: float | None = None) -> Comparison | None:
+    """Are the answer's equations ``A(state) @`` the reference's, with ``A`` invertible on the whole domain?
+
+    Equations of motion are linear in the accelerations ``a`` (``unknowns``): ``R = M_r a + c_r``
+    and ``S = M_s a + c_s``. Then ``S = A R`` for a matrix ``A`` free of the accelerations exactly
+    when ``A = M_s M_r**-1`` and ``c_s = A c_r``; the equations are the same equations wherever
+    ``det A = det M_s / det M_r`` is nonzero. So the solved reference ``thetaddot1 = f1,
+    thetaddot2 = f2`` and the student's unsolved Lagrange form ``M(q) qddot + ... = 0`` are one
+    system, because the mass matrix is invertible everywhere; a row multiplied by ``thetadot`` (or
+    by ``cos(theta)`` on (-pi, pi)) is not, because there the system says less.
+
+    ``c_s = A c_r`` is screened in ball arithmetic at sample points, then proved symbolically
+    (rational functions, and sines and cosines of sums of the variables reduced with
+    ``sin**2 + cos**2 = 1``); both determinants are proved nonzero (and the coefficients finite)
+    on the whole declared domain with `_nonzero_on`. Only a proof accepts.
+
+    Returns a verdict, or None when this does not apply (not linear in the accelerations, not as
+    many accelerations as equations, a reference whose own matrix may be singular) or the answer is
+    not such a combination (the caller keeps its own counterexample).
+
+    Examples
+    --------
+    >>> import sympy
+    >>> from grader.answers.sampling import Sampler
+    >>> from grader.expressions import parse_domain
+    >>> k, m, r = sympy.symbols("k m r", positive=True)
+    >>> rdot, thetadot, rddot, thetaddot = sympy.symbols("rdot thetadot rddot thetaddot", real=True)
+    >>> real, positive = parse_domain("real"), parse_domain("positive")
+    >>> P = Sampler({k: positive, m: positive}, seed=1)
+    >>> S = Sampler({r: positive, rdot: real, thetadot: real, rddot: real, thetaddot: real}, seed=2)
+    >>> solved = [rddot - r*thetadot**2 + k/(m*r**2), thetaddot + 2*rdot*thetadot/r]
+    >>> lagrange = [m*solved[0], m*r**2*thetaddot + 2*m*r*rdot*thetadot]   # d/dt(m r^2 thetadot) = 0
+    >>> domains = {**P.domains, **S.domains}
+    >>> state_dependent_mixing(solved, lagrange, (rddot, thetaddot), domains, (P, S)).certainty
+    'proved'
+    >>> v = state_dependent_mixing(solved, [thetadot*solved[0], solved[1]], (rddot, thetaddot), domains, (P, S))
+    >>> v.equivalent, v.certainty, "singular somewhere" in v.reason
+    (False, 'proved', True)
+    """
+    k = len(reference)
+    if not (1 < k <= MIXING_MAX_EQUATIONS and len(answer) == k and len(unknowns) == k):
+        return None
+    if not all(_nodes(e, MIXING_MAX_NODES) <= MIXING_MAX_NODES for e in (*reference, *answer)):
+        return None
+    split_r, split_s = _linear_in(reference, unknowns), _linear_in(answer, unknowns)
+    if split_r is None or split_s is None:
+        return None
+    (m_r, c_r), (m_s, c_s) = split_r, split_s
+    try:
+        det_r = sympy.cancel(sympy.together(m_r.det(method="berkowitz")))
+    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+        return None
+    # The reference's own matrix must be invertible everywhere, with finite coefficients, for A to exist.
+    if not (_finite_on(m_r, domains) and _nonzero_on(det_r, domains) is True):
+        return None
+    if _past(deadline) or _combination_at_points(m_r, c_r, m_s, c_s, samplers, options, deadline) != "agree":
+        return None
+    try:
+        det_s = sympy.cancel(sympy.together(m_s.det(method="berkowitz")))
+    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+        return None
+    if det_s == 0:
+        return Comparison(False, "proved", "your equations are not independent: they are combinations of the "
+                          "reference equations that together say less than the reference equations",
+                          evidence={"method": "symbolic"})
+    if not _finite_on(m_s, domains):
+        return Comparison(False, "numeric", "your equations are combinations of the reference equations with "
+                          "coefficients that could not be shown finite on the whole declared domain",
+                          evidence={"method": "symbolic"})
+    numerator, _ = sympy.fraction(det_s)
+    if _nonzero_on(numerator, domains) is not True:
+        example = _sign_change(numerator, *samplers)
+        if example is not None:
+            return Comparison(False, "proved", _SINGULAR_MIXING, evidence={"method": "ball arithmetic"},
+                              counterexample=example)
+        return Comparison(False, "numeric", "your equations are combinations of the reference equations whose "
+                          "mixing matrix depends on the state and could not be shown invertible on the whole "
+                          "declared domain", evidence={"method": "symbolic"})
+    if _past(deadline):
+        return None
+    if not _combination_proved(m_r, c_r, m_s, c_s, deadline):
+        return Comparison(False, "numeric", "your equations agree with combinations of the reference equations "
+                          "with state-dependent coefficients at every sample point, but that could not be proved",
+                          evidence={"method": "ball arithmetic"})
+    return Comparison(True, "proved", "combinations of the reference equations with coefficients that depend on "
+                      "the state, whose mixing matrix is invertible on the whole declared domain",
+                      evidence={"method": "symbolic"})
+
+
+_SINGULAR_MIXING = ("your equations are combinations of the reference equations whose mixing matrix depends on "
+                    "the state and is singular somewhere in the declared domain (its determinant changes sign "
+                    "between the two states in the counterexample): there your equations no longer determine "
+                    "the motion")
+
+
+def _past(deadline: float | None) -> bool:
+    return deadline is not None and time.monotonic() > deadline
+
+
+def _linear_in(residuals: list[sympy.Expr], unknowns: tuple):
+    """``(M, c)`` with ``residuals == M @ unknowns + c`` and ``M``, ``c`` free of the unknowns, else None."""
+    rows, constants = [], []
+    zero = {u: sympy.S.Zero for u in unknowns}
+    for e in residuals:
+        row = [sympy.diff(e, u) for u in unknowns]
+        # a gradient free of the unknowns makes e affine in them (e - e(0) is the gradient times a)
+        if any(entry.has(*unknowns) for entry in row):
+            return None
+        constant = e.xreplace(zero)
+        if constant.has(sympy.nan, sympy.zoo, sympy.oo, -sympy.oo):
+            return None
+        rows.append(row)
+        constants.append(constant)
+    matrix = sympy.Matrix(rows)
+    if any(all(entry == 0 for entry in matrix.row(i)) for i in range(matrix.rows)):
+        return None  # an equation without accelerations (a constraint): not this path
+    return matrix, sympy.Matrix(constants)
+
+
+def _finite_on(matrix: sympy.Matrix, domains: dict) -> bool:
+    """Every entry's denominator is provably nonzero on the domain."""
+    for entry in matrix:
+        _, denominator = sympy.fraction(sympy.together(entry))
+        if not (denominator.is_number and denominator != 0) and _nonzero_on(denominator, domains) is not True:
+            return False
+    return True
+
+
+def _combination_at_points(m_r, c_r, m_s, c_s, samplers, options, deadline) -> str | None:
+    """"agree" when ``c_s = M_s M_r**-1 c_r`` at every sample point (ball arithmetic), "differ" when a
+    point proves otherwise, None when undecided."""
+    parameters, states = samplers
+    k = len(c_r)
+    try:
+        compiled = [Compiled(e, ArbBackend()) for e in (*m_r, *c_r, *m_s, *c_s)]
+    except Unsupported:
+        return None
+    target = options.digits * LOG2_10
+    agreed = 0
+    for p in range(MIXING_POINTS):
+        for j in range(MIXING_STATES):
+            if _past(deadline):
+                return None
+            point = {**parameters.point(p), **states.point(p * MIXING_STATES + j)}
+            outcome = _combination_at(compiled, k, point, target, options.max_bits)
+            if outcome == "differ":
+                return "differ"
+            agreed += outcome == "agree"
+    return "agree" if agreed >= MIXING_POINTS * MIXING_STATES // 2 else None
+
+
+def _combination_at(compiled, k, point, target, max_bits) -> str | None:
+    prec = int(target) + 32
+    while prec <= max_bits:
+        try:
+            values = [c.at(point, prec) for c in compiled]
+        except Undefined:
+            return None  # outside where the equations are defined: another point decides
+        except Unresolved:
+            prec *= 2
+            continue
+        with flint.ctx.workprec(prec):
+            numbers = [v for v, _ in values]
+            m_r = flint.arb_mat(k, k, numbers[:k * k])
+            c_r = flint.arb_mat(k, 1, numbers[k * k:k * k + k])
+            m_s = flint.arb_mat(k, k, numbers[k * k + k:2 * k * k + k])
+            c_s = flint.arb_mat(k, 1, numbers[2 * k * k + k:])
+            det = m_r.det()
+            if det.is_finite() and not det.contains(0):
+                mixed = m_s * m_r.inv() * c_r
+                scale = max([s for _, s in values[k * k + k + k * k:]] + [_log2_mag(mixed[i, 0]) for i in range(k)])
+                noise = -math.inf
+                for i in range(k):
+                    d = c_s[i, 0] - mixed[i, 0]
+                    if not d.contains(0):
+                        return "differ"
+                    noise = max(noise, _log2_mag(d))
+                if noise <= scale - target:
+                    return "agree"
+        prec *= 2
+    return None
+
+
+def _combination_proved(m_r, c_r, m_s, c_s, deadline) -> bool:
+    """``det(M_r) c_s == M_s adj(M_r) c_r`` identically (``c_s = M_s M_r**-1 c_r`` without division)."""
+    try:
+        rows = m_r.det(method="berkowitz") * c_s - m_s * m_r.adjugate(method="berkowitz") * c_r
+    except (ValueError, TypeError, ZeroDivisionError):
+        return False
+    for row in rows:
+        if _past(deadline) or not _identically_zero(row):
+            return False
+    return True
+
+
+def _identically_zero(expr: sympy.Expr) -> bool:
+    """A proof that ``expr`` is zero wherever it is defined: as a rational function, or with the sines and
+    cosines of sums of variables expanded and reduced modulo ``sin(x)**2 + cos(x)**2 - 1``."""
+    if _nodes(expr, IDENTITY_MAX_NODES) > IDENTITY_MAX_NODES:
+        return False
+    try:
+        if sympy.cancel(sympy.together(expr)) == 0:
+            return True
+        return _zero_on_circles(expr)
+    except (sympy.PolynomialError, sympy.polys.polyerrors.PolificationFailed, ValueError, TypeError,
+            ZeroDivisionError):
+        return False
+
+
+_U = sympy.Wild("u")
+# tan, cot, sec, csc as sines and cosines, so that one reduction sees every trigonometric function
+_AS_SIN_COS = ((sympy.tan(_U), sympy.sin(_U) / sympy.cos(_U)), (sympy.cot(_U), sympy.cos(_U) / sympy.sin(_U)),
+               (sympy.sec(_U), 1 / sympy.cos(_U)), (sympy.csc(_U), 1 / sympy.sin(_U)))
+
+
+def _zero_on_circles(expr: sympy.Expr) -> bool:
+    for pattern, replacement in _AS_SIN_COS:
+        expr = expr.replace(pattern, replacement)
+    expr = sympy.expand_trig(expr)  # sin(theta1 - theta2) -> products of sin(theta1), cos(theta2), ...
+    angles = {f.args[0] for f in expr.atoms(sympy.sin, sympy.cos)}
+    if not angles or not all(a.is_Symbol for a in angles):
+        return False
+    replacements, circles, generators = {}, [], []
+    for angle in sorted(angles, key=lambda a: a.name):
+        s, c = sympy.Dummy(f"s_{angle.name}"), sympy.Dummy(f"c_{angle.name}")
+        replacements[sympy.sin(angle)] = s
+        replacements[sympy.cos(angle)] = c
+        circles.append(s**2 + c**2 - 1)
+        generators += [s, c]
+    numerator, _ = sympy.fraction(sympy.together(expr.xreplace(replacements)))
+    if numerator.has(*angles):
+        return False  # the angle also outside sin and cos (theta*sin(theta)): not this reduction
+    numerator = sympy.expand(numerator)
+    if numerator == 0:
+        return True
+    # The circles' leading terms s**2 are coprime, so they are a Groebner basis: the remainder is zero
+    # exactly when the numerator vanishes for every real angle.
+    _, remainder = sympy.reduced(numerator, circles, *generators)
+    return remainder == 0
+
+
+def _nodes(expr: sympy.Expr, limit: int = FACTOR_MAX_NODES) -> int:
+    """Nodes of ``expr``, counted up to past ``limit`` (past it when a high power makes cancelling
+    it costly: x**1000)."""
     count, stack = 0, [expr]
-    while stack and count <= FACTOR_MAX_NODES:
+    while stack and count <= limit:
         node = stack.pop()
         count += 1
         if node.is_Pow and node.exp.is_Integer and abs(int(node.exp)) > FACTOR_MAX_POWER:
-            return FACTOR_MAX_NODES + 1
+            return limit + 1
         stack.extend(node.args)
     return count
 
@@ -353,11 +648,28 @@ def _nonzero_on(expr: sympy.Expr, domains: dict) -> bool | None:
             if factor.is_zero is False and factor.is_finite:
                 continue
             return None
-        if factor.is_positive or factor.is_negative:
+        if factor.is_positive or factor.is_negative or _signed_as_squares(factor):
             continue
         if _nonzero_in_balls(factor, domains) is not True:
             return None
     return True
+
+
+_SQUARES = ((sympy.cos(_U)**2, 1 - sympy.sin(_U)**2), (sympy.sin(_U)**2, 1 - sympy.cos(_U)**2),
+            (sympy.cos(_U), 1 - 2*sympy.sin(_U / 2)**2))
+
+
+def _signed_as_squares(expr: sympy.Expr) -> bool:
+    """Whether ``expr`` has one sign once a cosine is written with a sine squared: ``m1 + m2 - m2 cos(x)**2``
+    is ``m1 + m2 sin(x)**2 > 0``, the determinant of a double pendulum's mass matrix, which ball
+    arithmetic cannot bound away from zero over all masses."""
+    if not expr.has(sympy.sin, sympy.cos) or _nodes(expr) > FACTOR_MAX_NODES:
+        return False
+    for pattern, replacement in _SQUARES:
+        form = sympy.expand(expr.replace(pattern, replacement))
+        if form.is_positive or form.is_negative:
+            return True
+    return False
 
 
 def _nonzero_in_balls(expr: sympy.Expr, domains: dict) -> bool | None:
