@@ -206,10 +206,11 @@ _TABLE = [
              arb=lambda x: x.sin(), real=lambda lib, x: lib.sin(x)),
     Function("cos", sympy.cos, sympy_func=sympy.cos, latex=r"\cos", commands=("cos",),
              arb=lambda x: x.cos(), real=lambda lib, x: lib.cos(x)),
-    Function("tan", sympy.tan, sympy_func=sympy.tan, latex=r"\tan", commands=("tan",),
+    Function("tan", sympy.tan, aliases=("tg",), sympy_func=sympy.tan, latex=r"\tan", commands=("tan", "tg"),
              arb=lambda x: x.sin() * _inverse(x.cos(), f"tan at {_HALF_PI}"),
              real=lambda lib, x: lib.sin(x) * _real_inverse(lib.cos(x), f"tan at {_HALF_PI}")),
-    Function("cot", sympy.cot, sympy_func=sympy.cot, latex=r"\cot", commands=("cot",),
+    Function("cot", sympy.cot, aliases=("ctg", "cotg", "cotan"), sympy_func=sympy.cot, latex=r"\cot",
+             commands=("cot", "ctg"),
              arb=lambda x: x.cos() * _inverse(x.sin(), "cot at a multiple of pi"),
              real=lambda lib, x: lib.cos(x) * _real_inverse(lib.sin(x), "cot at a multiple of pi")),
     Function("sec", sympy.sec, sympy_func=sympy.sec, latex=r"\sec", commands=("sec",),
@@ -224,8 +225,8 @@ _TABLE = [
     Function("acos", sympy.acos, aliases=("arccos",), sympy_func=sympy.acos, latex=_op("acos"),
              commands=("arccos",), arb=lambda x: _arb_unit(x, "acos").acos(),
              real=lambda lib, x: lib.acos(_real_unit(x, "acos"))),
-    Function("atan", sympy.atan, aliases=("arctan",), sympy_func=sympy.atan, latex=_op("atan"),
-             commands=("arctan",), arb=lambda x: x.atan(), real=lambda lib, x: lib.atan(x)),
+    Function("atan", sympy.atan, aliases=("arctan", "arctg"), sympy_func=sympy.atan, latex=_op("atan"),
+             commands=("arctan", "arctg"), arb=lambda x: x.atan(), real=lambda lib, x: lib.atan(x)),
     Function("atan2", sympy.atan2, 2, 2, aliases=("arctan2",), sympy_func=sympy.atan2,
              latex=r"\operatorname{atan_{2}}", dimension="same_args", arb=_arb_atan2, real=_real_atan2),
     Function("sinh", sympy.sinh, sympy_func=sympy.sinh, latex=r"\sinh", commands=("sinh",),
@@ -253,8 +254,12 @@ _TABLE = [
     Function("log", _log, 1, 2, aliases=("ln",), sympy_func=sympy.log, latex=r"\log", commands=("log", "ln"),
              arb=_arb_log, real=_real_log),
     # log10(x) is log(x)/log(10) in sympy: no function class of its own, nothing to evaluate.
-    Function("log10", lambda x: sympy.log(x, 10)),
+    Function("log10", lambda x: sympy.log(x, 10), aliases=("lg",)),
+    Function("log2", lambda x: sympy.log(x, 2)),
     Function("sqrt", None),
+    # The real cube root, defined for negative numbers too (x**(1/3) is not, over the reals); built
+    # from sign and abs, so the evaluators and the dimension rule of a power apply as they are.
+    Function("cbrt", lambda x: sympy.sign(x) * sympy.Abs(x) ** sympy.Rational(1, 3)),
     Function("abs", sympy.Abs, aliases=("Abs",), sympy_func=sympy.Abs, text="Abs", dimension="same",
              arb=lambda x: abs(x), real=lambda lib, x: abs(x)),
     Function("sign", sympy.sign, aliases=("sgn",), sympy_func=sympy.sign, latex=_op("sgn"), dimension="any",
@@ -283,7 +288,7 @@ INVERSES = {"sin": "asin", "cos": "acos", "tan": "atan", "sinh": "asinh", "cosh"
 CONSTANTS = {"pi": sympy.pi, "e": sympy.E, "E": sympy.E}
 
 # Aliases worth listing in a hint (the ones people type); the others only clutter it.
-_LISTED_ALIASES = {"ln", "arcsin", "arccos", "arctan", "sgn", "cosec"}
+_LISTED_ALIASES = {"ln", "arcsin", "arccos", "arctan", "sgn", "cosec", "tg", "ctg", "arctg"}
 
 
 def function_names() -> list[str]:

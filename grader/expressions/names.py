@@ -165,6 +165,15 @@ def resolve_name(raw: str, ns: "Namespace", *, order: int = 0, typed: str | None
     symbol = _lookup(raw, ns)
     if symbol is not None:
         return Resolved("symbol", symbol)
+    logarithm = _logarithm(raw, typed, position, called)
+    if logarithm is not None:
+        return logarithm
+    if raw in _PRODUCT_FIRST:
+        parts = _variables_only(raw, ns)
+        if parts:  # √(lg) with a length l and g declared is √(l·g), not √(log₁₀ g)
+            return Resolved("split", parts, [f"read '{typed}' as {_reading(parts)}"])
+        name = FUNCTIONS[raw].name
+        return Resolved("function", name, [f"read '{typed}' as {_PRODUCT_FIRST[raw]}"])
     if raw in FUNCTIONS or raw.lower() in FUNCTIONS:
         return Resolved("function", FUNCTIONS[raw if raw in FUNCTIONS else raw.lower()].name)
     if raw in CONSTANTS:
@@ -182,6 +191,53 @@ def resolve_name(raw: str, ns: "Namespace", *, order: int = 0, typed: str | None
         raise ExpressionError(f"'{typed}' is not allowed in an expression", position,
                               "unsupported_function", "write a formula, not program code")
     _raise_unknown(raw, ns, typed, position, called)
+
+
+#: Spellings of other traditions (tg for tan, lg for log₁₀) that are also products of one-letter
+#: variables common in mechanics (t·g, l·g): a function only when the letters are not all declared.
+_PRODUCT_FIRST = {"tg": "tan", "ctg": "cot", "cotg": "cot", "arctg": "arctan", "lg": "the logarithm to base 10"}
+
+_LOG_BASE = re.compile(r"^log_(\w+)$")
+
+
+def _logarithm(raw: str, typed: str, position: int, called: bool) -> Resolved | None:
+    """``log_2``, ``log_{10}``, ``log2(…)``: a logarithm to a base, or None for any other name.
+
+    ``log2`` is the base-2 logarithm only when called directly (``log2(x)``, as in most
+    programming languages); alone, ``τ log2`` is τ·log(2), as physics texts write ln 2.
+    """
+    if raw == "log2":
+        if called:
+            return Resolved("function", "log2", [f"read '{typed}(…)' as the logarithm to base 2"])
+        return Resolved("split", ["log", "2"], [f"read '{typed}' as log(2)"])
+    match = _LOG_BASE.match(raw)
+    if match is None:
+        return None
+    base = match.group(1)
+    named = {"2": "log2", "10": "log10", "e": "log"}
+    if base in named:
+        return Resolved("function", named[base], [f"read '{typed}' as the logarithm to base {base}"])
+    raise ExpressionError(f"'{typed}' is a logarithm to base {base}, which is not built in", position,
+                          "unsupported_function", f"write log(x)/log({base}) for the logarithm of x to base {base}")
+
+
+def _variables_only(raw: str, ns: "Namespace") -> list[str] | None:
+    """A reading of the short word ``raw`` as declared variables alone (longest names first), or None."""
+    words, _ = _split_words(ns)
+    variables = {k: v for k, v in words.items() if v in ns.names}
+
+    def read(start: int) -> list[str] | None:
+        if start == len(raw):
+            return []
+        for end in range(len(raw), start, -1):
+            if raw[start:end] in variables:
+                rest = read(end)
+                if rest is not None:
+                    return [variables[raw[start:end]], *rest]
+        return None
+
+    parts = read(0)
+    return parts if parts and len(parts) > 1 else None
 
 
 def _reading(parts: list[str]) -> str:

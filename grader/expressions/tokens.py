@@ -30,7 +30,8 @@ from .errors import ExpressionError
 from .latex_input import classify_command, subscript_text
 from .magnitudes import MAX_DIGITS
 from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, GREEK_CHARS, OPERATOR_CHARS, PRIME_CHARS,
-                            ROOT_CHARS, SUBSCRIPT_DIGITS, SUPERSCRIPT_CHARS, bad_character, is_space)
+                            ROOT_CHARS, SUBSCRIPT_DIGITS, SUPERSCRIPT_CHARS, VULGAR_FRACTIONS, bad_character,
+                            is_space)
 
 __all__ = ["Token", "tokenize", "check_brackets", "MAX_NESTING"]
 
@@ -161,6 +162,8 @@ class _Tokenizer:
             self.superscript()
         elif ch in ROOT_CHARS:
             self.emit("root", ROOT_CHARS[ch], start, start + 1)
+        elif ch in VULGAR_FRACTIONS:
+            self.vulgar_fraction(start)
         elif ch in PRIME_CHARS:
             self.emit("prime", PRIME_CHARS[ch], start, start + 1)
         elif ch == ".":
@@ -181,6 +184,14 @@ class _Tokenizer:
             raise bad_character(ch, start)
 
     # -- numbers ------------------------------------------------------------
+    def vulgar_fraction(self, start: int) -> None:
+        """``½`` is the number 1/2; ``1½`` (a mixed number, or 1·½?) is refused rather than guessed."""
+        if self.tokens and self.tokens[-1].kind == "number" and self.tokens[-1].end == start:
+            raise ExpressionError(f"'{self.text[self.tokens[-1].pos:start + 1]}' mixes a number and a fraction",
+                                  start, "syntax", "write 3/2 or 1 + 1/2, with the operator you mean")
+        num, den = VULGAR_FRACTIONS[self.text[start]]
+        self.emit("number", sympy.Rational(num, den), start, start + 1)
+
     def number(self) -> None:
         text, start = self.text, self.i
         j = start

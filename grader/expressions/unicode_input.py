@@ -10,11 +10,12 @@ different variables and grade a correct answer wrong.
 from __future__ import annotations
 
 import unicodedata
+from fractions import Fraction
 
 from .errors import ExpressionError
 
 __all__ = ["GREEK_CHARS", "OPERATOR_CHARS", "SUPERSCRIPT_CHARS", "SUBSCRIPT_DIGITS", "ROOT_CHARS",
-           "COMBINING_DOTS", "DOTTED_LETTERS", "PRIME_CHARS", "is_space", "bad_character"]
+           "COMBINING_DOTS", "DOTTED_LETTERS", "PRIME_CHARS", "VULGAR_FRACTIONS", "is_space", "bad_character"]
 
 _GREEK_NAMES = ("alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi "
                 "omicron pi rho sigma tau upsilon phi chi psi omega").split()
@@ -30,10 +31,19 @@ GREEK_CHARS.update({"ς": "sigma", "ϑ": "theta", "ϕ": "phi", "ϵ": "epsilon", 
                     "Π": "Pi", "Σ": "Sigma", "Φ": "Phi", "Ψ": "Psi", "Ω": "Omega",
                     # not Greek, but a letter of the same kind: statements write a length as ℓ
                     # (\ell), and nobody means ℓ and l as two different variables.
-                    "ℓ": "l"})
+                    "ℓ": "l",
+                    # likewise the script e of some fonts and equation editors for Euler's number
+                    "ℯ": "e"})
 
 #: Operator look-alikes -> ASCII operator.
-OPERATOR_CHARS = {"·": "*", "⋅": "*", "×": "*", "∗": "*", "•": "*", "−": "-", "÷": "/", "∕": "/"}
+OPERATOR_CHARS = {"·": "*", "⋅": "*", "×": "*", "∗": "*", "•": "*", "∙": "*", "−": "-", "–": "-",
+                  "÷": "/", "∕": "/", "⁄": "/"}
+
+#: Vulgar fractions (½x is x/2): the numerator and denominator, from Unicode's own numeric values.
+VULGAR_FRACTIONS: dict[str, tuple[int, int]] = {
+    ch: Fraction(unicodedata.numeric(ch)).limit_denominator(10).as_integer_ratio()
+    for ch in "½⅓⅔¼¾⅕⅖⅗⅘⅙⅚⅐⅛⅜⅝⅞⅑⅒"
+}
 
 #: Superscript characters -> the ASCII they stand for (x² is x^2).
 SUPERSCRIPT_CHARS = {"⁰": "0", "¹": "1", "²": "2", "³": "3", "⁴": "4", "⁵": "5", "⁶": "6",

@@ -31,7 +31,8 @@ def test_arities():
 
 
 @pytest.mark.parametrize("alias, name", [("ln", "log"), ("Abs", "abs"), ("arcsin", "asin"), ("arctan2", "atan2"),
-                                         ("cosec", "csc"), ("sgn", "sign"), ("arsinh", "asinh")])
+                                         ("cosec", "csc"), ("sgn", "sign"), ("arsinh", "asinh"), ("tg", "tan"),
+                                         ("ctg", "cot"), ("arctg", "atan"), ("lg", "log10")])
 def test_aliases_are_the_same_function(alias, name):
     assert FUNCTIONS[alias] is REGISTRY[name]
 

@@ -453,10 +453,38 @@ def test_precomposed_dotted_letter_glued_to_a_factor_is_a_product(two_bodies):
     ("ln(l)", lambda s: sympy.log(s("l"))),
     ("log10(l)", lambda s: sympy.log(s("l")) / sympy.log(10)),
     ("sinh^-1 x", lambda s: sympy.asinh(s("x"))),
+    # a logarithm to a base: log2(…) called as in programming languages, or the base subscripted
+    ("log2(x)", lambda s: sympy.log(s("x")) / sympy.log(2)),
+    ("log_2 x", lambda s: sympy.log(s("x")) / sympy.log(2)),
+    ("log_{10}(x)", lambda s: sympy.log(s("x")) / sympy.log(10)),
+    ("log_e(x)", lambda s: sympy.log(s("x"))),
+    ("x log2", lambda s: s("x") * sympy.log(2)),             # alone, log2 is log(2), as physics writes ln 2
+    ("cbrt(x)", lambda s: sympy.sign(s("x")) * sympy.Abs(s("x")) ** sympy.Rational(1, 3)),
+    # vulgar fractions and the other product and minus signs of word processors
+    ("½ l + ¾x", lambda s: s("l") / 2 + 3 * s("x") / 4),
+    ("x∙l – l⁄x", lambda s: s("x") * s("l") - s("l") / s("x")),
+    ("ℯ^x", lambda s: sympy.exp(s("x"))),
     (r"\coth x + \operatorname{asinh}(x) + \operatorname{sgn}(x)", lambda s: sympy.coth(s("x")) + sympy.asinh(s("x")) + sympy.sign(s("x"))),
 ])
 def test_every_elementary_function_people_type(ns, text, expected):
     assert parse(text, ns) == expected(lambda n: ns.symbol(n))
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("tg x + ctg(x) + cotg x + arctg(x)", lambda x: sympy.tan(x) + 2 * sympy.cot(x) + sympy.atan(x)),
+    ("lg(x)", lambda x: sympy.log(x) / sympy.log(10)),
+])
+def test_spellings_of_other_traditions(text, expected):
+    # ISO 80000-2's lg, the tg/ctg/arctg of Russian and Polish texts
+    ns = Namespace([Variable("x", "dimensionless", "real")])
+    assert parse(text, ns) == expected(ns.symbol("x"))
+
+
+@pytest.mark.parametrize("text, factors", [("lg", ("l", "g")), ("tg", ("t", "g")), ("ctg", ("c", "t", "g"))])
+def test_a_spelling_of_another_tradition_is_a_product_when_its_letters_are_declared(text, factors):
+    # √(lg) with a length l and gravity g is √(l·g), whatever ISO 80000-2 calls lg
+    ns = Namespace([Variable(n, "dimensionless", "positive") for n in factors])
+    assert parse(text, ns) == sympy.Mul(*(ns.symbol(n) for n in factors))
 
 
 @pytest.mark.parametrize("text, named, fix", [
@@ -468,6 +496,8 @@ def test_every_elementary_function_people_type(ns, text, expected):
     ("acosh(1/2)", "not a real number", "asin/acos"),
     ("foo(x)", "'foo' is not a function", "allowed functions"),
     ("acot(x)", "'acot' is not a function", "did you mean"),
+    ("log_b(x)", "'log_b' is a logarithm to base b", "log(x)/log(b)"),
+    ("1½ x", "'1½' mixes a number and a fraction", "3/2 or 1 + 1/2"),
     ("θ̇̇̇", "third or higher time derivative", "at most two dots"),
     ("∂x", "'∂' (PARTIAL DIFFERENTIAL)", "dotted variable"),
     ("x°", "'°' (DEGREE SIGN)", "radians"),
