@@ -42,6 +42,7 @@ __all__ = ["check", "check_request", "DEFAULT_OPTIONS"]
 
 DEFAULT_OPTIONS = Options()
 FEEDBACK_OPTIONS = Options(points=4, symbolic=False, factors=False)
+SYSTEM_FEEDBACK_OPTIONS = Options(points=4, symbolic=False)
 # Share of the budget the mathematics may use; the rest is for the reply (and, in the sandbox,
 # is the margin before the hard kill).
 BUDGET_SHARE = 0.8
@@ -294,13 +295,16 @@ def _feedback(ref: _Reference, exprs: list[sympy.Expr], comparison: Comparison, 
         return diagnose(ref.exprs[0], exprs[0], same, ref.instructor, ratio, rel, deadline,
                         swap_could_match=swap_could_match, detail=detail)
 
-    def same_equation(r, a):
+    def same_equation(r, a, options=FEEDBACK_OPTIONS, unknowns=()):
         r_list = r if isinstance(r, list) else [r]
         a_list = a if isinstance(a, list) else [a]
-        return compare_equations(r_list, a_list, ref.parameters, ref.states, FEEDBACK_OPTIONS,
-                                 deadline).equivalent is True
+        return compare_equations(r_list, a_list, ref.parameters, ref.states, options, deadline,
+                                 unknowns=unknowns).equivalent is True
 
-    found = [{"code": "instructor", "message": m} for e, m in ref.instructor if same_equation(e, exprs)][:1]
+    # An instructor's wrong system is recognised in every form the reference itself would be (its
+    # unsolved Lagrange form too): such entries are few, unlike the slip candidates below.
+    system = (SYSTEM_FEEDBACK_OPTIONS, ref.unknowns) if len(exprs) > 1 else ()
+    found = [{"code": "instructor", "message": m} for e, m in ref.instructor if same_equation(e, exprs, *system)][:1]
     if found or len(exprs) != 1 or len(ref.exprs) != 1:
         return found
     return diagnose(ref.exprs[0], exprs[0], same_equation, (), None, None, deadline, equation=True, detail=detail)

@@ -301,7 +301,8 @@ def _not_a_multiple(k, points, R, S, j, i):
 
 
 _NOT_A_MULTIPLE = "your equation is not the reference multiplied by a factor free of the state"
-_NOT_A_COMBINATION = "your equations are not combinations of the reference equations with coefficients free of the state"
+_NOT_A_COMBINATION = ("your equations are not combinations of the reference equations with coefficients free of "
+                      "the state")
 # Largest residuals (in nodes) whose ratio is worth a symbolic cancellation.
 FACTOR_MAX_NODES = 200
 # Highest integer power worth cancelling symbolically.
@@ -456,7 +457,7 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
                           evidence={"method": "symbolic"})
     numerator, _ = sympy.fraction(det_s)
     if _nonzero_on(numerator, domains) is not True:
-        example = _sign_change(numerator, *samplers)
+        example = _vanishing_factor(numerator, domains, samplers)
         if example is not None:
             return Comparison(False, "proved", _SINGULAR_MIXING, evidence={"method": "ball arithmetic"},
                               counterexample=example)
@@ -475,9 +476,37 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
 
 
 _SINGULAR_MIXING = ("your equations are combinations of the reference equations whose mixing matrix depends on "
-                    "the state and is singular somewhere in the declared domain (its determinant changes sign "
-                    "between the two states in the counterexample): there your equations no longer determine "
-                    "the motion")
+                    "the state and is singular somewhere in the declared domain (a factor of its determinant "
+                    "changes sign between the two states in the counterexample): there your equations no longer "
+                    "determine the motion")
+# Functions continuous wherever their arguments are: a sign change of a product of them has a zero between.
+_CONTINUOUS = (sympy.sin, sympy.cos, sympy.exp, sympy.sinh, sympy.cosh, sympy.tanh, sympy.atan, sympy.Abs)
+
+
+def _vanishing_factor(expr: sympy.Expr, domains: dict, samplers: tuple[Sampler, Sampler]) -> dict | None:
+    """Two states between which a continuous factor of ``expr`` changes sign (so ``expr`` vanishes there).
+
+    Factor by factor, because a square (``thetadot**2``) vanishes without changing sign. The states
+    differ only in state variables, whose domains are intervals: the segment between them is inside.
+    """
+    for factor in sympy.Mul.make_args(sympy.factor_terms(expr)):
+        base = factor.base if factor.is_Pow and factor.exp.is_Integer and factor.exp > 0 else factor
+        if base.is_number or not _continuous(base) or _nonzero_on(base, domains) is True:
+            continue
+        example = _sign_change(base, *samplers)
+        if example is not None:
+            return example
+    return None
+
+
+def _continuous(expr: sympy.Expr) -> bool:
+    """A polynomial in the variables and in functions of `_CONTINUOUS` (no division, no roots)."""
+    for node in sympy.preorder_traversal(expr):
+        if node.is_Pow and not (node.exp.is_Integer and node.exp > 0):
+            return False
+        if isinstance(node, sympy.Function) and not isinstance(node, _CONTINUOUS):
+            return False
+    return True
 
 
 def _past(deadline: float | None) -> bool:
