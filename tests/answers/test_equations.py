@@ -134,3 +134,144 @@ def test_high_powers_of_a_factor_are_decided_without_expanding_them(pendulum, an
     started = time.monotonic()
     v = check(PENDULUM_EOM, answer, pendulum, kind="equation")
     assert v.verdict == expected and time.monotonic() - started < 2.0
+
+
+# -- systems by the right rule: combinations with state-dependent coefficients, invertible everywhere --
+def _angle_variables(*names):
+    kinds = {"": ("angle", "coordinate"), "dot": ("angular_velocity", "velocity"),
+             "ddot": ("angular_acceleration", "acceleration")}
+    return {f"{n}{suffix}": {"dimension": dimension, "domain": [-3.1416, 3.1416] if not suffix else "real",
+                             "kind": kind}
+            for n in names for suffix, (dimension, kind) in kinds.items()}
+
+
+DOUBLE_PENDULUM = {
+    **{n: {"dimension": d, "domain": "positive"} for n, d in
+       (("g", "acceleration"), ("l1", "length"), ("l2", "length"), ("m1", "mass"), ("m2", "mass"))},
+    **_angle_variables("theta1", "theta2"),
+}
+# The accelerations solved (what the engine gives) ...
+DOUBLE_PENDULUM_SOLVED = (
+    "theta1ddot = (-g*(2*m1 + m2)*sin(theta1) - m2*g*sin(theta1 - 2*theta2) - 2*sin(theta1 - theta2)*m2*"
+    "(theta2dot^2*l2 + theta1dot^2*l1*cos(theta1 - theta2)))/(l1*(2*m1 + m2 - m2*cos(2*theta1 - 2*theta2))); "
+    "theta2ddot = 2*sin(theta1 - theta2)*(theta1dot^2*l1*(m1 + m2) + g*(m1 + m2)*cos(theta1) + "
+    "theta2dot^2*l2*m2*cos(theta1 - theta2))/(l2*(2*m1 + m2 - m2*cos(2*theta1 - 2*theta2)))")
+# ... and what a student writes from the Lagrangian: M(q) qddot + ... = 0, whose mass matrix has
+# determinant l1 l2 (m1 + m2 sin^2(theta1 - theta2)) > 0.
+UPPER = "(m1 + m2) l1 θ̈₁ + m2 l2 cos(θ₁ - θ₂) θ̈₂ + m2 l2 θ̇₂² sin(θ₁ - θ₂) + (m1 + m2) g sin θ₁ = 0"
+LOWER = "l2 θ̈₂ + l1 cos(θ₁ - θ₂) θ̈₁ - l1 θ̇₁² sin(θ₁ - θ₂) + g sin θ₂ = 0"
+
+
+@pytest.mark.parametrize("answer, expected", [
+    (f"{UPPER}; {LOWER}", "equivalent"),
+    (f"{LOWER}; {UPPER}", "equivalent"),                                        # rows swapped
+    (f"{UPPER}; {LOWER.replace('- l1 θ̇₁²', '+ l1 θ̇₁²')}", "not_equivalent"),   # a sign
+    (f"{UPPER}; m2*({LOWER[:-4]}) = 0", "equivalent"),                          # a row times a mass
+    (f"θ̇₁ ({UPPER[:-4]}) = 0; {LOWER}", "not_equivalent"),                      # ... times thetadot1
+])
+def test_the_unsolved_lagrange_form_of_the_double_pendulum_is_its_solved_equations(answer, expected):
+    v = check(DOUBLE_PENDULUM_SOLVED, answer, DOUBLE_PENDULUM, kind="equation")
+    assert v.verdict == expected, v.reason
+    assert v.certainty == "proved"
+
+
+CENTRAL_FORCE = {
+    "k": {"dimension": "kg*m^3/s^2", "domain": "positive"},
+    "m": {"dimension": "mass", "domain": "positive"},
+    "r": {"dimension": "length", "domain": "positive", "kind": "coordinate"},
+    "rdot": {"dimension": "velocity", "kind": "velocity"},
+    "rddot": {"dimension": "acceleration", "kind": "acceleration"},
+    "thetadot": {"dimension": "angular_velocity", "kind": "velocity"},
+    "thetaddot": {"dimension": "angular_acceleration", "kind": "acceleration"},
+}
+KEPLER = "rddot = r thetadot^2 - k/(m r^2); thetaddot = -2 rdot thetadot/r"
+
+
+@pytest.mark.parametrize("answer", [
+    "m rddot - m r thetadot^2 + k/r^2 = 0; m r^2 thetaddot + 2 m r rdot thetadot = 0",  # d/dt(m r^2 thetadot) = 0
+    "m r^2 thetaddot + 2 m r rdot thetadot = 0; m rddot = m r thetadot^2 - k/r^2",
+    "r^2 rddot = r^3 thetadot^2 - k/m; r thetaddot + 2 rdot thetadot = 0",             # each row its own r^n
+])
+def test_a_central_force_system_times_powers_of_a_positive_radius_is_right(answer):
+    v = check(KEPLER, answer, CENTRAL_FORCE, kind="equation")
+    assert v.verdict == "equivalent" and v.certainty == "proved", v.reason
+
+
+ELASTIC = {
+    "g": {"dimension": "acceleration", "domain": "positive"},
+    "k": {"dimension": "stiffness", "domain": "positive"},
+    "m": {"dimension": "mass", "domain": "positive"},
+    "L": {"dimension": "length", "domain": "positive"},
+    "r": {"dimension": "length", "domain": "positive", "kind": "coordinate"},
+    "rdot": {"dimension": "velocity", "kind": "velocity"},
+    "rddot": {"dimension": "acceleration", "kind": "acceleration"},
+    **_angle_variables("theta"),
+}
+# A pendulum on a spring of natural length L, the accelerations solved.
+SPRING_PENDULUM = "rddot = r thetadot^2 + g cos(theta) - k (r - L)/m; thetaddot = -(g sin(theta) + 2 rdot thetadot)/r"
+SPRING_RADIAL = "m rddot - m r thetadot^2 - m g cos(theta) + k (r - L)"
+SPRING_ANGULAR = "m r^2 thetaddot + 2 m r rdot thetadot + m g r sin(theta)"
+
+
+@pytest.mark.parametrize("answer, why", [
+    (f"{SPRING_RADIAL} = 0; {SPRING_ANGULAR} = 0", "the Lagrange form: each row times m or m r^2"),
+    (f"{SPRING_ANGULAR} = 0; {SPRING_RADIAL} = 0", "rows swapped"),
+    (f"{SPRING_RADIAL} + r cos(theta) ({SPRING_ANGULAR})/r^2 = 0; {SPRING_ANGULAR} = 0",
+     "a row added with coefficient cos(theta)/r: det unchanged"),
+    (f"(2 + cos(theta)) ({SPRING_RADIAL}) = 0; {SPRING_ANGULAR} = 0", "a factor 1 <= 2 + cos(theta) <= 3"),
+    (f"{SPRING_RADIAL} + ({SPRING_ANGULAR})/r = 0; {SPRING_RADIAL} - ({SPRING_ANGULAR})/r = 0",
+     "sum and difference: det = -2 m^2 r"),
+])
+def test_a_state_dependent_mixing_invertible_everywhere_is_right(answer, why):
+    v = check(SPRING_PENDULUM, answer, ELASTIC, kind="equation")
+    assert v.verdict == "equivalent" and v.certainty == "proved", why
+
+
+@pytest.mark.parametrize("answer, why", [
+    (f"thetadot ({SPRING_RADIAL}) = 0; {SPRING_ANGULAR} = 0", "zero when thetadot = 0"),
+    (f"cos(theta) ({SPRING_RADIAL}) = 0; {SPRING_ANGULAR} = 0", "zero at theta = pi/2"),
+    (f"thetadot^2 ({SPRING_RADIAL}) = 0; {SPRING_ANGULAR} = 0", "zero when thetadot = 0, and never negative"),
+    (f"{SPRING_RADIAL} = 0; sin(theta/2)^2 ({SPRING_ANGULAR}) = 0", "zero at theta = 0"),
+    (f"{SPRING_RADIAL} + ({SPRING_ANGULAR})/r = 0; sin(theta) ({SPRING_RADIAL}) + cos(theta) ({SPRING_ANGULAR})/r = 0",
+     "det = m^2 r (cos(theta) - sin(theta)): zero at theta = pi/4"),
+])
+def test_a_mixing_that_is_singular_somewhere_in_the_domain_is_refused_with_the_reason(answer, why):
+    v = check(SPRING_PENDULUM, answer, ELASTIC, kind="equation")
+    assert v.verdict == "not_equivalent" and v.certainty == "proved", why
+    assert "singular somewhere in the declared domain" in v.reason
+    assert v.counterexample["values"] != v.counterexample["other_state"]
+
+
+@pytest.mark.parametrize("answer, why", [
+    (f"{SPRING_RADIAL} = 0; {SPRING_ANGULAR.replace('+ 2 m r', '- 2 m r')} = 0", "the Coriolis term's sign"),
+    (f"{SPRING_RADIAL} = 0; {SPRING_RADIAL} = 0", "both rows the same: the angular equation is lost"),
+    (f"{SPRING_RADIAL} = 0; r ({SPRING_RADIAL}) = 0", "one row a multiple of the other"),
+    (f"{SPRING_RADIAL} = 0; {SPRING_ANGULAR} + m r^3 thetaddot^2/g = 0", "not linear in the accelerations"),
+])
+def test_systems_that_are_not_a_combination_of_the_reference_are_refused(answer, why):
+    v = check(SPRING_PENDULUM, answer, ELASTIC, kind="equation")
+    assert v.verdict == "not_equivalent", why
+
+
+def test_a_cos_theta_row_factor_is_right_where_cos_theta_cannot_vanish():
+    variables = {**ELASTIC, "theta": {**ELASTIC["theta"], "domain": [-1.5, 1.5]}}
+    v = check(SPRING_PENDULUM, f"cos(theta) ({SPRING_RADIAL}) = 0; {SPRING_ANGULAR} = 0", variables, kind="equation")
+    assert v.verdict == "equivalent" and v.certainty == "proved", v.reason
+
+
+@pytest.mark.parametrize("answer", [
+    "thetaddot = -(g sin(theta) - 2 rdot thetadot)/r; rddot = r thetadot^2 + g cos(theta) - k (r - L)/m",
+    f"{SPRING_RADIAL} = 0; {SPRING_ANGULAR.replace('+ 2 m r', '- 2 m r')} = 0",   # its unsolved form
+])
+def test_a_wrong_system_gets_the_instructors_message_in_any_form_of_it(answer):
+    wrong = "rddot = r thetadot^2 + g cos(theta) - k (r - L)/m; thetaddot = -(g sin(theta) - 2 rdot thetadot)/r"
+    feedback = [{"expr": wrong, "message": "Check the sign of the Coriolis term."}]
+    v = check(SPRING_PENDULUM, answer, ELASTIC, kind="equation", feedback=feedback)
+    assert v.verdict == "not_equivalent"
+    assert v.feedback == [{"code": "instructor", "message": "Check the sign of the Coriolis term."}]
+
+
+def test_the_state_free_fast_path_is_still_taken_for_constant_combinations():
+    v = check(SPRING_PENDULUM, "rddot - r thetadot^2 - g cos(theta) + k (r - L)/m = 0; "
+              "thetaddot = -(g sin(theta) + 2 rdot thetadot)/r", ELASTIC, kind="equation")
+    assert v.verdict == "equivalent" and v.evidence["method"] == "ball arithmetic"

@@ -739,6 +739,106 @@ add("textbook", "ladder_wall_force", "3*g*m*(3*sin(theta) - 2*sin(theta0))*cos(t
 ])
 
 
+
+# -- equations of motion as a system, mixed by a state-dependent matrix ------------------------------
+# The reference solves for the accelerations; a student's unsolved Euler-Lagrange equations
+# M(q) qddot = F(q, qdot) are the same system because the mass matrix is invertible everywhere. A
+# row multiplied by something that can vanish (thetadot, cos(theta) on (-pi, pi)) is not. Labels
+# from the mixing matrix's determinant, worked by hand.
+DOUBLE_EOM = {**DOUBLE, "theta1ddot": var("angular_acceleration", "real", "acceleration"),
+              "theta2ddot": var("angular_acceleration", "real", "acceleration")}
+DOUBLE_SOLVED = (
+    "theta1ddot = (-g*(2*m1 + m2)*sin(theta1) - m2*g*sin(theta1 - 2*theta2) - 2*sin(theta1 - theta2)*m2*"
+    "(theta2dot^2*l2 + theta1dot^2*l1*cos(theta1 - theta2)))/(l1*(2*m1 + m2 - m2*cos(2*theta1 - 2*theta2))); "
+    "theta2ddot = 2*sin(theta1 - theta2)*(theta1dot^2*l1*(m1 + m2) + g*(m1 + m2)*cos(theta1) + "
+    "theta2dot^2*l2*m2*cos(theta1 - theta2))/(l2*(2*m1 + m2 - m2*cos(2*theta1 - 2*theta2)))")
+# dL/dtheta1 and dL/dtheta2 divided by l1 and m2 l2: det M = l1 l2 (m1 + m2 sin^2(theta1 - theta2)) > 0
+UPPER = "(m1 + m2) l1 θ̈₁ + m2 l2 cos(θ₁ - θ₂) θ̈₂ + m2 l2 θ̇₂² sin(θ₁ - θ₂) + (m1 + m2) g sin θ₁"
+LOWER = "l2 θ̈₂ + l1 cos(θ₁ - θ₂) θ̈₁ - l1 θ̇₁² sin(θ₁ - θ₂) + g sin θ₂"
+add("textbook", "double_pendulum_equations_of_motion", DOUBLE_SOLVED, DOUBLE_EOM, [
+    (f"{UPPER} = 0; {LOWER} = 0", EQ, ["system_factor", "textbook"]),
+    (f"{LOWER} = 0; {UPPER} = 0", EQ, ["system_factor", "textbook"]),
+    (f"l1 ({UPPER}) = 0; m2 l2 ({LOWER}) = 0", EQ, ["system_factor", "textbook"]),  # d/dt dL/dqdot - dL/dq
+    (f"(m1 + m2) l1 θ̈₁ + m2 l2 cos(θ₁ - θ₂) θ̈₂ = -m2 l2 θ̇₂² sin(θ₁ - θ₂) - (m1 + m2) g sin θ₁; "
+     f"l2 θ̈₂ + l1 cos(θ₁ - θ₂) θ̈₁ = l1 θ̇₁² sin(θ₁ - θ₂) - g sin θ₂", EQ, ["system_factor", "textbook"]),
+    # the solved first row with the unsolved second: det = l2 > 0
+    (f"{DOUBLE_SOLVED.split(';')[0]}; {LOWER} = 0", EQ, ["system_factor", "textbook"]),
+    (f"{UPPER} = 0; {LOWER.replace('- l1 θ̇₁²', '+ l1 θ̇₁²')} = 0", NE, ["system_factor", "textbook"]),
+    (f"{UPPER.replace('(m1 + m2) l1 θ̈₁', 'm1 l1 θ̈₁')} = 0; {LOWER} = 0", NE, ["system_factor", "textbook"]),
+    (f"{UPPER} = 0; {LOWER.replace('cos(θ₁ - θ₂)', 'cos(θ₁ + θ₂)')} = 0", NE, ["system_factor", "textbook"]),
+    (f"θ̇₁ ({UPPER}) = 0; {LOWER} = 0", NE, ["system_factor", "textbook"]),          # thetadot1 = 0 loses a row
+    (f"{UPPER} = 0; cos(θ₁ - θ₂) ({LOWER}) = 0", NE, ["system_factor", "textbook"]),  # zero at a right angle
+    (f"{UPPER} = 0; {UPPER} = 0", NE, ["system_factor", "textbook"]),
+], kind="equation")
+ORBIT_EOM = {**ORBIT, "rdot": var("velocity", "real", "velocity"),
+             "rddot": var("acceleration", "real", "acceleration"),
+             "phidot": var("angular_velocity", "real", "velocity"),
+             "phiddot": var("angular_acceleration", "real", "acceleration")}
+# L = (m1 + m2) rdot^2/2 + m1 r^2 phidot^2/2 - m2 g r: the radial equation and d/dt(m1 r^2 phidot) = 0
+add("textbook", "orbit_equations_of_motion",
+    "rddot = (m1*r*phidot^2 - m2*g)/(m1 + m2); phiddot = -2*rdot*phidot/r", ORBIT_EOM, [
+        ("(m1 + m2) rddot = m1 r phidot^2 - m2 g; m1 r^2 phiddot + 2 m1 r rdot phidot = 0", EQ,
+         ["system_factor", "textbook"]),
+        ("(m1 + m2) r̈ - m1 r φ̇² + m2 g = 0; r φ̈ + 2 ṙ φ̇ = 0", EQ, ["system_factor", "textbook"]),
+        ("m1 r^2 phiddot + 2 m1 r rdot phidot = 0; (m1 + m2) rddot = m1 r phidot^2 - m2 g", EQ,
+         ["system_factor", "textbook"]),
+        ("(m1 + m2) rddot = m1 r phidot^2 + m2 g; m1 r^2 phiddot + 2 m1 r rdot phidot = 0", NE,
+         ["system_factor", "textbook"]),
+        ("m1 rddot = m1 r phidot^2 - m2 g; m1 r^2 phiddot + 2 m1 r rdot phidot = 0", NE,
+         ["system_factor", "textbook"]),  # the hanging block's inertia forgotten
+        ("(m1 + m2) rddot = m1 r phidot^2 - m2 g; m1 r^2 phiddot + m1 r rdot phidot = 0", NE,
+         ["system_factor", "textbook"]),
+        ("(m1 + m2) rddot = m1 r phidot^2 - m2 g; rdot (m1 r^2 phiddot + 2 m1 r rdot phidot) = 0", NE,
+         ["system_factor", "textbook"]),  # zero at the turning points, rdot = 0
+    ], kind="equation")
+
+ELASTIC = {"g": var("acceleration", POS), "k": var("stiffness", POS), "m": var("mass", POS), "L": var("length", POS),
+           "r": var("length", POS, "coordinate"), "rdot": var("velocity", "real", "velocity"),
+           "rddot": var("acceleration", "real", "acceleration"), "theta": var("angle", PI_DOMAIN, "coordinate"),
+           "thetadot": var("angular_velocity", "real", "velocity"),
+           "thetaddot": var("angular_acceleration", "real", "acceleration")}
+SPRING = "rddot = r thetadot^2 + g cos(theta) - k (r - L)/m; thetaddot = -(g sin(theta) + 2 rdot thetadot)/r"
+RADIAL = "m rddot - m r thetadot^2 - m g cos(theta) + k (r - L)"     # the first row times m
+ANGULAR = "m r^2 thetaddot + 2 m r rdot thetadot + m g r sin(theta)"  # the second times m r^2
+add("elastic_pendulum", "equations_of_motion", SPRING, ELASTIC, [
+    (f"{RADIAL} = 0; {ANGULAR} = 0", EQ, "system_factor"),
+    (f"{ANGULAR} = 0; {RADIAL} = 0", EQ, "system_factor"),
+    ("rddot = r thetadot^2 + g cos(theta) - k (r - L)/m; r thetaddot + 2 rdot thetadot + g sin(theta) = 0", EQ,
+     "system_factor"),
+    (f"{RADIAL} + r cos(theta) ({ANGULAR})/r^2 = 0; {ANGULAR} = 0", EQ, "system_factor"),  # det unchanged
+    (f"(2 + cos(theta)) ({RADIAL}) = 0; {ANGULAR} = 0", EQ, "system_factor"),
+    (f"(1 + r^2/L^2) ({RADIAL}) = 0; {ANGULAR} = 0", EQ, "system_factor"),
+    (f"{RADIAL} + ({ANGULAR})/r = 0; {RADIAL} - ({ANGULAR})/r = 0", EQ, "system_factor"),  # det = -2 m^2 r
+    (f"thetadot ({RADIAL}) = 0; {ANGULAR} = 0", NE, "system_factor"),
+    (f"thetadot^2 ({RADIAL}) = 0; {ANGULAR} = 0", NE, "system_factor"),
+    (f"cos(theta) ({RADIAL}) = 0; {ANGULAR} = 0", NE, "system_factor"),
+    (f"(r - L) ({RADIAL}) = 0; {ANGULAR} = 0", NE, "system_factor"),       # zero at the natural length
+    (f"{RADIAL} + ({ANGULAR})/r = 0; sin(theta) ({RADIAL}) + cos(theta) ({ANGULAR})/r = 0", NE,
+     "system_factor"),                                                     # det = m^2 r (cos - sin)
+    (f"{RADIAL} = 0; {ANGULAR.replace('+ 2 m r', '- 2 m r')} = 0", NE, "system_factor"),
+    (f"{RADIAL} = 0; {ANGULAR.replace(' + m g r sin(theta)', '')} = 0", NE, "system_factor"),
+    (f"{RADIAL} = 0; {RADIAL} = 0", NE, "system_factor"),
+    (f"{RADIAL} = 0; r ({RADIAL}) = 0", NE, "system_factor"),
+], kind="equation")
+add("elastic_pendulum", "equations_of_motion_small_swings", SPRING,
+    {**ELASTIC, "theta": var("angle", [-1.5, 1.5], "coordinate")}, [
+    (f"cos(theta) ({RADIAL}) = 0; {ANGULAR} = 0", EQ, "system_factor"),   # cos > 0 on [-1.5, 1.5]
+    (f"thetadot ({RADIAL}) = 0; {ANGULAR} = 0", NE, "system_factor"),
+], kind="equation")
+KEPLER = {"k": var("kg*m^3/s^2", POS), "m": var("mass", POS), "r": var("length", POS, "coordinate"),
+          "rdot": var("velocity", "real", "velocity"), "rddot": var("acceleration", "real", "acceleration"),
+          "thetadot": var("angular_velocity", "real", "velocity"),
+          "thetaddot": var("angular_acceleration", "real", "acceleration")}
+add("central_force", "equations_of_motion", "rddot = r thetadot^2 - k/(m r^2); thetaddot = -2 rdot thetadot/r",
+    KEPLER, [
+        ("m rddot - m r thetadot^2 + k/r^2 = 0; m r^2 thetaddot + 2 m r rdot thetadot = 0", EQ, "system_factor"),
+        ("r^2 rddot = r^3 thetadot^2 - k/m; r thetaddot + 2 rdot thetadot = 0", EQ, "system_factor"),
+        ("m r^2 rddot - m r^3 thetadot^2 + k = 0; m r^2 thetaddot = -2 m r rdot thetadot", EQ, "system_factor"),
+        ("m rddot = m r thetadot^2 + k/r^2; m r^2 thetaddot + 2 m r rdot thetadot = 0", NE, "system_factor"),
+        ("m rddot = m r thetadot^2 - k/r^2; m r^2 thetaddot + m r rdot thetadot = 0", NE, "system_factor"),
+        ("m rddot = m r thetadot^2 - k/r^2; rdot (r thetaddot + 2 rdot thetadot) = 0", NE, "system_factor"),
+    ], kind="equation")
+
 def build() -> dict[str, int]:
     by_problem: dict[str, list[dict]] = {}
     for n, item in enumerate(items):
