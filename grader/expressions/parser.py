@@ -33,6 +33,7 @@ from .printing import to_latex, to_text
 
 from .errors import ExpressionError
 from .functions import FUNCTIONS, INVERSES
+from .leibniz import dotted, read_leibniz
 from .magnitudes import checked, guarded_pow, not_real
 from .names import resolve_name
 from .tokens import Token, check_brackets, tokenize
@@ -49,7 +50,7 @@ MAX_RECURSION = 200
 _ADD, _MUL, _POW = 10, 20, 30
 _I = sympy.I
 _OPERATOR_POWER = {"+": _ADD, "-": _ADD, "*": _MUL, "/": _MUL, "^": _POW}
-_ATOM_STARTS = ("number", "name", "open", "root", "command")
+_ATOM_STARTS = ("number", "name", "open", "root", "command", "derivative")
 # Left binding power of the tokens that are not operators: a superscript is a power, an atom
 # starts an implicit product, a prime binds tightest (so the parser reaches it and complains).
 _KIND_POWER = {"sup": _POW, "prime": _POW + 10, **{kind: _MUL for kind in _ATOM_STARTS}}
@@ -130,7 +131,8 @@ def _real_domain(expr: sympy.Expr, nodes: list[tuple[sympy.Expr, sympy.Expr]]) -
 
 class _Parser:
     def __init__(self, tokens: list[Token], namespace: Namespace, text: str) -> None:
-        self.tokens = tokens
+        # dθ/dt, \frac{d^2x}{dt^2}, d/dt(θ): one derivative token each (see leibniz.py).
+        self.tokens = read_leibniz(tokens, namespace, text)
         self.ns = namespace
         self.text = text
         self.i = 0
@@ -326,6 +328,11 @@ class _Parser:
             return self.power(self.function_argument(token, "√"), sympy.Rational(1, token.value), token.pos)
         if kind == "command":
             return self.latex_command(token)
+        if kind == "derivative":  # Leibniz notation, already resolved (or refused) by read_leibniz
+            if token.error is not None:
+                raise token.error
+            self.note(f"read '{token.text}' as {dotted(token.value.name)}")
+            return token.value
         raise self.unexpected(token)
 
     # -- names and functions ------------------------------------------------

@@ -1,0 +1,350 @@
+r"""Leibniz notation for time derivatives: ``dθ/dt``, ``d²x/dt²``, ``\frac{d\theta}{dt}``, ``d/dt(θ)``.
+
+A pass over the tokens, before the parser, that replaces each run of tokens spelling the time
+derivative of one coordinate by a single ``derivative`` token spanning the typed text (so every
+position still points at what the student typed). The parser reads that token as the namespace's
+velocity or acceleration variable, exactly as it reads ``θ̇`` or ``\ddot{x}``, and notes the reading.
+
+The reading only ever replaces text that is an error today: it applies when
+
+* the ``d`` words mean nothing in the namespace (no variable ``d``, ``dt``, ``dtheta``, and no
+  glued reading such as d·θ), so with variables ``d`` and ``t`` declared ``d x/d t`` stays the
+  quotient of products;
+* the denominator is ``dt`` (or ``d t``) for the time ``t``, which may be undeclared or declared
+  as a time;
+* the coordinate, or one of its time derivatives, is declared (``dq/dt`` with no q at all stays
+  an unknown name).
+
+A missing derivative variable, orders that disagree (``d²θ/dt``), a ``t`` that is not a time, and
+``d/dt`` of anything but one coordinate are refused with the text and the fix.
+"""
+
+from __future__ import annotations
+
+import re
+
+from .dimensions import parse_dimension
+from .errors import ExpressionError
+from .names import derivative_name, resolve_name
+# The parser's own lookups of a declared name and of a coordinate's derivative, so a Leibniz
+# derivative resolves (and fails) exactly as θ̇ does; resolve_name would also try glued readings.
+from .names import _lookup, _resolve_derivative
+from .tokens import Token
+
+__all__ = ["read_leibniz", "dotted"]
+
+_TIME = parse_dimension("time")
+_OPEN_OPERAND = {"(": ")", "[": "]", "{": "}"}
+_ATOMS = ("number", "name", "open", "root", "command", "derivative")
+# ``\mathrm{d}x``, ``\operatorname{d}x``: the wrapper the tokenizer read into the name ``dx``.
+_WRAPPED_D = re.compile(r"^\\[A-Za-z]+\s*\{d\}")
+_GREEK_CHAR = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "zeta": "ζ",
+               "eta": "η", "theta": "θ", "iota": "ι", "kappa": "κ", "lambda": "λ", "mu": "μ", "nu": "ν",
+               "xi": "ξ", "pi": "π", "rho": "ρ", "sigma": "σ", "tau": "τ", "upsilon": "υ", "phi": "φ",
+               "chi": "χ", "psi": "ψ", "omega": "ω", "Gamma": "Γ", "Delta": "Δ", "Theta": "Θ",
+               "Lambda": "Λ", "Xi": "Ξ", "Pi": "Π", "Sigma": "Σ", "Phi": "Φ", "Psi": "Ψ", "Omega": "Ω"}
+_SUBSCRIPT = str.maketrans("0123456789", "₀₁₂₃₄₅₆₇₈₉")
+_SUPERSCRIPT = {1: "", 2: "²", 3: "³"}
+
+
+def dotted(name: str) -> str:
+    """How a canonical derivative name looks with dots, for notes: ``thetadot`` -> ``θ̇``.
+
+    Examples
+    --------
+    >>> print(dotted("thetadot"), dotted("xddot"), dotted("theta1dot"), dotted("x_2ddot"))
+    θ̇ ẍ θ̇₁ ẍ₂
+    """
+    order = 0
+    if name.endswith("ddot"):
+        name, order = name[:-4], 2
+    elif name.endswith("dot"):
+        name, order = name[:-3], 1
+    match = re.match(r"([A-Za-z]+?)(_?\d+)?$", name)
+    if match is None:  # lambda_surface and the like: no tidier spelling than the name
+        return name + "\u0307" * order
+    head, digits = match.group(1), match.group(2) or ""
+    mark = {0: "", 1: "\u0307", 2: "\u0308"}[order]
+    return _GREEK_CHAR.get(head, head) + mark + digits.lstrip("_").translate(_SUBSCRIPT)
+
+
+def _at(tokens: list[Token], j: int) -> Token:
+    return tokens[j] if j < len(tokens) else tokens[-1]  # the list ends with the end token
+
+
+def _is(token: Token, kind: str, value=None) -> bool:
+    return token.kind == kind and (value is None or token.value == value)
+
+
+def _plain_name(token: Token) -> bool:
+    return token.kind == "name" and not token.forced_function and not token.glued
+
+
+def _order_mark(tokens: list[Token], j: int) -> tuple[int | None, int]:
+    """The power after a ``d`` or ``dt``: ``²``, ``^2``, ``^{2}``, or none (1). None if malformed."""
+    token = _at(tokens, j)
+    if token.kind == "sup":
+        return (token.value, j + 1) if token.value >= 1 else (None, j)
+    if _is(token, "op", "^"):
+        following = _at(tokens, j + 1)
+        if following.kind == "number" and not following.decimal and following.value.is_Integer:
+            return int(following.value), j + 2
+        if _is(following, "open", "{") and _at(tokens, j + 2).kind == "number" \
+                and _is(_at(tokens, j + 3), "close", "}") and _at(tokens, j + 2).value.is_Integer:
+            return int(_at(tokens, j + 2).value), j + 4
+        return None, j
+    return 1, j
+
+
+class _Numerator:
+    """``d``, ``d²``, ``dθ``, ``d θ``, ``d²θ``, ``\\mathrm{d}\\theta``: what was matched."""
+
+    def __init__(self, order: int, words: list[Token], coordinate: Token | None, raw: str | None,
+                 typed: str | None, end: int) -> None:
+        self.order, self.words, self.coordinate, self.end = order, words, coordinate, end
+        self.raw, self.typed = raw, typed
+
+
+def _numerator(tokens: list[Token], i: int) -> _Numerator | None:
+    token = tokens[i]
+    if not _plain_name(token):
+        return None
+    if token.value == "d" and not token.order:
+        order, j = _order_mark(tokens, i + 1)
+        if order is None:
+            return None
+        following = _at(tokens, j)
+        if _plain_name(following):
+            return _Numerator(order, [token], following, following.value, following.text, j + 1)
+        return _Numerator(order, [token], None, None, None, j)
+    value, text = token.value, token.text
+    if len(value) > 1 and value[0] == "d" and value[1] != "_":
+        if text.startswith("d"):
+            typed = text[1:]
+        else:
+            wrapped = _WRAPPED_D.match(text)
+            if wrapped is None:  # \delta: a Greek letter, not d
+                return None
+            typed = text[wrapped.end():]
+        return _Numerator(1, [token], token, value[1:], typed, i + 1)
+    return None
+
+
+def _denominator(tokens: list[Token], i: int) -> tuple[int, list[Token], Token, int] | None:
+    """``dt``, ``d t``, ``dt²``, ``dt^2``, ``\\mathrm{d}t``: (order, d words, the t, end) or None."""
+    token = _at(tokens, i)
+    if not _plain_name(token) or token.order:
+        return None
+    if token.value == "dt" and (token.text.startswith("d") or _WRAPPED_D.match(token.text)):
+        words, time, j = [token], token, i + 1
+    elif token.value == "d":
+        time = _at(tokens, i + 1)
+        if not (_plain_name(time) and time.value == "t" and not time.order):
+            return None
+        words, j = [token], i + 2
+    else:
+        return None
+    order, j = _order_mark(tokens, j)
+    return (order, words, time, j) if order is not None else None
+
+
+def _known_coordinate(raw: str, ns) -> bool:
+    """A coordinate the namespace knows: declared, or with a declared time derivative."""
+    if _lookup(raw, ns) is not None:
+        return True
+    base = raw.replace("_", "")
+    return any(_lookup(derivative_name(base, order), ns) is not None for order in (1, 2))
+
+
+def _means_something(words: list[Token], ns) -> bool:
+    """Whether the typed ``d`` words already read as names here (d, dt, dtheta, or a glued d·θ)."""
+    for word in words:
+        try:
+            resolve_name(word.value, ns, order=word.order, typed=word.text, position=word.pos)
+        except ExpressionError:
+            continue
+        return True
+    return False
+
+
+def _time_error(time: Token, ns, shown: str) -> ExpressionError | None:
+    """None when ``t`` is the time (undeclared, or declared with the dimension of time)."""
+    if "t" not in ns.names or ns["t"].dimension == _TIME:
+        return None
+    return ExpressionError(f"'{shown}' reads as a time derivative, but t here is "
+                           f"{ns['t'].dimension.describe()}, not the time", time.pos, "syntax",
+                           "write the time derivative with a dot, as in θ̇ or thetadot")
+
+
+def _derivative(start: Token, end: Token, text: str, raw: str, order: int, ns,
+                error: ExpressionError | None = None) -> Token:
+    """The token that stands for the whole typed derivative; an error is raised when parsed."""
+    shown = text[start.pos:end.end]
+    value = None
+    if error is None:
+        try:
+            value = _resolve_derivative(raw, ns, order, shown, start.pos).value
+        except ExpressionError as err:
+            error = err
+    return Token("derivative", value, start.pos, end.end, shown, start.space_before, order, error=error)
+
+
+def _mismatch(start: Token, end: Token, text: str, top: int, below: int, typed: str) -> ExpressionError:
+    shown = text[start.pos:end.end]
+    typed = typed or ""
+    return ExpressionError(
+        f"'{shown}' has d{_SUPERSCRIPT.get(top, f'^{top}')} on top but dt{_SUPERSCRIPT.get(below, f'^{below}')} "
+        "below", start.pos, "syntax",
+        f"the powers must agree: write d{typed}/dt for the first derivative, d²{typed}/dt² for the second, "
+        f"or (d{typed}/dt)² for the square of the first")
+
+
+def _operand(tokens: list[Token], k: int) -> tuple[Token | None, str | None, int, int]:
+    """What ``d/dt`` is applied to: (token, raw name, extra order, end), token None if not one name.
+
+    A name (``θ``, ``θ̇``), one bracketed (``(θ)``, ``\\left(θ\\right)``) or a ``\\dot`` of one.
+    """
+    token = _at(tokens, k)
+    if _plain_name(token):
+        return token, token.value, token.order, k + 1
+    if token.kind == "open" and _plain_name(_at(tokens, k + 1)) \
+            and _is(_at(tokens, k + 2), "close", _OPEN_OPERAND[token.value]):
+        inner = _at(tokens, k + 1)
+        return inner, inner.value, inner.order, k + 3
+    if token.kind == "command" and token.value in ("dot", "ddot"):
+        extra = 1 if token.value == "dot" else 2
+        if _plain_name(_at(tokens, k + 1)):
+            inner = _at(tokens, k + 1)
+            return inner, inner.value, inner.order + extra, k + 2
+        if _is(_at(tokens, k + 1), "open", "{") and _plain_name(_at(tokens, k + 2)) \
+                and _is(_at(tokens, k + 3), "close", "}"):
+            inner = _at(tokens, k + 2)
+            return inner, inner.value, inner.order + extra, k + 4
+    return None, None, 0, k
+
+
+def _exponent_end(tokens: list[Token], j: int) -> Token:
+    """The last token of the exponent starting at ``tokens[j]`` (for showing ``θ^{2}`` whole)."""
+    token = _at(tokens, j)
+    if token.kind != "open":
+        return token
+    depth = 0
+    for k in range(j, len(tokens)):
+        depth += {"open": 1, "close": -1}.get(tokens[k].kind, 0)
+        if depth == 0:
+            return tokens[k]
+    return tokens[-1]
+
+
+def _match(tokens: list[Token], i: int, ns, text: str) -> tuple[Token, int] | None:
+    """The derivative token for a Leibniz derivative starting at ``tokens[i]`` and where it ends."""
+    start = tokens[i]
+    framed = start.kind == "command"
+    if framed:  # \frac{d…}{dt…}
+        if not _is(_at(tokens, i + 1), "open", "{"):
+            return None
+        top = _numerator(tokens, i + 2)
+        if top is None or not _is(_at(tokens, top.end), "close", "}") \
+                or not _is(_at(tokens, top.end + 1), "open", "{"):
+            return None
+        below = _denominator(tokens, top.end + 2)
+        if below is None or not _is(_at(tokens, below[3]), "close", "}"):
+            return None
+        k = below[3] + 1
+    else:  # d…/dt…
+        top = _numerator(tokens, i)
+        if top is None or not _is(_at(tokens, top.end), "op", "/"):
+            return None
+        below = _denominator(tokens, top.end + 1)
+        if below is None:
+            return None
+        k = below[3]
+    order, words, time, _ = below
+    if _means_something(top.words + words, ns):
+        return None  # d, dt or dθ is a name here: the text keeps its ordinary meaning
+    last = tokens[k - 1]
+    if top.coordinate is not None:  # the quotient dθ/dt
+        if not _known_coordinate(top.raw, ns):
+            return None
+        shown = text[start.pos:last.end]
+        error = _time_error(time, ns, shown)
+        if error is None and top.order != order:
+            error = _mismatch(start, last, text, top.order, order, top.typed)
+        return _derivative(start, last, text, top.raw, top.order + top.coordinate.order, ns, error), k
+    # the operator d/dt, applied to what follows
+    operator = text[start.pos:last.end]
+    error = _time_error(time, ns, operator)
+    if error is None and top.order != order:
+        error = ExpressionError(f"'{operator}' has d{_SUPERSCRIPT.get(top.order, '')} on top but "
+                                f"dt{_SUPERSCRIPT.get(order, '')} below", start.pos, "syntax",
+                                "the powers must agree: write d/dt or d²/dt²")
+    operand, raw, extra, end = _operand(tokens, k)
+    if error is None and (operand is None or not _known_coordinate(raw, ns)):
+        where = _at(tokens, k)
+        error = ExpressionError(f"'{operator}' can only be applied to one coordinate here, as in {operator}(θ)",
+                                where.pos, "syntax",
+                                "differentiate it yourself and write the derivatives with dots, as in θ̇ or ẍ")
+        return _derivative(start, last, text, "", 0, ns, error), k
+    following = _at(tokens, end)
+    bare = _at(tokens, k) is operand
+    powered = following.kind == "sup" or _is(following, "op", "^")
+    if error is None and (powered or (bare and following.kind in _ATOMS)):
+        # d/dt θ² and d/dt θ x: the derivative of θ² (of θ·x), or its square (product)? Either is typed.
+        last = _exponent_end(tokens, end + 1) if _is(following, "op", "^") else following
+        shown, typed = text[start.pos:last.end], operand.text
+        fix = (f"write (d{typed}/dt)^2 for the square of the derivative" if powered
+               else f"write (d{typed}/dt)·{following.text} for a product with the derivative")
+        error = ExpressionError(f"'{shown}' is ambiguous: it is not clear what {operator} applies to",
+                                start.pos, "ambiguous", fix + ", or differentiate the whole yourself")
+    return _derivative(start, tokens[end - 1], text, raw or "", order + extra, ns, error), end
+
+
+def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
+    """The tokens with each Leibniz time derivative replaced by one ``derivative`` token.
+
+    Parameters
+    ----------
+    tokens : list of Token
+        From :func:`.tokens.tokenize`, ending with the end token; not modified.
+    ns : Namespace
+        Decides whether ``d``, ``t`` and the coordinate mean something else here.
+    text : str
+        The text the tokens' positions point into.
+
+    Returns
+    -------
+    list of Token
+        ``tokens`` itself when there is nothing to replace (the common case).
+
+    Examples
+    --------
+    >>> from grader.expressions import Namespace, Variable
+    >>> from grader.expressions.tokens import tokenize
+    >>> ns = Namespace([Variable("theta", "angle"), Variable("thetadot", "angular_velocity")])
+    >>> text = "2 dθ/dt"
+    >>> [(t.kind, t.text, t.value) for t in read_leibniz(tokenize(text), ns, text)][:2]
+    [('number', '2', 2), ('derivative', 'dθ/dt', thetadot)]
+    >>> ns = Namespace([Variable("d", "length"), Variable("t", "time"), Variable("x", "length")])
+    >>> text = "d x/d t"
+    >>> [t.kind for t in read_leibniz(tokenize(text), ns, text)]
+    ['name', 'name', 'op', 'name', 'name', 'end']
+    """
+    if "d" not in text:  # most answers: nothing to look at
+        return tokens
+    out: list[Token] | None = None
+    i, n = 0, len(tokens)
+    while i < n:
+        token = tokens[i]
+        found = None
+        if (token.kind == "name" and token.value[:1] == "d") or (token.kind == "command" and token.value == "frac"):
+            found = _match(tokens, i, ns, text)
+        if found is None:
+            if out is not None:
+                out.append(token)
+            i += 1
+            continue
+        if out is None:
+            out = tokens[:i]
+        out.append(found[0])
+        i = found[1]
+    return out if out is not None else tokens
