@@ -441,7 +441,10 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
     # The reference's own matrix must be invertible everywhere, with finite coefficients, for A to exist.
     if not (_finite_on(m_r, domains) and _nonzero_on(det_r, domains) is True):
         return None
-    if _past(deadline) or _combination_at_points(m_r, c_r, m_s, c_s, samplers, options, deadline) != "agree":
+    screened = _combination_at_points(m_r, c_r, m_s, c_s, samplers, options, deadline)
+    if _past(deadline):
+        return _OUT_OF_TIME  # not a wrong answer for want of time: the Lagrange form takes this path
+    if screened != "agree":
         return None
     try:
         det_s = sympy.cancel(sympy.together(m_s.det(method="berkowitz")))
@@ -464,9 +467,10 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
         return Comparison(False, "numeric", "your equations are combinations of the reference equations whose "
                           "mixing matrix depends on the state and could not be shown invertible on the whole "
                           "declared domain", evidence={"method": "symbolic"})
-    if _past(deadline):
-        return None
-    if not _combination_proved(m_r, c_r, m_s, c_s, deadline):
+    proved = _combination_proved(m_r, c_r, m_s, c_s, deadline)
+    if proved is None:
+        return _OUT_OF_TIME
+    if not proved:
         return Comparison(False, "numeric", "your equations agree with combinations of the reference equations "
                           "with state-dependent coefficients at every sample point, but that could not be proved",
                           evidence={"method": "ball arithmetic"})
@@ -507,6 +511,9 @@ def _continuous(expr: sympy.Expr) -> bool:
         if isinstance(node, sympy.Function) and not isinstance(node, _CONTINUOUS):
             return False
     return True
+
+
+_OUT_OF_TIME = Comparison(None, "none", "the time budget ran out while comparing", budget_exceeded=True)
 
 
 def _past(deadline: float | None) -> bool:
@@ -597,14 +604,17 @@ def _combination_at(compiled, k, point, target, max_bits) -> str | None:
     return None
 
 
-def _combination_proved(m_r, c_r, m_s, c_s, deadline) -> bool:
-    """``det(M_r) c_s == M_s adj(M_r) c_r`` identically (``c_s = M_s M_r**-1 c_r`` without division)."""
+def _combination_proved(m_r, c_r, m_s, c_s, deadline) -> bool | None:
+    """``det(M_r) c_s == M_s adj(M_r) c_r`` identically (``c_s = M_s M_r**-1 c_r`` without division);
+    None when the deadline passed first."""
     try:
         rows = m_r.det(method="berkowitz") * c_s - m_s * m_r.adjugate(method="berkowitz") * c_r
     except (ValueError, TypeError, ZeroDivisionError):
         return False
     for row in rows:
-        if _past(deadline) or not _identically_zero(row):
+        if _past(deadline):
+            return None
+        if not _identically_zero(row):
             return False
     return True
 
@@ -615,7 +625,9 @@ def _identically_zero(expr: sympy.Expr) -> bool:
     if _nodes(expr, IDENTITY_MAX_NODES) > IDENTITY_MAX_NODES:
         return False
     try:
-        if sympy.cancel(sympy.together(expr)) == 0:
+        # sines and cosines of sums need the circle reduction: cancelling first would be wasted time
+        compound = any(not f.args[0].is_Symbol for f in expr.atoms(sympy.sin, sympy.cos, sympy.tan))
+        if not compound and sympy.cancel(sympy.together(expr)) == 0:
             return True
         return _zero_on_circles(expr)
     except (sympy.PolynomialError, sympy.polys.polyerrors.PolificationFailed, ValueError, TypeError,

@@ -275,3 +275,9 @@ def test_the_state_free_fast_path_is_still_taken_for_constant_combinations():
     v = check(SPRING_PENDULUM, "rddot - r thetadot^2 - g cos(theta) + k (r - L)/m = 0; "
               "thetaddot = -(g sin(theta) + 2 rdot thetadot)/r", ELASTIC, kind="equation")
     assert v.verdict == "equivalent" and v.evidence["method"] == "ball arithmetic"
+
+
+@pytest.mark.parametrize("budget_s", [0.02, 0.1, 2.0])
+def test_a_tight_budget_never_turns_the_right_lagrange_form_into_a_wrong_answer(budget_s):
+    v = check(DOUBLE_PENDULUM_SOLVED, f"{UPPER}; {LOWER}", DOUBLE_PENDULUM, kind="equation", budget_s=budget_s)
+    assert v.verdict == "equivalent" or (v.verdict == "invalid" and v.budget_exceeded), v.reason
