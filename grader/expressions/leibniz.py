@@ -97,7 +97,7 @@ def _order_mark(tokens: list[Token], j: int) -> tuple[int | None, int]:
 
 
 class _Numerator:
-    """``d``, ``d²``, ``dθ``, ``d θ``, ``d²θ``, ``\\mathrm{d}\\theta``: what was matched."""
+    """``d``, ``d²``, ``dθ``, ``d θ``, ``d(θ)``, ``d²θ``, ``\\mathrm{d}\\theta``: what was matched."""
 
     def __init__(self, order: int, words: list[Token], coordinate: Token | None, raw: str | None,
                  typed: str | None, end: int) -> None:
@@ -116,6 +116,9 @@ def _numerator(tokens: list[Token], i: int) -> _Numerator | None:
         following = _at(tokens, j)
         if _plain_name(following):
             return _Numerator(order, [token], following, following.value, following.text, j + 1)
+        inner = _at(tokens, j + 1)
+        if _is(following, "open", "(") and _plain_name(inner) and _is(_at(tokens, j + 2), "close", ")"):
+            return _Numerator(order, [token], inner, inner.value, inner.text, j + 3)  # d(θ)/dt
         return _Numerator(order, [token], None, None, None, j)
     value, text = token.value, token.text
     if len(value) > 1 and value[0] == "d" and value[1] != "_":

@@ -1,0 +1,235 @@
+"""Leibniz notation: dθ/dt, d²x/dt², \\frac{d\\theta}{dt} and d/dt(θ) read as the dotted variables,
+only where d, t and the d-words mean nothing else, and every refusal names the text and the fix."""
+
+import pytest
+
+from grader.expressions import ExpressionError, Namespace, Variable, parse_equation, parse_expression
+from grader.expressions.leibniz import dotted, read_leibniz
+from grader.expressions.parser import parse_system
+from grader.expressions.tokens import tokenize
+
+
+def _ns(*extra):
+    return Namespace([
+        Variable("m", "mass", "positive"), Variable("l", "length", "positive"),
+        Variable("g", "acceleration", "positive"),
+        Variable("theta", "angle"), Variable("thetadot", "angular_velocity"),
+        Variable("thetaddot", "angular_acceleration"),
+        Variable("x", "length"), Variable("xdot", "velocity"), Variable("xddot", "acceleration"),
+        Variable("x1", "length"), Variable("x1dot", "velocity"), Variable("x2", "length"),
+        Variable("x2dot", "velocity"), Variable("theta1", "angle"), Variable("theta1dot", "angular_velocity"),
+        *extra,
+    ])
+
+
+@pytest.fixture
+def ns():
+    return _ns()
+
+
+def parse(text, ns):
+    return parse_expression(text, ns).expr
+
+
+@pytest.mark.parametrize("text, name", [
+    ("dθ/dt", "thetadot"),
+    ("dtheta/dt", "thetadot"),
+    ("d theta/dt", "thetadot"),
+    ("dθ / dt", "thetadot"),
+    ("d(θ)/dt", "thetadot"),
+    ("dθ̇/dt", "thetaddot"),                     # the derivative of a dotted variable
+    ("d²θ/dt²", "thetaddot"),
+    ("d^2θ/dt^2", "thetaddot"),
+    ("d^2 x/dt^2", "xddot"),
+    ("d^{2}x/dt^{2}", "xddot"),
+    ("d²(x)/dt²", "xddot"),
+    ("dx_1/dt", "x1dot"),
+    ("dθ₁/dt", "theta1dot"),
+    ("d x/d t", "xdot"),
+    (r"\frac{d\theta}{dt}", "thetadot"),
+    (r"\frac{d^2\theta}{dt^2}", "thetaddot"),
+    (r"\frac{d^{2}\theta}{dt^{2}}", "thetaddot"),
+    (r"\frac{\mathrm{d}\theta}{\mathrm{d}t}", "thetadot"),
+    (r"\frac{\mathrm{d}x}{\mathrm{d}t}", "xdot"),
+    (r"\frac{d x_2}{d t}", "x2dot"),
+    (r"\frac{d\theta_1}{dt}", "theta1dot"),
+    (r"\tfrac{d\theta}{dt}", "thetadot"),
+    (r"\dfrac{d^2 x}{dt^2}", "xddot"),
+    ("d/dt θ", "thetadot"),
+    ("d/dt(θ)", "thetadot"),
+    ("d/dt (x_2)", "x2dot"),
+    ("d/dt θ̇", "thetaddot"),
+    ("d²/dt² x", "xddot"),
+    (r"\frac{d}{dt}\theta", "thetadot"),
+    (r"\frac{d}{dt}\left(\theta\right)", "thetadot"),
+    (r"\frac{d}{dt}\dot{\theta}", "thetaddot"),
+    (r"\frac{d^2}{dt^2}x", "xddot"),
+])
+def test_every_leibniz_form_is_the_dotted_variable(ns, text, name):
+    parsed = parse_expression(text, ns)
+    assert parsed.expr == ns.symbol(name)
+    assert parsed.notes == [f"read '{text}' as {dotted(name)}"]
+
+
+@pytest.mark.parametrize("leibniz, dots", [
+    ("m l (dθ/dt)^2", "m l θ̇^2"),
+    ("m l (dθ/dt)²", "m l θ̇²"),
+    ("m l² d²θ/dt² + m g l sin θ", "m l² θ̈ + m g l sin θ"),
+    (r"m l^2 \frac{d^2\theta}{dt^2} + m g l \sin\theta", r"m l^2 \ddot{\theta} + m g l \sin\theta"),
+    ("1/2 m (dx/dt)^2", "1/2 m ẋ^2"),
+    ("dx/dt/l", "ẋ/l"),
+    ("m dθ/dt l", "m θ̇ l"),
+    ("cos dθ/dt", "cos θ̇"),
+    ("d/dt(x) + dx/dt", "2 ẋ"),
+    ("d/dt θ * x", "θ̇ * x"),
+    ("d/dt(θ) x", "θ̇ x"),
+])
+def test_the_same_expression_as_the_dot_notation(ns, leibniz, dots):
+    assert parse(leibniz, ns) == parse(dots, ns)
+
+
+def test_the_checker_grades_leibniz_like_dots():
+    from grader.answers.checker import check
+    variables = {"m": {"dimension": "mass", "domain": "positive"}, "l": {"dimension": "length", "domain": "positive"},
+                 "theta": {"dimension": "angle", "domain": "real"},
+                 "thetadot": {"dimension": "angular_velocity", "domain": "real"}}
+    verdict = check("m*l*thetadot**2", "m l (dθ/dt)^2", variables)
+    assert verdict.verdict == "equivalent"
+    assert "read 'dθ/dt' as θ̇" in verdict.parsed["notes"]
+
+
+def test_equations_and_systems_read_it_too(ns):
+    eq = parse_equation("d²θ/dt² = -g/l sin θ", ns)
+    assert eq.lhs == ns.symbol("thetaddot") and "read 'd²θ/dt²' as θ̈" in eq.notes
+    first, second = parse_system("dx/dt = x2dot; d/dt(θ) = x1dot / l", ns)
+    assert first.lhs == ns.symbol("xdot") and second.lhs == ns.symbol("thetadot")
+
+
+def test_the_derivative_token_spans_exactly_the_typed_text(ns):
+    text = "m + \\frac{d^2\\theta}{dt^2} l"
+    tokens = read_leibniz(tokenize(text), ns, text)
+    derivative = next(t for t in tokens if t.kind == "derivative")
+    assert (derivative.pos, derivative.end) == (4, 26)
+    assert text[derivative.pos:derivative.end] == derivative.text == "\\frac{d^2\\theta}{dt^2}"
+    assert [t.kind for t in tokens] == ["name", "op", "derivative", "name", "end"]
+
+
+@pytest.mark.parametrize("text", ["m*l*thetadot^2", "dot(theta) + ddot(x)", "sin(θ)/l", "x1dot - x2dot"])
+def test_text_without_leibniz_keeps_its_very_tokens(ns, text):
+    tokens = tokenize(text)
+    assert read_leibniz(tokens, ns, text) is tokens
+
+
+@pytest.mark.parametrize("text", [
+    "d²θ/dt²", "d^2θ/dt^2", r"\frac{d^2\theta}{dt^2}", "d/dt θ̇", "d(θ̇)/dt",
+])
+def test_a_missing_derivative_is_refused_as_the_dot_notation_refuses_it(text):
+    no_acceleration = Namespace([Variable("theta", "angle"), Variable("thetadot", "angular_velocity")])
+    with pytest.raises(ExpressionError) as dots:
+        parse_expression("θ̈", no_acceleration)
+    with pytest.raises(ExpressionError) as leibniz:
+        parse_expression(text, no_acceleration)
+    err = leibniz.value
+    assert (err.code, err.hint) == (dots.value.code, dots.value.hint)
+    assert err.position == 0 and "but this problem has no variable thetaddot" in err.message
+
+
+# -- ambiguity: the Leibniz reading only ever replaces text that means nothing today -------------
+
+@pytest.mark.parametrize("declared, text, same_as", [
+    # with d and t declared, d x/d t is the quotient of products (as it always was)
+    ([Variable("d", "length"), Variable("t", "time")], "d x/d t", "d*x/d*t"),
+    ([Variable("d", "length"), Variable("t", "time")], "dx/dt", "d*x/d*t"),
+    ([Variable("d", "length"), Variable("t", "time")], "dθ/dt", "d*theta/d*t"),
+    ([Variable("d", "length"), Variable("t", "time")], r"\frac{d\theta}{dt}", "d*theta/(d*t)"),
+    ([Variable("d", "length"), Variable("t", "time")], "d/dt θ", "d/d*t*theta"),
+    # a declared dtheta (dt) is that variable
+    ([Variable("dtheta", "angle"), Variable("dt", "time")], "dθ/dt", "dtheta/dt"),
+    ([Variable("dx", "length"), Variable("dt", "time")], "dx/dt", "dx/dt"),
+])
+def test_declared_names_keep_their_meaning(declared, text, same_as):
+    ns = _ns(*declared)
+    parsed = parse_expression(text, ns)
+    assert parsed.expr == parse(same_as, ns)
+    assert not any("as θ̇" in note or "as ẋ" in note for note in parsed.notes)
+
+
+@pytest.mark.parametrize("declared, text, unknown", [
+    ([Variable("d", "length")], "dx/dt", "dt"),           # d is a length: dt means nothing, as before
+    ([Variable("d", "length")], "d x/d t", "t"),
+    ([Variable("dt", "time")], "dx/dt", "dx"),            # dt is a time step: dx means nothing, as before
+    ([Variable("dt", "time")], r"\frac{d\theta}{dt}", "d"),
+    ([], "dθ/dx", "dθ"),                                  # only derivatives by the time t
+    ([], "dy/dx", "dy"),
+    ([], "dq/dt", "dq"),                                  # no coordinate q and no qdot: not a derivative
+    ([], "delta/dt", "delta"),                            # a spelled-out δ is not d·elta
+])
+def test_without_the_leibniz_reading_the_old_error_stands(declared, text, unknown):
+    with pytest.raises(ExpressionError) as caught:
+        parse_expression(text, _ns(*declared))
+    assert caught.value.code == "unknown_name" and f"'{unknown}'" in caught.value.message
+
+
+@pytest.mark.parametrize("text, name", [("dθ/dt", "thetadot"), ("d x/d t", "xdot"), ("d²x/dt²", "xddot"),
+                                        (r"\frac{d}{dt}\theta", "thetadot")])
+def test_a_declared_time_t_is_fine(text, name):
+    ns = _ns(Variable("t", "time", "nonnegative", "time"))
+    assert parse(text, ns) == ns.symbol(name)
+
+
+@pytest.mark.parametrize("text, position", [("dθ/dt", 3), ("d x/d t", 6), ("d/dt θ", 2), (r"\frac{d\theta}{dt}", 15)])
+def test_a_t_that_is_not_the_time_is_refused(text, position):
+    with pytest.raises(ExpressionError) as caught:
+        parse_expression(text, _ns(Variable("t", "length", "positive")))
+    err = caught.value
+    assert err.position == position and "a length (m), not the time" in err.message
+    assert "dot" in err.hint
+
+
+@pytest.mark.parametrize("text, named, fix, code", [
+    ("d²θ/dt", "'d²θ/dt' has d² on top but dt below", "d²θ/dt²", "syntax"),
+    ("dθ/dt²", "'dθ/dt²' has d on top but dt² below", "(dθ/dt)²", "syntax"),
+    ("d^2x/dt", "'d^2x/dt' has d² on top but dt below", "d²x/dt²", "syntax"),
+    (r"\frac{d^2\theta}{dt}", r"'\frac{d^2\theta}{dt}' has d² on top", "d²", "syntax"),
+    ("d²/dt θ", "'d²/dt' has d² on top but dt below", "d²/dt²", "syntax"),
+    ("d³θ/dt³", "'d³θ/dt³' is a third or higher time derivative", "at most two dots", "unknown_name"),
+    ("d/dt(θ^2)", "'d/dt' can only be applied to one coordinate", "write the derivatives with dots", "syntax"),
+    ("d/dt(m l θ)", "'d/dt' can only be applied to one coordinate", "write the derivatives with dots", "syntax"),
+    ("d/dt θ^2", "'d/dt θ^2' is ambiguous", "(dθ/dt)^2", "ambiguous"),
+    ("d/dt θ²", "'d/dt θ²' is ambiguous", "(dθ/dt)^2", "ambiguous"),
+    ("d/dt(θ)^2", "'d/dt(θ)^2' is ambiguous", "(dθ/dt)^2", "ambiguous"),
+    (r"\frac{d}{dt}\theta^{2}", r"'\frac{d}{dt}\theta^{2}' is ambiguous", r"(d\theta/dt)^2", "ambiguous"),
+    ("d/dt θ x", "'d/dt θ x' is ambiguous", "(dθ/dt)·x", "ambiguous"),
+    ("d/dt m", "'d/dt m' means mdot", "did you mean", "unknown_name"),
+])
+def test_every_refusal_names_the_text_and_the_fix(ns, text, named, fix, code):
+    with pytest.raises(ExpressionError) as caught:
+        parse_expression(text, ns)
+    err = caught.value
+    assert named in err.message and fix in err.hint and err.code == code
+
+
+def test_errors_point_into_the_text_as_typed(ns):
+    text = "m l + d²θ/dt"
+    with pytest.raises(ExpressionError) as caught:
+        parse_expression(text, ns)
+    assert caught.value.position == text.index("d²")
+
+
+def test_an_earlier_error_is_reported_first(ns):
+    with pytest.raises(ExpressionError) as caught:
+        parse_expression("q + d²θ/dt", ns)
+    assert caught.value.position == 0 and caught.value.code == "unknown_name"
+
+
+def test_a_remembered_parse_keeps_its_note(ns):
+    first = parse_expression("dθ/dt", ns)
+    again = parse_expression("dθ/dt", ns)
+    assert again.notes == first.notes == ["read 'dθ/dt' as θ̇"]
+
+
+@pytest.mark.parametrize("name, shown", [("thetadot", "θ\u0307"), ("xddot", "x\u0308"), ("theta1dot", "θ\u0307₁"),
+                                         ("x_2ddot", "x\u0308₂"), ("Omegadot", "Ω\u0307"),
+                                         ("lambda_surfacedot", "lambda_surface\u0307")])
+def test_dotted_spells_the_derivative_as_students_see_it(name, shown):
+    assert dotted(name) == shown
