@@ -379,7 +379,7 @@ MIXING_MAX_EQUATIONS = 4
 # Largest residual (in nodes) worth splitting into coefficients of the accelerations.
 MIXING_MAX_NODES = 600
 # Largest identity row (in nodes) worth the symbolic proof.
-IDENTITY_MAX_NODES = 4000
+IDENTITY_MAX_NODES = 1000
 # Parameter points and states per parameter point of the numeric screen of the combination.
 MIXING_POINTS, MIXING_STATES = 3, 3
 
@@ -441,9 +441,13 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
     # The reference's own matrix must be invertible everywhere, with finite coefficients, for A to exist.
     if not (_finite_on(m_r, domains) and _nonzero_on(det_r, domains) is True):
         return None
-    screened = _combination_at_points(m_r, c_r, m_s, c_s, samplers, options, deadline)
+    screened = _combination_at_points(m_r, c_r, m_s, c_s, unknowns, samplers, options, deadline)
+    if isinstance(screened, dict) and screened:
+        return Comparison(False, "proved", "your equations are not combinations of the reference equations, not "
+                          "even with coefficients that depend on the state: they give other accelerations (see "
+                          "the counterexample)", evidence={"method": "ball arithmetic"}, counterexample=screened)
     if _past(deadline):
-        return _OUT_OF_TIME  # not a wrong answer for want of time: the Lagrange form takes this path
+        return _out_of_time()  # not a wrong answer for want of time: the Lagrange form takes this path
     if screened != "agree":
         return None
     try:
@@ -469,7 +473,7 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
                           "declared domain", evidence={"method": "symbolic"})
     proved = _combination_proved(m_r, c_r, m_s, c_s, deadline)
     if proved is None:
-        return _OUT_OF_TIME
+        return _out_of_time()
     if not proved:
         return Comparison(False, "numeric", "your equations agree with combinations of the reference equations "
                           "with state-dependent coefficients at every sample point, but that could not be proved",
@@ -513,7 +517,8 @@ def _continuous(expr: sympy.Expr) -> bool:
     return True
 
 
-_OUT_OF_TIME = Comparison(None, "none", "the time budget ran out while comparing", budget_exceeded=True)
+def _out_of_time() -> Comparison:
+    return Comparison(None, "none", "the time budget ran out while comparing", budget_exceeded=True)
 
 
 def _past(deadline: float | None) -> bool:
@@ -549,9 +554,9 @@ def _finite_on(matrix: sympy.Matrix, domains: dict) -> bool:
     return True
 
 
-def _combination_at_points(m_r, c_r, m_s, c_s, samplers, options, deadline) -> str | None:
-    """"agree" when ``c_s = M_s M_r**-1 c_r`` at every sample point (ball arithmetic), "differ" when a
-    point proves otherwise, None when undecided."""
+def _combination_at_points(m_r, c_r, m_s, c_s, unknowns, samplers, options, deadline) -> str | dict | None:
+    """"agree" when ``c_s = M_s M_r**-1 c_r`` at every sample point (ball arithmetic), a counterexample
+    when a point proves otherwise, None when undecided."""
     parameters, states = samplers
     k = len(c_r)
     try:
@@ -566,13 +571,15 @@ def _combination_at_points(m_r, c_r, m_s, c_s, samplers, options, deadline) -> s
                 return None
             point = {**parameters.point(p), **states.point(p * MIXING_STATES + j)}
             outcome = _combination_at(compiled, k, point, target, options.max_bits)
-            if outcome == "differ":
-                return "differ"
+            if isinstance(outcome, dict):
+                return _acceleration_example(outcome, point, unknowns)
             agreed += outcome == "agree"
     return "agree" if agreed >= MIXING_POINTS * MIXING_STATES // 2 else None
 
 
-def _combination_at(compiled, k, point, target, max_bits) -> str | None:
+def _combination_at(compiled, k, point, target, max_bits) -> str | dict | None:
+    """"agree", None (undecided), or at a point that proves the systems different the accelerations
+    each gives ``{"answer": [...], "reference": [...]}`` (empty when the answer's are undetermined)."""
     prec = int(target) + 32
     while prec <= max_bits:
         try:
@@ -596,12 +603,32 @@ def _combination_at(compiled, k, point, target, max_bits) -> str | None:
                 for i in range(k):
                     d = c_s[i, 0] - mixed[i, 0]
                     if not d.contains(0):
-                        return "differ"
+                        return _accelerations(m_r, c_r, m_s, c_s)
                     noise = max(noise, _log2_mag(d))
                 if noise <= scale - target:
                     return "agree"
         prec *= 2
     return None
+
+
+def _accelerations(m_r, c_r, m_s, c_s) -> dict:
+    # c_s != M_s M_r**-1 c_r makes the solutions -M**-1 c differ wherever M_s is invertible
+    det = m_s.det()
+    if not det.is_finite() or det.contains(0):
+        return {}
+    a_s, a_r = m_s.solve(c_s), m_r.solve(c_r)
+    return {"answer": [-a_s[i, 0] for i in range(a_s.nrows())], "reference": [-a_r[i, 0] for i in range(a_r.nrows())]}
+
+
+def _acceleration_example(accelerations: dict, point: dict, unknowns: tuple) -> dict:
+    """The counterexample of a system that is no combination: where, and the accelerations each system gives."""
+    if not accelerations:
+        return {}
+    names = [u.name for u in unknowns]
+    return {"values": {s.name: v for s, v in point.items() if s not in unknowns},
+            "answer": dict(zip(names, map(as_float, accelerations["answer"]))),
+            "reference": dict(zip(names, map(as_float, accelerations["reference"]))),
+            "note": "the accelerations your equations give there"}
 
 
 def _combination_proved(m_r, c_r, m_s, c_s, deadline) -> bool | None:

@@ -175,6 +175,17 @@ def test_the_unsolved_lagrange_form_of_the_double_pendulum_is_its_solved_equatio
     assert v.certainty == "proved"
 
 
+def test_a_wrong_lagrange_form_is_shown_the_accelerations_it_gives():
+    # at the counterexample's coordinates and velocities, solving each system for the accelerations
+    # gives different numbers: a physical reason, and the student's own numbers only are shown
+    v = check(DOUBLE_PENDULUM_SOLVED, f"{UPPER}; {LOWER.replace('+ g sin θ₂', '- g sin θ₂')}", DOUBLE_PENDULUM,
+              kind="equation")
+    assert v.verdict == "not_equivalent" and "not even with coefficients that depend on the state" in v.reason
+    example = v.counterexample
+    assert set(example["answer"]) == {"theta1ddot", "theta2ddot"} and "theta1ddot" not in example["values"]
+    assert example["answer"] != example["reference"]
+
+
 CENTRAL_FORCE = {
     "k": {"dimension": "kg*m^3/s^2", "domain": "positive"},
     "m": {"dimension": "mass", "domain": "positive"},
