@@ -839,6 +839,77 @@ add("central_force", "equations_of_motion", "rddot = r thetadot^2 - k/(m r^2); t
         ("m rddot = m r thetadot^2 - k/r^2; rdot (r thetaddot + 2 rdot thetadot) = 0", NE, "system_factor"),
     ], kind="equation")
 
+
+# -- Leibniz notation: dθ/dt, d²x/dt², \frac{d\theta}{dt}, d/dt(θ) (leibniz.jsonl) ----------------------
+# Read as the dotted variable only where d, dt and the d-words mean nothing else; with d and t declared
+# the same letters are a quotient of products. Appended after the older items so their ids stay the same.
+def leibniz_items() -> None:
+    add("leibniz", "pendulum_tension", "m*l*thetadot^2 + m*g*cos(theta)", PENDULUM, [
+        ("m l (dθ/dt)^2 + m g cos θ", EQ, "notation"),
+        ("m l (dθ/dt)² + m g cos θ", EQ, "notation"),
+        ("m*l*(dtheta/dt)^2 + m*g*cos(theta)", EQ, "notation"),
+        ("m l (d theta/dt)^2 + m g cos(theta)", EQ, "notation"),
+        ("m l (d(θ)/dt)^2 + m g cos θ", EQ, "notation"),
+        ("m l (dθ/dt)(dθ/dt) + m g cos θ", EQ, "notation"),
+        ("m l \\left(\\frac{d\\theta}{dt}\\right)^2 + m g \\cos\\theta", EQ, "notation"),
+        ("m l \\left(\\frac{\\mathrm{d}\\theta}{\\mathrm{d}t}\\right)^{2} + m g \\cos\\theta", EQ, "notation"),
+        ("m l \\left(\\dfrac{d\\theta}{dt}\\right)^2 + m g \\cos\\theta", EQ, "notation"),
+        ("m l (d/dt θ)^2 + m g cos θ", EQ, "notation"),
+        ("m l (d/dt(θ))^2 + m g cos θ", EQ, "notation"),
+        ("m l (dθ/dt)^2 - m g cos θ", NE, ["notation", "slip"]),
+        ("m l dθ/dt + m g cos θ", NE, ["notation", "dimension"], "dimension"),
+        ("m l^2 (dθ/dt)^2 + m g cos θ", NE, ["notation", "dimension"], "dimension"),
+        ("m l dθ/dt² + m g cos θ", INV, "notation"),          # orders disagree: d on top, dt² below
+        ("m l d²θ/dt² + m g cos θ", INV, "notation"),         # no thetaddot in this problem
+        ("m l (dθ/dx)^2 + m g cos θ", INV, "notation"),       # not a time derivative
+        ("m l d/dt θ^2 + m g cos θ", INV, "notation"),        # d/dt of θ², or (d/dt θ)²?
+        ("m l d/dt(θ^2) + m g cos θ", INV, "notation"),       # d/dt of an expression, not one coordinate
+    ])
+    add("leibniz", "pendulum_equation_of_motion", "thetaddot = -g/l*sin(theta)", PENDULUM_EOM, [
+        ("d²θ/dt² = -g/l sin θ", EQ, "notation"),
+        ("d^2θ/dt^2 + (g/l) sin θ = 0", EQ, "notation"),
+        ("d^2 theta/dt^2 + g/l sin(theta) = 0", EQ, "notation"),
+        ("\\frac{d^2\\theta}{dt^2} = -\\frac{g}{l}\\sin\\theta", EQ, "notation"),
+        ("\\frac{\\mathrm{d}^2\\theta}{\\mathrm{d}t^2} + \\frac{g}{l}\\sin\\theta = 0", EQ, "notation"),
+        ("m l² d²θ/dt² + m g l sin θ = 0", EQ, "notation"),
+        ("d/dt θ̇ = -g/l sin θ", EQ, "notation"),
+        ("dθ̇/dt + g/l sin θ = 0", EQ, "notation"),
+        ("\\frac{d}{dt}\\dot{\\theta} = -\\frac{g}{l}\\sin\\theta", EQ, "notation"),
+        ("d²θ/dt² = g/l sin θ", NE, ["notation", "slip"], "term_sign"),
+        ("d²θ/dt² = -g/l cos θ", NE, ["notation", "slip"], "sin_cos"),
+        ("(dθ/dt)^2 = -g/l sin θ", NE, "notation"),
+        ("dθ/dt = -g/l sin θ", NE, ["notation", "dimension"], "dimension"),
+        ("d²θ/dt = -g/l sin θ", INV, "notation"),             # orders disagree
+    ], kind="equation")
+    add("leibniz", "plane_force_sum", "m*(xddot + yddot)", PLANE, [
+        ("m(d²x/dt² + d²y/dt²)", EQ, "notation"),
+        ("m d^2x/dt^2 + m d^2y/dt^2", EQ, "notation"),
+        ("m\\left(\\frac{d^2x}{dt^2} + \\frac{d^2y}{dt^2}\\right)", EQ, "notation"),
+        ("m (d/dt ẋ + d/dt ẏ)", EQ, "notation"),
+        ("m(d²x/dt² - d²y/dt²)", NE, "notation"),
+        ("m(d²x/dt² + dy/dt)", NE, ["notation", "dimension"], "dimension"),
+    ])
+    # t declared as the time: still the derivative; t declared as a length: refused.
+    timed = {"m": var("mass", POS), "x": var("length"), "xdot": var("velocity"), "t": var("time", "nonnegative")}
+    add("leibniz", "momentum_with_time_declared", "m*xdot", timed, [
+        ("m dx/dt", EQ, "notation"), ("m d x/d t", EQ, "notation"), ("m \\frac{dx}{dt}", EQ, "notation"),
+        ("m x/t", NE, "notation"),
+    ])
+    add("leibniz", "momentum_with_t_a_length", "m*xdot",
+        {"m": var("mass", POS), "x": var("length"), "xdot": var("velocity"), "t": var("length", POS)}, [
+        ("m dx/dt", INV, "notation"), ("m xdot", EQ, "notation"),
+    ])
+    # d (a length) and t declared: the same letters are the quotient of products d·x/(d·t) = x/t.
+    quotient = {"d": var("length", POS), "x": var("length"), "t": var("time", POS), "xdot": var("velocity")}
+    add("leibniz", "declared_d_and_t_are_a_quotient", "x/t", quotient, [
+        ("d x/(d t)", EQ, "notation"), ("(d x)/(d t)", EQ, "notation"), ("\\frac{d x}{d t}", EQ, "notation"),
+        ("\\frac{dx}{dt}", EQ, "notation"), ("xdot", NE, "notation"),
+    ])
+
+
+leibniz_items()
+
+
 def build() -> dict[str, int]:
     by_problem: dict[str, list[dict]] = {}
     for n, item in enumerate(items):
