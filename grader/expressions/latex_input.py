@@ -4,6 +4,8 @@ Supported: ``\frac{a}{b}`` (``\dfrac``, ``\tfrac``), ``\sqrt{x}``, ``\sqrt[n]{x}
 ``\cdot``, ``\times``, ``\left( \right)``, ``\sin`` and friends, Greek letters
 ``\theta``, ``\dot{\theta}``, ``\ddot{\theta}``, ``^{...}``, ``_{...}``, ``{}``
 grouping, ``\pi``, spacing commands and ``\mathrm{...}`` around names.
+Time derivatives as ``\frac{d\theta}{dt}``, ``\frac{\mathrm{d}^2x}{\mathrm{d}t^2}`` and
+``\frac{d}{dt}\theta`` are read by :mod:`.leibniz`.
 Anything else (``\int``, ``\sum``, ``\partial``) is refused by name.
 """
 

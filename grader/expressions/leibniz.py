@@ -159,14 +159,22 @@ def _known_coordinate(raw: str, ns) -> bool:
     return any(_lookup(derivative_name(base, order), ns) is not None for order in (1, 2))
 
 
-def _means_something(words: list[Token], ns) -> bool:
-    """Whether the typed ``d`` words already read as names here (d, dt, dtheta, or a glued d·θ)."""
+def _means_something(words: list[Token], ns, memo: dict) -> bool:
+    """Whether the typed ``d`` words already read as names here (d, dt, dtheta, or a glued d·θ).
+
+    ``memo`` keeps the answers for one text: an unknown name costs a search for suggestions, and a
+    text may repeat the same dθ/dt hundreds of times.
+    """
     for word in words:
-        try:
-            resolve_name(word.value, ns, order=word.order, typed=word.text, position=word.pos)
-        except ExpressionError:
-            continue
-        return True
+        key = (word.value, word.order)
+        if key not in memo:
+            try:
+                resolve_name(word.value, ns, order=word.order, typed=word.text, position=word.pos)
+                memo[key] = True
+            except ExpressionError:
+                memo[key] = False
+        if memo[key]:
+            return True
     return False
 
 
@@ -239,7 +247,7 @@ def _exponent_end(tokens: list[Token], j: int) -> Token:
     return tokens[-1]
 
 
-def _match(tokens: list[Token], i: int, ns, text: str) -> tuple[Token, int] | None:
+def _match(tokens: list[Token], i: int, ns, text: str, memo: dict) -> tuple[Token, int] | None:
     """The derivative token for a Leibniz derivative starting at ``tokens[i]`` and where it ends."""
     start = tokens[i]
     framed = start.kind == "command"
@@ -263,7 +271,7 @@ def _match(tokens: list[Token], i: int, ns, text: str) -> tuple[Token, int] | No
             return None
         k = below[3]
     order, words, time, _ = below
-    if _means_something(top.words + words, ns):
+    if _means_something(top.words + words, ns, memo):
         return None  # d, dt or dθ is a name here: the text keeps its ordinary meaning
     last = tokens[k - 1]
     if top.coordinate is not None:  # the quotient dθ/dt
@@ -335,12 +343,13 @@ def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
     if "d" not in text:  # most answers: nothing to look at
         return tokens
     out: list[Token] | None = None
+    memo: dict = {}
     i, n = 0, len(tokens)
     while i < n:
         token = tokens[i]
         found = None
         if (token.kind == "name" and token.value[:1] == "d") or (token.kind == "command" and token.value == "frac"):
-            found = _match(tokens, i, ns, text)
+            found = _match(tokens, i, ns, text, memo)
         if found is None:
             if out is not None:
                 out.append(token)
@@ -350,4 +359,8 @@ def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
             out = tokens[:i]
         out.append(found[0])
         i = found[1]
+        if found[0].error is not None:
+            # The parser stops at this token (or at an error before it): nothing after it is read.
+            out.extend(tokens[i:])
+            break
     return out if out is not None else tokens

@@ -17,7 +17,9 @@ Functions are whitelisted (:mod:`.functions`) and take ``(args)`` or, for a
 single argument, one following factor: ``cos theta``, ``sin 2x`` (= sin(2x)),
 ``cos theta^2`` (= cos(theta^2)).  ``sin^2 x`` is sin(x)^2 and ``sin^-1 x`` is
 asin(x).  Names resolve only through the :class:`~.variables.Namespace`
-(:mod:`.names`).  Numbers are exact: ``0.5*m == m/2``.
+(:mod:`.names`).  Numbers are exact: ``0.5*m == m/2``.  Time derivatives in
+Leibniz notation (``dθ/dt``, ``\\frac{d^2x}{dt^2}``, ``d/dt(θ)``) become one token
+each before parsing (:mod:`.leibniz`) and read as ``θ̇``, ``ẍ`` do.
 """
 
 from __future__ import annotations

@@ -1,6 +1,8 @@
 """Leibniz notation: dθ/dt, d²x/dt², \\frac{d\\theta}{dt} and d/dt(θ) read as the dotted variables,
 only where d, t and the d-words mean nothing else, and every refusal names the text and the fix."""
 
+import time
+
 import pytest
 
 from grader.expressions import ExpressionError, Namespace, Variable, parse_equation, parse_expression
@@ -233,3 +235,27 @@ def test_a_remembered_parse_keeps_its_note(ns):
                                          ("lambda_surfacedot", "lambda_surface\u0307")])
 def test_dotted_spells_the_derivative_as_students_see_it(name, shown):
     assert dotted(name) == shown
+
+
+HOSTILE = [
+    "dθ/dt*" * 330 + "1",                  # many matches: each d-word is looked up once per text
+    "d²θ/dt²+" * 220 + "1",
+    "d x/d t " * 240,
+    "dq/dt+" * 330,                          # unknown words, each a search for suggestions if not kept
+    "d/dt " * 390,                           # the first refusal ends the pass
+    r"\frac{d}{dt}" * 160,
+    "d/dt(" * 50 + "θ" + ")" * 50,
+    "(dθ/dt)^" * 240 + "2",
+    "d" + "θ" * 1990 + "/dt",
+    "d" * 1999,
+]
+
+
+@pytest.mark.parametrize("text", HOSTILE, ids=[f"hostile{i}" for i in range(len(HOSTILE))])
+def test_hostile_leibniz_input_is_handled_quickly(ns, text):
+    start = time.perf_counter()
+    try:
+        parse(text[:2000], ns)
+    except ExpressionError:
+        pass
+    assert time.perf_counter() - start < 0.5
