@@ -91,8 +91,9 @@ class AnswerEvaluator:
         """The answer in its variables; with ``t`` among them and a coordinate not, along the motion.
 
         r in terms of r₀, ω and t is r₀ cosh ωt: the coordinates (and velocities) are replaced by
-        the motion from [initial] in closed form (:mod:`grader.mechanics.motion`), which exists
-        when the equations of motion are linear. Otherwise the first error stands.
+        the motion from [initial] in closed form (:mod:`grader.mechanics.motion`), where it has one
+        in elementary functions. Otherwise the error says both what the answer still depends on
+        and why the motion has no closed form.
         """
         target = self.target(spec)
         try:
@@ -104,8 +105,9 @@ class AnswerEvaluator:
 
             try:
                 motion = motion_in_time(self, key)
-            except SceneError:
-                raise first from None  # it says what the answer still depends on
+            except SceneError as refused:
+                # Both: what the answer still depends on, and why the motion gives no closed form.
+                raise SceneError(self.scene.source, key, f"{first.problem}; {refused.problem}") from None
             value = self.reduce(spec.expr, target | self.state_symbols(), key)
             return self.reduce(human_form(value.xreplace(motion)), target, key)
 
@@ -159,7 +161,10 @@ class AnswerEvaluator:
         momenta = self.momentum_substitution(target, key)
         if momenta:
             expr = human_form(sympy.expand(expr.xreplace(momenta)))
-            extra = [u for u in extra if u.dot in expr.free_symbols]
+            # Every velocity left, including those the momenta brought in: the wedge's Ẋ is
+            # −m cos α ṡ/(M + m) by momentum, and then ṡ goes by energy.
+            extra = [u for u in self.reduction.independent.values()
+                     if u.dot in expr.free_symbols and u.dot not in target]
             if not extra:
                 return expr
         if len(extra) > 1:

@@ -1,13 +1,36 @@
-"""The motion from ``[initial]`` in closed form, q(t), when its equations are linear.
+"""The motion from ``[initial]`` in closed form, q(t), where it has one in elementary functions.
 
-Most motions have no closed form, but the first examples of a course do: a block sliding down an
-incline (s̈ = g sin α, so s = s₀ + v₀t + g sin α t²/2), a bead on a rod rotating at constant ω
-(r̈ = ω²r, so r = r₀ cosh ωt from rest), a mass on a spring on a driven support. When every
-solved acceleration is linear in the independent coordinates and velocities (with coefficients
-and forcing in the parameters and t), the engine integrates them with ``sympy.dsolve`` from the
-``[initial]`` state at t = 0, under a CPU-time budget. An answer may then be a value as a function
-of time (``in_terms_of = [..., "t"]`` without the coordinate) or the time at which a condition
-holds (``expr = "t"``, ``where = "r = L"``; see :mod:`grader.mechanics.special_values`).
+Most motions have no closed form, but the first examples of a course do. The engine finds q(t)
+from the ``[initial]`` state at t = 0 in three ways, tried in this order:
+
+1. **Linear equations.** When every solved acceleration is linear in the independent coordinates
+   and velocities (coefficients and forcing may depend on the parameters and t), ``sympy.dsolve``
+   integrates them: a block on an incline (s̈ = g sin α), a bead on a rod a motor turns
+   (r̈ = ω²r, or r̈ = ω²r − g sin ωt in a vertical plane), a rope sliding off a table
+   (ẍ = g x/L), a spring on a support driven as A cos Ωt, coupled oscillators.
+2. **Conserved momenta first.** The velocity of a cyclic coordinate is replaced by its conserved
+   momentum (φ̇ = r₀²ω₀/r² for a free particle in polar coordinates); when the remaining
+   accelerations are linear, they are integrated as in 1. Then u̇_c(t) follows from the momentum
+   and u_c(t) = u_c(0) + ∫₀ᵗ u̇_c dt.
+3. **An energy quadrature.** With one coordinate q left and no explicit t, energy gives
+   q̇² = v²(q) and t = s ∫_{q₀}^{q} dq'/√(v²(q')) (s the sign q̇ starts with, or that of q̈ from
+   rest). When sympy integrates it, t(q) is known in closed form; when it also solves t = t(q)
+   for q, so is q(t) (r = r₀√(1 + ω₀²t²) for the free particle). The quadrature follows the
+   motion only until it turns back; a closed form that goes on matching the motion beyond the
+   turning point is kept, others are refused. A motion that starts at rest at an equilibrium has
+   no such quadrature (from there, it takes unbounded time to leave).
+
+Every closed form is confirmed against a numerical integration (scipy's ``solve_ivp``) of the
+solved accelerations at the scene's parameter values before it is accepted; one that disagrees
+is refused. Every ``dsolve``, ``integrate`` and ``solve`` runs under a CPU-time budget
+(:mod:`grader.mechanics.budget`).
+
+Everything else (a pendulum, whose quadrature is an elliptic integral; a double pendulum) is
+refused with a :class:`SceneError` naming the answer, the acceleration that is not linear and in
+what, and what the instructor can ask instead. An answer may then be a value as a function of
+time (``in_terms_of = [..., "t"]`` without the coordinate) or the time at which a condition
+holds (``expr = "t"``, ``where = "r = L"``; see :mod:`grader.mechanics.special_values`), which
+needs only t(q) from the quadrature, not its inverse.
 
 Examples
 --------
@@ -15,9 +38,14 @@ Examples
 >>> from grader.mechanics.scene import load_scene
 >>> derive(load_scene("tests/mechanics/scenes/bead_rotating_rod.toml")).answers["radius_in_time"]
 r0*cosh(omega*t)
+>>> derive(load_scene("tests/mechanics/scenes/free_particle_polar.toml")).answers["distance_in_time"]
+r0*sqrt(omega0**2*t**2 + 1)
 """
 
 from __future__ import annotations
+
+import math
+from dataclasses import dataclass
 
 import sympy
 from sympy.simplify.simplify import exptrigsimp
@@ -26,81 +54,137 @@ from grader.mechanics import budget
 from grader.mechanics.scene import SceneError
 from grader.mechanics.simplification import human_form
 
-__all__ = ["motion_in_time"]
+__all__ = ["Quadrature", "motion_in_time", "numeric_motion", "quadrature"]
 
 _DSOLVE_BUDGET_S = 4.0
+_INTEGRATE_BUDGET_S = 4.0
+_SOLVE_BUDGET_S = 3.0
+_NUMERIC_BUDGET_S = 6.0
+_RTOL = 1e-6  # closed form against the numerical integration, relative to the largest value seen
+_SAMPLES = 9
+_ASK_INSTEAD = ("ask instead for a value at a state (in_terms_of the coordinates and velocities, without t) "
+                "or for a value where a condition holds (where = \"...\")")
 
 
 def motion_in_time(evaluator, key: str) -> dict[sympy.Symbol, sympy.Expr]:
-    """``{u: u(t), u̇: u̇(t)}`` for every independent coordinate (computed once per scene).
+    """``{u: u(t), u̇: u̇(t)}`` for the independent coordinates (computed once per scene).
 
-    Raises :class:`SceneError` naming what stops it: an acceleration that is not linear in the
-    state, a coordinate or velocity that ``[initial]`` does not give, or a system ``dsolve``
-    cannot integrate within its budget.
+    Raises :class:`SceneError` for ``key`` naming what stops it: an acceleration that is not
+    linear in the state and no elementary quadrature, a coordinate or velocity that ``[initial]``
+    does not give, a system ``dsolve`` cannot integrate within its budget, a closed form that a
+    numerical integration does not confirm.
     """
-    cache = evaluator.__dict__.setdefault("_motion_cache", {})
-    if "motion" not in cache:
-        try:
-            cache["motion"] = _integrate(evaluator)
-        except SceneError as exc:
-            cache["motion"] = exc
-    result = cache["motion"]
+    result = _cached(evaluator, "motion", lambda: _integrate(evaluator))
     if isinstance(result, SceneError):
         raise SceneError(evaluator.scene.source, key, result.problem)
     return result
 
 
+@dataclass
+class Quadrature:
+    """t(q) = sign · (G(q) − G(q₀)) for one coordinate ``u``, from q̇² = ``speed_squared``(q)."""
+
+    u: object
+    sign: int
+    speed_squared: sympy.Expr
+    time: sympy.Expr  # t as a function of u.symbol, valid until the motion first turns back
+    momenta: dict
+
+
+def quadrature(evaluator, key: str) -> Quadrature:
+    """The energy quadrature t(q) of a one-coordinate autonomous motion (computed once per scene).
+
+    Raises :class:`SceneError` for ``key`` when the motion is not of that kind or the integral
+    is not elementary (see the module notes).
+    """
+    result = _cached(evaluator, "quadrature", lambda: _quadrature(evaluator, _plan(evaluator)))
+    if isinstance(result, SceneError):
+        raise SceneError(evaluator.scene.source, key, result.problem)
+    return result
+
+
+def _cached(evaluator, name: str, compute):
+    cache = evaluator.__dict__.setdefault("_motion_cache", {})
+    if name not in cache:
+        try:
+            cache[name] = compute()
+        except SceneError as exc:
+            cache[name] = exc
+    return cache[name]
+
+
+# -- which kind of motion ---------------------------------------------------------------------------
+@dataclass
+class _Plan:
+    independent: list
+    momenta: dict  # cyclic velocity -> its value from the conserved momentum, in the other state
+    rest: list  # the coordinates left once the cyclic ones are taken out
+    accelerations: dict  # u -> ü of the rest, momenta substituted
+
+
+def _plan(evaluator) -> _Plan:
+    def compute():
+        reduction = evaluator.reduction
+        independent = list(reduction.independent.values())
+        try:
+            momenta = evaluator.momentum_substitution(set(), "")
+        except SceneError:
+            momenta = {}
+        rest = [u for u in independent if u.dot not in momenta]
+        accelerations = {}
+        for u in rest:
+            a = reduction.accelerations[u.ddot]
+            if momenta:
+                substituted = a.xreplace(momenta)
+                a = budget.attempt(lambda: sympy.cancel(substituted), 1.0, fallback=lambda: substituted)
+            accelerations[u] = a
+        return _Plan(independent, momenta, rest, accelerations)
+
+    return _cached(evaluator, "plan", compute)
+
+
 def _integrate(evaluator) -> dict[sympy.Symbol, sympy.Expr]:
     scene = evaluator.scene
     reduction = evaluator.reduction
-    t = scene.time
     independent = list(reduction.independent.values())
     state = [s for u in independent for s in (u.symbol, u.dot)]
-    functions = {u.name: sympy.Function(u.name)(t) for u in independent}
-    to_functions = {}
-    for u in independent:
-        to_functions[u.symbol] = functions[u.name]
-        to_functions[u.dot] = functions[u.name].diff(t)
-    equations = []
-    for u in independent:
-        acceleration = reduction.accelerations[u.ddot]
-        if not _linear(acceleration, state):
-            raise SceneError(scene.source, "", f"the motion has no closed form in t here: {u.ddot.name} is not "
-                                               "linear in the coordinates and velocities")
-        equations.append(sympy.Eq(functions[u.name].diff(t, 2), acceleration.xreplace(to_functions)))
-    initial = {}
-    for u in independent:
-        for symbol, condition in ((u.symbol, functions[u.name].subs(t, 0)),
-                                  (u.dot, functions[u.name].diff(t).subs(t, 0))):
-            value = reduction.initial_value(symbol)
-            if value is None:
-                raise SceneError(scene.source, "", f"the motion in time needs [initial] values for "
-                                                   f"{', '.join(str(s) for s in state)}")
-            initial[condition] = value
-
-    def solve():
-        if len(equations) == 1:
-            return [sympy.dsolve(equations[0], functions[independent[0].name], ics=initial)]
-        return sympy.dsolve(equations, list(functions.values()), ics=initial)
-
-    def attempt():
-        try:
-            return solve()
-        except (NotImplementedError, ValueError, TypeError):
-            return None
-
-    with budget.step("integrating the motion in time"):
-        solutions = budget.attempt(attempt, _DSOLVE_BUDGET_S, fallback=lambda: None)
-    if not solutions:
-        raise SceneError(scene.source, "", "the motion has no closed form in t that sympy finds within "
-                                           f"{_DSOLVE_BUDGET_S:g} s")
-    by_function = {s.lhs: s.rhs for s in solutions}
-    motion = {}
-    for u in independent:
-        q = _readable(by_function[functions[u.name]])
-        motion[u.symbol] = q
-        motion[u.dot] = _readable(sympy.diff(q, t))
+    if all(_linear(reduction.accelerations[u.ddot], state) for u in independent):
+        # 1. Linear as it stands.
+        motion = _dsolve(evaluator, independent, {u: reduction.accelerations[u.ddot] for u in independent})
+    else:
+        plan = _plan(evaluator)
+        rest_state = [s for u in plan.rest for s in (u.symbol, u.dot)]
+        if plan.momenta and all(_linear(plan.accelerations[u], rest_state) for u in plan.rest):
+            # 2. Linear once the conserved momenta are substituted.
+            motion = _dsolve(evaluator, plan.rest, plan.accelerations) if plan.rest else {}
+        else:
+            # 3. One coordinate, energy conserved: the quadrature, then its inverse.
+            quad = _quadrature(evaluator, plan)
+            motion = _invert(evaluator, quad)
+        _cyclic_in_time(evaluator, plan, motion)
+    _confirm(evaluator, motion, "the closed form")
     return motion
+
+
+def _refusal(evaluator, plan: _Plan, reason: str) -> SceneError:
+    """No closed form in elementary functions: which acceleration is nonlinear in what, and why."""
+    scene = evaluator.scene
+    rest_state = [s for u in plan.rest for s in (u.symbol, u.dot)]
+    parts = []
+    for u in plan.rest:
+        culprits = _nonlinear_in(plan.accelerations[u], rest_state)
+        if culprits:
+            shown = sympy.sstr(plan.accelerations[u])
+            shown = f"{u.ddot.name} = {shown}" if len(shown) <= 100 else u.ddot.name
+            listed = culprits[0] if len(culprits) == 1 else f"{', '.join(culprits[:-1])} and {culprits[-1]}"
+            parts.append(f"{shown} is nonlinear in {listed}")
+    after = ""
+    if plan.momenta:
+        cyclic = ", ".join(u.name for u in plan.independent if u.dot in plan.momenta)
+        after = f" (after the conserved momentum of {cyclic} is substituted)"
+    nonlinear = "; ".join(parts) or "the equations of motion are not linear"
+    return SceneError(scene.source, "",
+                      f"the motion has no closed form in elementary functions: {nonlinear}{after}, {reason}")
 
 
 def _linear(expr: sympy.Expr, state: list[sympy.Symbol]) -> bool:
@@ -112,6 +196,426 @@ def _linear(expr: sympy.Expr, state: list[sympy.Symbol]) -> bool:
         return sympy.Poly(sympy.expand(expr), *present).total_degree() <= 1
     except sympy.PolynomialError:
         return False
+
+
+def _nonlinear_in(expr: sympy.Expr, state: list[sympy.Symbol]) -> list[str]:
+    """The state variables expr is not linear in (r in r₀⁴ω₀²/r³; θ in sin θ; r and φ̇ in r φ̇²)."""
+    present = [s for s in state if s in expr.free_symbols]
+    found = []
+    for s in present:
+        derivative = sympy.diff(expr, s)
+        if any(w in derivative.free_symbols for w in present):
+            found.append(s.name)
+    return found
+
+
+# -- 1 and 2: linear equations ----------------------------------------------------------------------
+def _initial(evaluator, symbol):
+    value = evaluator.reduction.initial_value(symbol)
+    if value is None:
+        state = ", ".join(s.name for u in evaluator.reduction.independent.values() for s in (u.symbol, u.dot))
+        raise SceneError(evaluator.scene.source, "", f"the motion in time needs [initial] values for {state}")
+    return value
+
+
+def _dsolve(evaluator, coordinates: list, accelerations: dict) -> dict[sympy.Symbol, sympy.Expr]:
+    scene = evaluator.scene
+    t = scene.time
+    functions = {u.name: sympy.Function(u.name)(t) for u in coordinates}
+    to_functions = {}
+    for u in coordinates:
+        to_functions[u.symbol] = functions[u.name]
+        to_functions[u.dot] = functions[u.name].diff(t)
+    equations = [sympy.Eq(functions[u.name].diff(t, 2), accelerations[u].xreplace(to_functions))
+                 for u in coordinates]
+    initial = {}
+    for u in coordinates:
+        initial[functions[u.name].subs(t, 0)] = _initial(evaluator, u.symbol)
+        initial[functions[u.name].diff(t).subs(t, 0)] = _initial(evaluator, u.dot)
+
+    def solve():
+        if len(equations) == 1:
+            return [sympy.dsolve(equations[0], functions[coordinates[0].name], ics=initial)]
+        return sympy.dsolve(equations, list(functions.values()), ics=initial)
+
+    def attempt():
+        try:
+            return solve()
+        except (NotImplementedError, ValueError, TypeError):
+            return None
+
+    with budget.step("integrating the motion in time"):
+        solutions = budget.attempt(attempt, _DSOLVE_BUDGET_S, fallback=lambda: None)
+    if not solutions:
+        raise SceneError(scene.source, "", "the equations of motion are linear, but sympy finds no closed form of "
+                                           f"the motion in t within {_DSOLVE_BUDGET_S:g} s")
+    by_function = {s.lhs: s.rhs for s in solutions}
+    motion = {}
+    for u in coordinates:
+        q = _readable(by_function[functions[u.name]])
+        motion[u.symbol] = q
+        motion[u.dot] = _readable(sympy.diff(q, t))
+    return motion
+
+
+def _cyclic_in_time(evaluator, plan: _Plan, motion: dict) -> None:
+    """u̇_c(t) from the conserved momentum, and u_c(t) = u_c(0) + ∫₀ᵗ u̇_c dt when that is elementary."""
+    t = evaluator.scene.time
+    tau = sympy.Dummy("tau", real=True)
+    for u in plan.independent:
+        if u.dot not in plan.momenta:
+            continue
+        velocity = _readable(plan.momenta[u.dot].xreplace(motion))
+        if any(s in velocity.free_symbols for s in evaluator.state_symbols()):
+            continue  # the rest of the motion is not known in time
+        motion[u.dot] = velocity
+        start = evaluator.reduction.initial_value(u.symbol)
+        if start is None:
+            continue
+        integrand = velocity.xreplace({t: tau})
+
+        def integrate():
+            try:
+                return sympy.integrate(integrand, (tau, 0, t))
+            except (NotImplementedError, ValueError, TypeError):
+                return None
+
+        with budget.step(f"integrating {u.dot.name} in time"):
+            integral = budget.attempt(integrate, _INTEGRATE_BUDGET_S, fallback=lambda: None)
+        if integral is not None and not integral.has(sympy.Integral):
+            point = _point(evaluator)
+            integral = _branch(integral, {**point, t: 1.0})
+            motion[u.symbol] = _readable(start + integral)
+
+
+# -- 3: the energy quadrature -------------------------------------------------------------------------
+def _quadrature(evaluator, plan: _Plan) -> Quadrature:
+    scene = evaluator.scene
+    t = scene.time
+    if len(plan.rest) != 1:
+        names = ", ".join(u.name for u in plan.rest)
+        left = "left once the conserved momenta are used" if plan.momenta else "and no conserved momentum"
+        raise _refusal(evaluator, plan,
+                       f"and with {len(plan.rest)} coordinates ({names}) {left}, energy alone does not reduce "
+                       f"it to a quadrature; {_ASK_INSTEAD}")
+    u = plan.rest[0]
+    if t in plan.accelerations[u].free_symbols:
+        raise _refusal(evaluator, plan,
+                       f"and it depends on t (a driven motion), so energy is not conserved and gives no "
+                       f"quadrature t = ∫ d{u.name}/{u.dot.name}; {_ASK_INSTEAD}")
+    sign = evaluator.motion_sign(u)
+    if sign is None:
+        if _at_rest_in_equilibrium(evaluator, u):
+            raise _refusal(evaluator, plan,
+                           f"and the motion from [initial] starts at rest at an equilibrium ({u.ddot.name} = 0 "
+                           f"there): it stays there, and pushed away it takes unbounded time to leave, so the "
+                           f"quadrature t = ∫ d{u.name}/{u.dot.name} diverges; {_ASK_INSTEAD}")
+        raise _refusal(evaluator, plan,
+                       f"and [initial] does not fix the direction in which {u.name} starts to move; {_ASK_INSTEAD}")
+    try:
+        squared = evaluator.velocity_squared(u, "", plan.momenta)
+    except SceneError as exc:
+        raise _refusal(evaluator, plan, f"and energy gives no quadrature ({exc.problem}); {_ASK_INSTEAD}") from None
+    q = u.symbol
+    integrand = 1 / sympy.sqrt(squared)
+
+    def integrate():
+        try:
+            return sympy.integrate(integrand, q)
+        except (NotImplementedError, ValueError, TypeError):
+            return None
+
+    with budget.step(f"integrating the energy quadrature in {u.name}"):
+        antiderivative = budget.attempt(integrate, _INTEGRATE_BUDGET_S, fallback=lambda: None)
+    shown = f"t = ∫ d{u.name}/√({sympy.sstr(squared)})"
+    if antiderivative is None or antiderivative.has(sympy.Integral):
+        elliptic = " (it is an elliptic integral)" if _elliptic(squared, q) else ""
+        raise _refusal(evaluator, plan,
+                       f"and the energy quadrature {shown} is not an elementary function{elliptic}: sympy "
+                       f"finds no antiderivative (it tries for {_INTEGRATE_BUDGET_S:g} s); {_ASK_INSTEAD}")
+    point = _point(evaluator)
+    q0 = _initial(evaluator, q)
+    ahead = _ahead(evaluator, u, sign, point)
+    antiderivative = _branch(antiderivative, {**point, q: ahead})
+    start = antiderivative.xreplace({q: q0})
+    if start.has(sympy.nan, sympy.zoo, sympy.oo, -sympy.oo):
+        start = budget.attempt(lambda: sympy.limit(antiderivative, q, q0, "+" if sign > 0 else "-"),
+                               _SOLVE_BUDGET_S, fallback=lambda: None)
+    if start is None or start.has(sympy.nan, sympy.zoo, sympy.Limit):
+        raise _refusal(evaluator, plan, f"and the quadrature {shown} cannot be evaluated at the start "
+                                        f"{u.name} = {sympy.sstr(q0)}; {_ASK_INSTEAD}")
+    time = human_form(sign * (antiderivative - start))
+    quad = Quadrature(u, sign, squared, time, plan.momenta)
+    _confirm_quadrature(evaluator, quad, point, ahead)
+    return quad
+
+
+def _at_rest_in_equilibrium(evaluator, u) -> bool:
+    reduction = evaluator.reduction
+    velocity = reduction.initial_value(u.dot)
+    acceleration = reduction.initial_value(reduction.accelerations[u.ddot])
+    return velocity is not None and acceleration is not None and sympy.simplify(velocity) == 0 and \
+        sympy.simplify(acceleration) == 0
+
+
+def _elliptic(squared: sympy.Expr, q: sympy.Symbol) -> bool:
+    """Whether ∫ dq/√(squared) is elliptic: a polynomial of degree 3 or 4 in q, or ≥ 1 in cos q or sin q."""
+    X = sympy.Dummy("X")
+    for function in (sympy.cos, sympy.sin):
+        rewritten = squared.xreplace({function(q): X})
+        if rewritten != squared and q not in rewritten.free_symbols:
+            try:
+                return sympy.Poly(sympy.together(rewritten), X).degree() >= 1
+            except sympy.PolynomialError:
+                return False
+    try:
+        return sympy.Poly(squared, q).degree() in (3, 4)
+    except sympy.PolynomialError:
+        return False
+
+
+def _ahead(evaluator, u, sign: int, point: dict) -> float:
+    """A value of u on the first stretch of the motion, where the quadrature's branches are chosen."""
+    run = numeric_motion(evaluator, point)
+    turn = run.turning_time(u)
+    when = run.t_end / 4 if turn is None else min(turn / 2, run.t_end / 4)
+    return run.state(when)[u.symbol]
+
+
+def _invert(evaluator, quad: Quadrature) -> dict[sympy.Symbol, sympy.Expr]:
+    """q(t) from t = t(q), the root that follows the motion; refused when there is none."""
+    scene = evaluator.scene
+    u, t, q = quad.u, scene.time, quad.u.symbol
+    plan = _plan(evaluator)
+
+    def solve():
+        try:
+            return list(sympy.solve(sympy.Eq(quad.time, t), q))
+        except (NotImplementedError, ValueError, TypeError):
+            return None
+
+    with budget.step(f"solving the quadrature for {u.name}(t)"):
+        roots = budget.attempt(solve, _SOLVE_BUDGET_S, fallback=lambda: None)
+    shown = f"t = {sympy.sstr(quad.time)}"
+    if not roots:
+        raise _refusal(evaluator, plan,
+                       f"and the energy quadrature gives {shown} in closed form, but sympy cannot solve it for "
+                       f"{u.name}(t) within {_SOLVE_BUDGET_S:g} s; ask for the time at which a condition holds "
+                       f"(expr = \"t\", where = \"{u.name} = ...\"), or {_ASK_INSTEAD}")
+    point = _point(evaluator)
+    run = numeric_motion(evaluator, point)
+    turn = run.turning_time(u)
+    sample = (run.t_end if turn is None else min(turn, run.t_end)) / 3
+    candidates = []
+    for root in roots:
+        root = _branch(root, {**point, t: sample})
+        value = _evaluate(root, {**point, t: sample})
+        if value is not None and abs(value - run.state(sample)[q]) <= _RTOL * max(abs(value), 1e-12):
+            candidates.append(root)
+    if not candidates:
+        raise _refusal(evaluator, plan,
+                       f"and the energy quadrature gives {shown}, but no solution of it for {u.name}(t) follows "
+                       f"the motion; ask for the time at which a condition holds (expr = \"t\"), or {_ASK_INSTEAD}")
+    position = _readable(candidates[0])
+    return {q: position, u.dot: _readable(sympy.diff(position, t))}
+
+
+def _confirm_quadrature(evaluator, quad: Quadrature, point: dict, ahead: float) -> None:
+    """t(q) at a point of the first stretch equals the time the numerical motion gets there."""
+    run = numeric_motion(evaluator, point)
+    u = quad.u
+    expected = run.time_at(u, ahead)
+    value = _evaluate(quad.time, {**point, u.symbol: ahead})
+    if expected is None or value is None or abs(value - expected) > _RTOL * max(abs(expected), 1e-12):
+        raise SceneError(evaluator.scene.source, "",
+                         f"the energy quadrature t = {sympy.sstr(quad.time)} disagrees with a numerical "
+                         f"integration of the equations of motion at {u.name} = {ahead:.6g} (t = {value} against "
+                         f"{expected}); refused rather than risk a wrong closed form")
+
+
+# -- numbers --------------------------------------------------------------------------------------------
+def _point(evaluator) -> dict:
+    from grader.mechanics.special_values import _parameter_points
+
+    return _parameter_points(evaluator.scene)[0]
+
+
+def _evaluate(expr: sympy.Expr, point: dict) -> float | None:
+    from grader.mechanics.special_values import _evaluate
+
+    return _evaluate(expr, point)
+
+
+def _branch(expr: sympy.Expr, point: dict) -> sympy.Expr:
+    """expr with each Piecewise replaced by its piece that holds at ``point`` (numbers)."""
+    if not expr.has(sympy.Piecewise):
+        return expr
+    numbers = {s: sympy.Float(v, 30) for s, v in point.items()}
+
+    def piece(p):
+        for value, condition in p.args:
+            try:
+                holds = bool(sympy.sympify(condition, strict=True).xreplace(numbers))
+            except TypeError:
+                continue
+            if holds:
+                return value
+        return p
+
+    return expr.replace(lambda e: isinstance(e, sympy.Piecewise), piece)
+
+
+class _Run:
+    """A numerical integration of the solved accelerations from [initial] at one parameter point."""
+
+    def __init__(self, evaluator, point: dict, horizon: float | None = None):
+        from scipy.integrate import solve_ivp
+
+        reduction = evaluator.reduction
+        t = evaluator.scene.time
+        self.coordinates = list(reduction.independent.values())
+        self.symbols = [s for u in self.coordinates for s in (u.symbol, u.dot)]
+        numbers = {s: sympy.Float(v, 30) for s, v in point.items()}
+        y0 = []
+        for s in self.symbols:
+            value = reduction.initial_value(s)
+            if value is None and any(s == u.symbol for u in self.coordinates):
+                value = sympy.Integer(0)  # a cyclic coordinate [initial] leaves out: nothing depends on it
+            if value is None:
+                raise SceneError(evaluator.scene.source, "", "the motion in time needs [initial] values for "
+                                 + ", ".join(s.name for s in self.symbols))
+            y0.append(float(sympy.N(value.xreplace(numbers))))
+        # The accelerations come from the engine (built by our parser from a validated scene), never
+        # from raw text, so lambdify's generated code is safe to compile.
+        accelerations = [reduction.accelerations[u.ddot].xreplace(numbers) for u in self.coordinates]
+        f = sympy.lambdify([t, *self.symbols], accelerations, modules="math")
+        n = len(self.coordinates)
+
+        def rhs(time, y):
+            try:
+                a = f(time, *y)
+            except (ValueError, ZeroDivisionError, OverflowError):
+                return [math.nan] * (2 * n)
+            return _derivative(y, a, n)
+
+        if horizon is None:
+            horizon = _horizon(rhs, y0, n)
+        events = []
+        for i, u in enumerate(self.coordinates):
+            lo = {"positive": 0.0, "nonnegative": 0.0}.get(u.domain.kind, u.domain.lo)
+            hi = u.domain.hi
+            for bound in (lo, hi):
+                if math.isfinite(bound):
+                    def leave(time, y, i=i, bound=bound):
+                        return y[2 * i] - bound
+                    leave.terminal = True
+                    events.append(leave)
+
+        def blow_up(time, y):
+            return 1e12 - max(abs(v) for v in y)
+        blow_up.terminal = True
+        events.append(blow_up)
+        self.solution = solve_ivp(rhs, (0.0, horizon), y0, method="DOP853", rtol=1e-12, atol=1e-14,
+                                  dense_output=True, events=events)
+        self.t_end = float(self.solution.t[-1])
+        self.y0 = y0
+        if self.t_end <= 0:
+            raise SceneError(evaluator.scene.source, "", "the equations of motion cannot be integrated "
+                                                         "numerically from [initial] to confirm a closed form")
+
+    def state(self, time: float) -> dict:
+        values = self.solution.sol(time)
+        return {s: float(values[i]) for i, s in enumerate(self.symbols)}
+
+    def turning_time(self, u) -> float | None:
+        """The first time after the start at which u̇ changes sign."""
+        index = self.symbols.index(u.dot)
+        times = self.solution.t
+        values = self.solution.y[index]
+        for k in range(1, len(times)):
+            if values[k - 1] * values[k] < 0 and times[k - 1] > 0:
+                return float(times[k])
+        return None
+
+    def time_at(self, u, value: float) -> float | None:
+        """The first time u reaches ``value`` (from the dense output), or None."""
+        from scipy.optimize import brentq
+
+        index = self.symbols.index(u.symbol)
+        times = self.solution.t
+        values = self.solution.y[index] - value
+        for k in range(1, len(times)):
+            if values[k - 1] == 0 and k > 1:
+                return float(times[k - 1])
+            if values[k - 1] * values[k] < 0:
+                return brentq(lambda s: self.solution.sol(s)[index] - value, times[k - 1], times[k], xtol=1e-15,
+                              rtol=1e-14)
+        return None
+
+
+def _derivative(y, a, n) -> list[float]:
+    """(q̇₁, q̈₁, q̇₂, q̈₂, ...) from the state and the accelerations; nan where they are not real."""
+    result = []
+    for i in range(n):
+        value = a[i]
+        result += [y[2 * i + 1], float(value) if not isinstance(value, complex) else math.nan]
+    return result
+
+
+def _horizon(rhs, y0, n) -> float:
+    """A few natural times of the motion: 1/√|∂ü/∂q|, √(|q₀|/|ü₀|), |q̇₀|/|ü₀|, |q₀|/|q̇₀| (else 1)."""
+    scales = []
+    derivative = rhs(0.0, y0)
+    for i in range(n):
+        q, v, a = abs(y0[2 * i]), abs(y0[2 * i + 1]), abs(derivative[2 * i + 1])
+        shifted = list(y0)
+        step = 1e-6 * max(q, 1e-3)
+        shifted[2 * i] += step
+        k = abs(rhs(0.0, shifted)[2 * i + 1] - derivative[2 * i + 1]) / step
+        for scale in (1 / math.sqrt(k) if k > 0 else 0, math.sqrt(q / a) if a > 0 else 0, v / a if a > 0 else 0,
+                      q / v if v > 0 else 0):
+            if math.isfinite(scale) and scale > 0:
+                scales.append(scale)
+    return 3 * max(scales) if scales else 1.0
+
+
+def numeric_motion(evaluator, point: dict, horizon: float | None = None) -> _Run:
+    """The numerical motion from [initial] at ``point`` (cached per point and horizon)."""
+    cache = evaluator.__dict__.setdefault("_motion_cache", {}).setdefault("runs", {})
+    key = (tuple(sorted((str(s), v) for s, v in point.items())), horizon)
+    if key not in cache:
+        with budget.step("integrating the motion numerically"):
+            cache[key] = budget.attempt(lambda: _Run(evaluator, point, horizon), _NUMERIC_BUDGET_S,
+                                        fallback=lambda: None)
+    if cache[key] is None:
+        raise SceneError(evaluator.scene.source, "",
+                         f"the motion could not be integrated numerically within {_NUMERIC_BUDGET_S:g} s to "
+                         "confirm its closed form")
+    return cache[key]
+
+
+def _confirm(evaluator, motion: dict, what: str) -> None:
+    """Every closed form in ``motion`` against the numerical motion; SceneError on a disagreement."""
+    point = _point(evaluator)
+    run = numeric_motion(evaluator, point)
+    t = evaluator.scene.time
+    times = [run.t_end * (k + 1) / _SAMPLES for k in range(_SAMPLES)]
+    turns = [run.turning_time(u) for u in run.coordinates]
+    turns = [x for x in turns if x is not None]
+    for symbol, closed in motion.items():
+        numeric = [run.state(s)[symbol] for s in times]
+        scale = max(max(abs(v) for v in numeric), 1e-12)
+        for s, expected in zip(times, numeric):
+            value = _evaluate(closed, {**point, t: s})
+            if value is None or abs(value - expected) > _RTOL * max(abs(expected), scale):
+                after = ""
+                if turns and s > min(turns):
+                    after = (f" (after the motion turns back at t ≈ {min(turns):.4g}: the quadrature covers only "
+                             "the stretch before)")
+                raise SceneError(evaluator.scene.source, "",
+                                 f"{what} {symbol.name}(t) = {sympy.sstr(closed)} disagrees with a numerical "
+                                 f"integration of the equations of motion at t = {s:.4g}{after}: {value} against "
+                                 f"{expected}; refused rather than risk a wrong closed form")
 
 
 def _readable(expr: sympy.Expr) -> sympy.Expr:
