@@ -28,6 +28,10 @@ roots are kept where they are real and inside the unknown's domain, at two param
 
 An answer that asks for the time (``expr = "t"`` with ``t`` not in ``in_terms_of``) is taken at the
 first moment t > 0 the condition holds on the motion in closed form (:mod:`grader.mechanics.motion`).
+When q(t) has no closed form but the one-coordinate motion has an elementary energy quadrature
+t(q) (a body falling radially towards a star from rest), the condition is solved for q* instead,
+the root the motion reaches before it first turns back is taken, and the time is t(q*), confirmed
+against a numerical integration of the motion.
 
 ``kind = "small_oscillation"`` gives the angular frequency of small oscillations of the coordinate
 in ``expr`` about the equilibrium ``where`` names: ω² = −∂ü/∂u at rest at the equilibrium, by
@@ -110,15 +114,24 @@ def _at_time(evaluator, spec, target: set, key: str) -> sympy.Expr:
 
     Used when the answer asks for t (``expr = "t"``: the time to reach the end of a rod) and
     ``in_terms_of`` does not allow it: the coordinates are replaced by the motion in closed form
-    (:mod:`grader.mechanics.motion`), which leaves t as the condition's one unknown.
+    (:mod:`grader.mechanics.motion`), which leaves t as the condition's one unknown. Without q(t),
+    the energy quadrature t(q) gives the time (:func:`_time_by_quadrature`).
     """
-    from grader.mechanics.motion import motion_in_time
+    from grader.mechanics.motion import motion_in_time, quadrature
 
     scene = evaluator.scene
     t = scene.time
     everything = evaluator.parameters | evaluator.state_symbols() | {t}
     with budget.step("reducing the condition", spec.name):
-        motion = motion_in_time(evaluator, key)
+        try:
+            motion = motion_in_time(evaluator, key)
+        except SceneError as refused:
+            # No q(t); the time may still come from the quadrature t(q) itself.
+            try:
+                quad = quadrature(evaluator, key)
+            except SceneError:
+                raise refused from None
+            return _time_by_quadrature(evaluator, spec, target, key, quad)
         lhs, rhs = spec.where
         condition = _essential(human_form(evaluator.reduce(lhs - rhs, everything, key).xreplace(motion)))
     others = sorted(map(str, condition.free_symbols - target - {t}))
@@ -132,6 +145,71 @@ def _at_time(evaluator, spec, target: set, key: str) -> sympy.Expr:
         value = evaluator.reduce(spec.expr, everything, f"answers ({spec.name}).expr").xreplace(motion)
         chosen = _first_time(scene, roots, t, key)
         result = human_form(value.xreplace({t: chosen}))
+    return _no_leftover(scene, spec, result, target)
+
+
+def _time_by_quadrature(evaluator, spec, target: set, key: str, quad) -> sympy.Expr:
+    """The answer where the condition first holds, at the time t(q*) the quadrature gives.
+
+    The condition is written in the one coordinate q (velocities removed with energy), solved
+    for q*, and the root the motion reaches first on its way from [initial] is taken: it must lie
+    before the motion first turns back, where the quadrature stops following it. The time is then
+    confirmed against a numerical integration of the equations of motion.
+    """
+    from grader.mechanics.motion import numeric_motion
+
+    scene = evaluator.scene
+    t, u = scene.time, quad.u
+    q = u.symbol
+    lhs, rhs = spec.where
+    with budget.step("reducing the condition", spec.name):
+        condition = _essential(human_form(evaluator.reduce(lhs - rhs, target | evaluator.parameters | {q}, key)))
+    others = sorted(map(str, condition.free_symbols - target - {q}))
+    if q not in condition.free_symbols or others:
+        raise SceneError(scene.source, key,
+                         f"the time is found from the quadrature t({u.name}), so the condition must leave {u.name} "
+                         f"as its one unknown; it leaves {', '.join(others) or f'no {u.name}'}")
+    with budget.step(f"solving the condition for {u.name}", spec.name):
+        roots = solve_for(condition, q, scene.source, key)
+    chosen = None
+    for point in _parameter_points(scene):
+        speed2 = _numeric(quad.speed_squared.xreplace({s: sympy.Float(v, 30) for s, v in point.items()}), q)
+        q0 = _evaluate(evaluator.reduction.initial_value(q), point)
+        end, why = _travel(u, q0, quad.sign, speed2)
+        ahead = {}
+        for index, root in enumerate(roots):
+            value = _evaluate(root, point)
+            if value is None or (u.domain.kind != "real" and not u.domain.contains(value)):
+                continue
+            distance = quad.sign * (value - q0)
+            if distance > 1e-12 and (end is None or distance <= quad.sign * (end - q0) + 1e-12):
+                ahead[index] = distance
+        if not ahead:
+            listed = ", ".join(sympy.sstr(r) for r in roots) or "none in closed form"
+            turns = f"{why} at {u.name} = {end:.6g}" if end is not None else why
+            raise SceneError(scene.source, key,
+                             f"the motion from [initial] {turns} before it reaches the condition ({u.name} = "
+                             f"{listed}); the quadrature t({u.name}) follows it only until it first turns back")
+        first = min(ahead, key=ahead.get)
+        if chosen is not None and chosen != first:
+            raise SceneError(scene.source, key, "which root is reached first depends on the parameter values")
+        chosen = first
+    root = roots[chosen]
+    moment = human_form(quad.time.xreplace({q: root}))
+    # Confirmed numerically: the motion reaches q* at that moment.
+    point = _parameter_points(scene)[0]
+    expected_t = _evaluate(moment, point)
+    expected_q = _evaluate(root, point)
+    run = numeric_motion(evaluator, point, horizon=1.05 * expected_t if expected_t else None)
+    reached = run.time_at(u, expected_q) if expected_q is not None else None
+    if expected_t is None or reached is None or abs(reached - expected_t) > 1e-6 * max(abs(expected_t), 1e-12):
+        raise SceneError(scene.source, key,
+                         f"the time from the quadrature, t = {sympy.sstr(moment)}, disagrees with a numerical "
+                         f"integration of the equations of motion ({expected_t} against {reached}); refused rather "
+                         "than risk a wrong closed form")
+    with budget.step("evaluating the answer at the roots", spec.name):
+        value = evaluator.reduce(spec.expr, target | evaluator.parameters | {q, t}, f"answers ({spec.name}).expr")
+        result = human_form(value.xreplace({q: root, t: moment}))
     return _no_leftover(scene, spec, result, target)
 
 
