@@ -16,6 +16,9 @@ student actually typed.  Token kinds:
 ``newline``  line break (separates equations in a system, blank otherwise)
 ``bad``      a character the parser reports when it gets there (``!``, ``.``, ``:``)
 ``end``      end of text
+
+The parser then turns each Leibniz derivative (``dθ/dt``, ``\\frac{d^2x}{dt^2}``) into one
+``derivative`` token spanning it (:mod:`.leibniz`): namespace-aware, so not done here.
 """
 
 from __future__ import annotations
