@@ -247,6 +247,18 @@ def _exponent_end(tokens: list[Token], j: int) -> Token:
     return tokens[-1]
 
 
+def _nested(tokens: list[Token], k: int, ns, text: str, memo: dict) -> tuple[Token, int] | None:
+    """A bracketed Leibniz derivative after ``d/dt``, as in ``d/dt(dθ/dt)``: (its token, end) or None."""
+    opener, first = _at(tokens, k), _at(tokens, k + 1)
+    if opener.kind != "open" or not ((first.kind == "name" and first.value[:1] == "d")
+                                     or _is(first, "command", "frac")):
+        return None
+    found = _match(tokens, k + 1, ns, text, memo)
+    if found is None or not _is(_at(tokens, found[1]), "close", _OPEN_OPERAND[opener.value]):
+        return None
+    return found[0], found[1] + 1
+
+
 def _match(tokens: list[Token], i: int, ns, text: str, memo: dict) -> tuple[Token, int] | None:
     """The derivative token for a Leibniz derivative starting at ``tokens[i]`` and where it ends."""
     start = tokens[i]
@@ -290,6 +302,11 @@ def _match(tokens: list[Token], i: int, ns, text: str, memo: dict) -> tuple[Toke
                                 f"dt{_SUPERSCRIPT.get(order, '')} below", start.pos, "syntax",
                                 "the powers must agree: write d/dt or d²/dt²")
     operand, raw, extra, end = _operand(tokens, k)
+    nested = _nested(tokens, k, ns, text, memo) if operand is None else None
+    if nested is not None:  # d/dt(dθ/dt): the derivative of a derivative
+        operand, end = nested
+        raw, extra = (operand.value.name if operand.value is not None else ""), 0
+        error = error or operand.error
     if error is None and (operand is None or not _known_coordinate(raw, ns)):
         where = _at(tokens, k)
         error = ExpressionError(f"'{operator}' can only be applied to one coordinate here, as in {operator}(θ)",
@@ -302,9 +319,10 @@ def _match(tokens: list[Token], i: int, ns, text: str, memo: dict) -> tuple[Toke
     if error is None and (powered or (bare and following.kind in _ATOMS)):
         # d/dt θ² and d/dt θ x: the derivative of θ² (of θ·x), or its square (product)? Either is typed.
         last = _exponent_end(tokens, end + 1) if _is(following, "op", "^") else following
-        shown, typed = text[start.pos:last.end], operand.text
-        fix = (f"write (d{typed}/dt)^2 for the square of the derivative" if powered
-               else f"write (d{typed}/dt)·{following.text} for a product with the derivative")
+        shown = text[start.pos:last.end]
+        whole = text[start.pos:tokens[end - 1].end] if nested else f"d{operand.text}/dt"
+        fix = (f"write ({whole})^2 for the square of the derivative" if powered
+               else f"write ({whole})·{following.text} for a product with the derivative")
         error = ExpressionError(f"'{shown}' is ambiguous: it is not clear what {operator} applies to",
                                 start.pos, "ambiguous", fix + ", or differentiate the whole yourself")
     return _derivative(start, tokens[end - 1], text, raw or "", order + extra, ns, error), end

@@ -66,6 +66,10 @@ def parse(text, ns):
     (r"\frac{d}{dt}\left(\theta\right)", "thetadot"),
     (r"\frac{d}{dt}\dot{\theta}", "thetaddot"),
     (r"\frac{d^2}{dt^2}x", "xddot"),
+    ("d/dt(dθ/dt)", "thetaddot"),               # the derivative of a derivative
+    ("d/dt (dx/dt)", "xddot"),
+    ("d/dt(d/dt(θ))", "thetaddot"),
+    (r"\frac{d}{dt}\left(\frac{d\theta}{dt}\right)", "thetaddot"),
 ])
 def test_every_leibniz_form_is_the_dotted_variable(ns, text, name):
     parsed = parse_expression(text, ns)
@@ -202,6 +206,9 @@ def test_a_t_that_is_not_the_time_is_refused(text, position):
     ("d/dt(θ)^2", "'d/dt(θ)^2' is ambiguous", "(dθ/dt)^2", "ambiguous"),
     (r"\frac{d}{dt}\theta^{2}", r"'\frac{d}{dt}\theta^{2}' is ambiguous", r"(d\theta/dt)^2", "ambiguous"),
     ("d/dt θ x", "'d/dt θ x' is ambiguous", "(dθ/dt)·x", "ambiguous"),
+    ("d/dt(dθ/dt)^2", "'d/dt(dθ/dt)^2' is ambiguous", "(d/dt(dθ/dt))^2", "ambiguous"),
+    ("d/dt(d/dt(d/dt(θ)))", "'d/dt(d/dt(d/dt(θ)))' is a third or higher", "at most two dots", "unknown_name"),
+    ("d/dt(d²θ/dt)", "'d²θ/dt' has d² on top but dt below", "d²θ/dt²", "syntax"),
     ("d/dt m", "'d/dt m' means mdot", "did you mean", "unknown_name"),
 ])
 def test_every_refusal_names_the_text_and_the_fix(ns, text, named, fix, code):
