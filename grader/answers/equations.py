@@ -18,6 +18,7 @@ verdict.
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 
@@ -530,7 +531,10 @@ def _linear_in(residuals: list[sympy.Expr], unknowns: tuple):
     rows, constants = [], []
     zero = {u: sympy.S.Zero for u in unknowns}
     for e in residuals:
-        row = [sympy.diff(e, u) for u in unknowns]
+        try:
+            row = [sympy.diff(e, u) for u in unknowns]
+        except (ValueError, TypeError, NotImplementedError):
+            return None
         # a gradient free of the unknowns makes e affine in them (e - e(0) is the gradient times a)
         if any(entry.has(*unknowns) for entry in row):
             return None
@@ -741,13 +745,25 @@ def _signed_as_squares(expr: sympy.Expr) -> bool:
 
 
 def _nonzero_in_balls(expr: sympy.Expr, domains: dict) -> bool | None:
-    """Ball arithmetic over the whole box of bounded domains: True if ``expr`` provably excludes 0."""
+    """Ball arithmetic over the whole box of bounded domains: True if ``expr`` provably excludes 0.
+
+    A polynomial in variables over the half-line x > 0 is first brought onto 0 <= t <= 1 (`_compactified`):
+    ``1 - x + x**2`` has no zero for x > 0, which no box of finite x can show.
+    """
+    half_lines = sorted((s for s in expr.free_symbols if _half_line(domains.get(s))), key=lambda s: s.name)
+    bounds = {}
+    if half_lines:
+        expr, half_lines = _dehomogenized(expr, half_lines, domains)
+        compact = _compactified(expr, half_lines)
+        if compact is None:
+            return None
+        expr, bounds = compact
     symbols = sorted(expr.free_symbols, key=lambda s: s.name)
     boxes = []
     for s in symbols:
         domain = domains.get(s)
-        lo, hi = getattr(domain, "lo", -math.inf), getattr(domain, "hi", math.inf)
-        if domain is None or not (math.isfinite(lo) and math.isfinite(hi)):
+        lo, hi = bounds.get(s) or (getattr(domain, "lo", -math.inf), getattr(domain, "hi", math.inf))
+        if (domain is None and s not in bounds) or not (math.isfinite(lo) and math.isfinite(hi)):
             return None
         boxes.append((lo, hi))
     try:
@@ -773,12 +789,72 @@ def _nonzero_in_balls(expr: sympy.Expr, domains: dict) -> bool | None:
                 return None
             except Unresolved:
                 pass
-            widest = max(range(len(box)), key=lambda i: box[i][1] - box[i][0])
+            # widest relative to its whole domain: an angle's 2 pi should not starve a t in [0, 1]
+            widest = max(range(len(box)), key=lambda i: (box[i][1] - box[i][0]) / (boxes[i][1] - boxes[i][0] or 1))
             lo, hi = box[widest]
             middle = (lo + hi) / 2
             pending.append(box[:widest] + [(lo, middle)] + box[widest + 1:])
             pending.append(box[:widest] + [(middle, hi)] + box[widest + 1:])
     return True
+
+
+def _half_line(domain) -> bool:
+    return getattr(domain, "kind", None) in ("positive", "nonnegative")
+
+
+# Most variables on a half-line whose subsets are searched for a homogeneous group.
+HOMOGENEOUS_MAX_VARIABLES = 5
+
+
+def _dehomogenized(expr: sympy.Expr, variables: list, domains: dict) -> tuple[sympy.Expr, list]:
+    """``expr`` with one variable of each group in which it is homogeneous set to 1, and the variables left.
+
+    A physical expression is homogeneous in each kind of quantity (``L**2 - L*r + r**2`` in the
+    lengths), and then vanishes at the origin of the group, which no closed box avoids. With
+    ``g > 0``, ``f(x) = g**d f(x/g)``: ``f`` has a zero exactly when ``f`` with ``g = 1`` has one.
+    """
+    if len(variables) > HOMOGENEOUS_MAX_VARIABLES:
+        return expr, variables
+    variables = list(variables)
+    for size in range(len(variables), 1, -1):
+        for group in itertools.combinations(list(variables), size):
+            if not all(v in variables for v in group):
+                continue
+            pivot = next((v for v in group if getattr(domains.get(v), "kind", None) == "positive"), None)
+            if pivot is None:
+                continue
+            try:
+                homogeneous = sympy.Poly(expr, *group).is_homogeneous
+            except (sympy.PolynomialError, sympy.polys.polyerrors.GeneratorsError):
+                return expr, variables
+            if homogeneous:
+                expr = expr.xreplace({pivot: sympy.S.One})
+                variables.remove(pivot)
+    return expr, variables
+
+
+def _compactified(expr: sympy.Expr, variables: list) -> tuple[sympy.Expr, dict] | None:
+    """``expr``, a polynomial of degree ``n_i`` in each ``x_i >= 0``, as ``F(t) = f(x) * prod (1 - t_i)**n_i``
+    with ``x_i = t_i/(1 - t_i)``, and the bounds 0 <= t_i <= 1; None when ``expr`` is no such polynomial.
+
+    ``(1 - t)**n > 0`` for t < 1, so ``F`` and ``f`` vanish together, and ``F`` is a polynomial on a closed
+    box, where ball arithmetic can show it has no zero; t = 1 stands for x going to infinity.
+    """
+    try:
+        poly = sympy.Poly(expr, *variables)
+    except (sympy.PolynomialError, sympy.polys.polyerrors.GeneratorsError):
+        return None
+    degrees = poly.degree_list()
+    if sum(degrees) > FACTOR_MAX_POWER:
+        return None
+    ts = [sympy.Dummy(f"t_{x.name}") for x in variables]
+    terms = []
+    for monomial, coefficient in poly.terms():
+        term = coefficient
+        for t, a, n in zip(ts, monomial, degrees):
+            term *= t**a * (1 - t)**(n - a)
+        terms.append(term)
+    return sympy.Add(*terms), {t: (0.0, 1.0) for t in ts}
 
 
 def _sign_change(expr: sympy.Expr, parameters: Sampler, states: Sampler) -> dict | None:

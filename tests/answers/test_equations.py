@@ -232,6 +232,10 @@ SPRING_ANGULAR = "m r^2 thetaddot + 2 m r rdot thetadot + m g r sin(theta)"
     (f"(2 + cos(theta)) ({SPRING_RADIAL}) = 0; {SPRING_ANGULAR} = 0", "a factor 1 <= 2 + cos(theta) <= 3"),
     (f"{SPRING_RADIAL} + ({SPRING_ANGULAR})/r = 0; {SPRING_RADIAL} - ({SPRING_ANGULAR})/r = 0",
      "sum and difference: det = -2 m^2 r"),
+    (f"(r^2 - r L + L^2) ({SPRING_RADIAL}) = 0; {SPRING_ANGULAR} = 0", "r^2 - r L + L^2 > 0 for all lengths"),
+    (f"(2 + sin(theta)) ({SPRING_RADIAL}) + 2 ({SPRING_ANGULAR})/r = 0; "
+     f"(1 + r^2/L^2) ({SPRING_RADIAL}) + ({SPRING_ANGULAR})/L = 0",
+     "det = m^2 r ((2 + sin(theta)) r/L - 2 (1 + r^2/L^2)) < 0: a quadratic in r/L without real roots"),
 ])
 def test_a_state_dependent_mixing_invertible_everywhere_is_right(answer, why):
     v = check(SPRING_PENDULUM, answer, ELASTIC, kind="equation")

@@ -910,6 +910,17 @@ def leibniz_items() -> None:
 leibniz_items()
 
 
+
+# -- more mixing matrices of the spring pendulum, appended so that the ids above stay the same ---------
+# Determinants positive for all lengths, which a box of finite r cannot show: r/L is taken onto [0, 1].
+add("elastic_pendulum", "equations_of_motion_all_lengths", SPRING, ELASTIC, [
+    (f"(r^2 - r L + L^2) ({RADIAL}) = 0; {ANGULAR} = 0", EQ, "system_factor"),  # no real root in r/L
+    # det = m^2 r ((2 + sin) r/L - 2 (1 + r^2/L^2)): discriminant (2 + sin)^2 - 16 < 0, never zero
+    (f"(2 + sin(theta)) ({RADIAL}) + 2 ({ANGULAR})/r = 0; (1 + r^2/L^2) ({RADIAL}) + ({ANGULAR})/L = 0", EQ,
+     "system_factor"),
+    (f"(r^2 - 3 r L + L^2) ({RADIAL}) = 0; {ANGULAR} = 0", NE, "system_factor"),  # zero at r/L = (3 +- sqrt 5)/2
+], kind="equation")
+
 def build() -> dict[str, int]:
     by_problem: dict[str, list[dict]] = {}
     for n, item in enumerate(items):
