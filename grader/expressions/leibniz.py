@@ -22,6 +22,7 @@ A missing derivative variable, orders that disagree (``d²θ/dt``), a ``t`` that
 from __future__ import annotations
 
 import re
+from dataclasses import dataclass
 
 from .dimensions import parse_dimension
 from .errors import ExpressionError
@@ -96,13 +97,20 @@ def _order_mark(tokens: list[Token], j: int) -> tuple[int | None, int]:
     return 1, j
 
 
+@dataclass(frozen=True, slots=True)
 class _Numerator:
-    """``d``, ``d²``, ``dθ``, ``d θ``, ``d(θ)``, ``d²θ``, ``\\mathrm{d}\\theta``: what was matched."""
+    """``d``, ``d²``, ``dθ``, ``d θ``, ``d(θ)``, ``d²θ``, ``\\mathrm{d}\\theta``: what was matched.
 
-    def __init__(self, order: int, words: list[Token], coordinate: Token | None, raw: str | None,
-                 typed: str | None, end: int) -> None:
-        self.order, self.words, self.coordinate, self.end = order, words, coordinate, end
-        self.raw, self.typed = raw, typed
+    ``coordinate`` is None for the operator ``d/dt``; ``raw`` is its name text (``theta_1``),
+    ``typed`` as typed (``θ₁``), and ``end`` the index of the token after the numerator.
+    """
+
+    order: int
+    words: list[Token]
+    coordinate: Token | None
+    raw: str | None
+    typed: str | None
+    end: int
 
 
 def _numerator(tokens: list[Token], i: int) -> _Numerator | None:
