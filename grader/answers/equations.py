@@ -295,7 +295,7 @@ def _not_a_multiple(k, points, R, S, j, i):
                    "other_state": _named(points[0]), "answer_there": as_float(S[0][0]),
                    "reference_there": as_float(R[0][0])}
     else:
-        reason = (f"{_NOT_A_COMBINATION} (equation {i + 1} fails at the counterexample)")
+        reason = f"{_NOT_A_COMBINATION} (equation {i + 1} fails at the counterexample)"
         example = {"values": _named(points[j]), "answer": [as_float(v) for v in S[j]],
                    "reference": [as_float(v) for v in R[j]]}
     return reason, example
@@ -403,9 +403,10 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
     ``sin**2 + cos**2 = 1``); both determinants are proved nonzero (and the coefficients finite)
     on the whole declared domain with `_nonzero_on`. Only a proof accepts.
 
-    Returns a verdict, or None when this does not apply (not linear in the accelerations, not as
-    many accelerations as equations, a reference whose own matrix may be singular) or the answer is
-    not such a combination (the caller keeps its own counterexample).
+    Returns a verdict (for a system that is no such combination, with the accelerations each system
+    gives at the counterexample), or None when this does not apply (not linear in the accelerations,
+    not as many accelerations as equations, a reference whose own matrix may be singular) or cannot
+    show more than the caller's own counterexample.
 
     Examples
     --------

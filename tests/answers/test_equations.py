@@ -296,3 +296,9 @@ def test_the_state_free_fast_path_is_still_taken_for_constant_combinations():
 def test_a_tight_budget_never_turns_the_right_lagrange_form_into_a_wrong_answer(budget_s):
     v = check(DOUBLE_PENDULUM_SOLVED, f"{UPPER}; {LOWER}", DOUBLE_PENDULUM, kind="equation", budget_s=budget_s)
     assert v.verdict == "equivalent" or (v.verdict == "invalid" and v.budget_exceeded), v.reason
+
+
+def test_the_accelerations_are_found_by_name_when_no_kinds_are_given():
+    variables = {n: {k: v for k, v in spec.items() if k != "kind"} for n, spec in ELASTIC.items()}
+    v = check(SPRING_PENDULUM, f"{SPRING_RADIAL} = 0; {SPRING_ANGULAR} = 0", variables, kind="equation")
+    assert v.verdict == "equivalent" and v.certainty == "proved", v.reason
