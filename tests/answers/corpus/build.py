@@ -921,6 +921,16 @@ add("elastic_pendulum", "equations_of_motion_all_lengths", SPRING, ELASTIC, [
     (f"(r^2 - 3 r L + L^2) ({RADIAL}) = 0; {ANGULAR} = 0", NE, "system_factor"),  # zero at r/L = (3 +- sqrt 5)/2
 ], kind="equation")
 
+
+# -- Leibniz, continued: d/dt of a bracketed derivative is the second derivative (leibniz.jsonl) --------
+add("leibniz", "pendulum_equation_of_motion_nested", "thetaddot = -g/l*sin(theta)", PENDULUM_EOM, [
+    ("d/dt(dθ/dt) = -g/l sin θ", EQ, "notation"),
+    ("\\frac{d}{dt}\\left(\\frac{d\\theta}{dt}\\right) + \\frac{g}{l}\\sin\\theta = 0", EQ, "notation"),
+    ("d/dt(d/dt(θ)) + g/l sin θ = 0", EQ, "notation"),
+    ("d/dt(dθ/dt) = g/l sin θ", NE, ["notation", "slip"], "term_sign"),
+    ("d/dt(dθ/dt)^2 = -g/l sin θ", INV, "notation"),      # the derivative of θ̇², or (θ̈)²?
+], kind="equation")
+
 def build() -> dict[str, int]:
     by_problem: dict[str, list[dict]] = {}
     for n, item in enumerate(items):
