@@ -778,7 +778,9 @@ def _nonzero_in_balls(expr: sympy.Expr, domains: dict) -> bool | None:
             tried += 1
             if tried > FACTOR_MAX_BOXES:
                 return None
-            env = {s: flint.arb((lo + hi) / 2, (hi - lo) / 2) for s, (lo, hi) in zip(symbols, box)}
+            # the ball of both ends: a midpoint (lo + hi)/2 rounded in floats can leave out a zero
+            # at the box's edge once bisection reaches the last bits of a float
+            env = {s: flint.arb(lo).union(flint.arb(hi)) for s, (lo, hi) in zip(symbols, box)}
             env[SCALE] = -math.inf
             try:
                 value = f(env)

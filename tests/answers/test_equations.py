@@ -1,6 +1,10 @@
 """Equations of motion: the reference times a nonzero factor free of the state, and systems that span it."""
 
+import math
+
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from grader.answers import check
 
@@ -110,6 +114,15 @@ def test_cos_theta_is_a_right_factor_only_where_it_cannot_vanish(pendulum, domai
     variables = {**pendulum, "theta": {"dimension": "angle", "domain": domain}}
     v = check(PENDULUM_EOM, "thetaddot*cos(theta) = -g/l*sin(theta)*cos(theta)", variables, kind="equation")
     assert v.verdict == expected
+
+
+@pytest.mark.parametrize("factor", ["3 theta - 1", "theta - 1/3", "10 theta - 1"])
+def test_a_factor_with_a_zero_inside_a_bounded_domain_is_never_proved_nonzero(pendulum, factor):
+    # zeros at 1/3 and 1/10 are no floats: bisection that ends on the last bits of a float must
+    # still keep them inside its boxes
+    variables = {**pendulum, "theta": {"dimension": "angle", "domain": [-1.5, 1.5]}}
+    v = check(PENDULUM_EOM, f"({factor}) (l thetaddot + g sin theta) = 0", variables, kind="equation")
+    assert v.verdict == "not_equivalent"
 
 
 @pytest.mark.parametrize("answer, expected", [
@@ -302,3 +315,44 @@ def test_the_accelerations_are_found_by_name_when_no_kinds_are_given():
     variables = {n: {k: v for k, v in spec.items() if k != "kind"} for n, spec in ELASTIC.items()}
     v = check(SPRING_PENDULUM, f"{SPRING_RADIAL} = 0; {SPRING_ANGULAR} = 0", variables, kind="equation")
     assert v.verdict == "equivalent" and v.certainty == "proved", v.reason
+
+
+# Dimensionless coefficients for the spring pendulum's rows, each with its value at a state.
+COEFFICIENTS = [
+    ("1", lambda v: 1.0), ("2", lambda v: 2.0), ("-1", lambda v: -1.0), ("0", lambda v: 0.0),
+    ("r/L", lambda v: v["r"] / v["L"]), ("(r/L - 1)", lambda v: v["r"] / v["L"] - 1),
+    ("cos(theta)", lambda v: math.cos(v["theta"])), ("sin(theta)", lambda v: math.sin(v["theta"])),
+    ("cos(theta)^2", lambda v: math.cos(v["theta"]) ** 2), ("(2 + sin(theta))", lambda v: 2 + math.sin(v["theta"])),
+    ("(1 + r^2/L^2)", lambda v: 1 + (v["r"] / v["L"]) ** 2),
+    ("thetadot*sqrt(m/k)", lambda v: v["thetadot"] * math.sqrt(v["m"] / v["k"])),
+    ("rdot*thetadot/g", lambda v: v["rdot"] * v["thetadot"] / v["g"]),
+]
+GRID = [{"m": 1.0, "k": 1.0, "L": 1.0, "g": 1.0, "r": r, "theta": theta, "thetadot": w, "rdot": u}
+        for r in (0.01, 0.5, 1.0, 2.0, 50.0) for theta in (-3.0, -1.5708, -0.7, 0.0, 0.7, 1.5708, 3.0)
+        for w in (-2.0, 0.0, 1.5) for u in (-1.0, 0.0, 2.0)]
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.tuples(*[st.sampled_from(COEFFICIENTS)] * 4))
+def test_a_mixing_is_accepted_only_if_its_determinant_never_vanishes(coefficients):
+    # An oracle apart from the checker: det A = a d - b c on a grid of states. A sign change or a
+    # zero there means A is singular somewhere in the domain, and the system must not be accepted.
+    (a, fa), (b, fb), (c, fc), (d, fd) = coefficients
+    answer = (f"{a} ({SPRING_RADIAL}) + {b} ({SPRING_ANGULAR})/r = 0; "
+              f"{c} ({SPRING_RADIAL}) + {d} ({SPRING_ANGULAR})/r = 0")
+    v = check(SPRING_PENDULUM, answer, ELASTIC, kind="equation")
+
+    def det(p):
+        return fa(p) * fd(p) - fb(p) * fc(p)
+
+    dets = [det(p) for p in GRID]
+    if min(dets) <= 0 <= max(dets):
+        assert v.verdict != "equivalent", answer
+    if v.verdict == "equivalent":
+        assert v.certainty == "proved"
+    elif v.certainty == "proved" and v.counterexample and "other_state" in v.counterexample:
+        # a refusal's two states: det A vanishes on the segment between them (a factor changes
+        # sign there; det itself need not, when that factor is squared)
+        ends = [{**GRID[0], **v.counterexample[key]} for key in ("values", "other_state")]
+        path = [det({n: x + i / 2000 * (ends[1][n] - x) for n, x in ends[0].items()}) for i in range(2001)]
+        assert min(path) <= 0 <= max(path) or min(map(abs, path)) <= 1e-4 * max(map(abs, path)), answer

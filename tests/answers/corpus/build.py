@@ -930,6 +930,12 @@ add("leibniz", "pendulum_equation_of_motion_nested", "thetaddot = -g/l*sin(theta
     ("d/dt(dθ/dt) = g/l sin θ", NE, ["notation", "slip"], "term_sign"),
     ("d/dt(dθ/dt)^2 = -g/l sin θ", INV, "notation"),      # the derivative of θ̇², or (θ̈)²?
 ], kind="equation")
+# A factor whose zero theta = 1/3 is inside [-1.5, 1.5] but is no float.
+add("pendulum", "equation_of_motion_small_swings_factor", "thetaddot = -g/l*sin(theta)",
+    {**PENDULUM_EOM, "theta": var("angle", [-1.5, 1.5], "coordinate")}, [
+    ("(3 theta - 1)(l thetaddot + g sin(theta)) = 0", NE, "state_factor"),
+    ("(3 theta - 5)(l thetaddot + g sin(theta)) = 0", EQ, "state_factor"),   # zero at 5/3, outside
+], kind="equation")
 
 def build() -> dict[str, int]:
     by_problem: dict[str, list[dict]] = {}
