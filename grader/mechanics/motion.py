@@ -351,11 +351,14 @@ def _quadrature(evaluator, plan: _Plan) -> Quadrature:
 
 
 def _at_rest_in_equilibrium(evaluator, u) -> bool:
+    """Whether [initial] puts u at rest where ü = 0 (at the scene's parameter values)."""
     reduction = evaluator.reduction
-    velocity = reduction.initial_value(u.dot)
-    acceleration = reduction.initial_value(reduction.accelerations[u.ddot])
-    return velocity is not None and acceleration is not None and sympy.simplify(velocity) == 0 and \
-        sympy.simplify(acceleration) == 0
+    point = _point(evaluator)
+    for expr in (reduction.initial_value(u.dot), reduction.initial_value(reduction.accelerations[u.ddot])):
+        value = None if expr is None else _evaluate(expr, point)
+        if value is None or abs(value) > 1e-12:
+            return False
+    return True
 
 
 def _elliptic(squared: sympy.Expr, q: sympy.Symbol) -> bool:
@@ -626,4 +629,20 @@ def _readable(expr: sympy.Expr) -> sympy.Expr:
         # exp(ωt) = cosh ωt + sinh ωt; simplify then gathers r₀ (e^{ωt} + e^{−ωt})/2 into r₀ cosh ωt.
         budget.attempt(lambda: candidates.append(sympy.simplify(sympy.expand(expr.rewrite(sympy.cosh)))),
                        1.0, fallback=lambda: None)
+        # r₀ cosh ωt + g (sin ωt − sinh ωt)/(2ω²): each e^{±x} as cosh x ± sinh x, gathered by function.
+        budget.attempt(lambda: candidates.append(_hyperbolic(expr)), 1.0, fallback=lambda: None)
     return min(candidates, key=lambda e: (sympy.count_ops(e), len(str(e))))
+
+
+def _hyperbolic(expr: sympy.Expr) -> sympy.Expr:
+    """expr with e^{±x} written as cosh x ± sinh x and the terms gathered by cosh and sinh.
+
+    >>> g, w, r0, t = sympy.symbols("g omega r0 t", positive=True)
+    >>> _hyperbolic((2*w**2*r0 - g)*sympy.exp(w*t)/(4*w**2) + (2*w**2*r0 + g)*sympy.exp(-w*t)/(4*w**2))
+    -g*sinh(omega*t)/(2*omega**2) + r0*cosh(omega*t)
+    """
+    expanded = sympy.expand(expr.replace(lambda e: isinstance(e, sympy.exp),
+                                         lambda e: sympy.cosh(e.args[0]) + sympy.sinh(e.args[0])))
+    functions = sorted(expanded.atoms(sympy.cosh, sympy.sinh), key=str)
+    gathered = sympy.collect(expanded, functions, evaluate=False)
+    return sympy.Add(*[sympy.factor_terms(sympy.cancel(c)) * f for f, c in gathered.items()])
