@@ -1,4 +1,5 @@
-"""Equations of motion: the reference times a nonzero factor free of the state, and systems that span it."""
+"""Equations of motion: the reference times a nonzero factor, and systems that span it (mixed by a matrix
+free of the state, or depending on it and invertible on the whole declared domain)."""
 
 import math
 
@@ -163,7 +164,7 @@ DOUBLE_PENDULUM = {
        (("g", "acceleration"), ("l1", "length"), ("l2", "length"), ("m1", "mass"), ("m2", "mass"))},
     **_angle_variables("theta1", "theta2"),
 }
-# The accelerations solved (what the engine gives) ...
+# The accelerations solved, as a reference states them ...
 DOUBLE_PENDULUM_SOLVED = (
     "theta1ddot = (-g*(2*m1 + m2)*sin(theta1) - m2*g*sin(theta1 - 2*theta2) - 2*sin(theta1 - theta2)*m2*"
     "(theta2dot^2*l2 + theta1dot^2*l1*cos(theta1 - theta2)))/(l1*(2*m1 + m2 - m2*cos(2*theta1 - 2*theta2))); "
