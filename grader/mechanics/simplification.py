@@ -2,9 +2,20 @@
 
 sympy's ``simplify`` returns *a* short form, not always the one on a blackboard: it may leave
 ``3*g*m*cos(theta) - 2*g*m`` where a physicist writes ``g*m*(3*cos(theta) - 2)``, or turn
-``sin(alpha)*cos(alpha)`` into ``sin(2*alpha)/2``. We try a few rewritings and keep the one that
-reads shortest: fewest operations, with multiple angles the input did not have counted as extra
-work for the reader, ties broken by length.
+``sin(alpha)*cos(alpha)`` into ``sin(2*alpha)/2``. We try a bounded set of rewritings and keep the
+one that reads shortest (:func:`_weight`): fewest operations (``count_ops``), a multiple angle the
+input did not have counting one operation more (so ``sin(2x)/2`` replaces ``sin(x)*cos(x)`` only
+where it is strictly shorter, as in ``2*sin(x)*cos(x)``), a negative exponent in print counting
+three more, ties broken by printed length.
+
+The rewritings are sympy's own (``cancel``, ``factor_terms``, ``factor``, ``simplify``, ``trigsimp``)
+and five of ours, each applied in turn to the shortest candidates and kept where it does not
+lengthen them: tidier radicands (:func:`tidy_radicands`), sums grouped over a common factor
+(:func:`grouped`), a denominator spread over the sum it divides (:func:`spread_denominator`),
+products of sine and cosine of one argument contracted to the double angle
+(:func:`contract_double_angles`, hyperbolic too) and common factors taken out of every sum. A
+candidate replaces the input only if it has the input's value (:func:`_equal`: a numeric check at
+30 digits, and a symbolic one where that is cheap).
 
 Examples
 --------
@@ -14,38 +25,56 @@ Examples
 g*m*(3*cos(theta) - 2)
 >>> quick_form((g*m - g*m*sympy.cos(theta)**2) / (1 - sympy.cos(theta)**2))
 g*m
+>>> m1, m2, w, t = sympy.symbols("m1 m2 omega t", positive=True)
+>>> human_form(g*m1*sympy.cos(theta) + g*m2*sympy.cos(theta) + m1*w**2 + m2*w**2 + m2*g)
+g*m2 + (m1 + m2)*(g*cos(theta) + omega**2)
+>>> human_form(2*m1*w**2*sympy.sinh(w*t)*sympy.cosh(w*t))
+m1*omega**2*sinh(2*omega*t)
 """
 
 from __future__ import annotations
 
 import sympy
 
-__all__ = ["gathered_roots", "human_form", "inverse_hyperbolic", "quick_form", "readable_denominator", "signs_in_front", "tidy_trig"]
+__all__ = ["contract_double_angles", "gathered_roots", "grouped", "human_form", "inverse_hyperbolic", "quick_form",
+           "readable_denominator", "signs_in_front", "spread_denominator", "tidy_radicands", "tidy_trig"]
 
 _TRIG = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc)
+_HYPERBOLIC = (sympy.sinh, sympy.cosh, sympy.tanh, sympy.coth, sympy.sech, sympy.csch)
 
 
 def _multiple_angles(expr: sympy.Expr) -> int:
-    """How many trig calls have an argument like 2*alpha or 2*theta1 - 2*theta2."""
+    """How many trig (or hyperbolic) calls have an argument like 2*alpha or 2*theta1 - 2*theta2."""
     count = 0
-    for f in expr.atoms(*_TRIG):
+    for f in expr.atoms(*_TRIG, *_HYPERBOLIC):
         coefficients = [term.as_coeff_Mul()[0] for term in sympy.Add.make_args(f.args[0])]
         if any(abs(c) != 1 for c in coefficients if c.is_Rational):
             count += 1
     return count
 
 
-def _weight(expr: sympy.Expr, allowed_multiples: int) -> tuple[int, int]:
+def _weight(expr: sympy.Expr, allowed_multiples: int, multiple_cost: int = 4) -> tuple[int, int]:
+    """What a reader pays: operations, multiple angles the input did not have, negative exponents.
+
+    For an answer (:func:`human_form`) ``multiple_cost`` is 1: sin(2x) wins only where it saves
+    an operation, in ``2 sin x cos x`` (3 operations more than ``sin 2x``), not in ``sin x cos x``
+    (as many as ``sin(2x)/2``). The tidy-ups of intermediate results keep 4: their entries are
+    reduced further (:mod:`grader.mechanics.reduction`), in single angles.
+    """
     extra = max(0, _multiple_angles(expr) - allowed_multiples)
-    return sympy.count_ops(expr, visual=False) + 4 * extra, len(str(expr))
+    printed = str(expr)
+    negative = 3 if "**(-" in printed else 0  # x**(-3/2): a physicist writes 1/x**(3/2)
+    return sympy.count_ops(expr, visual=False) + multiple_cost * extra + negative, len(printed)
 
 
 def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
     """The most readable of a few equivalent rewritings of ``expr`` (see the module example).
 
     Cheap rewritings always run; the costly ones (``simplify``, factoring) run under a budget of
-    ``seconds`` and only on expressions of moderate size, so that tidying never dominates a
-    derivation: their result is kept if they finish, skipped if not.
+    ``seconds`` of CPU time and only on expressions of moderate size, so that tidying never
+    dominates a derivation: their result is kept if they finish, skipped if not. Our own
+    rewritings (:func:`_rewritten`) run under the same budget. The shortest candidate that has
+    the value of ``expr`` (:func:`_equal`) is returned; ``expr`` itself if none has.
     """
     from grader.mechanics.budget import attempt
 
@@ -75,7 +104,265 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
         candidates.extend([gathered_roots(c) for c in candidates])
     if expr.has(sympy.log):
         candidates.append(inverse_hyperbolic(expr))
-    return min((signs_in_front(c) for c in candidates), key=lambda e: _weight(e, allowed))
+
+    weights: dict = {}
+
+    def weight(e):
+        if e not in weights:
+            weights[e] = _weight(e, allowed, multiple_cost=1)
+        return weights[e]
+
+    candidates = sorted(dict.fromkeys(signs_in_front(c) for c in candidates), key=weight)
+    if sympy.count_ops(candidates[0]) <= 4:
+        candidates = candidates[:1]  # g*m*sin(alpha)/3: nothing left to shorten
+    # The few shortest candidates through our rewritings; a partial pass (the budget ran out)
+    # keeps what it found.
+    rewritten = []
+    attempt(lambda: rewritten.extend(_rewritten(c, weight) for c in candidates[:_REWRITTEN]), seconds,
+            fallback=lambda: None)
+    # Never longer than the input, whatever the penalties: a form with a negative exponent in
+    # print is not replaced by one with more operations.
+    limit = sympy.count_ops(expr)
+    for candidate in sorted(dict.fromkeys(candidates + rewritten), key=weight):
+        if candidate == expr or (sympy.count_ops(candidate) <= limit and _equal(candidate, expr)):
+            return candidate
+    return expr
+
+
+_REWRITTEN = 3  # how many of the shortest candidates go through our rewritings
+
+
+def _rewritten(expr: sympy.Expr, weight) -> sympy.Expr:
+    """``expr`` through each of our rewritings in turn, each kept where it does not lengthen it."""
+    best = expr
+    for rewrite in (tidy_radicands, grouped, spread_denominator, contract_double_angles, sympy.factor_terms):
+        candidate = rewrite(best)
+        if candidate != best and weight(candidate) <= weight(best):
+            best = candidate
+    return signs_in_front(best)
+
+
+def spread_denominator(expr: sympy.Expr) -> sympy.Expr:
+    """A fraction over one sum as that sum's terms each over the denominator, cancelled.
+
+    Inside a loop the normal force is m (v₀² + R g (3 cos φ − 2))/R as one fraction and
+    m (v₀²/R + g (3 cos φ − 2)) in a textbook: only the term that keeps the R keeps the fraction.
+
+    >>> m, v, R, g, phi = sympy.symbols("m v0 R g phi", positive=True)
+    >>> spread_denominator(m*(v**2 + R*g*(3*sympy.cos(phi) - 2))/R)
+    m*(g*(3*cos(phi) - 2) + v0**2/R)
+    """
+    numerator, denominator = sympy.fraction(expr)
+    sums = [f for f in sympy.Mul.make_args(numerator) if f.is_Add]
+    if denominator.is_number or len(sums) != 1:
+        return expr  # a number under a sum (g (7 cos φ − 4 cos φ₀)/3) is shortest left whole
+    rest = sympy.Mul(*[f for f in sympy.Mul.make_args(numerator) if f is not sums[0]])
+    return rest * sympy.Add(*[sympy.factor_terms(sympy.cancel(term / denominator)) for term in sums[0].args])
+
+
+def contract_double_angles(expr: sympy.Expr) -> sympy.Expr:
+    """sin x cos x as sin(2x)/2 and sinh x cosh x as sinh(2x)/2, in every product.
+
+    A motor's torque on a bead on a rod, 2 m ω² r₀² sinh ωt cosh ωt, is m ω² r₀² sinh 2ωt in a
+    textbook. The rewriting is exact; :func:`human_form` keeps it only where it is shorter.
+
+    >>> x, m = sympy.symbols("x m", positive=True)
+    >>> contract_double_angles(2*m*sympy.sinh(x)*sympy.cosh(x))
+    m*sinh(2*x)
+    >>> contract_double_angles(sympy.sin(x)**3*sympy.cos(x))
+    sin(x)**2*sin(2*x)/2
+    """
+    pairs = ((sympy.sin, sympy.cos), (sympy.sinh, sympy.cosh))
+
+    def contract(product):
+        powers = product.as_powers_dict()
+        factor = sympy.S.One
+        for sine, cosine in pairs:
+            for f in [f for f in powers if isinstance(f, sine)]:
+                c = cosine(f.args[0])
+                a, b = powers[f], powers.get(c, sympy.S.Zero)
+                if not (a.is_Integer and b.is_Integer and a > 0 and b > 0):
+                    continue
+                k = min(a, b)
+                powers[f], powers[c] = a - k, b - k
+                factor *= (sine(2 * f.args[0]) / 2) ** k
+        if factor == 1:
+            return product
+        return factor * sympy.Mul(*[base ** exp for base, exp in powers.items()])
+
+    return expr.replace(lambda e: e.is_Mul, contract)
+
+
+def grouped(expr: sympy.Expr) -> sympy.Expr:
+    """Sums with their terms grouped over a common factor, as in (m₁ + m₂)(g cos θ₁ + l₁ θ̇₁²) + ….
+
+    Terms are grouped by their coefficient in one or two of the symbols (the masses, say): the
+    terms whose coefficients are equal, or opposite, share it as a factor. Every choice of one or
+    two symbols is tried on every sum of three to sixteen terms; the shortest grouping is kept.
+
+    >>> m1, m2, g, l, w = sympy.symbols("m1 m2 g l omega", positive=True)
+    >>> grouped(g*m1 + g*m2 + l*m1*w**2 + l*m2*w**2 + l*m2*g)
+    g*l*m2 + (g + l*omega**2)*(m1 + m2)
+    >>> a, th = sympy.symbols("a theta", positive=True)
+    >>> grouped(a*w**2*sympy.cos(th) + a*w**2*sympy.cos(sympy.Rational(3, 10)) - 2*g)
+    a*omega**2*(cos(theta) + cos(3/10)) - 2*g
+    """
+    def group(total):
+        terms = sympy.Add.make_args(sympy.expand(total))
+        if not 3 <= len(terms) <= 16:
+            return total
+        # Only a symbol in two terms or more can be part of a shared coefficient.
+        shared = sorted((s for s in total.free_symbols if sum(t.has(s) for t in terms) > 1), key=str)[:10]
+        best, best_ops = total, sympy.count_ops(total)
+        tidied: dict = {}  # the same inner sums come back for many choices of symbols
+        for chosen in [(s,) for s in shared] + [(s, t) for i, s in enumerate(shared) for t in shared[i + 1:]]:
+            candidate = _grouped_by(terms, chosen, tidied)
+            if candidate is not None and (ops := sympy.count_ops(candidate)) < best_ops:
+                best, best_ops = candidate, ops
+        return best
+
+    return expr.replace(lambda e: e.is_Add, group)
+
+
+def _grouped_by(terms, symbols, tidied: dict) -> sympy.Expr | None:
+    """The terms as Σ c·(Σ monomials), c their coefficients in ``symbols``; None if nothing groups."""
+    by_rest: dict = {}
+    for term in terms:
+        rest, coefficient = term.as_independent(*symbols, as_Add=False)
+        number, rest = rest.as_coeff_Mul()
+        by_rest[rest] = by_rest.get(rest, 0) + number * coefficient
+    by_coefficient: dict = {}
+    for rest, coefficient in by_rest.items():
+        coefficient = sympy.expand(coefficient)
+        if coefficient == 0:
+            continue
+        sign = 1
+        if coefficient.could_extract_minus_sign():
+            coefficient, sign = -coefficient, -1
+        number, coefficient = (1, coefficient) if coefficient.is_Add else coefficient.as_coeff_Mul()
+        by_coefficient.setdefault(coefficient, []).append(sign * number * rest)
+    if len(by_coefficient) == len(terms):
+        return None  # every term on its own: nothing is shared
+    def tidy(total):
+        if total.is_Add and total not in tidied:
+            tidied[total] = sympy.factor_terms(total)
+        return tidied.get(total, total)
+
+    return sympy.Add(*[tidy(coefficient) * tidy(sympy.Add(*rests)) for coefficient, rests in by_coefficient.items()])
+
+
+def tidy_radicands(expr: sympy.Expr) -> sympy.Expr:
+    """Every root over the shortest of its radicand's own, expanded, combined and factored forms.
+
+    A root found by ``solve`` often has a radicand that cancels when expanded (√(1 − (1 − x)(1 + x))
+    is x), or one with a square in it that the symbols' assumptions let out: √((x + 1)² y) is
+    (x + 1) √y for x, y > 0, and factoring shows it. The ladder's cos θ* = √(1 − u²), with
+    u = (√(sin²θ₀ + 18) + sin θ₀)/6, is kept: expanded it is longer.
+
+    >>> x, y = sympy.symbols("x y", positive=True)
+    >>> tidy_radicands(sympy.sqrt(1 - (1 - x)*(1 + x)))
+    x
+    >>> tidy_radicands(sympy.sqrt(x**2*y + 2*x*y + y))
+    sqrt(y)*(x + 1)
+    >>> tidy_radicands(sympy.sqrt(1 - (x + y)**2/36))
+    sqrt(1 - (x + y)**2/36)
+    """
+    def tidy(root):
+        base = root.base
+        forms = [base, sympy.together(sympy.expand(base)), sympy.cancel(base)]
+        forms.append(sympy.factor_terms(forms[1]))
+        if sympy.count_ops(base) < 40:
+            forms.append(sympy.factor(base))
+        return min((f ** root.exp for f in forms), key=lambda e: (sympy.count_ops(e), len(str(e))))
+
+    return expr.replace(lambda e: e.is_Pow and e.exp.is_Rational and not e.exp.is_Integer and e.base.is_Add, tidy)
+
+
+def _points(symbols, count: int, seed: int = 1):
+    """Reproducible points for a numeric check: what the engine derives must not vary by run.
+
+    Positive symbols take values in [0.3, 1.3]; other real ones either sign, so that a rewriting
+    exact only for positive values (√a·√b = √(ab)) is caught for a symbol that may be negative.
+    """
+    import random
+
+    rng = random.Random(seed)
+    for _ in range(count):
+        point = {}
+        for s in symbols:
+            value = 0.3 + rng.random()
+            if not (s.is_positive or s.is_nonnegative) and rng.random() < 0.5:
+                value = -value
+            point[s] = sympy.Float(value, 30)
+        yield point
+
+
+def _equal(a: sympy.Expr, b: sympy.Expr, digits: int = 30) -> bool:
+    """Whether ``a`` and ``b`` have the same value: at three points to 30 digits, and symbolically
+    where that is cheap (rational functions, and polynomials in sines and cosines).
+
+    ``simplify(a - b) == 0`` decides more but can take seconds; a rewriting that changes the
+    value changes it at almost every point, so three points at 30 digits are a sharp test. Points
+    where ``a`` is undefined are skipped; two at least must remain.
+
+    >>> x = sympy.Symbol("x", positive=True)
+    >>> _equal(sympy.sin(2*x)/2, sympy.sin(x)*sympy.cos(x)), _equal(sympy.sin(2*x), sympy.sin(x)*sympy.cos(x))
+    (True, False)
+    """
+    symbols = sorted(a.free_symbols | b.free_symbols, key=str)
+    compared = 0
+    for point in _points(symbols, 3):
+        try:
+            x = complex(a.xreplace(point).evalf(digits))
+        except (TypeError, ValueError, ZeroDivisionError):
+            continue
+        if x != x or abs(x) == float("inf"):
+            continue
+        try:
+            y = complex(b.xreplace(point).evalf(digits))
+        except (TypeError, ValueError, ZeroDivisionError):
+            return False
+        if not abs(x - y) <= 1e-20 * max(1.0, abs(x)):
+            return False
+        compared += 1
+    return compared >= 2 and _symbolically_equal(a, b) is not False
+
+
+def _symbolically_equal(a: sympy.Expr, b: sympy.Expr) -> bool | None:
+    """True or False where cheap to decide, None where not.
+
+    A rational function of the symbols is zero exactly when ``cancel`` makes it 0. With sines and
+    cosines (or sinh and cosh) of products of symbols, after ``expand_trig``, the numerator is
+    zero if it reduces to 0 modulo s² + c² − 1 (c² − s² − 1) for each argument; a nonzero
+    remainder proves nothing (sin x and sin(x/2) are not independent), so that case returns None,
+    as do roots, logarithms and the like.
+    """
+    difference = a - b
+    if sympy.count_ops(difference) > 80:
+        return None
+    if any(not p.exp.is_Integer for p in difference.atoms(sympy.Pow)):
+        return None
+    if not difference.atoms(sympy.Function):
+        return sympy.cancel(difference) == 0
+    expanded = sympy.expand_trig(difference)
+    circular, hyperbolic = (sympy.sin, sympy.cos), (sympy.sinh, sympy.cosh)
+    functions = expanded.atoms(sympy.Function)
+    if not all(isinstance(f, circular + hyperbolic) and not f.args[0].is_Add and f.args[0].as_coeff_Mul()[0] == 1
+               for f in functions):
+        return None
+    replacement, relations = {}, []
+    for family, relation in ((circular, lambda s, c: s ** 2 + c ** 2 - 1), (hyperbolic, lambda s, c: c ** 2 - s ** 2 - 1)):
+        for x in {f.args[0] for f in functions if isinstance(f, family)}:
+            s, c = sympy.Dummy(), sympy.Dummy()
+            replacement.update({family[0](x): s, family[1](x): c})
+            relations.append(relation(s, c))
+    numerator = sympy.expand(sympy.numer(sympy.together(expanded.xreplace(replacement))))
+    if numerator == 0:
+        return True
+    dummies = sorted(replacement.values(), key=str)
+    generators = dummies + sorted(numerator.free_symbols - set(dummies), key=str)
+    _, remainder = sympy.reduced(numerator, relations, *generators)
+    return True if remainder == 0 else None
 
 
 def inverse_hyperbolic(expr: sympy.Expr) -> sympy.Expr:

@@ -1,0 +1,147 @@
+"""The printed form of an answer is the shortest usual one, with the answer's value.
+
+Each case is an engine result as the derivation hands it to :func:`human_form` (or the form it
+took before the rewriting that makes it shorter), with the form a textbook prints.
+"""
+
+from __future__ import annotations
+
+import random
+import time
+
+import mpmath
+import pytest
+import sympy
+
+from grader.mechanics import simplification
+from grader.mechanics.simplification import _equal, human_form
+
+g, m, M, a, l, R, r, r0, t, v0, w, W, A, alpha, theta, theta0, thetadot = sympy.symbols(
+    "g m M a l R r r0 t v0 omega Omega A alpha theta theta0 thetadot", positive=True)
+m1, m2, l1, l2, theta1, theta2, theta1dot, theta2dot = sympy.symbols(
+    "m1 m2 l1 l2 theta1 theta2 theta1dot theta2dot", positive=True)
+sin, cos, sinh, cosh, sqrt = sympy.sin, sympy.cos, sympy.sinh, sympy.cosh, sympy.sqrt
+
+
+def _ladder_largest_wall_force():
+    # N = 3/4 m g cos θ (3 sin θ − 2 sin θ₀) at sin θ* = (sin θ₀ + √(sin²θ₀ + 18))/6, as the
+    # engine substitutes it (cos θ* = √(1 − sin²θ*)).
+    s0 = sin(theta0)
+    star = (s0 + sqrt(s0 ** 2 + 18)) / 6
+    return sympy.Rational(3, 4) * m * g * sqrt(1 - star ** 2) * (3 * star - 2 * s0)
+
+
+CASES = {
+    # A motor turning a rod at ω, bead from rest at r₀: τ = 2 m ω² r r˙ = m ω² r₀² sinh 2ωt.
+    "driven torque, sinh·cosh": (2 * m * w ** 2 * r0 ** 2 * sinh(w * t) * cosh(w * t),
+                                 "m*omega**2*r0**2*sinh(2*omega*t)"),
+    # Bead on a hoop spun at ω: τ = 2 m a² ω θ˙ sin θ cos θ = m a² ω θ˙ sin 2θ (one operation fewer).
+    "hoop torque, 2·sin·cos": (2 * a ** 2 * m * w * thetadot * sin(theta) * cos(theta),
+                               "a**2*m*omega*thetadot*sin(2*theta)"),
+    # sin·cos alone is as long as sin(2α)/2: the single angles stay (the wedge's acceleration).
+    "wedge, sin·cos kept": (-g * m * sin(alpha) * cos(alpha) / (M + m * sin(alpha) ** 2),
+                            "-g*m*sin(alpha)*cos(alpha)/(M + m*sin(alpha)**2)"),
+    "1 − cos²": (g * m * (1 - cos(theta) ** 2), "g*m*sin(theta)**2"),
+    # Inside a loop: N = m (v₀²/R + g (3 cos φ − 2)), the mass in front of the sum it multiplies.
+    "common mass factor": (m * (3 * R * g * cos(theta) - 2 * R * g + v0 ** 2) / R,
+                           "m*(g*(3*cos(theta) - 2) + v0**2/R)"),
+    # Double pendulum, upper rod: (m₁ + m₂) shared by the gravity and centripetal terms, and the
+    # denominator as m₁ + m₂ sin²(θ₁ − θ₂), not m₁ + m₂ − m₂ cos²(θ₁ − θ₂).
+    "double pendulum, common sum factor and denominator kept": (
+        m1 * (g * m1 * cos(theta1) + g * m2 * cos(theta1) + l1 * m1 * theta1dot ** 2 + l1 * m2 * theta1dot ** 2
+              + l2 * m2 * theta2dot ** 2 * cos(theta1 - theta2)) / (m1 + m2 - m2 * cos(theta1 - theta2) ** 2),
+        "m1*(l2*m2*theta2dot**2*cos(theta1 - theta2) + (m1 + m2)*(g*cos(theta1) + l1*theta1dot**2))"
+        "/(m1 + m2*sin(theta1 - theta2)**2)"),
+    "double pendulum, lower rod": (
+        m1 * m2 * (g * cos(theta1) * cos(theta1 - theta2) + l1 * theta1dot ** 2 * cos(theta1 - theta2)
+                   + l2 * theta2dot ** 2) / (m1 + m2 * sin(theta1 - theta2) ** 2),
+        "m1*m2*(l2*theta2dot**2 + (g*cos(theta1) + l1*theta1dot**2)*cos(theta1 - theta2))"
+        "/(m1 + m2*sin(theta1 - theta2)**2)"),
+    # The ladder's largest wall force: (√(sin²θ₀ + 18) − 3 sin θ₀)/8 rather than (…/2 − 3 sin θ₀/2)/4.
+    "ladder's largest wall force": (
+        _ladder_largest_wall_force(),
+        "3*g*m*sqrt(1 - (sqrt(sin(theta0)**2 + 18) + sin(theta0))**2/36)"
+        "*(sqrt(sin(theta0)**2 + 18) - 3*sin(theta0))/8"),
+    # A perfect square under a root comes out where the symbols' signs allow it.
+    "root of a perfect square": (sqrt(g * l ** 2 + 2 * g * l * r + g * r ** 2), "sqrt(g)*(l + r)"),
+    # A driven support: nothing shorter, the form stays.
+    "driven support tension": (m * (A * W ** 2 * sin(theta) * cos(W * t) + g * cos(theta) + l * thetadot ** 2),
+                               "m*(A*Omega**2*sin(theta)*cos(Omega*t) + g*cos(theta) + l*thetadot**2)"),
+}
+
+
+@pytest.mark.parametrize("expr, printed", CASES.values(), ids=CASES.keys())
+def test_the_printed_form_is_the_shortest_usual_one(expr, printed):
+    assert sympy.sstr(human_form(expr)) == printed
+
+
+def _values_agree(a: sympy.Expr, b: sympy.Expr, seed: int) -> bool:
+    # Independent of the engine's own check: other points, mpmath directly.
+    symbols = sorted(a.free_symbols | b.free_symbols, key=str)
+    fa, fb = (sympy.lambdify(symbols, e, "mpmath") for e in (a, b))
+    rng = random.Random(seed)
+    with mpmath.workdps(30):
+        for _ in range(5):
+            point = [mpmath.mpf(rng.uniform(0.2, 1.4)) for _ in symbols]
+            x, y = fa(*point), fb(*point)
+            if abs(x - y) > mpmath.mpf(10) ** -20 * max(1, abs(x)):
+                return False
+    return True
+
+
+@pytest.mark.parametrize("expr", [e for e, _ in CASES.values()], ids=CASES.keys())
+def test_the_chosen_form_has_the_value_and_is_never_longer(expr):
+    chosen = human_form(expr)
+    assert _values_agree(chosen, expr, seed=7)
+    assert sympy.count_ops(chosen) <= sympy.count_ops(expr)
+
+
+@pytest.mark.parametrize("expr", [
+    sympy.expand(m1 * (g * cos(theta1) + l1 * theta1dot ** 2) + m2 * (g + l2) * cos(theta1)),
+    sympy.expand((m1 + m2) * (l1 + l2) * g * sin(theta1)),
+    2 * sinh(w * t) ** 3 * cosh(w * t) - sin(theta) ** 2 * cos(theta) ** 2,
+    sqrt(1 - (1 - cos(theta)) * (1 + cos(theta))) * m,
+    g / (R * (R + r) - R * r) + g * m1 / (m1 + m2),
+], ids=["sum of masses", "product of sums", "powers of sinh, cosh, sin, cos", "root of sin²", "fractions"])
+def test_more_forms_keep_their_value_and_never_lengthen(expr):
+    test_the_chosen_form_has_the_value_and_is_never_longer(expr)
+
+
+def test_a_rewriting_that_changes_the_value_is_dropped(monkeypatch):
+    """A faulty rewriting (the double angle without its ½) would be shorter; the check drops it."""
+    def wrong(expr):
+        return expr.replace(lambda e: e.is_Mul and e.has(sinh), lambda e: m * w ** 2 * r0 ** 2 * sinh(2 * w * t) * 2)
+
+    monkeypatch.setattr(simplification, "contract_double_angles", wrong)
+    expr = 2 * m * w ** 2 * r0 ** 2 * sinh(w * t) * cosh(w * t)
+    chosen = human_form(expr)
+    assert _values_agree(chosen, expr, seed=3)
+    assert sympy.sstr(chosen) != "2*m*omega**2*r0**2*sinh(2*omega*t)"
+
+
+@pytest.mark.parametrize("a, b, equal", [
+    (sin(2 * theta) / 2, sin(theta) * cos(theta), True),
+    (sinh(2 * w * t), 2 * sinh(w * t) * cosh(w * t), True),
+    (sqrt(g) * sqrt(l), sqrt(g * l), True),
+    (sin(2 * theta), sin(theta) * cos(theta), False),
+    ((m1 + m2) * g, m1 * g + m2, False),
+    # √x·√y ≠ √(xy) for x, y < 0: a real symbol is also tried negative.
+    (sqrt(sympy.Symbol("x", real=True)) * sqrt(sympy.Symbol("y", real=True)),
+     sqrt(sympy.Symbol("x", real=True) * sympy.Symbol("y", real=True)), False),
+])
+def test_equal_decides_by_value(a, b, equal):
+    assert _equal(a, b) is equal
+
+
+def test_the_double_pendulum_still_derives_in_under_two_seconds():
+    """The rewritings run under the engine's CPU budget; the slowest textbook scene (2 DOF,
+    4 constraints, ~1.3 s) must stay under 2 s of CPU time."""
+    from pathlib import Path
+
+    from grader.mechanics.lagrange import derive
+    from grader.mechanics.scene import load_scene
+
+    scene = load_scene(Path(__file__).parent / "scenes" / "double_pendulum.toml")
+    start = time.process_time()
+    derive(scene)
+    assert time.process_time() - start < 2.0
