@@ -9,14 +9,15 @@ from __future__ import annotations
 
 import hashlib
 from dataclasses import dataclass
+from datetime import datetime
 from typing import Any
 
 from sqlalchemy import select
 from sqlalchemy.orm import Session
 
-from grader.store.models import Problem, ProblemVersion
+from grader.store.models import Problem, ProblemVersion, utcnow
 
-__all__ = ["DerivedProblem", "latest_version", "problem_by_slug", "save_problem"]
+__all__ = ["DerivedProblem", "latest_version", "problem_by_slug", "save_problem", "set_archived", "set_published"]
 
 
 @dataclass(frozen=True)
@@ -73,3 +74,43 @@ def save_problem(session: Session, derived: DerivedProblem, *, published: bool =
     session.add(version)
     session.flush()
     return version, True
+
+
+def set_published(version: ProblemVersion, published: bool) -> bool:
+    """Publish ``version`` (students who may see the problem see it) or make it a draft again.
+
+    Returns False, changing nothing, when it already is: a repeated click or a retried request is a
+    no-op, not an error. Students see the newest *published* version (:func:`latest_version`), so
+    unpublishing the newest one shows them the one before it, or nothing. The caller commits.
+
+    Examples
+    --------
+    >>> version = ProblemVersion(published=True)
+    >>> set_published(version, False), set_published(version, False), version.published
+    (True, False, False)
+    """
+    if bool(version.published) == published:
+        return False
+    version.published = published
+    return True
+
+
+def set_archived(problem: Problem, archived: bool, *, now: datetime | None = None) -> bool:
+    """Archive ``problem`` (kept for the record; only its managers see it and nobody answers it,
+    as ``grader.web.policy`` says) or bring it back; its versions and submissions are untouched.
+
+    Returns False, changing nothing, when it already is (archiving twice keeps the first date).
+    The caller commits.
+
+    Examples
+    --------
+    >>> problem = Problem(slug="yoyo")
+    >>> set_archived(problem, True, now=datetime(2026, 1, 2)), set_archived(problem, True), problem.archived_at
+    (True, False, datetime.datetime(2026, 1, 2, 0, 0))
+    >>> set_archived(problem, False), problem.archived_at is None
+    (True, True)
+    """
+    if (problem.archived_at is not None) == archived:
+        return False
+    problem.archived_at = (now or utcnow()) if archived else None
+    return True
