@@ -464,7 +464,7 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
         return Comparison(False, "numeric", "your equations are combinations of the reference equations with "
                           "coefficients that could not be shown finite on the whole declared domain",
                           evidence={"method": "symbolic"})
-    numerator, _ = sympy.fraction(det_s)
+    numerator = _factored(sympy.fraction(det_s)[0])
     if _nonzero_on(numerator, domains) is not True:
         example = _vanishing_factor(numerator, domains, samplers)
         if example is not None:
@@ -483,6 +483,17 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
     return Comparison(True, "proved", "combinations of the reference equations with coefficients that depend on "
                       "the state, whose mixing matrix is invertible on the whole declared domain",
                       evidence={"method": "symbolic"})
+
+
+def _factored(expr: sympy.Expr) -> sympy.Expr:
+    """``expr`` factored when it is small enough: cancelling expands a determinant, and its factors
+    (``r**2 - r*L + L**2``, ``10*theta**2 + 1``) are what `_nonzero_on` can prove one by one."""
+    if _nodes(expr) > FACTOR_MAX_NODES:
+        return expr
+    try:
+        return sympy.factor(expr)
+    except (sympy.PolynomialError, ValueError, TypeError):
+        return expr
 
 
 _SINGULAR_MIXING = ("your equations are combinations of the reference equations whose mixing matrix depends on "

@@ -247,6 +247,8 @@ SPRING_ANGULAR = "m r^2 thetaddot + 2 m r rdot thetadot + m g r sin(theta)"
     (f"{SPRING_RADIAL} + ({SPRING_ANGULAR})/r = 0; {SPRING_RADIAL} - ({SPRING_ANGULAR})/r = 0",
      "sum and difference: det = -2 m^2 r"),
     (f"(r^2 - r L + L^2) ({SPRING_RADIAL}) = 0; {SPRING_ANGULAR} = 0", "r^2 - r L + L^2 > 0 for all lengths"),
+    (f"(r^2 - r L + L^2)(10 theta^2 + 1) ({SPRING_RADIAL}) = 0; {SPRING_ANGULAR} = 0",
+     "a product of two positive factors, proved factor by factor"),
     (f"(2 + sin(theta)) ({SPRING_RADIAL}) + 2 ({SPRING_ANGULAR})/r = 0; "
      f"(1 + r^2/L^2) ({SPRING_RADIAL}) + ({SPRING_ANGULAR})/L = 0",
      "det = m^2 r ((2 + sin(theta)) r/L - 2 (1 + r^2/L^2)) < 0: a quadratic in r/L without real roots"),
@@ -261,6 +263,7 @@ def test_a_state_dependent_mixing_invertible_everywhere_is_right(answer, why):
     (f"cos(theta) ({SPRING_RADIAL}) = 0; {SPRING_ANGULAR} = 0", "zero at theta = pi/2"),
     (f"thetadot^2 ({SPRING_RADIAL}) = 0; {SPRING_ANGULAR} = 0", "zero when thetadot = 0, and never negative"),
     (f"{SPRING_RADIAL} = 0; sin(theta/2)^2 ({SPRING_ANGULAR}) = 0", "zero at theta = 0"),
+    (f"(3 theta - 1)^2 ({SPRING_RADIAL}) = 0; {SPRING_ANGULAR} = 0", "zero at theta = 1/3, and never negative"),
     (f"{SPRING_RADIAL} + ({SPRING_ANGULAR})/r = 0; sin(theta) ({SPRING_RADIAL}) + cos(theta) ({SPRING_ANGULAR})/r = 0",
      "det = m^2 r (cos(theta) - sin(theta)): zero at theta = pi/4"),
 ])

@@ -936,6 +936,12 @@ add("pendulum", "equation_of_motion_small_swings_factor", "thetaddot = -g/l*sin(
     ("(3 theta - 1)(l thetaddot + g sin(theta)) = 0", NE, "state_factor"),
     ("(3 theta - 5)(l thetaddot + g sin(theta)) = 0", EQ, "state_factor"),   # zero at 5/3, outside
 ], kind="equation")
+# Mixing determinants that are products: proved or refused factor by factor.
+add("elastic_pendulum", "equations_of_motion_products", SPRING, ELASTIC, [
+    (f"(r^2 - r L + L^2)(10 theta^2 + 1) ({RADIAL}) = 0; {ANGULAR} = 0", EQ, "system_factor"),
+    (f"(3 theta - 1)^2 ({RADIAL}) = 0; {ANGULAR} = 0", NE, "system_factor"),    # zero at theta = 1/3
+    (f"(2 + cos(theta))^3 ({RADIAL}) = 0; r ({ANGULAR}) = 0", EQ, "system_factor"),
+], kind="equation")
 
 def build() -> dict[str, int]:
     by_problem: dict[str, list[dict]] = {}
