@@ -532,14 +532,26 @@ class _SceneReader:
         spec = self.table("parametrization")
         if not spec:
             return None
-        variables = self.read_coordinates("parametrization.variables",
-                                          self.table_in(spec, "variables", "parametrization"))
+        declared = self.table_in(spec, "variables", "parametrization")
+        # A variable may be a scene coordinate kept as it is (the cart's X of a pendulum hung from a
+        # cart, next to the pendulum's angle): it is that coordinate, and maps to itself.
+        kept = {name: self.kept_coordinate(f"parametrization.variables.{name}", coordinates[name], spec_)
+                for name, spec_ in declared.items() if name in coordinates}
+        new = self.read_coordinates("parametrization.variables",
+                                    {n: s for n, s in declared.items() if n not in coordinates})
+        variables = {name: kept.get(name) or new[name] for name in declared}
         if not variables:
             raise self.fail("parametrization.variables", "names the new variables; it is empty")
-        mapping_spec = self.table_in(spec, "map", "parametrization")
+        mapping_spec = dict(self.table_in(spec, "map", "parametrization"))
         namespace = Namespace(self.variables)
-        mapping = {}
+        mapping = {c.symbol: c.symbol for c in kept.values()}
         for name, text in mapping_spec.items():
+            if name in kept:
+                key = f"parametrization.map.{name}"
+                if self.expression(key, text, namespace) != kept[name].symbol:
+                    raise self.fail(key, f"{name} is also a variable of the parametrization, so it maps to "
+                                         f"itself: write {name} = \"{name}\" or leave it out")
+                continue
             key = f"parametrization.map.{name}"
             if name not in coordinates:
                 raise self.fail(key, f"'{name}' is not a coordinate of the scene")
@@ -557,6 +569,17 @@ class _SceneReader:
         if missing:
             raise self.fail("parametrization.map", f"gives no expression for {', '.join(missing)}")
         return Parametrization(variables, mapping)
+
+    def kept_coordinate(self, key: str, coordinate: Coordinate, spec: Any) -> Coordinate:
+        """A parametrization variable named like a scene coordinate: that coordinate, unchanged."""
+        dim, dom = self.declared(key, coordinate.name, spec)
+        if dim != coordinate.dimension:
+            raise self.fail(f"{key}.dimension", f"is {dim.describe()}, but the scene coordinate {coordinate.name} "
+                                                f"it keeps is {coordinate.dimension.describe()}")
+        if spec.get("domain") is not None and dom != coordinate.domain:
+            raise self.fail(f"{key}.domain", f"differs from the domain of the scene coordinate {coordinate.name} "
+                                             "it keeps; declare the domain once, in [coordinates]")
+        return coordinate
 
     def table_in(self, table: Mapping[str, Any], key: str, where: str) -> dict[str, Any]:
         value = table.get(key, {})

@@ -119,3 +119,41 @@ def test_every_problem_file_loads(path):
     scene = load_scene(path)
     assert scene.id == path.stem
     assert scene.answers, "a problem without answers grades nothing"
+
+
+# -- a parametrization may keep scene coordinates as they are --------------------------------------
+SLIDING = (ROOT / "tests" / "mechanics" / "scenes" / "pendulum_sliding_support.toml").read_text()
+
+
+def sliding(old: str, new: str) -> str:
+    assert old in SLIDING, old
+    return SLIDING.replace(old, new, 1)
+
+
+def test_a_parametrization_variable_named_like_a_coordinate_keeps_that_coordinate():
+    # The cart's X stays as it is next to the pendulum's angle: the same symbols, mapped to itself.
+    scene = parse_scene(SLIDING, source="sliding.toml")
+    kept = scene.parametrization.variables["X"]
+    assert kept is scene.coordinates["X"]
+    assert scene.parametrization.mapping[kept.symbol] == kept.symbol
+    # Leaving X out of the map means the same.
+    assert parse_scene(sliding('X = "X"\nx = ', 'x = '), source="sliding.toml").parametrization.mapping[
+        kept.symbol] == kept.symbol
+
+
+@pytest.mark.parametrize(
+    "old, new, key, problem",
+    [
+        ('X = "X"\nx = ', 'X = "X + l"\nx = ', "parametrization.map.X", "maps to itself"),
+        ('X = { dimension = "length" }\ntheta', 'X = { dimension = "angle" }\ntheta',
+         "parametrization.variables.X.dimension", "the scene coordinate X it keeps is"),
+        ('X = { dimension = "length" }\ntheta', 'X = { dimension = "length", domain = "positive" }\ntheta',
+         "parametrization.variables.X.domain", "declare the domain once"),
+    ],
+    ids=["kept-but-mapped-elsewhere", "kept-with-another-dimension", "kept-with-another-domain"],
+)
+def test_a_kept_coordinate_must_be_that_coordinate(old, new, key, problem):
+    with pytest.raises(SceneError) as caught:
+        parse_scene(sliding(old, new), source="sliding.toml")
+    assert caught.value.key == key
+    assert problem in str(caught.value)
