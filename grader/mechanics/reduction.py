@@ -40,7 +40,8 @@ class Reduction:
         else:
             self.independent, self.phi = self._solve_constraints()
         self.phi_dot = {q: self.time_derivative(expr) for q, expr in self.phi.items()}
-        self.lagrangian = sympy.expand(self.to_independent(scene.lagrangian))
+        self.lagrangian = _without_hidden_coordinates(sympy.expand(self.to_independent(scene.lagrangian)),
+                                                      [u.symbol for u in self.independent.values()])
         self.accelerations: dict[sympy.Symbol, sympy.Expr] = {}
         self.multipliers: dict[str, sympy.Expr] = {}
 
@@ -235,6 +236,29 @@ class Reduction:
         result = expr.xreplace(subs)
         state = {s for u in self.independent.values() for s in (u.symbol, u.dot)}
         return None if result.free_symbols & state else result
+
+
+def _without_hidden_coordinates(lagrangian: sympy.Expr, coordinates: list[sympy.Symbol]) -> sympy.Expr:
+    """The reduced Lagrangian with sin² + cos² = 1 applied when that removes a coordinate from it.
+
+    A map written in Cartesian coordinates (x = l sin θ cos φ, y = l sin θ sin φ) expands into
+    terms in sin²φ and cos²φ that add up to no φ at all: the azimuth of a spherical pendulum is
+    cyclic, but only after the identity. Its conserved momentum (and the check that L_r is free of
+    a coordinate) needs the form without it; every other Lagrangian is kept exactly as expanded.
+
+    >>> th, ph, thd, phd = sympy.symbols("theta phi thetadot phidot")
+    >>> L = sympy.expand(thd**2*(sympy.cos(th)**2*sympy.cos(ph)**2 + sympy.cos(th)**2*sympy.sin(ph)**2)
+    ...                  + phd**2*sympy.sin(th)**2*(sympy.sin(ph)**2 + sympy.cos(ph)**2))
+    >>> sorted(map(str, _without_hidden_coordinates(L, [th, ph]).free_symbols))
+    ['phidot', 'theta', 'thetadot']
+    """
+    present = lagrangian.free_symbols & set(coordinates)
+    if not present or not lagrangian.has(sympy.sin, sympy.cos):
+        return lagrangian
+    tidied = sympy.expand(tidy_trig(lagrangian))
+    if tidied.free_symbols & set(coordinates) < present and _vanishes(tidied - lagrangian):
+        return tidied
+    return lagrangian
 
 
 def _tidy_entry(expr: sympy.Expr) -> sympy.Expr:

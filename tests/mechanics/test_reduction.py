@@ -1,0 +1,33 @@
+"""The reduction to independent variables: a coordinate hidden by sin² + cos² is still cyclic."""
+
+from __future__ import annotations
+
+import sympy
+
+from grader.mechanics.answers import AnswerEvaluator
+from grader.mechanics.lagrange import equations_of_motion
+from grader.mechanics.reduction import Reduction
+from grader.mechanics.scene import load_scene
+from tests.mechanics.conftest import SCENES
+
+
+def test_the_azimuth_of_a_spherical_pendulum_in_cartesian_coordinates_is_cyclic():
+    # x = l sin θ cos φ, y = l sin θ sin φ: the expanded T has φ in sin²φ + cos²φ only.
+    scene = load_scene(SCENES / "spherical_pendulum.toml")
+    reduction = Reduction(scene)
+    phi = scene.parametrization.variables["phi"]
+    assert phi.symbol not in reduction.lagrangian.free_symbols
+    m, l, g = (scene.namespace.symbol(n) for n in ("m", "l", "g"))
+    theta = scene.parametrization.variables["theta"]
+    expected = (m * l ** 2 / 2 * (theta.dot ** 2 + sympy.sin(theta.symbol) ** 2 * phi.dot ** 2)
+                + m * g * l * sympy.cos(theta.symbol))
+    assert sympy.simplify(reduction.lagrangian - expected) == 0
+    evaluator = AnswerEvaluator(scene, equations_of_motion(scene))
+    assert [u.name for u in evaluator.cyclic_coordinates()] == ["phi"]
+
+
+def test_a_lagrangian_without_a_hidden_coordinate_is_kept_as_expanded():
+    # The double pendulum's cos θ₁ cos θ₂ + sin θ₁ sin θ₂ would shorten, but removes no coordinate.
+    scene = load_scene(SCENES / "double_pendulum.toml")
+    reduction = Reduction(scene)
+    assert reduction.lagrangian == sympy.expand(reduction.to_independent(scene.lagrangian))
