@@ -77,6 +77,10 @@ class AnswerEvaluator:
             from grader.mechanics.extremes import extreme_value
 
             value = extreme_value(self, spec)
+        elif spec.kind == "small_oscillation" and len(self.reduction.independent) > 1:
+            from grader.mechanics.oscillations import small_oscillation_with_cyclic_coordinates
+
+            value = small_oscillation_with_cyclic_coordinates(self, spec)
         elif spec.where is not None:
             from grader.mechanics.special_values import special_value
 
@@ -160,13 +164,14 @@ class AnswerEvaluator:
             return expr
         momenta = self.momentum_substitution(target, key)
         if momenta:
-            expr = human_form(sympy.expand(expr.xreplace(momenta)))
+            expr = sympy.expand(expr.xreplace(momenta))
             # Every velocity left, including those the momenta brought in: the wedge's Ẋ is
             # −m cos α ṡ/(M + m) by momentum, and then ṡ goes by energy.
             extra = [u for u in self.reduction.independent.values()
                      if u.dot in expr.free_symbols and u.dot not in target]
             if not extra:
-                return expr
+                return human_form(expr)
+            # Not tidied yet: energy comes next, and the result is tidied once at the end.
         if len(extra) > 1:
             cyclic = ", ".join(u.name for u in self.cyclic_coordinates()) or "none"
             raise SceneError(self.scene.source, key,
@@ -215,7 +220,8 @@ class AnswerEvaluator:
         solution = sympy.solve(equations, unknowns, dict=True)
         if len(solution) != 1:
             return {}
-        return {v: human_form(e) for v, e in solution[0].items()}
+        # Cancelled, not tidied for reading: they are only ever substituted into what is.
+        return {v: sympy.factor(e) for v, e in solution[0].items()}
 
     def motion_sign(self, u) -> int | None:
         """The sign of u̇ at the start of the motion from [initial], if [initial] fixes it."""
