@@ -195,6 +195,23 @@ def test_constraint_forces_follow_the_papers_convention(derived):
         ("bead_rotating_rod", "radius_in_time", "r0*cosh(omega*t)"),
         # acosh(L/r0) rather than the log((L + sqrt(L**2 - r0**2))/r0) that solve() returns.
         ("bead_rotating_rod", "time_to_end", "acosh(L/r0)/omega"),
+        # The double angle where it is shorter (2 sinh·cosh, 2 sin·cos), not where it is not (the
+        # wedge above).
+        ("bead_rotating_rod", "drive_torque_in_time", "m*omega**2*r0**2*sinh(2*omega*t)"),
+        ("bead_rotating_hoop", "drive_torque", "a**2*m*omega*thetadot*sin(2*theta)"),
+        # Terms grouped over their common factor (m1 + m2), over m1 + m2 sin²(θ1 − θ2).
+        ("double_pendulum", "tension_upper",
+         "m1*(l2*m2*theta2dot**2*cos(theta1 - theta2) + (m1 + m2)*(g*cos(theta1) + l1*theta1dot**2))"
+         "/(m1 + m2*sin(theta1 - theta2)**2)"),
+        ("double_pendulum", "tension_lower",
+         "m1*m2*(l2*theta2dot**2 + (g*cos(theta1) + l1*theta1dot**2)*cos(theta1 - theta2))"
+         "/(m1 + m2*sin(theta1 - theta2)**2)"),
+        # m (v0²/R + g (3 cos φ − 2)), not m (3 R g cos φ − 2 R g + v0²)/R.
+        ("loop_inside_track", "normal_force", "m*(g*(3*cos(phi) - 2) + v0**2/R)"),
+        ("loop_inside_track", "top_normal_force", "m*(-5*g + v0**2/R)"),
+        # The ladder's largest wall force with the halves cleared from (√(sin²θ0 + 18) − 3 sin θ0).
+        ("ladder_wall", "largest_wall_force",
+         "3*g*m*sqrt(1 - (sqrt(sin(theta0)**2 + 18) + sin(theta0))**2/36)*(sqrt(sin(theta0)**2 + 18) - 3*sin(theta0))/8"),
     ],
 )
 def test_answers_are_in_the_form_a_person_writes(derived, scene, answer, written):
@@ -212,3 +229,92 @@ def test_largest_wall_force_on_the_ladder_is_at_the_stationary_point(derived):
     expected = sympy.Rational(3, 4) * m * g * sympy.sqrt(1 - star ** 2) * (3 * star - 2 * s0)
     for point in ({m: 10, g: 9.81, theta0: 1.2}, {m: 2.5, g: 3.7, theta0: 0.6}):
         assert abs(float((value - expected).subs(point))) < 1e-12 * float(expected.subs(point))
+
+
+D_ATWOOD = "(4*m2*m3 + m1*(m2 + m3))"
+DISK_WEDGE = "(3*M + m + 2*m*sin(alpha)^2)"
+
+
+@pytest.mark.parametrize(
+    "scene, answer, expected",
+    [
+        # Spherical pendulum, Cartesian with x^2 + y^2 + z^2 = l^2: radial Newton gives
+        # T = m l (thetadot^2 + sin^2(theta) phidot^2) + m g cos(theta); L_z = m l^2 sin^2(theta) phidot and
+        # energy from (theta0, Omega0) remove both velocities; steady cone: phidot^2 = g/(l cos(theta)).
+        ("spherical_pendulum", "tension_state", "m*(g*cos(theta) + l*(thetadot^2 + sin(theta)^2*phidot^2))"),
+        ("spherical_pendulum", "tension", "m*l*Omega0^2*sin(theta0)^2 + m*g*(3*cos(theta) - 2*cos(theta0))"),
+        ("spherical_pendulum", "polar_speed_squared",
+         "Omega0^2*sin(theta0)^2*(1 - sin(theta0)^2/sin(theta)^2) + 2*g/l*(cos(theta) - cos(theta0))"),
+        ("spherical_pendulum", "conical_angular_velocity", "sqrt(g/(l*cos(theta)))"),
+        # Pendulum on a free cart: M Xddot = T sin(theta) and, along the rod,
+        # T = m g cos(theta) + m l thetadot^2 - m Xddot sin(theta); across it
+        # l thetaddot = -g sin(theta) - Xddot cos(theta). Momentum (M + m) Xdot + m l cos(theta) thetadot = 0.
+        ("pendulum_sliding_support", "tension", "M*m*(g*cos(theta) + l*thetadot^2)/(M + m*sin(theta)^2)"),
+        ("pendulum_sliding_support", "cart_acceleration",
+         "m*sin(theta)*(g*cos(theta) + l*thetadot^2)/(M + m*sin(theta)^2)"),
+        ("pendulum_sliding_support", "angular_acceleration",
+         "-sin(theta)*((M + m)*g + m*l*thetadot^2*cos(theta))/(l*(M + m*sin(theta)^2))"),
+        ("pendulum_sliding_support", "cart_velocity", "-m*l*cos(theta)*thetadot/(M + m)"),
+        # At the bottom the kinetic energy is M m l^2 thetadot^2/(2 (M + m)) = m g l (1 - cos(theta0)).
+        ("pendulum_sliding_support", "bottom_tension", "m*g*(1 + 2*(M + m)*(1 - cos(theta0))/M)"),
+        # Inside a cone (z = rho cot(alpha)): along the normal N - m g sin(alpha) = m rho phidot^2 cos(alpha);
+        # rho^2 phidot = rho0^2 Omega0, and T = m/2 (rhodot^2/sin^2(alpha) + rho^2 phidot^2).
+        ("particle_in_cone", "normal_force_state", "m*(g*sin(alpha) + rho*phidot^2*cos(alpha))"),
+        ("particle_in_cone", "normal_force", "m*(g*sin(alpha) + rho0^4*Omega0^2*cos(alpha)/rho^3)"),
+        ("particle_in_cone", "radial_acceleration",
+         "sin(alpha)^2*rho0^4*Omega0^2/rho^3 - g*sin(alpha)*cos(alpha)"),
+        ("particle_in_cone", "radial_speed_squared",
+         "sin(alpha)^2*rho0^2*Omega0^2*(1 - rho0^2/rho^2) - 2*g*(rho - rho0)*sin(alpha)*cos(alpha)"),
+        ("particle_in_cone", "orbit_angular_velocity", "sqrt(g*cos(alpha)/(rho*sin(alpha)))"),
+        # Disk (I = m R^2/2) rolling down a free wedge: (M + m) Xddot + m cos(alpha) sddot = 0 and
+        # m cos(alpha) Xddot + 3/2 m sddot = m g sin(alpha); friction I psiddot/R = m sddot/2;
+        # normal force N = m g cos(alpha) + m Xddot sin(alpha); Xdot = -m cos(alpha) sdot/(M + m),
+        # sdot^2 = 2 sddot s.
+        ("disk_on_sliding_wedge", "wedge_acceleration", f"-2*m*g*sin(alpha)*cos(alpha)/{DISK_WEDGE}"),
+        ("disk_on_sliding_wedge", "rolling_acceleration", f"2*g*sin(alpha)*(M + m)/{DISK_WEDGE}"),
+        ("disk_on_sliding_wedge", "friction_force", f"m*g*sin(alpha)*(M + m)/{DISK_WEDGE}"),
+        ("disk_on_sliding_wedge", "normal_force", f"m*g*cos(alpha)*(3*M + m)/{DISK_WEDGE}"),
+        ("disk_on_sliding_wedge", "wedge_velocity",
+         f"-m*cos(alpha)/(M + m)*sqrt(4*g*s*sin(alpha)*(M + m)/{DISK_WEDGE})"),
+        # Bead on z = a r^2 spun at omega: L = m/2 ((1 + 4 a^2 r^2) rdot^2 + omega^2 r^2) - m g a r^2;
+        # vertically m zddot = lambda - m g; phi: the motor's torque d/dt(m r^2 omega).
+        ("bead_rotating_parabola", "equation_of_motion",
+         "r*(omega^2 - 2*g*a - 4*a^2*rdot^2)/(1 + 4*a^2*r^2)"),
+        ("bead_rotating_parabola", "vertical_reaction",
+         "m*(g + 2*a*rdot^2 + 2*a*omega^2*r^2)/(1 + 4*a^2*r^2)"),
+        ("bead_rotating_parabola", "drive_torque", "2*m*omega*r*rdot"),
+        ("bead_rotating_parabola", "radial_speed_squared", "(omega^2 - 2*g*a)*(r^2 - r0^2)/(1 + 4*a^2*r^2)"),
+        ("bead_rotating_parabola", "small_oscillation_frequency", "sqrt(2*g*a - omega^2)"),
+        ("bead_rotating_parabola", "critical_angular_velocity", "sqrt(2*g*a)"),
+        # Double Atwood: T1 = 2 T2 (massless pulley), a2 + a3 = -2 a1, T2 = 4 g/(4/m1 + 1/m2 + 1/m3).
+        ("double_atwood", "acceleration_1", f"g*(m1*(m2 + m3) - 4*m2*m3)/{D_ATWOOD}"),
+        ("double_atwood", "acceleration_2", f"g*(4*m2*m3 + m1*m2 - 3*m1*m3)/{D_ATWOOD}"),
+        ("double_atwood", "acceleration_3", f"g*(4*m2*m3 + m1*m3 - 3*m1*m2)/{D_ATWOOD}"),
+        ("double_atwood", "tension_upper", f"8*g*m1*m2*m3/{D_ATWOOD}"),
+        ("double_atwood", "tension_lower", f"4*g*m1*m2*m3/{D_ATWOOD}"),
+        ("double_atwood", "balancing_mass", "4*m2*m3/(m2 + m3)"),
+        # Dumbbell in a corner: N_wall = m xddot_2 = -m l (sin(theta) thetaddot + cos(theta) thetadot^2),
+        # N_floor = 2 m g + m yddot_1, with thetaddot = -g cos(theta)/l; leaves at sin(theta) = 2/3 sin(theta0).
+        ("rod_in_corner", "wall_force_state", "m*cos(theta)*(g*sin(theta) - l*thetadot^2)"),
+        ("rod_in_corner", "floor_force_state", "m*(g*(1 + sin(theta)^2) - l*thetadot^2*sin(theta))"),
+        ("rod_in_corner", "wall_force", "m*g*cos(theta)*(3*sin(theta) - 2*sin(theta0))"),
+        ("rod_in_corner", "leave_sin", "2*sin(theta0)/3"),
+        # Spool: m xddot = F cos(beta) + f, I xddot/R = -F b - R f (torques about the axis).
+        ("spool_pulled_at_angle", "acceleration", "F*R*(R*cos(beta) - b)/(m*R^2 + I)"),
+        ("spool_pulled_at_angle", "friction_force", "-F*(m*b*R + I*cos(beta))/(m*R^2 + I)"),
+        ("spool_pulled_at_angle", "normal_force", "m*g - F*sin(beta)"),
+        ("spool_pulled_at_angle", "critical_cos", "b/R"),
+        # Slot on a turntable: rddot = omega^2 r - k (r - l0)/m; sideways the Coriolis force 2 m omega rdot.
+        ("turntable_slot_spring", "equation_of_motion", "(omega^2 - k/m)*r + k*l0/m"),
+        ("turntable_slot_spring", "slot_force", "2*m*omega*rdot"),
+        ("turntable_slot_spring", "equilibrium_radius", "k*l0/(k - m*omega^2)"),
+        ("turntable_slot_spring", "small_oscillation_frequency", "sqrt(k/m - omega^2)"),
+        ("turntable_slot_spring", "critical_angular_velocity", "sqrt(k/m)"),
+        # Conical pendulum: the spherical pendulum's tension with Omega0^2 = g/(l cos(theta0)).
+        ("conical_pendulum", "tension", "m*g*sin(theta0)^2/cos(theta0) + m*g*(3*cos(theta) - 2*cos(theta0))"),
+        ("conical_pendulum", "steady_tension", "m*g/cos(theta0)"),
+        ("conical_pendulum", "period", "2*pi*sqrt(l*cos(theta0)/g)"),
+    ],
+)
+def test_more_constraint_chapter_scenes(derived, scene, answer, expected):
+    assert_same(derived(scene), answer, expected)
