@@ -22,7 +22,9 @@ action                 who, besides admins
                        an instructor for a problem they manage. A student only ever for itself.
 ``manage``             instructors, for problems of courses they teach (``Enrolment.role ==
                        "instructor"``) and problems in no course: read references and drafts,
-                       publish, upload a new version over the problem's id.
+                       list its versions, publish and unpublish one, upload or edit a new
+                       version over the problem's id, archive the problem and restore it
+                       (archived, it stays theirs to manage). The same on the pages and the API.
 ``read_grades``        those who manage the problem; an LMS for published problems of its
                        linked courses (grade passback), never for problems in no course.
 ``regrade``            those who manage the problem.
@@ -88,6 +90,7 @@ __all__ = [
     "find_course",
     "find_derivation",
     "find_problem",
+    "find_problem_version",
     "find_submission",
     "find_version",
     "managed_courses",
@@ -319,6 +322,17 @@ def find_problem(session: Session, principal: Principal, slug: str, action: Acti
         _not_found(f"There is no problem {slug!r}.")
     require(principal, action, problem)
     return problem
+
+
+def find_problem_version(session: Session, principal: Principal, slug: str, number: int,
+                         action: Action = Action.MANAGE) -> ProblemVersion:
+    """Version ``number`` of problem ``slug`` if the principal may ``action`` the problem (404/403 as
+    :func:`find_problem`); 404 if the problem has no such version."""
+    problem = find_problem(session, principal, slug, action)
+    version = next((v for v in problem.versions if v.number == number), None)
+    if version is None:
+        _not_found(f"Problem {slug!r} has no version {number}.")
+    return version
 
 
 def find_version(session: Session, principal: Principal, slug: str, action: Action = Action.SEE) -> ProblemVersion:

@@ -7,20 +7,18 @@ from typing import Any
 from flask import current_app, request, url_for
 from sqlalchemy.orm import Session
 
-from grader.jobs.derivation import DerivationError, read_scene_id
-from grader.jobs.derivation_queue import TooManyDerivations, enqueue
 from grader.store.db import Database, db
 from grader.store.models import DerivationJob, ProblemVersion
 from grader.web.api import spec
 from grader.web.api.derivations import DERIVATION, derivation_json
 from grader.web.errors import ApiProblem
 from grader.web.policy import (API_ROLES, INSTRUCTOR_ROLES, Action, allowed, current_principal, find_version,
-                               require_upload, visible_versions)
+                               visible_versions)
+from grader.web.problem_life import MAX_SCENE_BYTES, SceneRefused, queue_scene
 
-__all__ = ["INSTRUCTORS", "problem_json", "visible_version"]
+__all__ = ["INSTRUCTORS", "accepted", "problem_json", "scene_problem", "scene_text", "visible_version"]
 
 INSTRUCTORS, EVERYONE = INSTRUCTOR_ROLES, API_ROLES
-MAX_SCENE_BYTES = 256 * 1024
 
 _ANSWER = {"type": "object", "properties": {
     "name": {"type": "string"}, "prompt": {"type": "string"}, "kind": {"type": "string"},
@@ -78,33 +76,47 @@ def create_problem():
     engine runs in a child process under a time and memory limit, off the request threads. Each
     instructor may have a few derivations queued or running at once; beyond that, ``429``.
     """
+    source = scene_text()
+    published = request.args.get("published", "true").lower() not in ("false", "0", "no")
+    try:
+        queued = queue_scene(current_principal(), source, filename="upload.toml", publish=published,
+                             max_active=current_app.config["DERIVE_MAX_ACTIVE"])
+    except SceneRefused as refused:
+        raise scene_problem(refused) from None
+    return accepted(queued.job_id)
+
+
+def scene_text() -> str:
+    """The request's body as a scene file's text: 415 unless TOML, 413 if too large, 400 unless UTF-8."""
     if request.mimetype != "application/toml":
         raise ApiProblem(415, "Send the scene file with 'Content-Type: application/toml'.", kind="unsupported-media-type")
+    too_large = ApiProblem(413, f"A scene file may be at most {MAX_SCENE_BYTES // 1024} KiB.", kind="too-large")
     if (request.content_length or 0) > MAX_SCENE_BYTES:
-        raise ApiProblem(413, f"A scene file may be at most {MAX_SCENE_BYTES // 1024} KiB.", kind="too-large")
+        raise too_large  # before reading a byte of it
     raw = request.get_data(cache=False)
     if len(raw) > MAX_SCENE_BYTES:
-        raise ApiProblem(413, f"A scene file may be at most {MAX_SCENE_BYTES // 1024} KiB.", kind="too-large")
+        raise too_large
     try:
-        source = raw.decode("utf-8")
+        return raw.decode("utf-8")
     except UnicodeDecodeError:
         raise ApiProblem(400, "The scene file is not UTF-8 text.", kind="invalid-scene") from None
-    principal = current_principal()
-    try:
-        slug = read_scene_id(source)  # a file that is not TOML at all is refused at once
-    except DerivationError as error:
-        raise ApiProblem(422, str(error), kind="invalid-scene") from None
-    if slug is not None:
-        with db.read() as session:  # another course's id: refused now (and again when the job saves it)
-            require_upload(session, principal, slug)
-    published = request.args.get("published", "true").lower() not in ("false", "0", "no")
+
+
+# The API's status for each reason the shared intake (grader.web.problem_life) refuses a scene file.
+_REFUSALS = {"empty": (422, "invalid-scene"), "too-large": (413, "too-large"), "invalid-scene": (422, "invalid-scene"),
+             "wrong-id": (422, "wrong-scene-id"), "too-many-derivations": (429, "too-many-derivations")}
+
+
+def scene_problem(refused: SceneRefused) -> ApiProblem:
+    """A refused scene file as the API answers it."""
+    status, kind = _REFUSALS[refused.kind]
+    headers = {"Retry-After": str(refused.retry_after_s)} if refused.retry_after_s is not None else None
+    return ApiProblem(status, refused.message, kind=kind, headers=headers)
+
+
+def accepted(job_id: int):
+    """``202 Accepted`` with the queued derivation job, and its address in ``Location``."""
     database = Database.current()
-    try:
-        job_id = enqueue(database, requester_id=principal.user_id, source=source, filename="upload.toml",
-                         publish=published, max_active=current_app.config["DERIVE_MAX_ACTIVE"])
-    except TooManyDerivations as refused:
-        raise ApiProblem(429, str(refused), kind="too-many-derivations",
-                         headers={"Retry-After": str(refused.retry_after_s)}) from None
     with database.read() as session:
         body = derivation_json(session, session.get(DerivationJob, job_id))
     return body, 202, {"Location": body["links"]["self"]}

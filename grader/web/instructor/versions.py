@@ -9,6 +9,8 @@
 ``GET  /problems/<slug>/regrade/progress``               queued / grading / graded counts, reloading itself
 
 Every view asks :mod:`grader.web.policy` (``manage`` or ``regrade``) before it reads or changes anything.
+Editing, unpublishing and archiving call the functions the REST API calls for the same
+(:mod:`grader.web.problem_life`, :mod:`grader.store.problems`): one rule for both.
 """
 
 from __future__ import annotations
@@ -17,18 +19,17 @@ import difflib
 from dataclasses import dataclass
 from typing import Any
 
-from flask import abort, current_app, flash, g, redirect, render_template, request, url_for
+from flask import abort, current_app, flash, redirect, render_template, request, url_for
 from sqlalchemy import func, select
 
-from grader.jobs.derivation import DerivationError, read_scene_id
-from grader.jobs.derivation_queue import TooManyDerivations, enqueue
-from grader.store.db import Database, db
-from grader.store.models import Problem, ProblemVersion, Submission, utcnow
-from grader.store.problems import latest_version
+from grader.store.db import db
+from grader.store.models import Problem, ProblemVersion, Submission
+from grader.store.problems import latest_version, set_archived, set_published
 from grader.web.auth.session import INSTRUCTOR_ROLES, login_required
 from grader.web.instructor import bp
-from grader.web.instructor.views import MAX_SCENE_BYTES, version_of
-from grader.web.policy import Action, current_principal, find_problem
+from grader.web.instructor.views import version_of
+from grader.web.policy import Action, current_principal, find_problem, find_problem_version
+from grader.web.problem_life import SceneRefused, queue_scene
 
 REGRADE_REFRESH_S = 2  # how often the regrade progress page reloads itself while submissions wait
 DIFF_CONTEXT_LINES = 3
@@ -52,30 +53,20 @@ def edit(slug: str):
     if request.method == "GET":
         return render_template("instructor/edit.html", source=newest.source, **base)
     source = request.form.get("source", "")
-    if not source.strip():
-        return _edit_error(base, source, "The scene file is empty.")
-    if len(source.encode()) > MAX_SCENE_BYTES:
-        return _edit_error(base, "", f"A scene file may be at most {MAX_SCENE_BYTES // 1024} KiB.")
     try:
-        scene_id = read_scene_id(source, f"{slug}.toml")
-    except DerivationError as error:
-        return _edit_error(base, source, str(error))
-    if scene_id != slug:
-        # Changing the id here would register another problem behind the instructor's back.
-        return _edit_error(base, source, f"This page edits the problem {slug!r}: keep `id = \"{slug}\"` "
-                                         "(to start another problem, use New problem).")
-    if source == newest.source:
-        flash("Nothing changed: the scene file is the same as version "
-              f"{newest.number}.", "")
-        return redirect(url_for("instructor.review", slug=slug, version=newest.number))
-    try:
-        job_id = enqueue(Database.current(), requester_id=g.user.id, source=source, filename=f"{slug}.toml",
-                         course_id=problem.course_id, publish=False,
-                         max_active=current_app.config["DERIVE_MAX_ACTIVE"])
-    except TooManyDerivations as refused:
-        return _edit_error(base, source, str(refused), status=429,
-                           headers={"Retry-After": str(refused.retry_after_s)})
-    return redirect(url_for("instructor.derivation", job_id=job_id))
+        # The API's POST /problems/{id}/versions takes the same path (grader.web.problem_life).
+        queued = queue_scene(me, source, filename=f"{slug}.toml", publish=False, problem=problem,
+                             max_active=current_app.config["DERIVE_MAX_ACTIVE"])
+    except SceneRefused as refused:
+        if refused.kind == "too-many-derivations":
+            return _edit_error(base, source, refused.message, status=429,
+                               headers={"Retry-After": str(refused.retry_after_s)})
+        # A file too large is not sent back into the form (it would be as large again).
+        return _edit_error(base, "" if refused.kind == "too-large" else source, refused.message)
+    if queued.job_id is None:
+        flash(f"Nothing changed: the scene file is the same as version {queued.same_as}.", "")
+        return redirect(url_for("instructor.review", slug=slug, version=queued.same_as))
+    return redirect(url_for("instructor.derivation", job_id=queued.job_id))
 
 
 def _edit_error(base: dict, source: str, message: str, *, status: int = 422, headers: dict[str, str] | None = None):
@@ -87,14 +78,12 @@ def _edit_error(base: dict, source: str, message: str, *, status: int = 422, hea
 @bp.post("/problems/<slug>/versions/<int:number>/unpublish")
 @login_required(INSTRUCTOR_ROLES)
 def unpublish(slug: str, number: int):
-    problem = find_problem(db.session, current_principal(), slug, Action.MANAGE)
-    version = version_of(problem, number)
-    if not version.published:
+    version = find_problem_version(db.session, current_principal(), slug, number, Action.MANAGE)
+    if not set_published(version, False):  # the same rule as the API's .../unpublish
         flash(f"Version {number} is not published.", "")
     else:
-        version.published = False
         db.session.commit()
-        still = latest_version(db.session, problem, published_only=True)
+        still = latest_version(db.session, version.problem, published_only=True)
         flash(f"Version {number} is a draft again: students now see "
               + (f"version {still.number}." if still else "nothing of this problem."), "success")
     return redirect(url_for("instructor.review", slug=slug, version=number))
@@ -106,10 +95,9 @@ def archive(slug: str):
     """Archive the problem (students no longer see or answer it), or with ``restore=1`` bring it back."""
     problem = find_problem(db.session, current_principal(), slug, Action.MANAGE)
     restore = request.form.get("restore") == "1"
-    if restore == (problem.archived_at is None):
+    if not set_archived(problem, not restore):  # the same rule as the API's .../archive and .../restore
         flash("The problem is not archived." if restore else "The problem is archived already.", "")
     else:
-        problem.archived_at = None if restore else utcnow()
         db.session.commit()
         flash("The problem is back: students who may see it see it again." if restore else
               "Archived: students no longer see or answer it; its submissions and grades stay here.", "success")

@@ -22,18 +22,18 @@ from grader.jobs.derivation_queue import TooManyDerivations, enqueue, queued_ahe
 from grader.jobs.grading import check_request
 from grader.store.db import Database, db
 from grader.store.models import Problem, ProblemVersion
-from grader.store.problems import latest_version, problem_by_slug
+from grader.store.problems import latest_version, problem_by_slug, set_published
 from grader.store.scores import practice_scores
 from grader.web.auth.session import INSTRUCTOR_ROLES, login_required
 from grader.web.csv_export import csv_response
 from grader.web.instructor import bp
 from grader.answers.grouping import GroupingCache, group_wrong_answers
 from grader.web.instructor.stats import CSV_HEADER, csv_rows, per_answer, results, score_distribution, signature
-from grader.web.policy import (Action, allowed, current_principal, find_derivation, find_problem, managed_courses,
-                               managed_problems)
+from grader.web.policy import (Action, allowed, current_principal, find_derivation, find_problem,
+                               find_problem_version, managed_courses, managed_problems)
+from grader.web.problem_life import MAX_SCENE_BYTES
 from grader.web.student.statement import statement_problems
 
-MAX_SCENE_BYTES = 256 * 1024
 SHOWN_GROUPS = 8
 SHOWN_SUBMISSIONS = 50
 GROUP_CHECK_BUDGET_S = 2.0
@@ -153,12 +153,10 @@ def review(slug: str):
 @bp.post("/problems/<slug>/versions/<int:number>/publish")
 @login_required(INSTRUCTOR_ROLES)
 def publish(slug: str, number: int):
-    problem = find_problem(db.session, current_principal(), slug, Action.MANAGE)
-    version = version_of(problem, number)
-    if version.published:
+    version = find_problem_version(db.session, current_principal(), slug, number, Action.MANAGE)
+    if not set_published(version, True):  # the same rule as the API's .../publish
         flash(f"Version {number} is already published.", "")
     else:
-        version.published = True
         db.session.commit()
         flash(f"Published version {number}: students now see it.", "success")
     return redirect(url_for("instructor.review", slug=slug, version=number))
