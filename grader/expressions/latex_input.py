@@ -31,7 +31,8 @@ FUNCTION_COMMANDS = latex_commands()
 _OPERATORS = {"cdot": "*", "times": "*", "ast": "*", "div": "/"}
 _SPACING = {"quad", "qquad", "displaystyle", "textstyle", "limits"}
 _STRUCTURE = {"frac": "frac", "dfrac": "frac", "tfrac": "frac", "sqrt": "sqrt",
-              "dot": "dot", "ddot": "ddot", "left": "left", "right": "right"}
+              "dot": "dot", "ddot": "ddot", "left": "left", "right": "right",
+              "lvert": "lvert", "rvert": "rvert", "vert": "vert"}
 _WRAPPERS = {"mathrm", "text", "mathit", "operatorname", "rm", "mathbf", "textrm"}
 
 

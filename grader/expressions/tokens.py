@@ -86,7 +86,6 @@ _PUNCTUATION = {
     ":": ("':' is not part of a formula", "syntax", "write a ratio with /, as in a/b"),
     "<": ("inequalities are not supported", "syntax", "give an expression, or an equation with ="),
     ">": ("inequalities are not supported", "syntax", "give an expression, or an equation with ="),
-    "|": ("'|' is not supported", "syntax", "write abs(x) for an absolute value"),
     '"': ("quotes are not part of a formula", "syntax", "delete the quotes"),
     "`": ("backquotes are not part of a formula", "syntax", "delete the backquotes"),
 }
@@ -115,6 +114,8 @@ class _Tokenizer:
         while self.i < self.n:
             self.step()
         self.tokens.append(Token("end", None, self.n, self.n, "", self.space))
+        if any(t.kind == "bar" for t in self.tokens):
+            self.tokens = _absolute_values(self.tokens)
         return self.tokens
 
     def step(self) -> None:
@@ -138,6 +139,8 @@ class _Tokenizer:
             self.emit("op", "^", start, start + 2)
         elif ch == "=" and self.peek(1) == "=":
             self.emit("op", "=", start, start + 2)
+        elif ch == "|":
+            self.emit("bar", None, start, start + 1)
         elif ch in "+-*/^=,;":
             self.emit("op", ch, start, start + 1)
         elif ch in _PAIRS:
@@ -328,7 +331,9 @@ class _Tokenizer:
             self.command_symbol(start)
             return
         kind, value = classify_command(text[start + 1:j], start)
-        if kind == "greek":
+        if kind == "function" and value == "log" and j < self.n and text[j] == "_":
+            self.logarithm_base(start, j)
+        elif kind == "greek":
             self.identifier(start, value, j)
         elif kind == "function":
             self.finish_name(start, value, j, 0, forced_function=True)
@@ -347,8 +352,23 @@ class _Tokenizer:
             self.identifier(start, subscript_text(text[k + 1:close], k + 1), close + 1)
         elif value in ("left", "right"):
             self.delimiter(start, j, value)
+        elif value in ("lvert", "rvert", "vert"):
+            self.emit("bar", {"lvert": "open", "rvert": "close"}.get(value), start, j)
         else:
             self.emit("command", value, start, j)
+
+    def logarithm_base(self, start: int, j: int) -> None:
+        r"""``\log_{10}``, ``\log_2``: a name ``log_10`` that `resolve_name` reads as a logarithm to a base."""
+        k = j + 1
+        if k < self.n and self.text[k] == "{":
+            close = self.matching_brace(k)
+            base, end = subscript_text(self.text[k + 1:close], k + 1), close + 1
+        else:
+            run = _ASCII_ALNUM_RUN.match(self.text, k)
+            if run is None:
+                raise ExpressionError(r"\log_ needs a base, as in \log_{10} x", j, "syntax")
+            base, end = run.group()[:1], k + 1  # \log_2x: one character, as LaTeX reads a subscript
+        self.emit("name", f"log_{base}", start, end)
 
     def command_symbol(self, start: int) -> None:
         ch = self.text[start + 1] if start + 1 < self.n else ""
@@ -373,10 +393,12 @@ class _Tokenizer:
             self.emit("open", ch, start, j + 1)
         elif ch in ")]}" and ch and which == "right":
             self.emit("close", ch, start, j + 1)
+        elif ch == "|":  # \left| x \right|: an absolute value whose bars say which side they are
+            self.emit("bar", "open" if which == "left" else "close", start, j + 1)
         else:
             shown = ch or "end of text"
             raise ExpressionError(f"\\{which} followed by '{shown}' is not supported", start,
-                                  "unsupported_function", "use \\left( ... \\right), or abs(x) for |x|")
+                                  "unsupported_function", "use \\left( ... \\right), or \\left| ... \\right| for |x|")
 
     def superscript(self) -> None:
         start, j = self.i, self.i
@@ -390,6 +412,48 @@ class _Tokenizer:
         if len(body) > 4:
             raise ExpressionError("exponent too large", start, "too_large", "no answer here needs powers that high")
         self.emit("sup", int(digits), start, j)
+
+
+# After these a bar opens an absolute value (an operand is expected); after anything else it closes one.
+_OPERAND_EXPECTED = frozenset({"op", "open", "root", "command", "newline"})
+
+
+def _absolute_values(tokens: list[Token]) -> list[Token]:
+    r"""``|x|`` -> ``abs ( x )``: each bar becomes the opening or the closing of an absolute value.
+
+    A bar opens where an operand is expected (at the start, after an operator, a bracket or
+    another opening bar) and closes the innermost open one elsewhere; with none open it opens a
+    factor of a product (``2|x|``, ``|a|b|c|`` is |a|·b·|c|). ``\left|`` and ``\right|`` say
+    which they are.
+    """
+    out: list[Token] = []
+    open_bars: list[Token] = []
+    for n, token in enumerate(tokens):
+        if token.kind != "bar":
+            out.append(token)
+            continue
+        previous = out[-1] if out else None
+        last = tokens[n + 1].kind in ("end", "close") and open_bars  # nothing can follow an opening here
+        opens = token.value == "open" or (token.value is None and not last and (
+            previous is None or previous.kind in _OPERAND_EXPECTED or not open_bars))
+        if opens:
+            out.append(Token("name", "abs", token.pos, token.end, token.text, token.space_before,
+                             forced_function=True))
+            out.append(Token("open", "(", token.pos, token.end, token.text))
+            open_bars.append(token)
+            continue
+        if not open_bars:
+            raise ExpressionError(f"'{token.text}' closes an absolute value that was never opened", token.pos,
+                                  "unbalanced", "write |x| with a bar on each side")
+        if previous is not None and previous.kind == "open" and previous.text == open_bars[-1].text \
+                and previous.pos == open_bars[-1].pos:
+            raise ExpressionError("empty absolute value bars", open_bars[-1].pos, "syntax", "put an expression between them")
+        out.append(Token("close", ")", token.pos, token.end, token.text))
+        open_bars.pop()
+    if open_bars:
+        raise ExpressionError(f"'{open_bars[-1].text}' opens an absolute value that is never closed",
+                              open_bars[-1].pos, "unbalanced", "close it with a second bar")
+    return out
 
 
 def tokenize(text: str) -> list[Token]:

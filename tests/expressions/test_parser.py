@@ -264,7 +264,7 @@ def test_surprising_readings_are_noted(ns, text, note):
     ("sin", "syntax", 0),
     ("x ^", "syntax", 2),
     ("(x)'", "syntax", 3),
-    ("|x|", "syntax", 0),
+    ("|x", "unbalanced", 0),
     ("\\int x", "unsupported_function", 0),
     ("sqrt(-1)", "syntax", 0),
     ("m + (-4)^(1/2)", "syntax", None),
@@ -464,6 +464,10 @@ def test_precomposed_dotted_letter_glued_to_a_factor_is_a_product(two_bodies):
     ("½ l + ¾x", lambda s: s("l") / 2 + 3 * s("x") / 4),
     ("x∙l – l⁄x", lambda s: s("x") * s("l") - s("l") / s("x")),
     ("ℯ^x", lambda s: sympy.exp(s("x"))),
+    # absolute values between bars, as written by hand and in LaTeX
+    ("|x| + 2|y - l|", lambda s: sympy.Abs(s("x")) + 2 * sympy.Abs(s("y") - s("l"))),
+    (r"\left|x\right| / \lvert l \rvert", lambda s: sympy.Abs(s("x")) / s("l")),
+    (r"\log_{10} x + \log_2(l)", lambda s: sympy.log(s("x")) / sympy.log(10) + sympy.log(s("l")) / sympy.log(2)),
     (r"\coth x + \operatorname{asinh}(x) + \operatorname{sgn}(x)", lambda s: sympy.coth(s("x")) + sympy.asinh(s("x")) + sympy.sign(s("x"))),
 ])
 def test_every_elementary_function_people_type(ns, text, expected):
@@ -502,7 +506,7 @@ def test_a_spelling_of_another_tradition_is_a_product_when_its_letters_are_decla
     ("∂x", "'∂' (PARTIAL DIFFERENTIAL)", "dotted variable"),
     ("x°", "'°' (DEGREE SIGN)", "radians"),
     ("x!", "factorial", "2*3"),
-    ("|x|", "'|'", "abs(x)"),
+    ("|x + 1", "never closed", "second bar"),
     ("¨x", "DIAERESIS does not follow a variable name", "right after the variable"),
     ("x @ y", "'@'", "letters, digits"),
     ("(x", "'(' is never closed", "add a ')'"),

@@ -57,7 +57,10 @@ def test_decimals_are_exact_and_flagged():
     ("x\x01", "bad_character", 1),
     ("m_{1", "unbalanced", 2),
     ("\\", "syntax", 0),
-    ("\\left| x \\right|", "unsupported_function", 0),
+    ("\\left< x \\right>", "unsupported_function", 0),
+    ("|x", "unbalanced", 0),                # an absolute value never closed
+    ("x + ||", "syntax", 4),                # empty bars
+    ("\\rvert x", "unbalanced", 0),         # a closing bar with none open
     ("\\mathrm x", "syntax", 0),
     ("x⁻", "syntax", 1),
 ])
@@ -67,7 +70,7 @@ def test_tokenizer_errors(text, code, position):
     assert (err.value.code, err.value.position) == (code, position)
 
 
-@pytest.mark.parametrize("text", ["a!", "a.b", "a:b", "a<b", "a|b", "a@b"])
+@pytest.mark.parametrize("text", ["a!", "a.b", "a:b", "a<b", "a@b"])
 def test_stray_punctuation_is_reported_where_the_parser_meets_it(text):
     token = tokenize(text)[1]
     assert token.kind == "bad" and token.error.position == 1
@@ -89,3 +92,23 @@ def test_bracket_errors_point_at_the_unmatched_bracket(text, code, position):
 
 def test_fifty_levels_are_allowed():
     check_brackets(tokenize("(" * MAX_NESTING + "x" + ")" * MAX_NESTING))
+
+
+@pytest.mark.parametrize("text, reading", [
+    ("|x|", "abs ( x )"),
+    ("2|x|", "2 abs ( x )"),
+    ("|a|b|c|", "abs ( a ) b abs ( c )"),          # a bar with none open opens a factor
+    ("|x + |y||", "abs ( x + abs ( y ) )"),        # after an operator a bar opens
+    ("||x| - 1|", "abs ( abs ( x ) - 1 )"),
+    ("\\left| x \\right|", "abs ( x )"),
+    ("\\lvert x \\rvert", "abs ( x )"),
+])
+def test_absolute_value_bars_become_abs_calls(text, reading):
+    tokens = tokenize(text)[:-1]
+    assert " ".join(str(t.value) for t in tokens) == reading
+    assert all(text[t.pos:t.end] == t.text for t in tokens)  # every token still points at what was typed
+
+
+@pytest.mark.parametrize("text, name", [("\\log_{10} x", "log_10"), ("\\log_2 x", "log_2"), ("\\log_{2}(x)", "log_2")])
+def test_a_latex_logarithm_keeps_its_base(text, name):
+    assert tokenize(text)[0].value == name
