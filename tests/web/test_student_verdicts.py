@@ -5,6 +5,7 @@ from types import SimpleNamespace
 
 import pytest
 
+from grader.answers.equations import _SINGULAR_MIXING
 from grader.web.student.verdicts import student_summary, verdict_view
 
 VARIABLES = {"m": {"dimension": "mass", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"},
@@ -33,6 +34,12 @@ TECHNICAL = [
                        "changes between two states (see the counterexample)"),
     ("invalid", "budget exceeded: the time budget ran out while comparing"),
     ("invalid", "could not decide: the equations could not be evaluated reliably"),
+    # systems of equations mixed by state-dependent coefficients (grader.answers.equations)
+    ("not_equivalent", _SINGULAR_MIXING),
+    ("not_equivalent", "your equations are combinations of the reference equations whose mixing matrix depends on "
+                       "the state and could not be shown invertible on the whole declared domain"),
+    ("not_equivalent", "your equations agree with combinations of the reference equations with state-dependent "
+                       "coefficients at every sample point, but that could not be proved"),
 ]
 
 
@@ -51,6 +58,7 @@ def test_a_student_never_reads_the_checkers_technical_account(kind, reason):
                                                                                      "undefined"),
     ("budget exceeded: the time budget ran out while comparing", "ran out of time"),
     ("expected 2 equations, got 1", "different number of equations"),
+    (_SINGULAR_MIXING, "becomes zero somewhere"),
 ])
 def test_each_reason_reads_as_what_to_do(reason, says):
     kind = "invalid" if reason.startswith("budget") else "not_equivalent"

@@ -92,6 +92,15 @@ _NOT_EQUIVALENT = (
      "each of them."),
     ("your equations are not independent", "Your equations are not independent: together they say less than "
      "the question asks for."),
+    # A system mixed by factors that change with the motion (θ̇, cos θ) and vanish somewhere.
+    ("your equations are combinations of the reference equations whose mixing matrix depends on the state and "
+     "is singular", "Your equations are the right ones multiplied or combined by something that changes with "
+     "the motion and becomes zero somewhere: there they no longer determine the motion. Check which factors "
+     "you multiplied by."),
+    ("your equations are combinations of the reference", "Your equations could not be shown to determine the "
+     "motion everywhere: check which factors you multiplied the equations by."),
+    ("your equations agree with combinations", "Your equations could not be confirmed: write each of them "
+     "more directly, as the equation of motion of one coordinate."),
     ("your equation holds where", "Your equation holds at states where the correct one does not: check each "
      "term."),
 )
