@@ -943,6 +943,51 @@ add("elastic_pendulum", "equations_of_motion_products", SPRING, ELASTIC, [
     (f"(2 + cos(theta))^3 ({RADIAL}) = 0; r ({ANGULAR}) = 0", EQ, "system_factor"),
 ], kind="equation")
 
+# -- notation of other hands, appended so that the ids above stay the same (notation.jsonl) -----------
+# Logarithms to a base: log_2 x was read as log(2)·x and graded wrong against log base 2.
+LOGS = {"a": var("dimensionless", POS), "x": var("dimensionless")}
+add("notation", "logarithm_base_2", "log(a)/log(2)", LOGS, [
+    ("log_2 a", EQ, "notation"), ("log_{2}(a)", EQ, "notation"), ("log2(a)", EQ, "notation"),
+    ("\\log_2 a", EQ, "notation"), ("\\log_{2}(a)", EQ, "notation"), ("ln(a)/ln(2)", EQ, "notation"),
+    ("log_10 a", NE, "notation"), ("log(a)", NE, "notation"), ("log_b a", INV, "notation"),
+])
+add("notation", "logarithm_base_10", "log(a)/log(10)", LOGS, [
+    ("log10(a)", EQ, "notation"), ("log_{10} a", EQ, "notation"), ("\\log_{10}(a)", EQ, "notation"),
+    ("lg a", EQ, "notation"), ("log_2 a", NE, "notation"),
+])
+add("notation", "log_of_two_times", "a*log(2)", LOGS, [
+    ("a log2", EQ, "notation"), ("a ln2", EQ, "notation"), ("a ln 2", EQ, "notation"),
+    ("log2(a)", NE, "notation"),                       # called, it is the logarithm to base 2 of a
+])
+# Absolute values between bars.
+add("notation", "absolute_value", "abs(x) + 2*abs(x - a)", LOGS, [
+    ("|x| + 2|x - a|", EQ, "notation"), ("\\left|x\\right| + 2\\left|x - a\\right|", EQ, "notation"),
+    ("\\lvert x\\rvert + 2 \\lvert a - x \\rvert", EQ, "notation"), ("abs(x) + 2|a - x|", EQ, "notation"),
+    ("|x + 2(x - a)|", NE, "notation"), ("x + 2|x - a|", NE, "notation"), ("|x| + 2|x - a", INV, "notation"),
+])
+add("notation", "nested_absolute_value", "abs(abs(x) - a)", LOGS, [
+    ("||x| - a|", EQ, "notation"), ("|a - |x||", EQ, "notation"), ("|x - a|", NE, "notation"),
+])
+# The cube root over the reals, defined for negative numbers.
+add("notation", "real_cube_root", "sign(x)*abs(x)**(1/3)", LOGS, [
+    ("cbrt(x)", EQ, "notation"), ("-cbrt(-x)", EQ, "notation"), ("x^(1/3)", NE, ["notation", "domain"]),
+])
+# Vulgar fractions and the typographic signs of word processors.
+add("notation", "vulgar_fractions", "3*x/4 + a/2", LOGS, [
+    ("¾x + ½a", EQ, "notation"), ("¾ x + a·½", EQ, "notation"), ("x∙¾ + a ⁄ 2", EQ, "notation"),
+    ("¾x – ½a", NE, "notation"), ("1½ x", INV, "notation"),
+])
+# Other traditions' names of functions, and the products of variables they collide with.
+add("notation", "regional_function_names", "tan(x) + atan(x) + cot(x)", LOGS, [
+    ("tg x + arctg x + ctg x", EQ, "notation"), ("tg(x) + arctg(x) + cotg(x)", EQ, "notation"),
+    ("tg x + arctg x - ctg x", NE, "notation"),
+])
+add("notation", "lg_is_a_product_of_declared_letters", "sqrt(l*g)",
+    {"l": var("length", POS), "g": var("acceleration", POS)}, [
+    ("sqrt(lg)", EQ, "notation"), ("√(lg)", EQ, "notation"), ("sqrt(log10(g))", NE, ["notation", "dimension"]),
+])
+
+
 def build() -> dict[str, int]:
     by_problem: dict[str, list[dict]] = {}
     for n, item in enumerate(items):
