@@ -358,5 +358,13 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
         raise ExpressionError(f"'{typed}' is not a function you can use here", position,
                               "unsupported_function",
                               _suggestion(raw, ns, functions_only=True) or "allowed functions: " + ", ".join(function_names()))
+    if raw in _UNIT_WORDS:
+        raise ExpressionError(f"unknown name '{typed}': units are not part of the answer", position, "unknown_name",
+                              f"write the answer in the problem's symbols and delete '{typed}'")
     raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name",
                           _suggestion(raw, ns) or "this answer uses no variables: write a number")
+
+
+# Units students append to an answer (m g N, 2.5 newtons): undeclared, they are named as units.
+_UNIT_WORDS = frozenset("N newton newtons kg J joule joules W watt watts Pa Nm rad radians sec seconds meters "
+                        "metres".split())

@@ -646,6 +646,33 @@ def _remember(key, value) -> None:
             _remembered.popitem(last=False)
 
 
+def _answer_only(tokens: list[Token], text: str) -> tuple[list[Token], list[str]]:
+    """The tokens of the answer itself, without the label or the full stop a student may add.
+
+    ``T = m g (3 cos θ - 2)`` and ``N(θ) = …`` name what the answer is, as on paper: the label is a
+    single name (with, at most, its arguments in brackets) that the right side does not use, so
+    ``x = 2x - 1``, an equation, is still refused. A full stop at the very end ends a sentence.
+    """
+    notes = []
+    if len(tokens) > 2 and tokens[-2].kind == "bad" and tokens[-2].text == ".":
+        tokens = tokens[:-2] + tokens[-1:]
+        notes.append("ignored the full stop at the end")
+    equals = [n for n, t in enumerate(tokens) if t.kind == "op" and t.value == "="]
+    if len(equals) != 1 or tokens[0].kind != "name" or tokens[equals[0] + 1].kind == "end":
+        return tokens, notes
+    split = equals[0]
+    label = tokens[:split]
+    arguments = label[1:]
+    if arguments and not (arguments[0].kind == "open" and arguments[-1].kind == "close"
+                          and all(t.kind == "name" or (t.kind == "op" and t.value == ",") for t in arguments[1:-1])):
+        return tokens, notes
+    name = label[0]
+    if any(t.kind == "name" and t.value == name.value and t.order == name.order for t in tokens[split + 1:]):
+        return tokens, notes  # x = 2x - 1 is an equation, not a label
+    notes.append(f"read '{text[name.pos:tokens[split].end].strip()} …' as the expression after '='")
+    return tokens[split + 1:], notes
+
+
 def parse_expression(text: str, namespace: Namespace, *, printed: bool = True) -> Parsed:
     """Parse an expression over the namespace's variables.
 
@@ -686,7 +713,9 @@ def parse_expression(text: str, namespace: Namespace, *, printed: bool = True) -
     if found is not None:
         return replace(found, notes=list(found.notes))
     tokens = _without_newlines(_prepare(text))
+    tokens, notes = _answer_only(tokens, text)
     parser = _Parser(tokens, namespace, text)
+    parser.notes.extend(notes)
     expr = parser.expression(0)
     token = parser.peek()
     if token.kind == "op" and token.value == "=":

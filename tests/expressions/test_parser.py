@@ -117,7 +117,8 @@ def test_large_but_reasonable_powers_are_fine(ns):
     ("sin()", "syntax", 3),
     ("2 3", "syntax", 2),
     ("1/0", "syntax", 1),
-    ("x = y", "syntax", 2),
+    ("x = x y", "syntax", 2),                # an equation, not a label: x is on the right too
+    ("x y = l", "syntax", 4),
     ("atan2(x)", "syntax", 0),
     ("factorial(10)", "unsupported_function", 0),
     ("Integral(x)", "unsupported_function", 0),
@@ -474,6 +475,18 @@ def test_every_elementary_function_people_type(ns, text, expected):
     assert parse(text, ns) == expected(lambda n: ns.symbol(n))
 
 
+@pytest.mark.parametrize("text, note", [
+    ("T = m g", "read 'T = …' as the expression after '='"),
+    ("N(θ) = m g", "read 'N(θ) = …' as the expression after '='"),
+    ("F_N = m g.", "ignored the full stop at the end"),
+    ("m g.", "ignored the full stop at the end"),
+])
+def test_a_label_or_a_full_stop_around_the_answer_is_set_aside(ns, text, note):
+    # as written on paper: the answer is what follows the name of the quantity
+    parsed = parse_expression(text, ns)
+    assert parsed.expr == ns.symbol("m") * ns.symbol("g") and note in parsed.notes
+
+
 @pytest.mark.parametrize("text, expected", [
     ("tg x + ctg(x) + cotg x + arctg(x)", lambda x: sympy.tan(x) + 2 * sympy.cot(x) + sympy.atan(x)),
     ("lg(x)", lambda x: sympy.log(x) / sympy.log(10)),
@@ -501,6 +514,8 @@ def test_a_spelling_of_another_tradition_is_a_product_when_its_letters_are_decla
     ("foo(x)", "'foo' is not a function", "allowed functions"),
     ("acot(x)", "'acot' is not a function", "did you mean"),
     ("log_b(x)", "'log_b' is a logarithm to base b", "log(x)/log(b)"),
+    ("m g N", "units are not part of the answer", "delete 'N'"),
+    ("2 m g newtons", "units are not part of the answer", "delete 'newtons'"),
     ("1½ x", "'1½' mixes a number and a fraction", "3/2 or 1 + 1/2"),
     ("θ̇̇̇", "third or higher time derivative", "at most two dots"),
     ("∂x", "'∂' (PARTIAL DIFFERENTIAL)", "dotted variable"),

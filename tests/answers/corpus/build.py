@@ -987,6 +987,15 @@ add("notation", "lg_is_a_product_of_declared_letters", "sqrt(l*g)",
     ("sqrt(lg)", EQ, "notation"), ("√(lg)", EQ, "notation"), ("sqrt(log10(g))", NE, ["notation", "dimension"]),
 ])
 
+# The quantity's name before the answer, and a full stop after it, as written on paper.
+add("notation", "labelled_answer", "m*g*(3*cos(theta) - 2)",
+    {"m": var("mass", POS), "g": var("acceleration", POS), "theta": var("angle", PI_DOMAIN)}, [
+    ("N = m g (3 cos θ - 2)", EQ, "notation"), ("N(θ) = mg(3cosθ - 2)", EQ, "notation"),
+    ("F_N = 3mg cos θ - 2mg.", EQ, "notation"), ("N = m g (3 cos θ + 2)", NE, "notation"),
+    ("m = 3 m g cos θ - 2 m g", INV, "notation"),          # an equation in m, not a label
+    ("m g (3 cos θ - 2) N", INV, "notation"),              # a unit: named, not guessed
+])
+
 
 def build() -> dict[str, int]:
     by_problem: dict[str, list[dict]] = {}
