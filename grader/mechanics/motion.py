@@ -159,7 +159,8 @@ def _integrate(evaluator) -> dict[sympy.Symbol, sympy.Expr]:
             motion = _dsolve(evaluator, plan.rest, plan.accelerations) if plan.rest else {}
         else:
             # 3. One coordinate, energy conserved: the quadrature, then its inverse.
-            quad = _quadrature(evaluator, plan)
+            # Through the cache: a time asked after q(t) is refused reuses the same quadrature.
+            quad = quadrature(evaluator, "")
             motion = _invert(evaluator, quad)
         _cyclic_in_time(evaluator, plan, motion)
     _confirm(evaluator, motion, "the closed form")
