@@ -170,6 +170,12 @@ class _Tokenizer:
             self.emit("root", ROOT_CHARS[ch], start, start + 1)
         elif ch in VULGAR_FRACTIONS:
             self.vulgar_fraction(start)
+        elif ch == "°" and self.tokens and self.tokens[-1].kind == "number":
+            # 30° is the number 30·π/180, one token so that cos 30° is cos(30°) (after a number only:
+            # θ° would turn a variable in radians into degrees)
+            number = self.tokens.pop()
+            self.space = number.space_before
+            self.emit("number", number.value * sympy.pi / 180, number.pos, start + 1, decimal=number.decimal)
         elif ch in PRIME_CHARS:
             self.emit("prime", PRIME_CHARS[ch], start, start + 1)
         elif ch == ".":

@@ -106,7 +106,7 @@ _SYMBOL_HINTS = {
     "≤": "give an expression, or an equation with =", "≥": "give an expression, or an equation with =",
     "≠": "give an expression, or an equation with =", "≈": "use = for an equation",
     "∞": "no answer here is infinite",
-    "°": "angles are in radians: write pi/180 times the number of degrees",
+    "°": "angles are in radians: degrees only follow a number, as in 30°",
     "±": "give one sign (the answer with + or the one with -)",
     "∓": "give one sign (the answer with + or the one with -)",
 }

@@ -465,6 +465,8 @@ def test_precomposed_dotted_letter_glued_to_a_factor_is_a_product(two_bodies):
     ("½ l + ¾x", lambda s: s("l") / 2 + 3 * s("x") / 4),
     ("x∙l – l⁄x", lambda s: s("x") * s("l") - s("l") / s("x")),
     ("ℯ^x", lambda s: sympy.exp(s("x"))),
+    # degrees after a number are that many π/180; the function takes the whole angle
+    ("l cos 30° + l sin(45 °)", lambda s: s("l") * (sympy.sqrt(3) + sympy.sqrt(2)) / 2),
     # absolute values between bars, as written by hand and in LaTeX
     ("|x| + 2|y - l|", lambda s: sympy.Abs(s("x")) + 2 * sympy.Abs(s("y") - s("l"))),
     (r"\left|x\right| / \lvert l \rvert", lambda s: sympy.Abs(s("x")) / s("l")),
@@ -515,6 +517,7 @@ def test_a_spelling_of_another_tradition_is_a_product_when_its_letters_are_decla
     ("acot(x)", "'acot' is not a function", "did you mean"),
     ("log_b(x)", "'log_b' is a logarithm to base b", "log(x)/log(b)"),
     ("m g N", "units are not part of the answer", "delete 'N'"),
+    ("cos θ°", "DEGREE SIGN", "only follow a number"),
     ("2 m g newtons", "units are not part of the answer", "delete 'newtons'"),
     ("1½ x", "'1½' mixes a number and a fraction", "3/2 or 1 + 1/2"),
     ("θ̇̇̇", "third or higher time derivative", "at most two dots"),
