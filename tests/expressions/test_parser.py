@@ -466,7 +466,7 @@ def test_precomposed_dotted_letter_glued_to_a_factor_is_a_product(two_bodies):
     ("x∙l – l⁄x", lambda s: s("x") * s("l") - s("l") / s("x")),
     ("ℯ^x", lambda s: sympy.exp(s("x"))),
     # degrees after a number are that many π/180; the function takes the whole angle
-    ("l cos 30° + l sin(45 °)", lambda s: s("l") * (sympy.sqrt(3) + sympy.sqrt(2)) / 2),
+    ("l cos 30° + l sin(45 °)", lambda s: s("l") * sympy.sqrt(3) / 2 + s("l") * sympy.sqrt(2) / 2),
     # absolute values between bars, as written by hand and in LaTeX
     ("|x| + 2|y - l|", lambda s: sympy.Abs(s("x")) + 2 * sympy.Abs(s("y") - s("l"))),
     (r"\left|x\right| / \lvert l \rvert", lambda s: sympy.Abs(s("x")) / s("l")),
