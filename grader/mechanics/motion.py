@@ -345,10 +345,38 @@ def _quadrature(evaluator, plan: _Plan) -> Quadrature:
     if start is None or start.has(sympy.nan, sympy.zoo, sympy.Limit):
         raise _refusal(evaluator, plan, f"and the quadrature {shown} cannot be evaluated at the start "
                                         f"{u.name} = {sympy.sstr(q0)}; {_ASK_INSTEAD}")
-    time = human_form(sign * (antiderivative - start))
+    time = sign * (antiderivative - start)
+    merged = budget.attempt(lambda: _merge_radicals(time), 1.0, fallback=lambda: time)
+    time = min((human_form(time), human_form(merged)), key=lambda e: (sympy.count_ops(e), len(str(e))))
     quad = Quadrature(u, sign, squared, time, plan.momenta)
     _confirm_quadrature(evaluator, quad, point, ahead)
     return quad
+
+
+def _merge_radicals(expr: sympy.Expr) -> sympy.Expr:
+    """Terms over the same √B gathered, and B cancelled from their numerator where it divides it.
+
+    sympy's antiderivatives leave r^{3/2}/√(r₀ − r) − r₀√r/√(r₀ − r), which is −√r √(r₀ − r):
+
+    >>> r, r0 = sympy.symbols("r r0", positive=True)
+    >>> _merge_radicals(r**sympy.Rational(3, 2)/sympy.sqrt(r0 - r) - r0*sympy.sqrt(r)/sympy.sqrt(r0 - r) + r0)
+    -sqrt(r)*sqrt(-r + r0) + r0
+    """
+    groups: dict = {}
+    for term in sympy.Add.make_args(sympy.expand(expr)):
+        bases = [f.base for f in sympy.Mul.make_args(term)
+                 if f.is_Pow and f.exp == -sympy.S.Half and not (f.base.is_Number or f.base.is_Symbol)]
+        groups.setdefault(bases[0] if len(bases) == 1 else None, []).append(term)
+    result = []
+    for base, terms in groups.items():
+        total = sympy.Add(*terms)
+        if base is not None:
+            numerator = sympy.cancel(sympy.expand(total * sympy.sqrt(base)))
+            reduced = sympy.factor(sympy.cancel(numerator / base))
+            if sympy.count_ops(reduced) <= sympy.count_ops(numerator):
+                total = reduced * sympy.sqrt(base)
+        result.append(total)
+    return sympy.Add(*result)
 
 
 def _at_rest_in_equilibrium(evaluator, u) -> bool:
