@@ -3,10 +3,11 @@
 sympy's ``simplify`` returns *a* short form, not always the one on a blackboard: it may leave
 ``3*g*m*cos(theta) - 2*g*m`` where a physicist writes ``g*m*(3*cos(theta) - 2)``, or turn
 ``sin(alpha)*cos(alpha)`` into ``sin(2*alpha)/2``. We try a bounded set of rewritings and keep the
-one that reads shortest (:func:`_weight`): fewest operations (``count_ops``), a multiple angle the
-input did not have counting one operation more (so ``sin(2x)/2`` replaces ``sin(x)*cos(x)`` only
-where it is strictly shorter, as in ``2*sin(x)*cos(x)``), a negative exponent in print counting
-three more, ties broken by printed length.
+one that reads shortest (:func:`_weight`): fewest operations (``count_ops``), a sine of a multiple
+angle the input did not have counting one operation more (so ``sin(2x)/2`` replaces
+``sin(x)*cos(x)`` only where it is strictly shorter, as in ``2*sin(x)*cos(x)``), a cosine of one
+four more (``sin(x)**2`` stays), a negative exponent in print three more, ties broken by printed
+length.
 
 The rewritings are sympy's own (``cancel``, ``factor_terms``, ``factor``, ``simplify``, ``trigsimp``)
 and five of ours, each applied in turn to the shortest candidates and kept where it does not
@@ -43,28 +44,35 @@ _TRIG = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc)
 _HYPERBOLIC = (sympy.sinh, sympy.cosh, sympy.tanh, sympy.coth, sympy.sech, sympy.csch)
 
 
-def _multiple_angles(expr: sympy.Expr) -> int:
-    """How many trig (or hyperbolic) calls have an argument like 2*alpha or 2*theta1 - 2*theta2."""
-    count = 0
+def _multiple_angles(expr: sympy.Expr) -> tuple[int, int]:
+    """How many sin/sinh calls, and how many other trig or hyperbolic calls, have an argument like
+    2*alpha or 2*theta1 - 2*theta2."""
+    sines = others = 0
     for f in expr.atoms(*_TRIG, *_HYPERBOLIC):
         coefficients = [term.as_coeff_Mul()[0] for term in sympy.Add.make_args(f.args[0])]
         if any(abs(c) != 1 for c in coefficients if c.is_Rational):
-            count += 1
-    return count
+            if isinstance(f, (sympy.sin, sympy.sinh)):
+                sines += 1
+            else:
+                others += 1
+    return sines, others
 
 
-def _weight(expr: sympy.Expr, allowed_multiples: int, multiple_cost: int = 4) -> tuple[int, int]:
+def _weight(expr: sympy.Expr, allowed_multiples: tuple[int, int], sine_cost: int = 4) -> tuple[int, int]:
     """What a reader pays: operations, multiple angles the input did not have, negative exponents.
 
-    For an answer (:func:`human_form`) ``multiple_cost`` is 1: sin(2x) wins only where it saves
-    an operation, in ``2 sin x cos x`` (3 operations more than ``sin 2x``), not in ``sin x cos x``
-    (as many as ``sin(2x)/2``). The tidy-ups of intermediate results keep 4: their entries are
+    A new multiple angle costs 4 operations more: a physicist writes M + m sin²α, not
+    M + m (1 − cos 2α)/2. For an answer (:func:`human_form`) a new sine (or sinh) of a multiple
+    angle costs 1: it stands for a product sin x cos x, and wins where it saves an operation, in
+    ``2 sin x cos x`` (3 operations more than ``sin 2x``), not in ``sin x cos x`` (as many as
+    ``sin(2x)/2``). The tidy-ups of intermediate results keep 4 for it too: their entries are
     reduced further (:mod:`grader.mechanics.reduction`), in single angles.
     """
-    extra = max(0, _multiple_angles(expr) - allowed_multiples)
+    sines, others = _multiple_angles(expr)
+    extra_sines, extra_others = max(0, sines - allowed_multiples[0]), max(0, others - allowed_multiples[1])
     printed = str(expr)
     negative = 3 if "**(-" in printed else 0  # x**(-3/2): a physicist writes 1/x**(3/2)
-    return sympy.count_ops(expr, visual=False) + multiple_cost * extra + negative, len(printed)
+    return sympy.count_ops(expr, visual=False) + sine_cost * extra_sines + 4 * extra_others + negative, len(printed)
 
 
 def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
@@ -109,7 +117,7 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
 
     def weight(e):
         if e not in weights:
-            weights[e] = _weight(e, allowed, multiple_cost=1)
+            weights[e] = _weight(e, allowed, sine_cost=1)
         return weights[e]
 
     candidates = sorted(dict.fromkeys(signs_in_front(c) for c in candidates), key=weight)
@@ -135,11 +143,20 @@ _REWRITTEN = 3  # how many of the shortest candidates go through our rewritings
 def _rewritten(expr: sympy.Expr, weight) -> sympy.Expr:
     """``expr`` through each of our rewritings in turn, each kept where it does not lengthen it."""
     best = expr
-    for rewrite in (tidy_radicands, grouped, spread_denominator, contract_double_angles, sympy.factor_terms):
+    for rewrite in (tidy_radicands, _readable_fraction, grouped, spread_denominator, contract_double_angles,
+                    sympy.factor_terms):
         candidate = rewrite(best)
         if candidate != best and weight(candidate) <= weight(best):
             best = candidate
     return signs_in_front(best)
+
+
+def _readable_fraction(expr: sympy.Expr) -> sympy.Expr:
+    """The denominator in sin² rather than cos² where shorter (:func:`readable_denominator`)."""
+    numerator, denominator = sympy.fraction(expr)
+    if not denominator.has(sympy.sin, sympy.cos) or sympy.count_ops(denominator) > 40:
+        return expr
+    return numerator / readable_denominator(denominator)
 
 
 def spread_denominator(expr: sympy.Expr) -> sympy.Expr:
@@ -272,10 +289,11 @@ def tidy_radicands(expr: sympy.Expr) -> sympy.Expr:
         forms = [base, sympy.together(sympy.expand(base)), sympy.cancel(base)]
         forms.append(sympy.factor_terms(forms[1]))
         if sympy.count_ops(base) < 40:
-            forms.append(sympy.factor(base))
+            forms += [sympy.factor(base), _readable_fraction(forms[1])]
         return min((f ** root.exp for f in forms), key=lambda e: (sympy.count_ops(e), len(str(e))))
 
-    return expr.replace(lambda e: e.is_Pow and e.exp.is_Rational and not e.exp.is_Integer and e.base.is_Add, tidy)
+    return expr.replace(lambda e: e.is_Pow and e.exp.is_Rational and not e.exp.is_Integer and e.base.has(sympy.Add),
+                        tidy)
 
 
 def _points(symbols, count: int, seed: int = 1):
@@ -518,7 +536,7 @@ def quick_form(expr: sympy.Expr, seconds: float = 0.1) -> sympy.Expr:
 
     if sympy.count_ops(expr) < 60:
         attempt(costly, seconds, fallback=lambda: None)
-    return min(candidates, key=lambda e: _weight(e, 0))
+    return min(candidates, key=lambda e: _weight(e, (0, 0)))
 
 
 def readable_denominator(expr: sympy.Expr) -> sympy.Expr:
@@ -532,7 +550,7 @@ def readable_denominator(expr: sympy.Expr) -> sympy.Expr:
     candidates = [expr]
     if expr.has(*_TRIG):
         candidates += [sympy.factor(sympy.expand(_pythagorean(expr, square))) for square in (sympy.sin, sympy.cos)]
-    return min(candidates, key=lambda e: _weight(e, 0))
+    return min(candidates, key=lambda e: _weight(e, (0, 0)))
 
 
 def tidy_trig(expr: sympy.Expr) -> sympy.Expr:
@@ -556,4 +574,4 @@ def tidy_trig(expr: sympy.Expr) -> sympy.Expr:
         return sympy.factor_terms(expr)
     expr = TR10i(expr)
     candidates = [expr] + [sympy.expand(_pythagorean(expr, square)) for square in (sympy.sin, sympy.cos)]
-    return sympy.factor_terms(min(candidates, key=lambda e: _weight(e, 0)))
+    return sympy.factor_terms(min(candidates, key=lambda e: _weight(e, (0, 0))))
