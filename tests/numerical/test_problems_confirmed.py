@@ -60,6 +60,14 @@ CONFIRMED_ELSEWHERE = {
     ("loop_inside_track", "least_launch_speed"),
     ("cylinder_in_cylinder", "largest_normal_force"),
     ("ladder_wall", "largest_wall_force"),
+    ("pendulum_sliding_support", "small_oscillation_frequency"),
+    ("conical_pendulum", "small_oscillation_frequency"),
+    ("bead_rotating_parabola", "small_oscillation_frequency"),
+    ("bead_rotating_parabola", "critical_angular_velocity"),
+    ("turntable_slot_spring", "small_oscillation_frequency"),
+    ("turntable_slot_spring", "critical_angular_velocity"),
+    ("double_atwood", "balancing_mass"),
+    ("spool_pulled_at_angle", "critical_cos"),
 }
 
 

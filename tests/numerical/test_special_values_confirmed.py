@@ -215,3 +215,117 @@ def test_a_block_slides_the_distance_d_down_a_smooth_incline_in_the_time_the_eng
     reached = motion.first("slid")
     assert reached is not None
     assert abs(reached.t - closed_form(model, answers, "time_to_slide")) < 1e-8
+
+
+# -- small oscillations with cyclic coordinates, and thresholds on a parameter ---------------------
+def _frequency_from_crossings(model, q0, qdot0, offset, period_guess: float) -> float:
+    """Angular frequency from the crossings of ``offset(snapshot) = 0`` (an equilibrium), released at q0."""
+    crossing = Event("crossing", offset, terminal=False)
+    motion = simulate(model.numeric, q0, qdot0, 3.2 * period_guess, events=[crossing])
+    times = [s.t for s in motion.events["crossing"]]
+    assert len(times) >= 5, "fewer than two and a half oscillations"
+    return 2 * math.pi / ((times[4] - times[0]) / 2)
+
+
+def test_small_oscillations_of_a_pendulum_on_a_freely_sliding_cart():
+    """Released at rest at θ = 10⁻⁴, the bob crosses below the cart (x = X) at the engine's rate."""
+    model, answers = engine("pendulum_sliding_support")
+    l = model.values["l"]
+    theta = 1e-4  # coordinates (X, x, y); the total momentum is zero and stays so
+    q0, qdot0 = [0.0, l * math.sin(theta), -l * math.cos(theta)], [0.0, 0.0, 0.0]
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency_from_crossings(model, q0, qdot0, lambda s: s.q[1] - s.q[0], 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_a_nudged_conical_pendulum_nods_about_its_cone_at_the_engines_rate():
+    """θ₀ + 10⁻⁴ with the steady motion's angular momentum: θ oscillates about θ₀."""
+    model, answers = engine("conical_pendulum")
+    g, l, theta0 = (model.values[n] for n in ("g", "l", "theta0"))
+    momentum = math.sin(theta0) ** 2 * math.sqrt(g / (l * math.cos(theta0)))  # per m l²
+    theta = theta0 + 1e-4  # coordinates (r, theta, phi)
+    q0, qdot0 = [l, theta, 0.0], [0.0, 0.0, momentum / math.sin(theta) ** 2]
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency_from_crossings(model, q0, qdot0, lambda s: s.q[1] - theta0, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_small_oscillations_of_a_bead_about_the_bottom_of_a_spinning_parabola():
+    model, answers = engine("bead_rotating_parabola")
+    a, omega = model.values["a"], model.values["omega"]
+
+    def state(r):  # coordinates (r, phi, z) on the wire, turning with it
+        return [r, 0.0, a * r ** 2], [0.0, omega, 0.0]
+
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _measured_frequency(model, state, 0, 0.0, 1e-4, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+@pytest.mark.parametrize("factor, stable", [(0.9999, True), (1.0001, False)])
+def test_the_bottom_of_the_spinning_parabola_is_stable_only_below_the_critical_rate(factor, stable):
+    """Just below ω_c the bead at rest off the axis is pulled back to it, just above it is flung out."""
+    _, answers = engine("bead_rotating_parabola")
+    reference = SceneModel(scene_of("bead_rotating_parabola"))
+    omega = closed_form(reference, answers, "critical_angular_velocity") * factor
+    model = SceneModel(scene_of("bead_rotating_parabola", (("value = 4.0 }", f"value = {omega!r} }}"),)))
+    a, r = model.values["a"], 0.05
+    s = snapshot(model.numeric, 0.0, [r, 0.0, a * r ** 2], [0.0, omega, 0.0])
+    assert (s.qddot[0] < 0) == stable
+
+
+def _turntable_state(model, r: float):
+    """On the slot at t = 0 (along x), at rest relative to the table."""
+    return [r, 0.0], [0.0, model.values["omega"] * r]
+
+
+def test_small_oscillations_in_a_turntable_slot_about_the_relative_equilibrium():
+    model, answers = engine("turntable_slot_spring")
+    equilibrium = closed_form(model, answers, "equilibrium_radius")
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    q0, qdot0 = _turntable_state(model, equilibrium + 1e-5)
+    measured = _frequency_from_crossings(model, q0, qdot0, lambda s: math.hypot(s.q[0], s.q[1]) - equilibrium,
+                                         2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+@pytest.mark.parametrize("factor, restoring", [(0.9999, True), (1.0001, False)])
+def test_the_spring_holds_the_particle_in_the_slot_only_below_the_critical_rate(factor, restoring):
+    """d r̈/dr at rest in the slot (measured numerically) is negative below ω_c and positive above."""
+    _, answers = engine("turntable_slot_spring")
+    reference = SceneModel(scene_of("turntable_slot_spring"))
+    omega = closed_form(reference, answers, "critical_angular_velocity") * factor
+    model = SceneModel(scene_of("turntable_slot_spring", (("value = 5.0 }", f"value = {omega!r} }}"),)))
+
+    def rddot(r):
+        return model.quantities(snapshot(model.numeric, 0.0, *_turntable_state(model, r)))["rddot"]
+
+    assert ((rddot(0.4) - rddot(0.3)) < 0) == restoring
+
+
+@pytest.mark.parametrize("factor", [1.0, 1.001])
+def test_the_balancing_mass_of_a_double_atwood_machine_stays_at_rest(factor):
+    _, answers = engine("double_atwood")
+    reference = SceneModel(scene_of("double_atwood"))
+    m1 = closed_form(reference, answers, "balancing_mass") * factor
+    model = SceneModel(scene_of("double_atwood", (("value = 3.0 }", f"value = {m1!r} }}"),)))
+    start = model.initial_state()
+    y1ddot = snapshot(model.numeric, 0.0, start.q, start.qdot).qddot[0]
+    if factor == 1.0:
+        assert abs(y1ddot) < 1e-9 * model.values["g"]
+    else:
+        assert y1ddot > 0  # a heavier m1 goes down
+
+
+@pytest.mark.parametrize("offset", [0.0, 0.01])
+def test_a_spool_pulled_at_the_critical_angle_does_not_roll(offset):
+    _, answers = engine("spool_pulled_at_angle")
+    reference = SceneModel(scene_of("spool_pulled_at_angle"))
+    beta = math.acos(closed_form(reference, answers, "critical_cos")) - offset
+    model = SceneModel(scene_of("spool_pulled_at_angle", (("[0, 1.5], value = 0.4 }", f"[0, 1.5], value = {beta!r} }}"),)))
+    start = model.initial_state()
+    xddot = snapshot(model.numeric, 0.0, start.q, start.qdot).qddot[0]
+    if offset == 0.0:
+        assert abs(xddot) < 1e-9
+    else:
+        assert xddot > 0  # pulled more horizontally, the spool rolls towards the pull
