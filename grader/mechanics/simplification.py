@@ -10,11 +10,13 @@ four more (``sin(x)**2`` stays), a negative exponent in print three more, ties b
 length.
 
 The rewritings are sympy's own (``cancel``, ``factor_terms``, ``factor``, ``simplify``, ``trigsimp``)
-and five of ours, each applied in turn to the shortest candidates and kept where it does not
-lengthen them: tidier radicands (:func:`tidy_radicands`), sums grouped over a common factor
-(:func:`grouped`), a denominator spread over the sum it divides (:func:`spread_denominator`),
-products of sine and cosine of one argument contracted to the double angle
-(:func:`contract_double_angles`, hyperbolic too) and common factors taken out of every sum. A
+and five of ours, each applied in turn to the three shortest candidates and kept where it does
+not lengthen them: tidier radicands (:func:`tidy_radicands`: expanded, combined or factored, a
+perfect square let out where the symbols' signs allow), a denominator in sin² rather than cos²
+(:func:`readable_denominator`), sums grouped over a common factor (:func:`grouped`), a
+denominator spread over the sum it divides (:func:`spread_denominator`), products of sine and
+cosine of one argument contracted to the double angle (:func:`contract_double_angles`,
+hyperbolic too); then common factors out of every sum (``factor_terms``). A
 candidate replaces the input only if it has the input's value (:func:`_equal`: a numeric check at
 30 digits, and a symbolic one where that is cheap).
 
@@ -64,7 +66,7 @@ def _weight(expr: sympy.Expr, allowed_multiples: tuple[int, int], sine_cost: int
     A new multiple angle costs 4 operations more: a physicist writes M + m sin²α, not
     M + m (1 − cos 2α)/2. For an answer (:func:`human_form`) a new sine (or sinh) of a multiple
     angle costs 1: it stands for a product sin x cos x, and wins where it saves an operation, in
-    ``2 sin x cos x`` (3 operations more than ``sin 2x``), not in ``sin x cos x`` (as many as
+    ``2 sin x cos x`` (2 operations more than ``sin 2x``), not in ``sin x cos x`` (as many as
     ``sin(2x)/2``). The tidy-ups of intermediate results keep 4 for it too: their entries are
     reduced further (:mod:`grader.mechanics.reduction`), in single angles.
     """
