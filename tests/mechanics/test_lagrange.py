@@ -314,6 +314,22 @@ DISK_WEDGE = "(3*M + m + 2*m*sin(alpha)^2)"
         ("conical_pendulum", "tension", "m*g*sin(theta0)^2/cos(theta0) + m*g*(3*cos(theta) - 2*cos(theta0))"),
         ("conical_pendulum", "steady_tension", "m*g/cos(theta0)"),
         ("conical_pendulum", "period", "2*pi*sqrt(l*cos(theta0)/g)"),
+        # Watt governor: L = m l^2 (thetadot^2 + omega^2 sin^2(theta)) + 2 M l^2 sin^2(theta) thetadot^2
+        # + 2 (m + M) g l cos(theta); the sleeve M zddot = M g + lambda with z = 2 l cos(theta); about
+        # cos(theta*) = (m + M) g/(m l omega^2): omega_s^2 = m omega^2 sin^2(theta*)/(m + 2 M sin^2(theta*)).
+        ("watt_governor", "equation_of_motion",
+         "sin(theta)*(l*cos(theta)*(m*omega^2 - 2*M*thetadot^2) - (m + M)*g)/(l*(m + 2*M*sin(theta)^2))"),
+        ("watt_governor", "sleeve_force",
+         "M*m*(g*(1 - 2*sin(theta)^2) + 2*l*cos(theta)*(thetadot^2 + omega^2*sin(theta)^2))/(m + 2*M*sin(theta)^2)"),
+        ("watt_governor", "small_oscillation_frequency",
+         "sqrt(m*omega^2*(m^2*l^2*omega^4 - (m + M)^2*g^2)/(l^2*m^2*omega^4*(m + 2*M) - 2*M*(m + M)^2*g^2))"),
+        ("watt_governor", "least_angular_velocity", "sqrt((m + M)*g/(m*l))"),
+        # Cylinder (I = m R^2/2) on a pulled plank: f = m xddot, R f = I phiddot, xddot + R phiddot = Xddot,
+        # M Xddot = F - f; the cylinder's momentum m xdot - m (Xdot - xdot)/2 stays 0.
+        ("cylinder_on_plank", "plank_acceleration", "3*F/(3*M + m)"),
+        ("cylinder_on_plank", "cylinder_acceleration", "F/(3*M + m)"),
+        ("cylinder_on_plank", "friction_force", "m*F/(3*M + m)"),
+        ("cylinder_on_plank", "cylinder_speed", "sqrt(6*F*X/(3*M + m))/3"),
     ],
 )
 def test_more_constraint_chapter_scenes(derived, scene, answer, expected):

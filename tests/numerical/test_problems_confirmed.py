@@ -68,6 +68,8 @@ CONFIRMED_ELSEWHERE = {
     ("turntable_slot_spring", "critical_angular_velocity"),
     ("double_atwood", "balancing_mass"),
     ("spool_pulled_at_angle", "critical_cos"),
+    ("watt_governor", "small_oscillation_frequency"),
+    ("watt_governor", "least_angular_velocity"),
 }
 
 

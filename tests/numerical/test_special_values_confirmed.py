@@ -329,3 +329,29 @@ def test_a_spool_pulled_at_the_critical_angle_does_not_roll(offset):
         assert abs(xddot) < 1e-9
     else:
         assert xddot > 0  # pulled more horizontally, the spool rolls towards the pull
+
+
+def _governor_state(model, theta: float):
+    """Coordinates (theta, phi, z): the sleeve on its arms, at rest relative to the shaft."""
+    return [theta, 0.0, 2 * model.values["l"] * math.cos(theta)], [0.0, model.values["omega"], 0.0]
+
+
+def test_small_oscillations_of_a_watt_governor_about_its_relative_equilibrium():
+    model, answers = engine("watt_governor")
+    # The equilibrium located numerically: thetaddot = 0 at rest, off the shaft.
+    equilibrium = brentq(lambda th: snapshot(model.numeric, 0.0, *_governor_state(model, th)).qddot[0],
+                         0.05, 1.5, xtol=1e-15)
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _measured_frequency(model, lambda th: _governor_state(model, th), 0, equilibrium, 1e-4,
+                                   2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+@pytest.mark.parametrize("factor, lifts", [(0.9999, False), (1.0001, True)])
+def test_the_governors_balls_lift_off_the_shaft_only_above_the_least_rate(factor, lifts):
+    _, answers = engine("watt_governor")
+    reference = SceneModel(scene_of("watt_governor"))
+    omega = closed_form(reference, answers, "least_angular_velocity") * factor
+    model = SceneModel(scene_of("watt_governor", (("value = 12.0 }", f"value = {omega!r} }}"),)))
+    thetaddot = snapshot(model.numeric, 0.0, *_governor_state(model, 0.01)).qddot[0]
+    assert (thetaddot > 0) == lifts
