@@ -24,7 +24,7 @@ from __future__ import annotations
 import sympy
 
 from grader.mechanics import budget
-from grader.mechanics.reduction import Reduction
+from grader.mechanics.reduction import Reduction, without_hidden_coordinates
 from grader.mechanics.scene import AnswerSpec, Scene, SceneError
 from grader.mechanics.simplification import human_form
 
@@ -143,6 +143,14 @@ class AnswerEvaluator:
         expr = human_form(expr)
         expr = self.eliminate_velocities(expr, target, key)
         leftover = expr.free_symbols - target
+        hidden = leftover & self.state_symbols(velocities=False)
+        if hidden:
+            # A coordinate present only through sin² + cos² (the azimuth in a top's pivot force,
+            # from a map in Cartesian coordinates) is not a dependence: remove it with the identity.
+            tidied = without_hidden_coordinates(expr, list(hidden))
+            if tidied is not expr:
+                expr = human_form(tidied)
+                leftover = expr.free_symbols - target
         if leftover:
             names = ", ".join(sorted(str(s) for s in leftover))
             wanted = ", ".join(sorted(str(s) for s in target)) or "nothing"
@@ -217,11 +225,18 @@ class AnswerEvaluator:
             unknowns.append(u.dot)
         if not equations:
             return {}
-        solution = sympy.solve(equations, unknowns, dict=True)
-        if len(solution) != 1:
+        # A momentum is linear in the velocities (T is quadratic in them): one linear system, whose
+        # matrix must be invertible, instead of a general solve that has no time bound.
+        try:
+            matrix, rhs = sympy.linear_eq_to_matrix(equations, unknowns)
+        except (sympy.PolynomialError, ValueError):
             return {}
+        determinant = sympy.cancel(matrix.det(method="berkowitz"))
+        if determinant == 0:
+            return {}
+        solution = matrix.LUsolve(rhs)
         # Cancelled, not tidied for reading: they are only ever substituted into what is.
-        return {v: sympy.factor(e) for v, e in solution[0].items()}
+        return {v: sympy.factor(sympy.cancel(e)) for v, e in zip(unknowns, solution)}
 
     def motion_sign(self, u) -> int | None:
         """The sign of u̇ at the start of the motion from [initial], if [initial] fixes it."""
