@@ -120,6 +120,21 @@ ROWS = [
                                                                                        "401   401   403   403   ok    404   403   ok"),
     Row("GET", "/api/v1/problems/<slug>/grades", "/api/v1/problems/mech-draft/grades", "401   401   403   403   ok    404   404   ok"),
     Row("POST", "/api/v1/problems/<slug>/regrade", "/api/v1/problems/mech/regrade",    "401   401   403   403   ok    404   403   ok"),
+    # --- API: a problem's life (what the instructor pages do: grader.web.api.versions) ---------------------
+    Row("GET", "/api/v1/problems/<slug>/versions", "/api/v1/problems/mech/versions",   "401   401   403   403   ok    404   403   ok"),
+    Row("GET", "/api/v1/problems/<slug>/versions", "/api/v1/problems/mech-draft/versions",
+                                                                                       "401   401   403   403   ok    404   403   ok"),
+    Row("GET", "/api/v1/problems/<slug>/versions", "/api/v1/problems/nope/versions",   "401   401   403   403   404   404   403   404"),
+    Row("POST", "/api/v1/problems/<slug>/versions", "/api/v1/problems/mech/versions",  "401   401   403   403   ok    404   403   ok",
+        UPLOAD),
+    Row("POST", "/api/v1/problems/<slug>/versions/<int:number>/publish",
+        "/api/v1/problems/mech-draft/versions/1/publish",                              "401   401   403   403   ok    404   403   ok"),
+    Row("POST", "/api/v1/problems/<slug>/versions/<int:number>/publish",
+        "/api/v1/problems/mech/versions/9/publish",                                    "401   401   403   403   404   404   403   404"),
+    Row("POST", "/api/v1/problems/<slug>/versions/<int:number>/unpublish",
+        "/api/v1/problems/mech/versions/1/unpublish",                                  "401   401   403   403   ok    404   403   ok"),
+    Row("POST", "/api/v1/problems/<slug>/archive", "/api/v1/problems/mech/archive",    "401   401   403   403   ok    404   403   ok"),
+    Row("POST", "/api/v1/problems/<slug>/restore", "/api/v1/problems/mech/restore",    "401   401   403   403   ok    404   403   ok"),
     # --- API: derivation jobs ---------------------------------------------------------------------------------
     Row("GET", "/api/v1/derivations/<int:job_id>", "/api/v1/derivations/{job}",        "401   401   403   403   ok    404   403   ok"),
     # --- student pages (an LMS or a bad token is nobody on a page) --------------------------------------------

@@ -10,4 +10,6 @@ spec = ApiSpec(bp, title="lagrade API", version=grader.__version__,
                description="Check answers to Lagrangian-mechanics problems, submit them for grading, "
                            "manage problems and read grades.")
 
-from grader.web.api import check, courses, derivations, docs, grades, problems, submissions  # noqa: E402,F401  (they register routes on bp)
+# They register routes on bp.
+from grader.web.api import (check, courses, derivations, docs, grades, problems, submissions,  # noqa: E402,F401
+                            versions)

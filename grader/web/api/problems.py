@@ -57,7 +57,8 @@ def problem_json(version: ProblemVersion, *, full: bool) -> dict[str, Any]:
     if full:
         body.update(engine_version=version.engine_version, created_at=version.created_at.isoformat() + "Z",
                     source_sha256=version.source_sha256, derivation=version.derivation)
-        body["links"].update(grades=url_for("api.get_grades", slug=slug), regrade=url_for("api.regrade", slug=slug))
+        body["links"].update(grades=url_for("api.get_grades", slug=slug), regrade=url_for("api.regrade", slug=slug),
+                             versions=url_for("api.list_versions", slug=slug))
     return body
 
 
