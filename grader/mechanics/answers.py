@@ -147,7 +147,7 @@ class AnswerEvaluator:
         if hidden:
             # A coordinate present only through sin² + cos² (the azimuth in a top's pivot force,
             # from a map in Cartesian coordinates) is not a dependence: remove it with the identity.
-            tidied = without_hidden_coordinates(expr, list(hidden))
+            tidied = without_hidden_coordinates(expr, list(hidden), thorough=True)
             if tidied is not expr:
                 expr = human_form(tidied)
                 leftover = expr.free_symbols - target

@@ -113,28 +113,29 @@ def solve_augmented(A: sympy.Matrix, b: sympy.Matrix, n: int | None = None) -> l
 
 
 def _pythagorean(value: sympy.Expr, generators: dict[sympy.Expr, sympy.Dummy]) -> sympy.Expr:
-    """A solved fraction with sin² + cos² = 1 used where it shortens it.
+    """A solved fraction with sin² + cos² = 1 used in its denominator where it shortens it.
 
     The generators sin u and cos u are independent symbols to the solve, so a slot turning at ω
-    leaves m (x² + y²)(sin²ωt + cos²ωt) in a denominator. Each numerator and denominator is
-    reduced modulo s² + c² − 1 in whichever direction is shorter, and the fraction cancelled again.
+    leaves m (x² + y²)(sin²ωt + cos²ωt) in a denominator. The denominator is reduced modulo
+    s² + c² − 1 (as a polynomial in c, then in s) and the shorter form kept. Only the denominator,
+    and no new cancellation: the numerators of a top on a pivot are hundreds of terms long, and
+    reducing and cancelling those took seconds for nothing a reader sees.
     """
     pairs = [(generators[sympy.sin(f.args[0])], d) for f, d in generators.items()
              if isinstance(f, sympy.cos) and sympy.sin(f.args[0]) in generators]
     if not pairs or value == 0:
         return value
     numerator, denominator = sympy.fraction(value)
-    best = value
+    best = denominator
     for s, c in pairs:
-        if not ({s, c} <= value.free_symbols):
+        if not ({s, c} <= best.free_symbols):
             continue
         identity = s ** 2 + c ** 2 - 1
         for square in (c, s):
-            reduced = sympy.cancel(sympy.rem(numerator, identity, square) / sympy.rem(denominator, identity, square))
+            reduced = sympy.factor_terms(sympy.rem(sympy.expand(best), identity, square))
             if sympy.count_ops(reduced) < sympy.count_ops(best):
                 best = reduced
-        numerator, denominator = sympy.fraction(best)
-    return best
+    return value if best is denominator else numerator / best
 
 
 def _generators(*matrices: sympy.Matrix) -> dict[sympy.Expr, sympy.Dummy]:

@@ -25,7 +25,7 @@ from grader.mechanics.augmented import generic_point, solve_augmented
 from grader.mechanics.scene import Coordinate, Scene, SceneError
 from grader.mechanics.simplification import readable_denominator, tidy_trig
 
-__all__ = ["Reduction"]
+__all__ = ["Reduction", "without_hidden_coordinates"]
 
 
 class Reduction:
@@ -40,7 +40,7 @@ class Reduction:
         else:
             self.independent, self.phi = self._solve_constraints()
         self.phi_dot = {q: self.time_derivative(expr) for q, expr in self.phi.items()}
-        self.lagrangian = _without_hidden_coordinates(sympy.expand(self.to_independent(scene.lagrangian)),
+        self.lagrangian = without_hidden_coordinates(sympy.expand(self.to_independent(scene.lagrangian)),
                                                       [u.symbol for u in self.independent.values()])
         self.accelerations: dict[sympy.Symbol, sympy.Expr] = {}
         self.multipliers: dict[str, sympy.Expr] = {}
@@ -238,27 +238,53 @@ class Reduction:
         return None if result.free_symbols & state else result
 
 
-def _without_hidden_coordinates(lagrangian: sympy.Expr, coordinates: list[sympy.Symbol]) -> sympy.Expr:
-    """The reduced Lagrangian with sin² + cos² = 1 applied when that removes a coordinate from it.
+def without_hidden_coordinates(lagrangian: sympy.Expr, coordinates: list[sympy.Symbol],
+                               thorough: bool = False) -> sympy.Expr:
+    """An expression (the reduced Lagrangian) with sin² + cos² = 1 applied when that removes a coordinate.
 
     A map written in Cartesian coordinates (x = l sin θ cos φ, y = l sin θ sin φ) expands into
     terms in sin²φ and cos²φ that add up to no φ at all: the azimuth of a spherical pendulum is
     cyclic, but only after the identity. Its conserved momentum (and the check that L_r is free of
-    a coordinate) needs the form without it; every other Lagrangian is kept exactly as expanded.
+    a coordinate) needs the form without it; every other Lagrangian is kept exactly as expanded
+    (the very same object is returned). ``thorough`` (for an answer that would otherwise be refused
+    as depending on the coordinate) also reduces fractions and odd powers, modulo every
+    sin²u + cos²u − 1 at once, by polynomial remainders.
 
     >>> th, ph, thd, phd = sympy.symbols("theta phi thetadot phidot")
     >>> L = sympy.expand(thd**2*(sympy.cos(th)**2*sympy.cos(ph)**2 + sympy.cos(th)**2*sympy.sin(ph)**2)
     ...                  + phd**2*sympy.sin(th)**2*(sympy.sin(ph)**2 + sympy.cos(ph)**2))
-    >>> sorted(map(str, _without_hidden_coordinates(L, [th, ph]).free_symbols))
+    >>> sorted(map(str, without_hidden_coordinates(L, [th, ph]).free_symbols))
     ['phidot', 'theta', 'thetadot']
     """
     present = lagrangian.free_symbols & set(coordinates)
     if not present or not lagrangian.has(sympy.sin, sympy.cos):
         return lagrangian
-    tidied = sympy.expand(tidy_trig(lagrangian))
-    if tidied.free_symbols & set(coordinates) < present and _vanishes(tidied - lagrangian):
-        return tidied
+    if not thorough:
+        tidied = sympy.expand(tidy_trig(lagrangian))
+        if tidied.free_symbols & set(coordinates) < present and _vanishes(tidied - lagrangian):
+            return tidied
+        return lagrangian
+    # thorough: a fraction, or odd powers (sin³φ cos φ + sin φ cos³φ − sin φ cos φ = 0): numerator and
+    # denominator reduced modulo sin²u + cos²u − 1 as polynomials in each cos u, for every angle u
+    # (the φ terms of a top's pivot force cancel only once sin²θ + cos²θ = 1 is used too).
+    angles = {f.args[0] for f in lagrangian.atoms(sympy.cos)} & {f.args[0] for f in lagrangian.atoms(sympy.sin)}
+    pairs = {u: (sympy.Dummy("s"), sympy.Dummy("c")) for u in angles}
+    replaced = lagrangian.xreplace({f(u): d for u, ds in pairs.items() for f, d in zip((sympy.sin, sympy.cos), ds)})
+    numerator, denominator = sympy.fraction(sympy.together(replaced))
+    try:
+        for sine, cosine in pairs.values():
+            identity = sine ** 2 + cosine ** 2 - 1
+            numerator, denominator = (sympy.rem(sympy.expand(p), identity, cosine) for p in (numerator, denominator))
+        reduced = sympy.cancel(numerator / denominator)
+    except sympy.PolynomialError:  # an angle also inside a root or another function: not a polynomial
+        return lagrangian
+    reduced = reduced.xreplace({d: f(u) for u, ds in pairs.items() for f, d in zip((sympy.sin, sympy.cos), ds)})
+    if reduced.free_symbols & set(coordinates) < present and _vanishes(reduced - lagrangian):
+        return reduced
     return lagrangian
+
+
+_TIDY_LIMIT = 200  # operations; the textbook scenes' numerators have at most 50
 
 
 def _tidy_entry(expr: sympy.Expr) -> sympy.Expr:
@@ -273,7 +299,11 @@ def _solve_small(A: sympy.Matrix, b: sympy.Matrix) -> list[sympy.Expr]:
         numerator, denominator = sympy.fraction(value)
         if denominator.could_extract_minus_sign():
             numerator, denominator = -numerator, -denominator
-        result.append(tidy_trig(numerator) / readable_denominator(denominator))
+        # A long numerator (a top's pivot force: a thousand operations) has no short form for
+        # tidy_trig to find, and takes it seconds; the answer is tidied at the end anyway.
+        if sympy.count_ops(numerator) <= _TIDY_LIMIT:
+            numerator = tidy_trig(numerator)
+        result.append(numerator / readable_denominator(denominator))
     return result
 
 

@@ -330,6 +330,16 @@ DISK_WEDGE = "(3*M + m + 2*m*sin(alpha)^2)"
         ("cylinder_on_plank", "cylinder_acceleration", "F/(3*M + m)"),
         ("cylinder_on_plank", "friction_force", "m*F/(3*M + m)"),
         ("cylinder_on_plank", "cylinder_speed", "sqrt(6*F*X/(3*M + m))/3"),
+        # Heavy top, I1 = A + M l^2 about the pivot: N_z = M g + M zddot_c with z_c = l cos(theta) and
+        # I1 thetaddot = I1 sin cos phidot^2 - C omega3 phidot sin + M g l sin (omega3 = psidot + phidot cos);
+        # p_psi = C omega3 = C s0 and p_phi = I1 sin^2 phidot + C omega3 cos = C s0 cos(theta0); energy.
+        ("heavy_top", "vertical_pivot_force",
+         "M*g - M*l*cos(theta)*thetadot^2 - M*l*sin(theta)*(sin(theta)*cos(theta)*phidot^2"
+         " - C*(psidot + phidot*cos(theta))*phidot*sin(theta)/(A + M*l^2) + M*g*l*sin(theta)/(A + M*l^2))"),
+        ("heavy_top", "precession_rate", "C*s0*(cos(theta0) - cos(theta))/((A + M*l^2)*sin(theta)^2)"),
+        ("heavy_top", "nutation_speed_squared",
+         "2*M*g*l*(cos(theta0) - cos(theta))/(A + M*l^2)"
+         " - C^2*s0^2*(cos(theta0) - cos(theta))^2/((A + M*l^2)^2*sin(theta)^2)"),
     ],
 )
 def test_more_constraint_chapter_scenes(derived, scene, answer, expected):

@@ -31,3 +31,14 @@ def test_a_lagrangian_without_a_hidden_coordinate_is_kept_as_expanded():
     scene = load_scene(SCENES / "double_pendulum.toml")
     reduction = Reduction(scene)
     assert reduction.lagrangian == sympy.expand(reduction.to_independent(scene.lagrangian))
+
+
+def test_an_answer_free_of_a_coordinate_only_through_the_identity_is_not_refused():
+    # A top's pivot force from the Schur complement carries sin^3(phi) cos(phi) + sin(phi) cos^3(phi)
+    # - sin(phi) cos(phi) (times powers of sin(theta)): zero once sin^2 + cos^2 = 1 is used for both angles.
+    from grader.mechanics.lagrange import derive
+
+    d = derive(load_scene(SCENES / "heavy_top.toml"))
+    phi = d.scene.namespace.symbol("phi")
+    assert phi in d.eom.multipliers["pivotz"].free_symbols
+    assert phi not in d.answers["vertical_pivot_force"].free_symbols
