@@ -10,15 +10,15 @@ four more (``sin(x)**2`` stays), a negative exponent in print three more, ties b
 length.
 
 The rewritings are sympy's own (``cancel``, ``factor_terms``, ``factor``, ``simplify``, ``trigsimp``)
-and five of ours, each applied in turn to the three shortest candidates and kept where it does
-not lengthen them: tidier radicands (:func:`tidy_radicands`: expanded, combined or factored, a
-perfect square let out where the symbols' signs allow), a denominator in sin² rather than cos²
-(:func:`readable_denominator`), sums grouped over a common factor (:func:`grouped`), a
-denominator spread over the sum it divides (:func:`spread_denominator`), products of sine and
-cosine of one argument contracted to the double angle (:func:`contract_double_angles`,
-hyperbolic too); then common factors out of every sum (``factor_terms``). A
-candidate replaces the input only if it has the input's value (:func:`_equal`: a numeric check at
-30 digits, and a symbolic one where that is cheap).
+and six of ours, each applied in turn to the three shortest candidates and kept where it does not
+lengthen them: tidier radicands (:func:`tidy_radicands`: expanded, combined or factored, a perfect
+square let out where the symbols' signs allow), a denominator in sin² rather than cos²
+(:func:`readable_denominator`), each small sum in whichever square is shorter, sums grouped over
+a common factor (:func:`grouped`), a denominator spread over the sum it divides
+(:func:`spread_denominator`), products of sine and cosine of one argument contracted to the
+double angle (:func:`contract_double_angles`, hyperbolic too); then common factors out of every
+sum (``factor_terms``). A candidate replaces the input only if it has the input's value
+(:func:`_equal`: a numeric check at 30 digits, and a symbolic one where that is cheap).
 
 Examples
 --------
@@ -83,7 +83,7 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
     Cheap rewritings always run; the costly ones (``simplify``, factoring) run under a budget of
     ``seconds`` of CPU time and only on expressions of moderate size, so that tidying never
     dominates a derivation: their result is kept if they finish, skipped if not. Our own
-    rewritings (:func:`_rewritten`) run under the same budget. The shortest candidate that has
+    rewritings (:func:`_rewritten`) run under half that budget. The shortest candidate that has
     the value of ``expr`` (:func:`_equal`) is returned; ``expr`` itself if none has.
     """
     from grader.mechanics.budget import attempt
@@ -128,7 +128,7 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
     # The few shortest candidates through our rewritings; a partial pass (the budget ran out)
     # keeps what it found.
     rewritten = []
-    attempt(lambda: rewritten.extend(_rewritten(c, weight) for c in candidates[:_REWRITTEN]), seconds,
+    attempt(lambda: rewritten.extend(_rewritten(c, weight) for c in candidates[:_REWRITTEN]), seconds / 2,
             fallback=lambda: None)
     # Never longer than the input, whatever the penalties: a form with a negative exponent in
     # print is not replaced by one with more operations.
@@ -145,8 +145,8 @@ _REWRITTEN = 3  # how many of the shortest candidates go through our rewritings
 def _rewritten(expr: sympy.Expr, weight) -> sympy.Expr:
     """``expr`` through each of our rewritings in turn, each kept where it does not lengthen it."""
     best = expr
-    for rewrite in (tidy_radicands, _readable_fraction, grouped, spread_denominator, contract_double_angles,
-                    sympy.factor_terms):
+    for rewrite in (tidy_radicands, _readable_fraction, _squares_in_sums, grouped, spread_denominator,
+                    contract_double_angles, sympy.factor_terms):
         candidate = rewrite(best)
         if candidate != best and weight(candidate) <= weight(best):
             best = candidate
@@ -159,6 +159,19 @@ def _readable_fraction(expr: sympy.Expr) -> sympy.Expr:
     if not denominator.has(sympy.sin, sympy.cos) or sympy.count_ops(denominator) > 40:
         return expr
     return numerator / readable_denominator(denominator)
+
+
+def _squares_in_sums(expr: sympy.Expr) -> sympy.Expr:
+    """Each small sum with sin² or cos² in it, written with the other square where shorter:
+    M g l² (sin²θ − 1) as −M g l² cos²θ, 1 − cos²θ as sin²θ."""
+    def shorter(total):
+        if sympy.count_ops(total) > 30:
+            return total
+        forms = [total] + [sympy.expand(_pythagorean(total, square)) for square in (sympy.sin, sympy.cos)]
+        return min(forms, key=lambda e: (sympy.count_ops(e), len(str(e))))
+
+    return expr.replace(lambda e: e.is_Add and any(p.exp == 2 for p in e.atoms(sympy.Pow)
+                                                   if isinstance(p.base, (sympy.sin, sympy.cos))), shorter)
 
 
 def spread_denominator(expr: sympy.Expr) -> sympy.Expr:
@@ -230,8 +243,10 @@ def grouped(expr: sympy.Expr) -> sympy.Expr:
         terms = sympy.Add.make_args(sympy.expand(total))
         if not 3 <= len(terms) <= 16:
             return total
-        # Only a symbol in two terms or more can be part of a shared coefficient.
-        shared = sorted((s for s in total.free_symbols if sum(t.has(s) for t in terms) > 1), key=str)[:10]
+        # Only a symbol in two terms or more can be part of a shared coefficient; the seven in the
+        # most terms are tried (28 pairs), which bounds the cost on a large sum.
+        counts = {s: sum(t.has(s) for t in terms) for s in total.free_symbols}
+        shared = sorted((s for s in counts if counts[s] > 1), key=lambda s: (-counts[s], str(s)))[:7]
         best, best_ops = total, sympy.count_ops(total)
         tidied: dict = {}  # the same inner sums come back for many choices of symbols
         for chosen in [(s,) for s in shared] + [(s, t) for i, s in enumerate(shared) for t in shared[i + 1:]]:
@@ -371,7 +386,8 @@ def _symbolically_equal(a: sympy.Expr, b: sympy.Expr) -> bool | None:
                for f in functions):
         return None
     replacement, relations = {}, []
-    for family, relation in ((circular, lambda s, c: s ** 2 + c ** 2 - 1), (hyperbolic, lambda s, c: c ** 2 - s ** 2 - 1)):
+    families = ((circular, lambda s, c: s ** 2 + c ** 2 - 1), (hyperbolic, lambda s, c: c ** 2 - s ** 2 - 1))
+    for family, relation in families:
         for x in {f.args[0] for f in functions if isinstance(f, family)}:
             s, c = sympy.Dummy(), sympy.Dummy()
             replacement.update({family[0](x): s, family[1](x): c})
