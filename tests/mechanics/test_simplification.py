@@ -42,6 +42,8 @@ CASES = {
     "wedge, sin·cos kept": (-g * m * sin(alpha) * cos(alpha) / (M + m * sin(alpha) ** 2),
                             "-g*m*sin(alpha)*cos(alpha)/(M + m*sin(alpha)**2)"),
     "1 − cos²": (g * m * (1 - cos(theta) ** 2), "g*m*sin(theta)**2"),
+    # A heavy top's pivot force has M g l² (1 − sin²θ) in a longer sum: cos²θ, and g in front.
+    "sin² − 1 inside a sum": (A * g - M * g * l ** 2 * (sin(theta) ** 2 - 1), "g*(A + M*l**2*cos(theta)**2)"),
     # Inside a loop: N = m (v₀²/R + g (3 cos φ − 2)), the mass in front of the sum it multiplies.
     "common mass factor": (m * (3 * R * g * cos(theta) - 2 * R * g + v0 ** 2) / R,
                            "m*(g*(3*cos(theta) - 2) + v0**2/R)"),
