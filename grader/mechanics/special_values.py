@@ -10,6 +10,11 @@ integrals), it must leave exactly one **unknown**: a symbol that the answer's ``
 - a parameter: a threshold, such as the least launch speed v₀ for which the normal force at the top
   of a loop is zero.
 
+An acceleration set to zero (``thetaddot = 0``) is followed along the motion first; when that makes
+the answer depend on what ``[initial]`` gives and ``in_terms_of`` leaves out (θ̈ has a θ̇² term, as
+when the mass depends on the configuration), the condition can only name an equilibrium, and is read
+at rest: the relative equilibrium of a governor turning steadily.
+
 The condition is solved **algebraically** first, under a time budget (a condition in sin θ alone is
 solved as a polynomial in S = sin θ, which is instant where a direct solve can hang), and the
 roots are kept where they are real and inside the unknown's domain, at two parameter points. Then:
@@ -73,8 +78,33 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     asks_time = scene.time in spec.expr.xreplace(evaluator.values).free_symbols
     if asks_time and scene.time not in target and spec.kind != "small_oscillation":
         return _at_time(evaluator, spec, target, key)
+    try:
+        return _where(evaluator, spec, target, key, at_rest=spec.kind == "small_oscillation")
+    except SceneError as error:
+        # θ̈ = 0 with θ̇² in θ̈ (a mass that depends on the configuration): followed along the
+        # motion it depends on where the motion starts, which in_terms_of leaves out; then it can
+        # only name an equilibrium, at rest, as it does for small oscillations.
+        if spec.kind == "small_oscillation" or not _names_an_equilibrium(evaluator, spec, error):
+            raise
+        return _where(evaluator, spec, target, key, at_rest=True)
+
+
+def _names_an_equilibrium(evaluator, spec, error: SceneError) -> bool:
+    """Whether a condition that failed along the motion may be read at rest instead: it sets an
+    acceleration to zero, and failed only by depending on what ``[initial]`` gives."""
+    lhs, rhs = spec.where
+    accelerations = {u.ddot for u in evaluator.reduction.independent.values()}
+    accelerations |= {c.ddot for c in evaluator.scene.coordinates.values()}
+    problem = str(error.problem)
+    return (rhs == 0 and bool(lhs.free_symbols & accelerations)
+            and ("still depends on" in problem or "exactly one unknown" in problem))
+
+
+def _where(evaluator, spec, target: set, key: str, at_rest: bool) -> sympy.Expr:
+    """``spec.expr`` where the condition holds: along the motion, or at rest (an equilibrium)."""
+    scene = evaluator.scene
     with budget.step("reducing the condition", spec.name):
-        condition, unknown = _condition(evaluator, spec, target, key)
+        condition, unknown = _condition(evaluator, spec, target, key, at_rest)
     with budget.step(f"solving the condition for {unknown}", spec.name):
         roots = solve_for(condition, unknown, scene.source, key)
     with budget.step("evaluating the answer at the roots", spec.name):
@@ -231,13 +261,13 @@ def _first_time(scene, roots: list[sympy.Expr], t: sympy.Symbol, key: str) -> sy
 
 
 # -- the condition --------------------------------------------------------------------------------
-def _condition(evaluator, spec, target: set, key: str) -> tuple[sympy.Expr, sympy.Symbol]:
-    """The condition in the independent variables, and its one unknown."""
+def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False) -> tuple[sympy.Expr, sympy.Symbol]:
+    """The condition in the independent variables, and its one unknown (``at_rest``: every velocity 0)."""
     scene = evaluator.scene
     lhs, rhs = spec.where
     everything = evaluator.parameters | evaluator.state_symbols() | {scene.time}
     expr = lhs - rhs
-    if spec.kind == "small_oscillation":
+    if at_rest:
         # An equilibrium: at rest.
         expr = expr.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
         expr = expr.xreplace({c.dot: 0 for c in scene.coordinates.values()})
@@ -248,7 +278,7 @@ def _condition(evaluator, spec, target: set, key: str) -> tuple[sympy.Expr, symp
             condition = evaluator.reduce(expr, allowed, key)
         except SceneError:
             continue
-        if spec.kind == "small_oscillation":
+        if at_rest:
             condition = condition.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
         condition = _essential(condition)
         # A state variable is the unknown when there is one (the condition picks a configuration;

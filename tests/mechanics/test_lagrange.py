@@ -324,6 +324,9 @@ DISK_WEDGE = "(3*M + m + 2*m*sin(alpha)^2)"
         ("watt_governor", "small_oscillation_frequency",
          "sqrt(m*omega^2*(m^2*l^2*omega^4 - (m + M)^2*g^2)/(l^2*m^2*omega^4*(m + 2*M) - 2*M*(m + M)^2*g^2))"),
         ("watt_governor", "least_angular_velocity", "sqrt((m + M)*g/(m*l))"),
+        # thetaddot = 0 holds on the swing from theta0 too, but in terms of m, M, g, l, omega alone it
+        # can only name the relative equilibrium, at rest: d/dtheta of the effective potential is zero.
+        ("watt_governor", "equilibrium_cos", "(m + M)*g/(m*l*omega^2)"),
         # Cylinder (I = m R^2/2) on a pulled plank: f = m xddot, R f = I phiddot, xddot + R phiddot = Xddot,
         # M Xddot = F - f; the cylinder's momentum m xdot - m (Xdot - xdot)/2 stays 0.
         ("cylinder_on_plank", "plank_acceleration", "3*F/(3*M + m)"),

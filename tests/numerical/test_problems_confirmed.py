@@ -70,6 +70,7 @@ CONFIRMED_ELSEWHERE = {
     ("spool_pulled_at_angle", "critical_cos"),
     ("watt_governor", "small_oscillation_frequency"),
     ("watt_governor", "least_angular_velocity"),
+    ("watt_governor", "equilibrium_cos"),
 }
 
 

@@ -336,6 +336,13 @@ def _governor_state(model, theta: float):
     return [theta, 0.0, 2 * model.values["l"] * math.cos(theta)], [0.0, model.values["omega"], 0.0]
 
 
+def test_the_governors_relative_equilibrium_is_where_it_stays_at_rest():
+    model, answers = engine("watt_governor")
+    equilibrium = brentq(lambda th: snapshot(model.numeric, 0.0, *_governor_state(model, th)).qddot[0],
+                         0.05, 1.5, xtol=1e-15)
+    assert abs(closed_form(model, answers, "equilibrium_cos") - math.cos(equilibrium)) < 1e-9
+
+
 def test_small_oscillations_of_a_watt_governor_about_its_relative_equilibrium():
     model, answers = engine("watt_governor")
     # The equilibrium located numerically: thetaddot = 0 at rest, off the shaft.
