@@ -154,10 +154,16 @@ def _rewritten(expr: sympy.Expr, weight) -> sympy.Expr:
 
 
 def _readable_fraction(expr: sympy.Expr) -> sympy.Expr:
-    """The denominator in sin² rather than cos² where shorter (:func:`readable_denominator`)."""
+    """The denominator in sin² rather than cos² where shorter (:func:`readable_denominator`).
+
+    >>> M, m, a = sympy.symbols("M m alpha", positive=True)
+    >>> _readable_fraction(1/(M + m - m*sympy.cos(a)**2))
+    1/(M + m*sin(alpha)**2)
+    """
     numerator, denominator = sympy.fraction(expr)
-    if not denominator.has(sympy.sin, sympy.cos) or sympy.count_ops(denominator) > 40:
-        return expr
+    squares = [p for p in denominator.atoms(sympy.Pow) if isinstance(p.base, sympy.cos) and p.exp.is_even]
+    if not squares or sympy.count_ops(denominator) > 40:
+        return expr  # no cos² to write as 1 − sin²
     return numerator / readable_denominator(denominator)
 
 
