@@ -379,51 +379,89 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> list[
     variable = _variable(evaluator, x)
     if not roots:
         raise SceneError(scene.source, key, f"the condition has no solution for {x} in closed form")
-    chosen = None
-    for point in _parameter_points(scene):
-        point = _with_state(evaluator, point, (condition.free_symbols | value.free_symbols) - {x})
+    chosen = base_count = None
+    near = _parameter_points(scene)
+    for parameters in near:
+        point = _with_state(evaluator, parameters, (condition.free_symbols | value.free_symbols) - {x})
         numeric = _numeric_roots(roots, point, variable)
         if not numeric:
             raise SceneError(scene.source, key,
                              f"the condition has no real root for {x} anywhere in its domain (closed forms: "
                              f"{', '.join(sympy.sstr(r) for r in roots)})")
-        values = {}
-        for index, r in numeric.items():
-            v = _evaluate(value.xreplace({x: roots[index]}), point)
-            if v is not None:
-                values[index] = v
-        groups = _groups(values)
-        one_motion = variable is not None and variable[0] == "coordinate" and _one_motion(evaluator, spec, variable[1])
-        if one_motion and spec.kind == "small_oscillation" and len(groups) == 1:
-            # An equilibrium need not be reached to oscillate about it; the motion only
-            # chooses among equilibria.
-            index = min(groups[0])
-        elif one_motion:
-            # Even a single root must be reached: the motion may turn back before it.
-            index = _first_reached(evaluator, variable[1], condition, numeric, point, key)
-        elif len(groups) == 1:
-            index = min(groups[0])
-        elif variable is not None and variable[0] == "velocity":
-            sign = evaluator.motion_sign(variable[1])
-            matching = [i for i, r in numeric.items() if sign is not None and r * sign > 0]
-            if sign is None or len({min(g) for g in groups for i in matching if i in g}) != 1:
-                raise SceneError(scene.source, key, _ambiguous(x, roots, numeric))
-            index = matching[0]
-        else:
-            reason = _must_be_one_value(scene, spec)
-            if reason is not None:
-                raise SceneError(scene.source, key, f"{_ambiguous(x, roots, numeric)} ({reason})")
-            index = None
-        indices = [index] if index is not None else [min(g) for g in groups]
-
-        def group_of(i):
-            return frozenset(next((g for g in groups if i in g), {i}))
-
+        indices, group_of = _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key)
         if chosen is None:
-            chosen = indices
-        elif sorted(map(sorted, map(group_of, chosen))) != sorted(map(sorted, map(group_of, indices))):
+            chosen, base_count = indices, _distinct(numeric)
+        elif _differ(chosen, indices, group_of):
             raise SceneError(scene.source, key, "which root holds depends on the parameter values")
+    # Across the domains: a root formula may be the root the motion reaches on one side of m₁ = m₂
+    # and another root on the other (Cardano's branches), so that a reference right at the scene's
+    # values is wrong elsewhere. With as many roots there as at the scene's values, the same one must
+    # be chosen; a point where the roots are others (no off-axis equilibrium below the critical ω),
+    # or where nothing decides, says nothing.
+    for parameters in _domain_points(scene, roots):
+        point = _with_state(evaluator, parameters, (condition.free_symbols | value.free_symbols) - {x})
+        numeric = _numeric_roots(roots, point, variable)
+        if _distinct(numeric) != base_count:
+            continue
+        try:
+            indices, group_of = _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key)
+        except SceneError:
+            continue
+        if _differ(chosen, indices, group_of):
+            where = ", ".join(f"{s} = {v:.4g}" for s, v in sorted(parameters.items(), key=lambda i: str(i[0])))
+            raise SceneError(scene.source, key,
+                             "which root holds depends on the parameter values: the closed form that holds at "
+                             f"the scene's values is not the root reached at {where}; narrow the parameters' "
+                             "domains (or write the scene with a ratio of them) so that one closed form holds "
+                             "throughout")
     return [roots[i] for i in chosen]
+
+
+def _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key):
+    """(indices of the roots the answer is at, their groups of equal value) at one parameter point."""
+    scene = evaluator.scene
+    values = {}
+    for index, r in numeric.items():
+        v = _evaluate(value.xreplace({x: roots[index]}), point)
+        if v is not None:
+            values[index] = v
+    groups = _groups(values)
+    one_motion = variable is not None and variable[0] == "coordinate" and _one_motion(evaluator, spec, variable[1])
+    if one_motion and spec.kind == "small_oscillation" and len(groups) == 1:
+        # An equilibrium need not be reached to oscillate about it; the motion only
+        # chooses among equilibria.
+        index = min(groups[0])
+    elif one_motion:
+        # Even a single root must be reached: the motion may turn back before it.
+        index = _first_reached(evaluator, variable[1], condition, numeric, point, key)
+    elif len(groups) == 1:
+        index = min(groups[0])
+    elif variable is not None and variable[0] == "velocity":
+        sign = evaluator.motion_sign(variable[1])
+        matching = [i for i, r in numeric.items() if sign is not None and r * sign > 0]
+        if sign is None or len({min(g) for g in groups for i in matching if i in g}) != 1:
+            raise SceneError(scene.source, key, _ambiguous(x, roots, numeric))
+        index = matching[0]
+    else:
+        reason = _must_be_one_value(scene, spec)
+        if reason is not None:
+            raise SceneError(scene.source, key, f"{_ambiguous(x, roots, numeric)} ({reason})")
+        index = None
+    indices = [index] if index is not None else [min(g) for g in groups]
+
+    def group_of(i):
+        return frozenset(next((g for g in groups if i in g), {i}))
+
+    return indices, group_of
+
+
+def _differ(chosen, indices, group_of) -> bool:
+    return sorted(map(sorted, map(group_of, chosen))) != sorted(map(sorted, map(group_of, indices)))
+
+
+def _distinct(numeric: dict[int, float]) -> int:
+    """How many different roots (formulas that agree are one root)."""
+    return len(_groups(numeric))
 
 
 def _must_be_one_value(scene, spec) -> str | None:
@@ -526,6 +564,19 @@ def _evaluate(expr: sympy.Expr, point: dict) -> float | None:
     if not math.isfinite(value.real) or abs(value.imag) > 1e-12 * max(1.0, abs(value.real)):
         return None
     return value.real
+
+
+#: Points drawn across the parameters' domains to confirm the choice of root (see _choose_root).
+DOMAIN_POINTS = 4
+
+
+def _domain_points(scene, roots) -> list[dict]:
+    """A few parameter points across the declared domains (seeded: the same every time), only when
+    there are several roots to choose between."""
+    if len(roots) < 2:
+        return []
+    rng = numpy.random.default_rng(11)
+    return [{p.symbol: p.domain.sample(rng) for p in scene.parameters.values()} for _ in range(DOMAIN_POINTS)]
 
 
 def _parameter_points(scene) -> list[dict]:

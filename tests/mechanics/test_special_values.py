@@ -105,6 +105,28 @@ def test_roots_that_must_be_one_value_are_named(answer, addition, reason):
     assert reason in caught.value.problem
 
 
+# The rod in a corner with two different masses: the wall is left where
+# (m2 - m1) s^3 + 3 m1 s - 2 m1 s0 = 0 (s = sin theta), whose Cardano roots are the physical one on one
+# side of m1 = m2 and another root on the other side.
+TWO_MASSES = (
+    ('m = { dimension = "mass", domain = "positive", value = 1.0 }',
+     'm1 = { dimension = "mass", domain = "positive", value = 1.0 }\n'
+     'm2 = { dimension = "mass", domain = "positive", value = 2.0 }'),
+    ('kinetic = "m/2*(x1dot^2 + y1dot^2 + x2dot^2 + y2dot^2)"',
+     'kinetic = "m1/2*(x1dot^2 + y1dot^2) + m2/2*(x2dot^2 + y2dot^2)"'),
+    ('potential = "m*g*(y1 + y2)"', 'potential = "g*(m1*y1 + m2*y2)"'),
+    ('"m",', '"m1", "m2",'),
+)
+
+
+def test_a_root_formula_right_only_on_one_side_of_the_domain_is_refused_not_used():
+    # At the scene's values (m1 < m2) one Cardano branch is the root the motion reaches; for m1 > m2
+    # that branch is another root, so a reference built from it would be wrong there.
+    scene = parse_scene(scene_text("rod_in_corner", *TWO_MASSES), "t.toml")
+    with pytest.raises(SceneError, match="which root holds depends on the parameter values.*narrow the parameters"):
+        derive(scene)
+
+
 def test_small_oscillations_about_an_unstable_equilibrium_are_refused():
     """Spinning faster than √(g/a), the hoop's lowest point is unstable."""
     text = scene_text("bead_hoop_equilibrium",
