@@ -37,6 +37,8 @@ m1*omega**2*sinh(2*omega*t)
 
 from __future__ import annotations
 
+import functools
+
 import sympy
 
 __all__ = ["contract_double_angles", "gathered_roots", "grouped", "human_form", "inverse_hyperbolic", "quick_form",
@@ -80,17 +82,25 @@ def _weight(expr: sympy.Expr, allowed_multiples: tuple[int, int], sine_cost: int
 def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
     """The most readable of a few equivalent rewritings of ``expr`` (see the module example).
 
+    Remembered per expression: a derivation asks for the same form more than once (an answer and
+    the special value built on it), and each asking costs up to the whole budget.
+
     Cheap rewritings always run; the costly ones (``simplify``, factoring) run under a budget of
     ``seconds`` of CPU time and only on expressions of moderate size, so that tidying never
     dominates a derivation: their result is kept if they finish, skipped if not. Our own
     rewritings (:func:`_rewritten`) run under half that budget. The shortest candidate that has
     the value of ``expr`` (:func:`_equal`) is returned; ``expr`` itself if none has.
     """
-    from grader.mechanics.budget import attempt
-
     expr = sympy.sympify(expr, strict=True)  # an expression or a number, never text
     if expr.is_Atom:
         return expr
+    return _remembered_form(expr, seconds)
+
+
+@functools.lru_cache(maxsize=512)
+def _remembered_form(expr: sympy.Expr, seconds: float) -> sympy.Expr:
+    from grader.mechanics.budget import attempt
+
     allowed = _multiple_angles(expr)
     cancelled = sympy.cancel(expr)
     candidates = [expr, cancelled, sympy.factor_terms(cancelled)]

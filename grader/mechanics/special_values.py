@@ -78,26 +78,33 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     asks_time = scene.time in spec.expr.xreplace(evaluator.values).free_symbols
     if asks_time and scene.time not in target and spec.kind != "small_oscillation":
         return _at_time(evaluator, spec, target, key)
+    at_rest = spec.kind == "small_oscillation"
     try:
-        return _where(evaluator, spec, target, key, at_rest=spec.kind == "small_oscillation")
+        return _where(evaluator, spec, target, key, at_rest=at_rest)
     except SceneError as error:
-        # θ̈ = 0 with θ̇² in θ̈ (a mass that depends on the configuration): followed along the
-        # motion it depends on where the motion starts, which in_terms_of leaves out; then it can
-        # only name an equilibrium, at rest, as it does for small oscillations.
-        if spec.kind == "small_oscillation" or not _names_an_equilibrium(evaluator, spec, error):
+        # θ̈ = 0 with θ̇² in θ̈ (a mass that depends on the configuration), read along the motion,
+        # depends on where the motion starts; when in_terms_of leaves the start out, the condition
+        # can only name an equilibrium (see _condition, which tries that reading before the motion's);
+        # if the motion's reading was taken and failed, read it at rest.
+        if at_rest or not (_sets_an_acceleration_to_zero(evaluator, spec) and _start_left_out(evaluator, target)):
             raise
-        return _where(evaluator, spec, target, key, at_rest=True)
+        try:
+            return _where(evaluator, spec, target, key, at_rest=True)
+        except SceneError:
+            raise error from None
 
 
-def _names_an_equilibrium(evaluator, spec, error: SceneError) -> bool:
-    """Whether a condition that failed along the motion may be read at rest instead: it sets an
-    acceleration to zero, and failed only by depending on what ``[initial]`` gives."""
+def _sets_an_acceleration_to_zero(evaluator, spec) -> bool:
     lhs, rhs = spec.where
     accelerations = {u.ddot for u in evaluator.reduction.independent.values()}
     accelerations |= {c.ddot for c in evaluator.scene.coordinates.values()}
-    problem = str(error.problem)
-    return (rhs == 0 and bool(lhs.free_symbols & accelerations)
-            and ("still depends on" in problem or "exactly one unknown" in problem))
+    return rhs == 0 and bool(lhs.free_symbols & accelerations)
+
+
+def _start_left_out(evaluator, target: set) -> bool:
+    """Whether [initial] uses parameters, none of which the answer may be written in."""
+    used = set().union(*(v.free_symbols for v in evaluator.scene.initial.values())) & evaluator.parameters
+    return bool(used) and not used & target
 
 
 def _where(evaluator, spec, target: set, key: str, at_rest: bool) -> sympy.Expr:
@@ -271,14 +278,23 @@ def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False) ->
         # An equilibrium: at rest.
         expr = expr.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
         expr = expr.xreplace({c.dot: 0 for c in scene.coordinates.values()})
-    attempts = [everything, target | evaluator.parameters | evaluator.state_symbols(velocities=False)]
+    along_motion = target | evaluator.parameters | evaluator.state_symbols(velocities=False)
+    attempts = [(everything, at_rest), (along_motion, at_rest)]
+    if not at_rest and _sets_an_acceleration_to_zero(evaluator, spec) and _start_left_out(evaluator, target):
+        # θ̈ = 0 that leaves θ and θ̇ (θ̇² in θ̈): along the motion it would depend on the start, which
+        # in_terms_of leaves out, so it names an equilibrium: read it at rest before the motion's way.
+        attempts.insert(1, (everything, True))
     found = []
-    for allowed in attempts:
+    for allowed, resting in attempts:
+        here = expr
+        if resting and not at_rest:
+            here = expr.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
+            here = here.xreplace({c.dot: 0 for c in scene.coordinates.values()})
         try:
-            condition = evaluator.reduce(expr, allowed, key)
+            condition = evaluator.reduce(here, allowed, key)
         except SceneError:
             continue
-        if at_rest:
+        if resting:
             condition = condition.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
         condition = _essential(condition)
         # A state variable is the unknown when there is one (the condition picks a configuration;
