@@ -263,7 +263,16 @@ def _first_time(scene, roots: list[sympy.Expr], t: sympy.Symbol, key: str) -> sy
         first = min(times, key=times.get)
         if chosen is not None and chosen != first:
             raise SceneError(scene.source, key, "which root is reached first depends on the parameter values")
-        chosen = first
+        chosen, count = first, len(times)
+    # The same across the domains, where there are as many times (see _choose_root).
+    for point in _domain_points(scene, roots):
+        times = {i: v for i, r in enumerate(roots) if (v := _evaluate(r, point)) is not None and v > 1e-12}
+        if len(times) == count and min(times, key=times.get) != chosen:
+            where = ", ".join(f"{s} = {v:.4g}" for s, v in sorted(point.items(), key=lambda i: str(i[0])))
+            raise SceneError(scene.source, key,
+                             "which root is reached first depends on the parameter values: the closed form "
+                             f"that holds at the scene's values is not the first time at {where}; narrow the "
+                             "parameters' domains so that one closed form holds throughout")
     return roots[chosen]
 
 

@@ -231,3 +231,16 @@ def test_the_checker_reads_the_values_in_time(derived, answer, student, right):
     reference = next(ReferenceAnswer.from_json(r) for r in derived("bead_rotating_rod").references()
                      if r["name"] == answer)
     assert (check_request(reference.request(student))["verdict"] == "equivalent") == right
+
+
+def test_the_first_time_must_be_the_same_closed_form_across_the_domains():
+    # Two candidate times, d/g and m: at the scene's values (m = 0.5, d/g = 0.2) d/g comes first,
+    # but across the positive domains m often does; a reference taking d/g would be wrong there.
+    from grader.mechanics.special_values import _first_time
+
+    scene = parse_scene(scene_text("block_incline_time"), "t.toml")
+    m, d, g = (scene.parameters[name].symbol for name in ("m", "d", "g"))
+    t = scene.time
+    with pytest.raises(SceneError, match="which root is reached first depends on the parameter values"):
+        _first_time(scene, [d / g, m], t, "answers (t).where")
+    assert _first_time(scene, [d / g, 2 * d / g], t, "answers (t).where") == d / g
