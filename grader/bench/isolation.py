@@ -36,11 +36,12 @@ __all__ = ["pathological_scene", "bench_isolation"]
 TARGET_RATIO = 2.0
 
 
-def pathological_scene(links: int = 3, slug: str | None = None) -> str:
+def pathological_scene(links: int = 4, slug: str | None = None) -> str:
     """A valid scene the engine is slow on: a chain of ``links`` pendulums in absolute angles.
 
-    Two links derive in about two seconds; three take over a minute (the coupled mass matrix is
-    inverted symbolically), so with three links every derivation runs into its time limit.
+    Two links derive in under a second and three in about one and a half; four take several
+    seconds (the coupled mass matrix is inverted symbolically), so with four links every
+    derivation runs into a time limit of a second or two.
     """
     terms = []
     for k in range(links):
@@ -167,7 +168,7 @@ def _uploads(base_url: str, tokens: list[str], count: int, calls: Calls) -> list
     def upload(number: int) -> None:
         http = requests.Session()
         headers = {"Authorization": f"Bearer {tokens[number % len(tokens)]}", "Content-Type": "application/toml"}
-        source = pathological_scene(3, slug=f"chain3-{number}").encode()
+        source = pathological_scene(4, slug=f"chain4-{number}").encode()
         start = time.perf_counter()
         try:
             response = http.post(base_url + "/api/v1/problems", data=source, headers=headers, timeout=60)

@@ -35,14 +35,14 @@ def test_an_invalid_scene_is_refused_with_its_error(source, message):
 
 
 def test_a_derivation_over_its_time_limit_is_stopped_and_the_next_one_works():
-    # A three-link chain takes far more than 0.2 s to derive (and no earlier derivation in the child
+    # A four-link chain takes far more than 0.2 s to derive (and no earlier derivation in the child
     # can have cached it). The engine's own budget (0.18 s) names the step it stopped in; should a
     # step not return to Python in time, the parent's kill at 0.2 s stops it instead. Which one comes
     # first depends on the machine's load.
     from grader.bench.isolation import pathological_scene
 
     with pytest.raises(DerivationError, match=r"ran out of its 0.18 s budget while|longer than 0.2 s"):
-        derive_source(pathological_scene(3), timeout_s=0.2)
+        derive_source(pathological_scene(4), timeout_s=0.2)
     assert derive_source((PROBLEMS / "yoyo.toml").read_text()).slug == "yoyo"
 
 
@@ -97,7 +97,7 @@ def test_an_orphaned_derivation_child_stops_by_itself(tmp_path):
 
     from grader.bench.isolation import pathological_scene
 
-    request = json.dumps({"source": pathological_scene(3), "filename": "chain3.toml", "budget_s": 0.5})
+    request = json.dumps({"source": pathological_scene(4), "filename": "chain4.toml", "budget_s": 0.5})
     child = subprocess.Popen([sys.executable, "-m", "grader.sandbox", "--handler",
                               "grader.jobs.derivation_child:derive_request"],
                              stdin=subprocess.PIPE, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)

@@ -99,8 +99,8 @@ def test_a_broken_sandbox_gives_the_job_back_rather_than_failing_the_scene(datab
 
 @pytest.mark.slow
 def test_a_pathological_scene_fails_at_its_time_limit_and_the_next_scene_is_derived(database, instructor):
-    """Real sandbox children: a three-link chain cannot be derived in a second; a two-link one can."""
-    slow = queue.enqueue(database, requester_id=instructor, source=pathological_scene(3), filename="chain3.toml")
+    """Real sandbox children: a four-link chain cannot be derived in a second; a two-link one can."""
+    slow = queue.enqueue(database, requester_id=instructor, source=pathological_scene(4), filename="chain4.toml")
     pool = DerivationWorkerPool(database, may_update=anyone_may_update, timeout_s=1.0, poll_s=0.05).start()
     try:
         stopped = _wait(database, slow)
@@ -108,7 +108,7 @@ def test_a_pathological_scene_fails_at_its_time_limit_and_the_next_scene_is_deri
         pool.stop()
     assert stopped.status == "failed"
     # The engine's budget (0.9 s) names the step; the child's kill at 1 s is the backstop.
-    assert re.fullmatch(r"chain3\.toml: the derivation (ran out of its 0\.9 s budget while .+"
+    assert re.fullmatch(r"chain4\.toml: the derivation (ran out of its 0\.9 s budget while .+"
                         r"|took longer than 1 s and was stopped)", stopped.error), stopped.error
     fast = queue.enqueue(database, requester_id=instructor, source=pathological_scene(2), filename="chain2.toml")
     pool = DerivationWorkerPool(database, may_update=anyone_may_update, poll_s=0.05).start()

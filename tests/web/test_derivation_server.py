@@ -60,7 +60,7 @@ def test_the_server_derives_uploads_in_the_background_and_refuses_oversized_bodi
         done = _poll(base, accepted.headers["Location"], headers)
         assert done["status"] == "done" and done["problem"]["id"] == "yoyo-served"
 
-        slow = requests.post(base + "/api/v1/problems", data=pathological_scene(3).encode(),
+        slow = requests.post(base + "/api/v1/problems", data=pathological_scene(4).encode(),
                              headers={**headers, **TOML}, timeout=30)
         failed = _poll(base, slow.headers["Location"], headers)
         # The engine's budget (0.9 of 2 s) names the step; the child's kill at 2 s is the backstop.
@@ -77,15 +77,15 @@ def test_a_derivation_interrupted_by_a_kill_is_finished_after_the_restart(site):
     server, headers = site
     first = server().start()
     scene = YOYO.read_text().replace('id = "yoyo"', 'id = "yoyo-restarted"')
-    # A two-link chain takes a couple of seconds to derive: long enough to be caught running.
-    location = requests.post(first.base_url + "/api/v1/problems", data=pathological_scene(2).encode(),
+    # A three-link chain takes a second or two to derive: long enough to be caught running.
+    location = requests.post(first.base_url + "/api/v1/problems", data=pathological_scene(3).encode(),
                              headers={**headers, **TOML}, timeout=30).headers["Location"]
     assert _poll(first.base_url, location, headers, until=("running", "done", "failed"))["status"] == "running"
     first.kill()
     second = server().start()
     try:
         job = _poll(second.base_url, location, headers)
-        assert job["status"] == "done" and job["problem"]["id"] == "chain2", job
+        assert job["status"] == "done" and job["problem"]["id"] == "chain3", job
         again = requests.post(second.base_url + "/api/v1/problems", data=scene.encode(),
                               headers={**headers, **TOML}, timeout=30)
         assert _poll(second.base_url, again.headers["Location"], headers)["status"] == "done"
