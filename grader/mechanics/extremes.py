@@ -32,6 +32,7 @@ from grader.mechanics.special_values import (
     _periodic,
     _speed_squared,
     _travel,
+    energy_speed_squared,
     solve_for,
 )
 
@@ -94,15 +95,8 @@ def extreme_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
 
 def _turning_condition(evaluator, u, key: str) -> sympy.Expr | None:
     """u̇² = 0 as a condition in u, when energy gives u̇²."""
-    reduction = evaluator.reduction
-    h = reduction.jacobi_integral()
-    if h is None or reduction.initial_value(h) is None:
-        return None
-    try:
-        squared = evaluator.velocity_squared(u, key, evaluator.momentum_substitution(set(), key))
-    except SceneError:
-        return None
-    return sympy.numer(sympy.together(squared))
+    squared = energy_speed_squared(evaluator, u, key)
+    return None if squared is None else sympy.numer(sympy.together(squared))
 
 
 def _motion_range(evaluator, u, point: dict, key: str) -> tuple[float | None, float | None]:

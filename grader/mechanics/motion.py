@@ -144,7 +144,6 @@ def _plan(evaluator) -> _Plan:
 
 
 def _integrate(evaluator) -> dict[sympy.Symbol, sympy.Expr]:
-    scene = evaluator.scene
     reduction = evaluator.reduction
     independent = list(reduction.independent.values())
     state = [s for u in independent for s in (u.symbol, u.dot)]

@@ -208,8 +208,10 @@ def _time_by_quadrature(evaluator, spec, target: set, key: str, quad) -> sympy.E
                          f"as its one unknown; it leaves {', '.join(others) or f'no {u.name}'}")
     with budget.step(f"solving the condition for {u.name}", spec.name):
         roots = solve_for(condition, q, scene.source, key)
-    chosen = None
-    for point in _parameter_points(scene):
+    chosen = count = None
+    near = _parameter_points(scene)
+    for n, point in enumerate(near + _domain_points(scene, roots)):
+        across = n >= len(near)  # as in _choose_root: the same root where there are as many ahead
         speed2 = _numeric(quad.speed_squared.xreplace({s: sympy.Float(v, 30) for s, v in point.items()}), q)
         q0 = _evaluate(evaluator.reduction.initial_value(q), point)
         end, why = _travel(u, q0, quad.sign, speed2)
@@ -221,6 +223,10 @@ def _time_by_quadrature(evaluator, spec, target: set, key: str, quad) -> sympy.E
             distance = quad.sign * (value - q0)
             if distance > 1e-12 and (end is None or distance <= quad.sign * (end - q0) + 1e-12):
                 ahead[index] = distance
+        if across:
+            if len(ahead) == count and min(ahead, key=ahead.get) != chosen:
+                raise SceneError(scene.source, key, _depends_on_parameters(point))
+            continue
         if not ahead:
             listed = ", ".join(sympy.sstr(r) for r in roots) or "none in closed form"
             turns = f"{why} at {u.name} = {end:.6g}" if end is not None else why
@@ -230,7 +236,7 @@ def _time_by_quadrature(evaluator, spec, target: set, key: str, quad) -> sympy.E
         first = min(ahead, key=ahead.get)
         if chosen is not None and chosen != first:
             raise SceneError(scene.source, key, "which root is reached first depends on the parameter values")
-        chosen = first
+        chosen, count = first, len(ahead)
     root = roots[chosen]
     moment = human_form(quad.time.xreplace({q: root}))
     # Confirmed numerically: the motion reaches q* at that moment.
@@ -268,12 +274,17 @@ def _first_time(scene, roots: list[sympy.Expr], t: sympy.Symbol, key: str) -> sy
     for point in _domain_points(scene, roots):
         times = {i: v for i, r in enumerate(roots) if (v := _evaluate(r, point)) is not None and v > 1e-12}
         if len(times) == count and min(times, key=times.get) != chosen:
-            where = ", ".join(f"{s} = {v:.4g}" for s, v in sorted(point.items(), key=lambda i: str(i[0])))
-            raise SceneError(scene.source, key,
-                             "which root is reached first depends on the parameter values: the closed form "
-                             f"that holds at the scene's values is not the first time at {where}; narrow the "
-                             "parameters' domains so that one closed form holds throughout")
+            raise SceneError(scene.source, key, _depends_on_parameters(point))
     return roots[chosen]
+
+
+def _depends_on_parameters(point: dict) -> str:
+    """Why a root (or time) chosen at the scene's values cannot be the reference: elsewhere in the
+    domains another closed form holds."""
+    where = ", ".join(f"{s} = {v:.4g}" for s, v in sorted(point.items(), key=lambda i: str(i[0])))
+    return ("which root holds depends on the parameter values: the closed form that holds at the scene's "
+            f"values is not the one reached at {where}; narrow the parameters' domains (or write the scene "
+            "with a ratio of them) so that one closed form holds throughout")
 
 
 # -- the condition --------------------------------------------------------------------------------
@@ -433,12 +444,7 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> list[
         except SceneError:
             continue
         if _differ(chosen, indices, group_of):
-            where = ", ".join(f"{s} = {v:.4g}" for s, v in sorted(parameters.items(), key=lambda i: str(i[0])))
-            raise SceneError(scene.source, key,
-                             "which root holds depends on the parameter values: the closed form that holds at "
-                             f"the scene's values is not the root reached at {where}; narrow the parameters' "
-                             "domains (or write the scene with a ratio of them) so that one closed form holds "
-                             "throughout")
+            raise SceneError(scene.source, key, _depends_on_parameters(parameters))
     return [roots[i] for i in chosen]
 
 
@@ -699,16 +705,22 @@ def _travel(u, u0: float, d: float, speed2, skip: bool = False) -> tuple[float |
     return None, "never turns back"
 
 
-def _speed_squared(evaluator, u, point: dict, key: str):
+def energy_speed_squared(evaluator, u, key: str) -> sympy.Expr | None:
+    """u̇² as a function of u from the conserved energy (and momenta) of the motion from [initial],
+    or None when energy is not conserved or [initial] does not give it."""
     reduction = evaluator.reduction
     h = reduction.jacobi_integral()
     if h is None or reduction.initial_value(h) is None:
         return None
     try:
-        squared = evaluator.velocity_squared(u, key, evaluator.momentum_substitution(set(), key))
+        return evaluator.velocity_squared(u, key, evaluator.momentum_substitution(set(), key))
     except SceneError:
         return None
-    if squared.free_symbols - set(point) - {u.symbol}:
+
+
+def _speed_squared(evaluator, u, point: dict, key: str):
+    squared = energy_speed_squared(evaluator, u, key)
+    if squared is None or squared.free_symbols - set(point) - {u.symbol}:
         return None
     return _numeric(squared.xreplace({s: sympy.Float(v, 30) for s, v in point.items()}), u.symbol)
 

@@ -7,7 +7,6 @@ took before the rewriting that makes it shorter), with the form a textbook print
 from __future__ import annotations
 
 import random
-import time
 
 import mpmath
 import pytest
@@ -133,17 +132,3 @@ def test_a_rewriting_that_changes_the_value_is_dropped(monkeypatch):
 ])
 def test_equal_decides_by_value(a, b, equal):
     assert _equal(a, b) is equal
-
-
-def test_the_double_pendulum_still_derives_in_under_two_seconds():
-    """The rewritings run under the engine's CPU budget; the slowest textbook scene (2 DOF,
-    4 constraints, ~1.3 s) must stay under 2 s of CPU time."""
-    from pathlib import Path
-
-    from grader.mechanics.lagrange import derive
-    from grader.mechanics.scene import load_scene
-
-    scene = load_scene(Path(__file__).parent / "scenes" / "double_pendulum.toml")
-    start = time.process_time()
-    derive(scene)
-    assert time.process_time() - start < 2.0

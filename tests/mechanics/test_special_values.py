@@ -241,6 +241,6 @@ def test_the_first_time_must_be_the_same_closed_form_across_the_domains():
     scene = parse_scene(scene_text("block_incline_time"), "t.toml")
     m, d, g = (scene.parameters[name].symbol for name in ("m", "d", "g"))
     t = scene.time
-    with pytest.raises(SceneError, match="which root is reached first depends on the parameter values"):
+    with pytest.raises(SceneError, match="which root holds depends on the parameter values"):
         _first_time(scene, [d / g, m], t, "answers (t).where")
     assert _first_time(scene, [d / g, 2 * d / g], t, "answers (t).where") == d / g
