@@ -748,9 +748,9 @@ def _equation(parser: _Parser, printed: bool = True) -> ParsedEquation:
     if not printed:
         return ParsedEquation(lhs, rhs, "", "", list(parser.notes), conditions)
     names = parser.ns.latex_names()
-    return ParsedEquation(lhs, rhs, f"{lhs} = {rhs}",
-                          f"{sympy.latex(lhs, symbol_names=names)} = {sympy.latex(rhs, symbol_names=names)}",
-                          list(parser.notes), conditions)
+    # The fast printers, as for expressions: sympy's cost more than parsing the equation.
+    return ParsedEquation(lhs, rhs, f"{to_text(lhs)} = {to_text(rhs)}",
+                          f"{to_latex(lhs, names)} = {to_latex(rhs, names)}", list(parser.notes), conditions)
 
 
 def parse_equation(text: str, namespace: Namespace, *, printed: bool = True) -> ParsedEquation:
@@ -782,7 +782,7 @@ def parse_system(text: str, namespace: Namespace, *, printed: bool = True) -> li
     >>> ns = Namespace([Variable("x", "length", "real"), Variable("y", "length", "real"),
     ...                 Variable("l", "length", "positive")])
     >>> [eq.text for eq in parse_system("x = 1; y = atan2(x, l + y)\\n x + y = 0", ns)]
-    ['x = 1', 'y = atan2(x, l + y)', 'x + y = 0']
+    ['x = 1', 'y = atan2(x, y + l)', 'x + y = 0']
     """
     namespace = _namespace(namespace)
     key = ("system", text, namespace, printed) if isinstance(text, str) else None

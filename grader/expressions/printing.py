@@ -167,7 +167,7 @@ def _text(expr: sympy.Expr) -> str:
         return out
     if expr.is_Mul:
         if _minus(expr):
-            return "-" + _text_wrapped(_negated(expr), _MUL + 1)
+            return "-" + _text_wrapped(_negated(expr), _MUL)
         coefficient, numerator, denominator = _split_fraction(expr)
         numerator, denominator = list(numerator), list(denominator)
         parts = [] if coefficient == 1 else [str(coefficient.p)] if coefficient.q == 1 else None

@@ -83,3 +83,30 @@ def test_products_print_their_factors_in_sympys_order(seed):
 def test_a_products_sign_is_read_as_sympy_reads_it(factors):
     expr = sympy.Mul(*(sympy.Symbol(f) if isinstance(f, str) else f for f in factors), evaluate=False)
     assert _minus(expr) == expr.could_extract_minus_sign()
+
+
+@pytest.mark.parametrize("text, printed", [
+    ("-2 l", "-2*l"),
+    ("-l cos(theta)", "-l*cos(theta)"),
+    ("-m1 m2 g/(m1 + m2)", "-g*m1*m2/(m1 + m2)"),
+    ("-(m1 - m2) g", "-g*(m1 - m2)"),
+])
+def test_a_negated_product_prints_without_brackets(text, printed):
+    # "-(2*l)" for a typed "-2 l" reads oddly back to the student; the minus binds the whole product anyway.
+    expr = parse_expression(text, NS).expr
+    assert to_text(expr) == printed
+    assert parse_expression(printed, NS).expr == expr
+
+
+@pytest.mark.parametrize("text", [
+    "m l thetadot = -m g sin(theta)",
+    "(m1 + m2) l θ̇ + m2 l cos(theta) = -m g sin θ; m1 = m2 g",
+    "-2 l = m1 sqrt(g/l)",
+])
+def test_equations_print_with_the_fast_printers_and_read_back(text):
+    from grader.expressions import parse_system
+
+    for equation in parse_system(text, NS):
+        again = parse_system(equation.text, NS)[0]
+        assert (again.lhs, again.rhs) == (equation.lhs, equation.rhs)
+        assert equation.latex.count("=") == 1 and "*" not in equation.latex
