@@ -14,7 +14,7 @@ from fractions import Fraction
 
 from .errors import ExpressionError
 
-__all__ = ["GREEK_CHARS", "OPERATOR_CHARS", "SUPERSCRIPT_CHARS", "SUBSCRIPT_DIGITS", "ROOT_CHARS",
+__all__ = ["GREEK_CHARS", "MATH_LETTERS", "OPERATOR_CHARS", "SUPERSCRIPT_CHARS", "SUBSCRIPT_DIGITS", "ROOT_CHARS",
            "COMBINING_DOTS", "DOTTED_LETTERS", "PRIME_CHARS", "VULGAR_FRACTIONS", "is_space", "bad_character"]
 
 _GREEK_NAMES = ("alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi "
@@ -36,7 +36,33 @@ GREEK_CHARS.update({"ς": "sigma", "ϑ": "theta", "ϕ": "phi", "ϵ": "epsilon", 
                     "ℯ": "e"})
 
 #: Operator look-alikes -> ASCII operator.
+
+def _math_letters() -> dict[str, str]:
+    """Styled letters of the Mathematical Alphanumeric Symbols block (𝑚, 𝒈, 𝜃, 𝛼) and ℎ: the plain letter.
+
+    Word's equation editor and many PDFs write every variable in them, so a pasted ``𝑚𝑔 cos 𝜃`` is
+    ``mg cos θ``. Only letters whose compatibility form is a Latin letter or a Greek letter we read
+    are mapped (a styled capital Alpha, which looks like A, stays refused as the lookalike it is).
+    """
+    found = {}
+    for code in [*range(0x1D400, 0x1D800), 0x210E]:
+        ch = chr(code)
+        if not unicodedata.category(ch).startswith("L"):
+            continue
+        plain = unicodedata.normalize("NFKC", ch)
+        if len(plain) == 1 and plain.isascii() and plain.isalpha():
+            found[ch] = plain
+        elif plain in GREEK_CHARS:
+            found[ch] = GREEK_CHARS[plain]
+    return found
+
+
+#: 𝑚 -> m, 𝜃 -> theta: styled mathematical letters, read as the letters they are.
+MATH_LETTERS = _math_letters()
+
 OPERATOR_CHARS = {"·": "*", "⋅": "*", "×": "*", "∗": "*", "•": "*", "∙": "*", "−": "-", "–": "-",
+                  # every other dash a word processor or PDF makes of a typed minus
+                  "—": "-", "‒": "-", "‐": "-", "‑": "-", "﹣": "-",
                   "÷": "/", "∕": "/", "⁄": "/"}
 
 #: Vulgar fractions (½x is x/2): the numerator and denominator, from Unicode's own numeric values.
@@ -156,6 +182,10 @@ def bad_character(ch: str, position: int) -> ExpressionError:
     if ch in _SPACING_ACCENTS:
         return ExpressionError(f"accent {name} does not follow a variable name", position, "bad_character",
                                "put the dot right after the variable, as in θ˙ or theta_dot")
+    plain = unicodedata.normalize("NFKC", ch)
+    if len(plain) == 1 and plain.isascii() and plain.isalnum():  # a styled digit such as 𝟐
+        return ExpressionError(f"character '{ch}' ({name}) is not allowed", position, "bad_character",
+                               f"type the ordinary '{plain}'")
     shown = ch if ch.isprintable() else f"U+{ord(ch):04X}"
     return ExpressionError(f"character '{shown}' ({name}) is not allowed",
                            position, "bad_character", _SYMBOL_HINTS.get(ch, _GENERIC_HINT))

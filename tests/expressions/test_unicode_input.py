@@ -37,3 +37,32 @@ def test_refused_characters_are_named(char, words):
                                          ("x", False)])
 def test_pasted_spaces_are_blank_but_zero_width_is_not(char, blank):
     assert is_space(char) is blank
+
+
+# -- red team 2026-11: what Word, PDFs and word processors make of typed letters and minus signs --
+
+@pytest.mark.parametrize("char, name", [
+    ("𝑚", "m"), ("𝑔", "g"), ("𝑀", "M"), ("ℎ", "h"), ("𝐱", "x"), ("𝒍", "l"), ("𝓁", "l"), ("𝗆", "m"), ("𝚖", "m"),
+    ("𝜃", "theta"), ("𝛼", "alpha"), ("𝜔", "omega"), ("𝜗", "theta"), ("𝜑", "phi"), ("𝝁", "mu"), ("𝛩", "Theta"),
+])
+def test_styled_mathematical_letters_are_the_letters(char, name):
+    from grader.expressions.unicode_input import MATH_LETTERS
+    assert MATH_LETTERS[char] == name
+
+
+@pytest.mark.parametrize("char", ["𝛢", "𝛰", "𝜊", "𝟐"])  # styled Alpha, Omicron, omicron look Latin; a digit is no letter
+def test_styled_lookalikes_and_digits_are_not_letters(char):
+    from grader.expressions.unicode_input import MATH_LETTERS
+    assert char not in MATH_LETTERS
+
+
+@pytest.mark.parametrize("char", ["—", "‒", "‐", "‑", "﹣", "–", "−"])
+def test_every_dash_is_a_minus(char):
+    from grader.expressions.unicode_input import OPERATOR_CHARS
+    assert OPERATOR_CHARS[char] == "-"
+
+
+@pytest.mark.parametrize("char, plain", [("𝟐", "2"), ("𝟎", "0"), ("𝟗", "9")])
+def test_a_styled_digit_is_refused_naming_the_plain_one(char, plain):
+    error = bad_character(char, 0)
+    assert char in error.message and f"'{plain}'" in error.hint
