@@ -1,9 +1,11 @@
 r"""The subset of LaTeX a student may type (or paste from a previewer).
 
 Supported: ``\frac{a}{b}`` (``\dfrac``, ``\tfrac``), ``\sqrt{x}``, ``\sqrt[n]{x}``,
-``\cdot``, ``\times``, ``\left( \right)``, ``\sin`` and friends, Greek letters
+``\cdot``, ``\times``, ``\left( \right)`` (and the sized ``\bigl( \Bigr)``), ``\sin`` and friends, Greek letters
 ``\theta``, ``\dot{\theta}``, ``\ddot{\theta}``, ``^{...}``, ``_{...}``, ``{}``
-grouping, ``\pi``, spacing commands and ``\mathrm{...}`` around names.
+grouping, ``\pi``, spacing commands and ``\mathrm{...}`` around names, degrees after a number
+(``30^\circ``, ``30\degree``), and ``$ $``, ``\( \)`` or ``\[ \]`` around it all.
+``\frac`` reads an unbraced argument as LaTeX does, one digit or letter: ``\frac12``, ``\frac gl``.
 Time derivatives as ``\frac{d\theta}{dt}``, ``\frac{\mathrm{d}^2x}{\mathrm{d}t^2}`` and
 ``\frac{d}{dt}\theta`` are read by :mod:`.leibniz`.
 Anything else (``\int``, ``\sum``, ``\partial``) is refused by name.
@@ -29,10 +31,15 @@ GREEK_COMMANDS.update({"varphi": "phi", "vartheta": "theta", "varepsilon": "epsi
 FUNCTION_COMMANDS = latex_commands()
 
 _OPERATORS = {"cdot": "*", "times": "*", "ast": "*", "div": "/"}
-_SPACING = {"quad", "qquad", "displaystyle", "textstyle", "limits"}
+# \big( \Bigm| \bigg): a bracket's size, nothing to a grader; the l and r forms say which side it is.
+_SIZES = {f"{size}{side}": "space" if side in ("", "m") else f"big{side}"
+          for size in ("big", "Big", "bigg", "Bigg") for side in ("", "l", "r", "m")}
+_SPACING = {"quad", "qquad", "displaystyle", "textstyle", "scriptstyle", "limits",
+            *(name for name, value in _SIZES.items() if value == "space")}
 _STRUCTURE = {"frac": "frac", "dfrac": "frac", "tfrac": "frac", "sqrt": "sqrt",
               "dot": "dot", "ddot": "ddot", "left": "left", "right": "right",
-              "lvert": "lvert", "rvert": "rvert", "vert": "vert"}
+              "lvert": "lvert", "rvert": "rvert", "vert": "vert", "mid": "vert",
+              **{name: value for name, value in _SIZES.items() if value != "space"}}
 _WRAPPERS = {"mathrm", "text", "mathit", "operatorname", "rm", "mathbf", "textrm"}
 
 

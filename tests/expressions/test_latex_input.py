@@ -34,3 +34,15 @@ def test_subscripts(content, name):
 def test_subscripts_must_be_names(content):
     with pytest.raises(ExpressionError):
         subscript_text(content, 0)
+
+
+# -- red team 2026-11 ---------------------------------------------------------------------------
+
+@pytest.mark.parametrize("command, expected", [
+    ("big", ("space", "")), ("Big", ("space", "")), ("bigg", ("space", "")), ("Bigg", ("space", "")),
+    ("bigm", ("space", "")), ("Biggm", ("space", "")), ("bigl", ("structure", "bigl")),
+    ("Bigr", ("structure", "bigr")), ("biggl", ("structure", "bigl")), ("Biggr", ("structure", "bigr")),
+    ("mid", ("structure", "vert")), ("scriptstyle", ("space", "")),
+])
+def test_bracket_sizes_and_bars(command, expected):
+    assert classify_command(command, 0) == expected
