@@ -32,7 +32,7 @@ import sympy
 from .errors import ExpressionError
 from .latex_input import classify_command, subscript_text
 from .magnitudes import MAX_DIGITS
-from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, GREEK_CHARS, OPERATOR_CHARS, PRIME_CHARS,
+from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, GREEK_CHARS, MATH_LETTERS, OPERATOR_CHARS, PRIME_CHARS,
                             ROOT_CHARS, SUBSCRIPT_DIGITS, SUPERSCRIPT_CHARS, VULGAR_FRACTIONS, bad_character,
                             is_space)
 
@@ -42,6 +42,8 @@ __all__ = ["Token", "tokenize", "check_brackets", "MAX_NESTING"]
 MAX_NESTING = 50
 
 _PAIRS = {"(": ")", "[": "]", "{": "}"}
+# A degree sign in LaTeX: 30^\circ, 30^{\circ}, 30^{\circ }
+_DEGREES = re.compile(r"\^\s*(?:\\circ(?![A-Za-z])|\{\s*\\circ\s*\})")
 _OPENERS = {v: k for k, v in _PAIRS.items()}
 
 # The characters most text is made of, tested first (see _Tokenizer.step).
@@ -51,7 +53,7 @@ _ASCII_NAME_START = (_ASCII_ALNUM - _DIGITS) | {"_"}
 _ASCII_ALNUM_RUN = re.compile("[A-Za-z0-9]+")
 # What can continue a name or mark its derivative (see _Tokenizer.identifier and finish_name):
 # a plain ASCII name followed by none of these is emitted as it is.
-_NAME_GOES_ON = frozenset(_ASCII_ALNUM | {"_"} | set(GREEK_CHARS) | set(SUBSCRIPT_DIGITS)
+_NAME_GOES_ON = frozenset(_ASCII_ALNUM | {"_"} | set(GREEK_CHARS) | set(MATH_LETTERS) | set(SUBSCRIPT_DIGITS)
                           | set(COMBINING_DOTS) | set(PRIME_CHARS))
 
 
@@ -73,7 +75,7 @@ class Token:
 
 
 def _is_name_start(ch: str) -> bool:
-    return (ch.isascii() and (ch.isalpha() or ch == "_")) or ch in GREEK_CHARS
+    return (ch.isascii() and (ch.isalpha() or ch == "_")) or ch in GREEK_CHARS or ch in MATH_LETTERS
 
 
 def _is_digit(ch: str) -> bool:
@@ -139,8 +141,10 @@ class _Tokenizer:
             self.emit("op", "^", start, start + 2)
         elif ch == "=" and self.peek(1) == "=":
             self.emit("op", "=", start, start + 2)
-        elif ch == "|":
+        elif ch == "|" or ch == "∣":  # ∣ (DIVIDES) is the bar some editors and PDFs give
             self.emit("bar", None, start, start + 1)
+        elif ch == "^" and _DEGREES.match(self.text, start):
+            self.degrees(start, _DEGREES.match(self.text, start).end())
         elif ch in "+-*/^=,;":
             self.emit("op", ch, start, start + 1)
         elif ch in _PAIRS:
@@ -171,11 +175,7 @@ class _Tokenizer:
         elif ch in VULGAR_FRACTIONS:
             self.vulgar_fraction(start)
         elif ch == "°" and self.tokens and self.tokens[-1].kind == "number":
-            # 30° is the number 30·π/180, one token so that cos 30° is cos(30°) (after a number only:
-            # θ° would turn a variable in radians into degrees)
-            number = self.tokens.pop()
-            self.space = number.space_before
-            self.emit("number", number.value * sympy.pi / 180, number.pos, start + 1, decimal=number.decimal)
+            self.degrees(start, start + 1)
         elif ch in PRIME_CHARS:
             self.emit("prime", PRIME_CHARS[ch], start, start + 1)
         elif ch == ".":
@@ -196,6 +196,16 @@ class _Tokenizer:
             raise bad_character(ch, start)
 
     # -- numbers ------------------------------------------------------------
+    def degrees(self, start: int, end: int) -> None:
+        r"""``30°``, ``30^\circ``, ``30^{\circ}``, ``30\degree``: the number 30·π/180, one token so that
+        cos 30° is cos(30°). After a number only: θ° would turn a variable in radians into degrees."""
+        if not (self.tokens and self.tokens[-1].kind == "number"):
+            raise ExpressionError(f"'{self.text[start:end]}' (degrees) does not follow a number", start,
+                                  "bad_character", "angles are in radians: degrees only follow a number, as in 30°")
+        number = self.tokens.pop()
+        self.space = number.space_before
+        self.emit("number", number.value * sympy.pi / 180, number.pos, end, decimal=number.decimal)
+
     def vulgar_fraction(self, start: int) -> None:
         """``½`` is the number 1/2; ``1½`` (a mixed number, or 1·½?) is refused rather than guessed."""
         if self.tokens and self.tokens[-1].kind == "number" and self.tokens[-1].end == start:
@@ -268,6 +278,9 @@ class _Tokenizer:
             elif c in GREEK_CHARS:
                 parts.append(GREEK_CHARS[c])
                 i += 1
+            elif c in MATH_LETTERS:  # 𝑚, 𝜃: a styled letter is the letter
+                parts.append(MATH_LETTERS[c])
+                i += 1
             elif c in SUBSCRIPT_DIGITS:
                 parts.append(("" if after_subscript_digit else "_") + SUBSCRIPT_DIGITS[c])
                 subscript_digit = True
@@ -336,6 +349,9 @@ class _Tokenizer:
         if j == start + 1:
             self.command_symbol(start)
             return
+        if text[start + 1:j] == "degree":
+            self.degrees(start, j)
+            return
         kind, value = classify_command(text[start + 1:j], start)
         if kind == "function" and value == "log" and j < self.n and text[j] == "_":
             self.logarithm_base(start, j)
@@ -358,6 +374,8 @@ class _Tokenizer:
             self.identifier(start, subscript_text(text[k + 1:close], k + 1), close + 1)
         elif value in ("left", "right"):
             self.delimiter(start, j, value)
+        elif value in ("bigl", "bigr"):  # \bigl( \Bigr]: a sized bracket, which side as \left \right say
+            self.delimiter(start, j, "left" if value == "bigl" else "right", text[start:j])
         elif value in ("lvert", "rvert", "vert"):
             self.emit("bar", {"lvert": "open", "rvert": "close"}.get(value), start, j)
         else:
@@ -378,7 +396,7 @@ class _Tokenizer:
 
     def command_symbol(self, start: int) -> None:
         ch = self.text[start + 1] if start + 1 < self.n else ""
-        if ch in (",", ";", ":", "!", " ", ">"):
+        if ch in (",", ";", ":", "!", " ", ">", "(", ")", "[", "]"):  # \( \) \[ \]: math delimiters, as $
             self.space = True
             self.i = start + 2
         elif ch in ("{", "}"):
@@ -389,7 +407,7 @@ class _Tokenizer:
             raise ExpressionError("'\\' must start a LaTeX command such as \\frac", start, "syntax",
                                   "delete the backslash, or write a command such as \\frac{a}{b}")
 
-    def delimiter(self, start: int, j: int, which: str) -> None:
+    def delimiter(self, start: int, j: int, which: str, command: str = "") -> None:
         while j < self.n and is_space(self.text[j]):
             j += 1
         ch = self.text[j] if j < self.n else ""
@@ -402,8 +420,8 @@ class _Tokenizer:
         elif ch == "|":  # \left| x \right|: an absolute value whose bars say which side they are
             self.emit("bar", "open" if which == "left" else "close", start, j + 1)
         else:
-            shown = ch or "end of text"
-            raise ExpressionError(f"\\{which} followed by '{shown}' is not supported", start,
+            shown, command = ch or "end of text", command or "\\" + which
+            raise ExpressionError(f"{command} followed by '{shown}' is not supported", start,
                                   "unsupported_function", "use \\left( ... \\right), or \\left| ... \\right| for |x|")
 
     def superscript(self) -> None:

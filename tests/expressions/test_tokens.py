@@ -112,3 +112,50 @@ def test_absolute_value_bars_become_abs_calls(text, reading):
 @pytest.mark.parametrize("text, name", [("\\log_{10} x", "log_10"), ("\\log_2 x", "log_2"), ("\\log_{2}(x)", "log_2")])
 def test_a_latex_logarithm_keeps_its_base(text, name):
     assert tokenize(text)[0].value == name
+
+
+# -- red team 2026-11: LaTeX as other editors write it -------------------------------------------
+
+@pytest.mark.parametrize("text", ["30^\\circ", "30^{\\circ}", "30 ^ { \\circ }", "30\\degree", "30°"])
+def test_every_degree_notation_after_a_number_is_degrees(text):
+    assert kinds(text) == [("number", sympy.pi / 6)]
+
+
+@pytest.mark.parametrize("text", ["x^\\circ", "x^{\\circ}", "(30)^\\circ", "\\degree"])
+def test_degrees_after_anything_but_a_number_are_refused_by_name(text):
+    with pytest.raises(ExpressionError) as err:
+        tokenize(text)
+    assert "degree" in err.value.message and "30°" in err.value.hint
+
+
+@pytest.mark.parametrize("text", ["\\(x\\)", "\\[x\\]", "$x$", "$$x$$", "\\( x \\)"])
+def test_math_delimiters_around_pasted_latex_are_decoration(text):
+    assert kinds(text) == [("name", "x")]
+
+
+@pytest.mark.parametrize("text", ["\\bigl(x\\bigr)", "\\Bigl(x\\Bigr)", "\\biggl(x\\biggr)", "\\Biggl(x\\Biggr)",
+                                  "\\big(x\\big)", "\\Big(x\\Big)", "\\bigg(x\\bigg)", "\\Bigg(x\\Bigg)",
+                                  "\\left(x\\right)"])
+def test_sized_brackets_are_brackets(text):
+    assert kinds(text) == [("open", "("), ("name", "x"), ("close", ")")]
+
+
+@pytest.mark.parametrize("text", ["\\bigl|x\\bigr|", "\\mid x\\mid", "∣x∣", "|x|", "\\Bigl| x \\Bigr|"])
+def test_every_absolute_value_bar(text):
+    assert kinds(text) == [("name", "abs"), ("open", "("), ("name", "x"), ("close", ")")]
+
+
+def test_a_sized_bracket_before_something_else_is_refused_naming_the_command():
+    with pytest.raises(ExpressionError) as err:
+        tokenize("\\bigl/ x")
+    assert "\\bigl" in err.value.message and "/" in err.value.message
+
+
+@pytest.mark.parametrize("text, name", [("𝑚𝑔", "mg"), ("𝜃̇", "theta"), ("𝑚₁", "m_1"), ("2𝑥", "x")])
+def test_styled_letters_make_names(text, name):
+    assert [t.value for t in tokenize(text) if t.kind == "name"] == [name]
+
+
+@pytest.mark.parametrize("text", ["x—y", "x‒y", "x‐y", "x‑y", "x﹣y"])
+def test_dashes_are_minus(text):
+    assert kinds(text) == [("name", "x"), ("op", "-"), ("name", "y")]
