@@ -290,8 +290,14 @@ class _Parser:
     def led(self, token: Token, left: sympy.Expr) -> tuple[sympy.Expr, str]:
         """Powers: ``^`` (right-associative) and superscripts."""
         if token.kind == "op" and token.value == "^":
+            base = self.tokens[self.i - 1]
             self.advance()
-            return self.power(left, self.expression(_POW - 1), token.pos), "^"
+            exponent = self.expression(_POW - 1)
+            if left is sympy.E and base.kind == "name":
+                # e^-kt, e^2x: the factors typed glued to the exponent stay in it, as nobody means
+                # e^(-k)·t (x^2y stays x²·y: only the exponential's exponent is read so).
+                exponent = self.glued_factors(exponent, base.pos, "e^")
+            return self.power(left, exponent, token.pos), "^"
         if token.kind == "sup":
             self.advance()
             return guarded_pow(left, sympy.Integer(token.value), token.pos), "^"
@@ -307,6 +313,14 @@ class _Parser:
         if not exponent.is_Integer and not base.is_number:
             self.domain_nodes.append((value, sympy.Pow(base, sympy.S.Half, evaluate=False)))
         return value
+
+    def root(self, arg: sympy.Expr, index: int, position: int) -> sympy.Expr:
+        """The ``index``-th root a radical sign means: ``√x`` needs x >= 0, but an odd root is real
+        for every x (``∛(-8)`` and ``\\sqrt[3]{-8}`` are -2), as ``cbrt`` is; a power ``x^(1/3)`` keeps
+        the reals' rule for fractional powers (x >= 0)."""
+        if index % 2 == 0:
+            return self.power(arg, sympy.Rational(1, index), position)
+        return checked(sympy.sign(arg) * guarded_pow(sympy.Abs(arg), sympy.Rational(1, index), position), position)
 
     def nud(self, token: Token, rbp: int = 0) -> sympy.Expr:
         kind = token.kind
@@ -327,7 +341,7 @@ class _Parser:
             self.expect_close(token)
             return inner
         if kind == "root":
-            return self.power(self.function_argument(token, "√"), sympy.Rational(1, token.value), token.pos)
+            return self.root(self.function_argument(token, "√"), token.value, token.pos)
         if kind == "command":
             return self.latex_command(token)
         if kind == "derivative":  # Leibniz notation, already resolved (or refused) by read_leibniz
@@ -449,23 +463,32 @@ class _Parser:
         Factors typed glued together stay together: ``sin 2x`` is sin(2x) and
         ``cos ωt`` is cos(ω·t), because nobody means sin(2)·x.
         """
-        arg = self.expression(_MUL)
+        arg = self.glued_factors(self.expression(_MUL), token.pos, name)
+        following = self.peek()
+        if following.kind == "name" and following.value.lower() not in FUNCTIONS \
+                and not following.forced_function:
+            self.note(f"read '{self.text[token.pos:following.end]}' as {name}({arg})·{following.text}")
+        return arg
+
+    def glued_factors(self, arg: sympy.Expr, start: int, name: str) -> sympy.Expr:
+        """``arg`` times the factors typed glued to it: the rest of a split name (``ωt``), a name right
+        after a number (``2x``), or a name after the space that ends a LaTeX command (``\\omega t``,
+        which LaTeX reads as ωt). A function's argument without brackets, an exponential's exponent."""
         glued = False  # glued by us (2 then x), not by a split name, which has its own note
         while True:
             following, last = self.peek(), self.tokens[self.i - 1]
             split_part = following.glued
             typed_glued = last.kind == "number" and following.pos == last.end and not following.space_before
-            if not (following.kind == "name" and (split_part or typed_glued)
-                    and following.value.lower() not in FUNCTIONS):
+            latex_word = (last.kind == "name" and last.text[:1] == "\\" and last.text[-1:].isalpha()
+                          and not self.text[last.end:following.pos].strip())
+            if not (following.kind == "name" and (split_part or typed_glued or latex_word)
+                    and following.value.lower() not in FUNCTIONS and not following.forced_function):
                 break
             arg = checked(sympy.Mul(arg, self.expression(_MUL)), following.pos)
-            glued = glued or not split_part
+            glued = glued or not split_part or name == "e^"  # a split name's note does not say e^(...)
         if glued:
-            self.note(f"read '{self.text[token.pos:self.tokens[self.i - 1].end]}' as {name}({arg})")
-        following = self.peek()
-        if following.kind == "name" and following.value.lower() not in FUNCTIONS \
-                and not following.forced_function:
-            self.note(f"read '{self.text[token.pos:following.end]}' as {name}({arg})·{following.text}")
+            shown = f"{name}({arg})" if name != "e^" else f"e^({arg})"
+            self.note(f"read '{self.text[start:self.tokens[self.i - 1].end]}' as {shown}")
         return arg
 
     def derivative_call(self, token: Token, order: int) -> sympy.Expr:
@@ -493,14 +516,36 @@ class _Parser:
 
     # -- LaTeX structures ----------------------------------------------------
     def braced(self, command: Token) -> sympy.Expr:
+        if self.peek().kind != "open" or self.peek().value != "{":
+            return self.latex_argument(command)
         opener = self.advance()
-        if opener.kind != "open" or opener.value != "{":
-            raise ExpressionError(f"{command.text} needs braces, as in \\frac{{a}}{{b}}", opener.pos, "syntax")
         if self.peek().kind == "close":
             raise ExpressionError("empty braces", opener.pos, "syntax", "put an expression inside the braces")
         inner = self.expression(0)
         self.expect_close(opener)
         return inner
+
+    def latex_argument(self, command: Token) -> sympy.Expr:
+        """An unbraced argument, read as LaTeX does: one character or one command, so ``\\frac12`` is
+        1/2, ``\\frac gl`` is g/l and ``\\frac\\pi2`` is π/2."""
+        token = self.peek()
+        plain = token.text.isascii() and token.text.isalnum() and token.order == 0
+        if token.kind in ("number", "name") and plain and len(token.text) > 1:
+            first, rest = token.text[0], token.text[1:]
+            if not (token.text.isdigit() or token.text.isalpha()):
+                raise ExpressionError(f"{command.text} needs braces, as in \\frac{{a}}{{b}}", token.pos, "syntax")
+            pieces = [replace(token, value=sympy.Integer(int(part)) if part.isdigit() else part, text=part,
+                              pos=token.pos + k, end=token.pos + k + len(part),
+                              space_before=token.space_before if k == 0 else False)
+                      for k, part in ((0, first), (1, rest))]
+            self.tokens[self.i:self.i + 1] = pieces
+            token = pieces[0]
+        single = plain and len(token.text) == 1
+        latex_name = token.kind == "name" and token.text[:1] == "\\" and not token.forced_function
+        if not ((token.kind in ("number", "name") and single) or latex_name):
+            raise ExpressionError(f"{command.text} needs braces, as in \\frac{{a}}{{b}}", token.pos, "syntax")
+        self.advance()
+        return self.nud(token, _POW)
 
     def latex_command(self, token: Token) -> sympy.Expr:
         if token.value == "frac":
@@ -520,7 +565,7 @@ class _Parser:
             following = self.peek()
             arg = self.braced(token) if following.kind == "open" and following.value == "{" \
                 else self.function_argument(token, "sqrt")
-            return self.power(arg, 1 / index, token.pos)
+            return self.root(arg, int(index), token.pos)
         # \dot{x}, \ddot{x}, \dot x
         order = 1 if token.value == "dot" else 2
         following = self.peek()

@@ -193,11 +193,11 @@ def test_equation_needs_exactly_one_equals(ns, text, position):
     ("Q_{roll,s}", "Q_roll_s"), ("Q_{\\mathrm{roll},s}", "Q_roll_s"),
     # Unicode operators
     ("2·m·g", "2*m*g"), ("x × y", "x*y"), ("x − y", "x - y"), ("x ÷ y", "x/y"), ("√x", "sqrt(x)"),
-    ("√(x + l)", "sqrt(x + l)"), ("∛x", "x^(1/3)"), ("x²", "x^2"), ("x³", "x^3"), ("x⁻¹", "1/x"),
+    ("√(x + l)", "sqrt(x + l)"), ("∛x", "cbrt(x)"), ("x²", "x^2"), ("x³", "x^3"), ("x⁻¹", "1/x"),
     ("2πr", "2*pi*r"), ("x\u00a0+\u2009y", "x + y"),
     # LaTeX
     ("\\frac{m}{2}\\dot{r}^2", "m/2*rdot^2"), ("\\sqrt{x^2 + y^2}", "sqrt(x^2 + y^2)"),
-    ("\\sqrt[3]{x}", "x^(1/3)"), ("m \\cdot g", "m*g"), ("m \\times g", "m*g"),
+    ("\\sqrt[3]{x}", "cbrt(x)"), ("m \\cdot g", "m*g"), ("m \\times g", "m*g"),
     ("\\left(x + y\\right)^{2}", "(x + y)^2"), ("\\sin\\theta", "sin(theta)"), ("\\sin^2\\theta", "sin(theta)^2"),
     ("{x + y}^2", "(x + y)^2"), ("\\pi r^2", "pi*r^2"), ("$x^2$", "x^2"), ("\\frac{1}{2} m \\dot{r}^{2}", "m*rdot^2/2"),
     ("\\cos(\\omega t)", "cos(omega*t)"), ("e^{-t}", "exp(-t)"),
@@ -271,7 +271,7 @@ def test_surprising_readings_are_noted(ns, text, note):
     ("m + (-4)^(1/2)", "syntax", None),
     ("thetadddot", "unknown_name", 0),
     ("z'", "unknown_name", 0),
-    ("\\frac12", "syntax", 5),
+    ("\\frac12.5", "syntax", 5),
 ])
 def test_student_errors(ns, text, code, position):
     with pytest.raises(ExpressionError) as err:
@@ -578,3 +578,79 @@ def test_every_spelling_of_a_dotted_subscripted_greek_variable_is_one_symbol(let
                  f"\\dot{{\\{letter}}}_{index}", f"\\dot{{\\{letter}}}_{{{index}}}", f"\\dot\\{letter}_{index}",
                  f"{letter}_{index}'", f"{name}dot"]
     assert {parse(text, ns) for text in spellings} == {ns.symbol(f"{name}dot")}
+
+
+# -- red team 2026-11: notations other graders' test suites use ------------------------------------
+
+@pytest.fixture
+def wave_ns():
+    return Namespace([Variable("x", "dimensionless", "real"), Variable("a", "dimensionless", "positive"),
+                      Variable("b", "dimensionless", "positive"), Variable("k", "frequency", "positive"),
+                      Variable("omega", "angular_velocity", "positive"), Variable("t", "time", "positive"),
+                      Variable("g", "acceleration", "positive"), Variable("l", "length", "positive")])
+
+
+@pytest.mark.parametrize("latex, plain", [
+    ("\\frac12", "1/2"), ("\\frac 12", "1/2"), ("\\frac23 a", "2/3*a"), ("\\frac{1}2", "1/2"), ("\\frac1{2}", "1/2"),
+    ("\\frac gl", "g/l"), ("\\frac{g}l", "g/l"), ("\\frac ab x", "a/b*x"), ("\\dfrac12", "1/2"), ("\\tfrac12", "1/2"),
+    ("\\frac\\omega t", "omega/t"), ("\\frac\\pi 2", "pi/2"), ("(g/l)^{\\frac12}", "sqrt(g/l)"),
+    ("\\frac{1}{2}", "1/2"),
+])
+def test_an_unbraced_frac_argument_is_one_character_or_command(wave_ns, latex, plain):
+    assert parse(latex, wave_ns) == parse(plain, wave_ns)
+
+
+@pytest.mark.parametrize("text", ["\\frac2", "\\frac{x}", "\\frac12.5", "\\frac+12", "\\frac"])
+def test_a_frac_without_its_two_arguments_is_refused(wave_ns, text):
+    with pytest.raises(ExpressionError) as err:
+        parse(text, wave_ns)
+    assert "\\frac" in err.value.message or "needs" in err.value.message or "expected" in err.value.message
+
+
+@pytest.mark.parametrize("text, value", [
+    ("∛(-8)", -2), ("\\sqrt[3]{-8}", -2), ("\\sqrt[5]{-32}", -2), ("∛(-27)", -3), ("∛8", 2), ("-∛8", -2),
+    ("∛(-8)^2", 4),
+])
+def test_an_odd_radical_is_the_real_root(wave_ns, text, value):
+    assert parse(text, wave_ns) == value
+
+
+@pytest.mark.parametrize("text", ["∛x", "\\sqrt[3]{x}", "cbrt(x)"])
+def test_an_odd_radical_of_a_variable_is_real_for_negative_values(wave_ns, text):
+    x = wave_ns.symbol("x")
+    assert parse(text, wave_ns).subs(x, -8) == -2
+
+
+@pytest.mark.parametrize("text", ["√(-4)", "\\sqrt{-4}", "sqrt(-4)"])
+def test_a_square_root_of_a_negative_number_is_still_refused(wave_ns, text):
+    with pytest.raises(ExpressionError):
+        parse(text, wave_ns)
+
+
+@pytest.mark.parametrize("text", ["∜(-16)", "\\sqrt[4]{-16}", "∜x"])
+def test_an_even_radical_stays_a_fractional_power(wave_ns, text):
+    assert not parse(text, wave_ns).has(sympy.sign)
+
+
+@pytest.mark.parametrize("text, plain", [
+    ("e^-kt", "exp(-k*t)"), ("e^kt", "exp(k*t)"), ("e^-2x", "exp(-2*x)"), ("e^2x", "exp(2*x)"),
+    ("e^-ab", "exp(-a*b)"), ("e^-ωt", "exp(-omega*t)"), ("e^-kt cos ωt", "exp(-k*t)*cos(omega*t)"),
+    ("e^{-k}t", "exp(-k)*t"), ("e^(-k)t", "exp(-k)*t"), ("e^-k t", "exp(-k)*t"),  # brackets and spaces end it
+    ("e^xsin x", "exp(x)*sin(x)"), ("x^2a", "x^2*a"), ("a^-2b", "b/a^2"),  # a function, or another base
+])
+def test_the_factors_glued_to_an_exponential_exponent_stay_in_it(wave_ns, text, plain):
+    assert parse(text, wave_ns) == parse(plain, wave_ns)
+
+
+def test_a_glued_exponent_is_noted(wave_ns):
+    assert "read 'e^-kt' as e^(-k*t)" in parse_expression("e^-kt", wave_ns).notes
+
+
+@pytest.mark.parametrize("latex, plain", [
+    ("\\cos\\omega t", "cos(omega*t)"), ("\\sin \\omega t", "sin(omega*t)"), ("\\cos\\omega t\\sin\\omega t",
+                                                                             "cos(omega*t)*sin(omega*t)"),
+    ("e^{-k t}\\cos\\omega t", "exp(-k*t)*cos(omega*t)"), ("\\cos\\omega\\, t", "cos(omega)*t"),
+    ("\\cos\\omega\\cdot t", "cos(omega)*t"), ("\\cos(\\omega) t", "cos(omega)*t"),
+])
+def test_the_space_that_ends_a_latex_command_does_not_end_a_function_argument(wave_ns, latex, plain):
+    assert parse(latex, wave_ns) == parse(plain, wave_ns)
