@@ -82,30 +82,76 @@ def _swap_sin_cos(expr: sympy.Expr) -> sympy.Expr:
     return expr.func(*args)
 
 
-def _one_term(expr: sympy.Expr) -> bool:
-    """True when ``expand(expr)`` is certainly a single term, found without expanding.
+def _splits(factor: sympy.Expr) -> bool:
+    """Whether ``expand`` may turn this factor of a product into a sum (so the product into several
+    terms): a sum, a sum raised to a power above 1 (or to a symbol), a logarithm. Everything else
+    expands to one term: a power of a product or to a sum is a product (power_base, power_exp), a
+    sum in a denominator or in a function's argument stays there (trig=False)."""
+    if factor.is_Add:
+        return True
+    if factor.is_Pow:
+        base, exp = factor.args
+        return bool(base.is_Add and (not exp.is_Rational or exp > 1))
+    return factor.func is sympy.log
 
-    That is when ``expr`` has no sum anywhere and no function but sin and cos: expansion only
-    distributes products over sums (and powers of sums), splits exponentials and logarithms of
-    sums and products, and rearranges powers of products, so a product of powers of symbols,
-    numbers and sin/cos of such stays one term. Expanding a fresh product costs far more than
-    this walk (sympy rebuilds and re-derives every factor).
+
+# Products distributed by hand at most this far; beyond, expand (rare: several nested sums).
+MAX_DISTRIBUTED = 64
+
+
+def _terms_without_expanding(expr: sympy.Expr) -> tuple[sympy.Expr, ...] | None:
+    """The terms of ``expand(expr)``, up to the form of each, for a product: ``()`` when it is one
+    term as it stands, else its sums distributed by hand (c·(t₁ + t₂) is c·t₁ and c·t₂, nested sums
+    in turn, like terms then combined); None when a factor needs expand itself (a power of a sum,
+    a logarithm) or the terms would be too many.
+
+    sympy's expand rebuilds and re-derives every factor of a fresh product (most of a wrong answer's
+    feedback time); here the terms are only candidates that an equivalence check then tests, so a
+    term's form does not matter (c·t/(r³(M + m)) where expand writes c·t/(M r³ + m r³)), only its value.
+
+    >>> m, g, M, a = sympy.symbols("m g M alpha", positive=True)
+    >>> _terms_without_expanding(M*m*g*sympy.cos(a)/(M + m*sympy.sin(a)**2))
+    ()
+    >>> _terms_without_expanding(m*(g - a**2)/(M + m))
+    (g*m/(M + m), -alpha**2*m/(M + m))
+    >>> _terms_without_expanding(m*(g + a*(M - m)))
+    (g*m, -alpha*m**2, M*alpha*m)
+    >>> _terms_without_expanding(m*(g + a)**2) is None  # a power of a sum: expand
+    True
     """
-    stack = [expr]
-    while stack:
-        node = stack.pop()
-        if node.is_Add or (node.is_Function and node.func not in (sympy.sin, sympy.cos)):
-            return False
-        stack.extend(node.args)
-    return True
+    if not any(_splits(f) for f in sympy.Mul.make_args(expr)):
+        return ()
+    terms = _distributed(expr, [])
+    if terms is None:
+        return None
+    first = next(f for f in sympy.Mul.make_args(expr) if _splits(f))
+    if len(terms) == len(first.args):
+        return tuple(terms)  # one sum of unlike terms times the same factors: still unlike
+    return sympy.Add.make_args(sympy.Add(*terms))
+
+
+def _distributed(expr: sympy.Expr, out: list) -> list | None:
+    """``out`` extended by the terms of ``expr`` with every sum of a product distributed, or None."""
+    factors = sympy.Mul.make_args(expr)
+    total = next((f for f in factors if _splits(f)), None)
+    if total is None:
+        out.append(expr)
+        return out
+    if not total.is_Add:
+        return None
+    others = [f for f in factors if f is not total]
+    for t in total.args:
+        if _distributed(sympy.Mul(*others, t), out) is None or len(out) > MAX_DISTRIBUTED:
+            return None
+    return out
 
 
 def _terms(expr: sympy.Expr) -> tuple[sympy.Expr, ...]:
     terms = sympy.Add.make_args(expr)
     if len(terms) < 2:
-        if _one_term(expr):
-            return ()
-        terms = sympy.Add.make_args(sympy.expand(expr))
+        terms = _terms_without_expanding(expr)
+        if terms is None:
+            terms = sympy.Add.make_args(sympy.expand(expr))
     return terms if 2 <= len(terms) <= MAX_TERMS else ()
 
 

@@ -129,3 +129,59 @@ def test_sin_cos_slip_is_found_when_only_the_swap_fits(rolling):
     # ...and not offered when swapping would not help either
     v = check("m*g*cos(alpha)", "m g sin(alpha)/2", rolling)
     assert "sin_cos" not in [f["code"] for f in v.feedback]
+
+
+def _products_with_sums(seed, count):
+    rng = random.Random(seed)
+    syms = [sympy.Symbol("a", positive=True), sympy.Symbol("b", positive=True), sympy.Symbol("c", real=True)]
+
+    def factor(depth):
+        kind = rng.random()
+        if depth == 0 or kind < 0.4:
+            return rng.choice(syms) ** rng.choice([1, 1, 2, -1, sympy.Rational(1, 2)])
+        if kind < 0.55:
+            return rng.choice([sympy.sin, sympy.cos])(total(depth - 1))
+        if kind < 0.8:
+            return total(depth - 1) ** rng.choice([1, 1, -1, sympy.Rational(1, 2), 2])
+        return sympy.Rational(rng.choice([1, 2, -3]), rng.choice([1, 2, 3]))
+
+    def total(depth):
+        return sympy.Add(*[sympy.Mul(*[factor(depth) for _ in range(rng.randint(1, 3))])
+                           for _ in range(rng.randint(1, 3))])
+
+    for _ in range(count):
+        yield sympy.Mul(*[factor(2) for _ in range(rng.randint(1, 3))], total(2))
+
+
+def _values(terms, point):
+    return sorted((complex(t.evalf(30, subs=point)) for t in terms), key=lambda z: (round(z.real, 9), round(z.imag, 9)))
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_the_terms_of_a_product_are_those_of_its_expansion_by_value(seed):
+    # The extra-term slip tries each term of the answer; a product's sums are distributed by hand
+    # (sympy's expand costs most of a wrong answer's feedback), giving expand's terms, each perhaps
+    # in another form (a denominator left as a product) but with the same value.
+    point = {sympy.Symbol("a", positive=True): sympy.Rational(13, 10), sympy.Symbol("b", positive=True):
+             sympy.Rational(17, 10), sympy.Symbol("c", real=True): sympy.Rational(-7, 10)}
+    for expr in _products_with_sums(seed, 40):
+        if len(sympy.Add.make_args(expr)) > 1:
+            continue
+        expanded = sympy.Add.make_args(sympy.expand(expr))
+        expected = expanded if 2 <= len(expanded) <= 6 else ()
+        got = _terms(expr)
+        assert len(got) == len(expected), expr
+        for x, y in zip(_values(got, point), _values(expected, point)):
+            assert abs(x - y) <= 1e-12 * (1 + abs(y)), expr
+
+
+@pytest.mark.parametrize("answer, code", [
+    ("m (l thetadot^2 + g cos(theta) + g)", "extra_term"),  # the extra term inside a product
+    ("m (l thetadot^2 + g (cos(theta) + 1))", "extra_term"),  # ... inside a nested sum
+    ("m l (thetadot^2 - g cos(theta)/l)", "term_sign"),
+    ("m g (cos(theta) + l thetadot^2/g + 1)", "extra_term"),  # a term with its own denominator
+])
+def test_slips_are_found_in_answers_written_as_products(pendulum, answer, code):
+    v = check(TENSION, answer, pendulum)
+    assert v.verdict == "not_equivalent"
+    assert [f["code"] for f in v.feedback] == [code]
