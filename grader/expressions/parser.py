@@ -373,9 +373,26 @@ class _Parser:
                 self.splice(token, resolved.value)
                 return self.nud(self.advance(), rbp)
             value = resolved.value
+        if called and self.time_argument(token, value):
+            return value
         if called and not following.space_before and not token.order:
             self.note(f"read '{token.text}(…)' as {token.text}·(…): {token.text} is a variable, not a function")
         return value
+
+    def time_argument(self, token: Token, value: sympy.Expr) -> bool:
+        """Skip a ``(t)`` typed right after a variable (``θ(t)``, ``θ̈(t)``, ``\\ddot{\\theta}(t)``) when no
+        variable t is declared: the variable as a function of time, which it is. True when skipped."""
+        opener = self.peek()
+        if not (isinstance(value, sympy.Symbol) and opener.kind == "open" and opener.value == "("
+                and opener.pos == token.end and "t" not in self.ns.names):
+            return False
+        inner, closer = self.tokens[self.i + 1:self.i + 3]
+        if not (inner.kind == "name" and inner.value == "t" and inner.order == 0
+                and closer.kind == "close" and closer.value == ")"):
+            return False
+        self.i += 3
+        self.note(f"read '{self.text[token.pos:closer.end]}' as {token.text}, a function of time")
+        return True
 
     def splice(self, token: Token, parts: list[str]) -> None:
         """Replace a glued name (``mg``, ``sin2x``) by one token per part, then parse on.
@@ -512,6 +529,7 @@ class _Parser:
         if resolved.kind != "symbol":
             raise ExpressionError(f"'{inner.text}' is not a variable that has a time derivative",
                                   inner.pos, "unknown_name")
+        self.time_argument(self.tokens[self.i - 1], resolved.value)
         return resolved.value
 
     # -- LaTeX structures ----------------------------------------------------

@@ -654,3 +654,28 @@ def test_a_glued_exponent_is_noted(wave_ns):
 ])
 def test_the_space_that_ends_a_latex_command_does_not_end_a_function_argument(wave_ns, latex, plain):
     assert parse(latex, wave_ns) == parse(plain, wave_ns)
+
+
+@pytest.fixture
+def timeless_ns():
+    return Namespace([Variable("g", "acceleration", "positive"), Variable("l", "length", "positive"),
+                      Variable("theta", "angle", "real", "coordinate"),
+                      Variable("thetadot", "angular_velocity", "real", "velocity"),
+                      Variable("thetaddot", "angular_acceleration", "real", "acceleration")])
+
+
+@pytest.mark.parametrize("text, plain", [
+    ("θ(t)", "theta"), ("θ̈(t)", "thetaddot"), ("θ'(t)", "thetadot"), ("\\ddot{\\theta}(t)", "thetaddot"),
+    ("\\dot\\theta(t)", "thetadot"), ("ddot(theta)(t)", "thetaddot"), ("sin(θ(t))", "sin(theta)"),
+    ("g/l sin θ(t)", "g/l*sin(theta)"), ("θ(t)^2", "theta^2"),
+])
+def test_a_variable_of_time_written_with_its_argument(timeless_ns, text, plain):
+    assert parse(text, timeless_ns) == parse(plain, timeless_ns)
+
+
+def test_a_time_argument_is_noted_and_only_skipped_when_no_variable_t_is_declared(timeless_ns, ns):
+    assert "read 'θ(t)' as θ, a function of time" in parse_expression("θ(t)", timeless_ns).notes
+    assert parse("theta(t)", ns) == sym(ns, "theta") * sym(ns, "t")  # t declared: a product, as before
+    for text in ("θ (t)", "θ(s)", "θ(2t)"):  # not the argument t right after the name: refused as before
+        with pytest.raises(ExpressionError):
+            parse(text, timeless_ns)
