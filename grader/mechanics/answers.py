@@ -26,7 +26,7 @@ import sympy
 from grader.mechanics import budget
 from grader.mechanics.reduction import Reduction, without_hidden_coordinates
 from grader.mechanics.scene import AnswerSpec, Scene, SceneError
-from grader.mechanics.simplification import human_form
+from grader.mechanics.simplification import factored_sums, human_form
 
 __all__ = ["AnswerEvaluator", "evaluate_answers"]
 
@@ -45,12 +45,21 @@ def evaluate_answers(scene: Scene, eom) -> tuple[dict[str, sympy.Expr], dict[str
     return answers, equations, evaluator.alternatives
 
 
+def _factored(value: sympy.Expr) -> sympy.Expr:
+    return budget.attempt(lambda: factored_sums(value), _FACTORED_BUDGET_S, fallback=lambda: value)
+
+
+_FACTORED_BUDGET_S = 0.3
+
+
 class AnswerEvaluator:
     """Evaluates answers one after another; later answers and conditions may use earlier ones."""
 
     def __init__(self, scene: Scene, eom):
         self.scene = scene
         self.reduction = Reduction(scene)
+        # The scene with [initial] completed in the independent variables (see Reduction).
+        self.scene = scene = self.reduction.scene
         self.reduction.solve(eom)
         subs = {k.multiplier: self.reduction.multipliers[k.name] for k in scene.constraints}
         subs.update(self.reduction.forces)
@@ -88,6 +97,11 @@ class AnswerEvaluator:
         else:
             with budget.step("expressing the answer in its variables", spec.name):
                 value = self.reduce_in_time(spec, key)
+        # Last, the small sums in it that factor shorter: cancelling and combining multiply out
+        # M² + 2Mm + m² on the way, and it is (M + m)² in the answer.
+        value = _factored(value)
+        if spec.name in self.alternatives:
+            self.alternatives[spec.name] = [_factored(a) for a in self.alternatives[spec.name]]
         self.values[spec.symbol] = value
         return value
 
@@ -140,7 +154,10 @@ class AnswerEvaluator:
         dynamics = {s: v for s, v in self.dynamics.items() if s not in keep}
         expr = expr.xreplace(dynamics)
         expr = self.reduction.to_independent(expr)
-        expr = human_form(expr)
+        if expr not in self.values.values():
+            # (An earlier answer read again, by a condition on it or an answer that is it, is in its
+            # readable form already.)
+            expr = human_form(expr)
         expr = self.eliminate_velocities(expr, target, key)
         leftover = expr.free_symbols - target
         hidden = leftover & self.state_symbols(velocities=False)
@@ -257,13 +274,21 @@ class AnswerEvaluator:
             signs.add(1 if value.real > 0 else -1)
         return signs.pop() if len(signs) == 1 else None
 
-    def velocity_squared(self, u, key: str, momenta: dict | None = None) -> sympy.Expr:
-        """u̇² from h(u, u̇) = h(initial), with conserved momenta substituted first (computed once)."""
+    def velocity_squared(self, u, key: str, momenta: dict | None = None, readable: bool = True) -> sympy.Expr:
+        """u̇² from h(u, u̇) = h(initial), with conserved momenta substituted first (computed once).
+
+        ``readable=False``: as solved from the energy, not tidied, for a caller that only evaluates
+        it numerically (tidying it is much of the cost, and is then done only if something shows it).
+        """
         cache_key = (u.name, tuple(sorted((str(k), str(v)) for k, v in (momenta or {}).items())))
         cache = self.__dict__.setdefault("_squared_cache", {})
-        if cache_key not in cache:
-            cache[cache_key] = self._velocity_squared(u, key, momenta)
-        return cache[cache_key]
+        if (cache_key, False) not in cache:
+            cache[cache_key, False] = self._velocity_squared(u, key, momenta)
+        if not readable:
+            return cache.get((cache_key, True), cache[cache_key, False])
+        if (cache_key, True) not in cache:
+            cache[cache_key, True] = human_form(cache[cache_key, False])
+        return cache[cache_key, True]
 
     def _velocity_squared(self, u, key: str, momenta: dict | None) -> sympy.Expr:
         h = self.reduction.jacobi_integral()
@@ -285,4 +310,4 @@ class AnswerEvaluator:
                              f"the energy is not of the form a·{u.dot.name}² + c, so {u.dot.name} cannot be "
                              "eliminated")
         a, c = poly.coeff_monomial(u.dot ** 2), poly.coeff_monomial(1)
-        return human_form((h0 - c) / a)
+        return (h0 - c) / a

@@ -58,6 +58,7 @@ __all__ = ["Quadrature", "motion_in_time", "numeric_motion", "quadrature"]
 
 _DSOLVE_BUDGET_S = 4.0
 _INTEGRATE_BUDGET_S = 4.0
+_CHEAP_INTEGRATE_BUDGET_S = 1.0  # the quadrature without Meijer G-functions, tried first
 _SOLVE_BUDGET_S = 3.0
 _NUMERIC_BUDGET_S = 6.0
 _RTOL = 1e-6  # closed form against the numerical integration, relative to the largest value seen
@@ -318,21 +319,41 @@ def _quadrature(evaluator, plan: _Plan) -> Quadrature:
         raise _refusal(evaluator, plan, f"and energy gives no quadrature ({exc.problem}); {_ASK_INSTEAD}") from None
     q = u.symbol
     integrand = 1 / sympy.sqrt(squared)
+    shown = f"t = ∫ d{u.name}/√({sympy.sstr(squared)})"
 
-    def integrate():
+    def integrate(options):
         try:
-            return sympy.integrate(integrand, q)
+            return sympy.integrate(integrand, q, **options)
         except (NotImplementedError, ValueError, TypeError):
             return None
 
-    with budget.step(f"integrating the energy quadrature in {u.name}"):
-        antiderivative = budget.attempt(integrate, _INTEGRATE_BUDGET_S, fallback=lambda: None)
-    shown = f"t = ∫ d{u.name}/√({sympy.sstr(squared)})"
-    if antiderivative is None or antiderivative.has(sympy.Integral):
-        elliptic = " (it is an elliptic integral)" if _elliptic(squared, q) else ""
-        raise _refusal(evaluator, plan,
-                       f"and the energy quadrature {shown} is not an elementary function{elliptic}: sympy "
-                       f"finds no antiderivative (it tries for {_INTEGRATE_BUDGET_S:g} s); {_ASK_INSTEAD}")
+    # The cheap route first: sympy tries Meijer G-functions before its manual integration, and they
+    # cost most of the time on an elementary integrand (a second for the radial fall's
+    # √(r/(r₀ − r))) and return a Piecewise over both sides of a branch point. Without them, an
+    # antiderivative that does not follow the motion, or none, sends us on to everything sympy has.
+    refused, tried = None, []
+    for options, seconds in (({"meijerg": False}, _CHEAP_INTEGRATE_BUDGET_S), ({}, _INTEGRATE_BUDGET_S)):
+        with budget.step(f"integrating the energy quadrature in {u.name}"):
+            antiderivative = budget.attempt(lambda: integrate(options), seconds, fallback=lambda: None)
+        if antiderivative is None or antiderivative.has(sympy.Integral) or antiderivative in tried:
+            continue
+        tried.append(antiderivative)
+        try:
+            return _quadrature_from(evaluator, plan, u, sign, squared, antiderivative, shown)
+        except SceneError as exc:
+            refused = exc
+    if refused is not None:
+        raise refused
+    elliptic = " (it is an elliptic integral)" if _elliptic(squared, q) else ""
+    raise _refusal(evaluator, plan,
+                   f"and the energy quadrature {shown} is not an elementary function{elliptic}: sympy "
+                   f"finds no antiderivative (it tries for {_INTEGRATE_BUDGET_S:g} s); {_ASK_INSTEAD}")
+
+
+def _quadrature_from(evaluator, plan: _Plan, u, sign: int, squared: sympy.Expr, antiderivative: sympy.Expr,
+                      shown: str) -> Quadrature:
+    """t(q) from an antiderivative G: sign · (G(q) − G(q₀)), confirmed against the numerical motion."""
+    q = u.symbol
     point = _point(evaluator)
     q0 = _initial(evaluator, q)
     ahead = _ahead(evaluator, u, sign, point)
@@ -425,9 +446,16 @@ def _invert(evaluator, quad: Quadrature) -> dict[sympy.Symbol, sympy.Expr]:
         except (NotImplementedError, ValueError, TypeError):
             return None
 
+    shown = f"t = {sympy.sstr(quad.time)}"
+    inverse = _transcendental_in(quad.time, q)
+    if inverse is not None:
+        raise _refusal(evaluator, plan,
+                       f"and the energy quadrature gives {shown} in closed form, but it cannot be solved for "
+                       f"{u.name}(t) in elementary functions ({u.name} is both inside {sympy.sstr(inverse)} and "
+                       f"outside it); ask for the time at which a condition holds (expr = \"t\", where = "
+                       f"\"{u.name} = ...\"), or {_ASK_INSTEAD}")
     with budget.step(f"solving the quadrature for {u.name}(t)"):
         roots = budget.attempt(solve, _SOLVE_BUDGET_S, fallback=lambda: None)
-    shown = f"t = {sympy.sstr(quad.time)}"
     if not roots:
         raise _refusal(evaluator, plan,
                        f"and the energy quadrature gives {shown} in closed form, but sympy cannot solve it for "
@@ -449,6 +477,30 @@ def _invert(evaluator, quad: Quadrature) -> dict[sympy.Symbol, sympy.Expr]:
                        f"the motion; ask for the time at which a condition holds (expr = \"t\"), or {_ASK_INSTEAD}")
     position = _readable(candidates[0])
     return {q: position, u.dot: _readable(sympy.diff(position, t))}
+
+
+def _transcendental_in(expr: sympy.Expr, q: sympy.Symbol) -> sympy.Expr | None:
+    """An inverse circular or hyperbolic function of q in ``expr`` when q is also outside it, else None.
+
+    Then t = expr mixes q with a transcendental function of q, as Kepler's equation does
+    (t = asin(√r) − √r √(1 − r) for a radial fall): it has no solution for q in elementary
+    functions, and ``solve``, which would try for a while, is not asked. (A logarithm is left to
+    it: log q + q = t has q = W(eᵗ).)
+
+    >>> r = sympy.Symbol("r", positive=True)
+    >>> _transcendental_in(sympy.asin(sympy.sqrt(r)) - sympy.sqrt(r)*sympy.sqrt(1 - r), r)
+    asin(sqrt(r))
+    >>> _transcendental_in(sympy.asin(r/2), r) is None, _transcendental_in(sympy.log(r) + r, r) is None
+    (True, True)
+    """
+    inverses = sorted((f for f in expr.atoms(*_INVERSES) if q in f.free_symbols), key=sympy.default_sort_key)
+    if inverses and q in expr.xreplace({f: sympy.Dummy() for f in inverses}).free_symbols:
+        return inverses[0]
+    return None
+
+
+_INVERSES = (sympy.asin, sympy.acos, sympy.atan, sympy.acot, sympy.asec, sympy.acsc,
+             sympy.asinh, sympy.acosh, sympy.atanh, sympy.acoth, sympy.asech, sympy.acsch)
 
 
 def _confirm_quadrature(evaluator, quad: Quadrature, point: dict, ahead: float) -> None:

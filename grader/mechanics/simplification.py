@@ -41,8 +41,8 @@ import functools
 
 import sympy
 
-__all__ = ["contract_double_angles", "gathered_roots", "grouped", "human_form", "inverse_hyperbolic", "quick_form",
-           "readable_denominator", "signs_in_front", "spread_denominator", "tidy_radicands", "tidy_trig"]
+__all__ = ["contract_double_angles", "factored_sums", "gathered_roots", "grouped", "human_form", "inverse_hyperbolic",
+           "quick_form", "readable_denominator", "signs_in_front", "spread_denominator", "tidy_radicands", "tidy_trig"]
 
 _TRIG = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc)
 _HYPERBOLIC = (sympy.sinh, sympy.cosh, sympy.tanh, sympy.coth, sympy.sech, sympy.csch)
@@ -108,19 +108,11 @@ def _remembered_form(expr: sympy.Expr, seconds: float) -> sympy.Expr:
     if cancelled.has(*_TRIG):
         candidates.append(sympy.factor_terms(tidy_trig(numerator)) / readable_denominator(denominator))
 
-    def costly():
-        simplified = sympy.simplify(cancelled)
-        candidates.extend([simplified, sympy.factor(simplified)])
-        if simplified.has(*_TRIG):
-            expanded = sympy.expand_trig(simplified)
-            candidates.extend([sympy.factor(sympy.cancel(expanded)), sympy.factor(sympy.trigsimp(expanded))])
-            candidates.extend([sympy.factor(sympy.cancel(_pythagorean(c, square))) for c in (expanded, simplified)
-                               for square in (sympy.sin, sympy.cos)])
-
     # simplify() rarely beats the cheap forms on a short expression, and costs the most there.
     if 12 < min(sympy.count_ops(c) for c in candidates) and sympy.count_ops(cancelled) < 120:
-        attempt(costly, seconds, fallback=lambda: None)
+        candidates.extend(_simplified_forms(cancelled, seconds))
     if expr.has(sympy.Pow):
+        candidates = list(dict.fromkeys(candidates))  # simplify often returns a cheap form again
         candidates.extend([gathered_roots(c) for c in candidates])
     if expr.has(sympy.log):
         candidates.append(inverse_hyperbolic(expr))
@@ -150,6 +142,49 @@ def _remembered_form(expr: sympy.Expr, seconds: float) -> sympy.Expr:
 
 
 _REWRITTEN = 3  # how many of the shortest candidates go through our rewritings
+_SIGNS = ("positive", "negative", "nonnegative", "nonpositive", "nonzero", "real")
+
+
+@functools.lru_cache(maxsize=512)
+def _simplified_forms(cancelled: sympy.Expr, seconds: float) -> tuple[sympy.Expr, ...]:
+    """The costly candidates of :func:`human_form`: ``simplify`` and factored and trigonometric
+    variants of its result, as many as ``seconds`` of CPU time allow.
+
+    Remembered per cancelled form: expressions that differ only in how they are written (a motion
+    in time as solved, and the readable form of it that an answer then reads) cancel to the same
+    one, and running out of the budget on it once is enough.
+    """
+    from grader.mechanics.budget import attempt
+
+    found: list = []
+
+    # simplify's own trigonometric pass (futrig) is most of its cost on an expression in sines and
+    # cosines, several times more with hyperbolic functions as well (it factors over the Gaussian
+    # rationals), and what it finds in mechanics our rewritings find too: the Pythagorean identity
+    # either way (below, and :func:`_squares_in_sums`), sums of products into a sine or cosine of a
+    # sum (:func:`tidy_trig`), double angles (:func:`contract_double_angles`). So simplify sees each
+    # sine, cosine, ... as a symbol (with its sign, where known) and does the rest: cancelling,
+    # common factors, powers, exponentials; trigsimp runs on its own only where there are multiple
+    # angles to expand.
+    masks = {f: sympy.Dummy(**{a: True for a in _SIGNS if getattr(f, f"is_{a}")})
+             for f in sorted(cancelled.atoms(*_TRIG, *_HYPERBOLIC), key=sympy.default_sort_key)}
+    unmask = {d: f for f, d in masks.items()}
+
+    def costly():
+        simplified = sympy.simplify(cancelled.xreplace(masks)).xreplace(unmask)
+        found.extend([simplified, sympy.factor(simplified)])
+        if simplified.has(*_TRIG):
+            expanded = sympy.expand_trig(simplified)
+            forms = [simplified]
+            if expanded != simplified:
+                found.extend([sympy.factor(sympy.cancel(expanded)), sympy.factor(sympy.trigsimp(expanded))])
+                forms.insert(0, expanded)
+            found.extend([sympy.factor(sympy.cancel(_pythagorean(c, square))) for c in forms
+                          for square in (sympy.sin, sympy.cos)])
+
+    # A partial pass (the budget ran out) keeps what it found.
+    attempt(costly, seconds, fallback=lambda: None)
+    return tuple(found)
 
 
 def _rewritten(expr: sympy.Expr, weight) -> sympy.Expr:
@@ -188,6 +223,31 @@ def _squares_in_sums(expr: sympy.Expr) -> sympy.Expr:
 
     return expr.replace(lambda e: e.is_Add and any(p.exp == 2 for p in e.atoms(sympy.Pow)
                                                    if isinstance(p.base, (sympy.sin, sympy.cos))), shorter)
+
+
+def factored_sums(expr: sympy.Expr) -> sympy.Expr:
+    """Each small polynomial sum in ``expr`` factored, where that takes fewer operations.
+
+    ``cancel`` and ``together`` multiply out the products of sums they meet, and factoring the
+    whole does not bring back one that sits in a sum of its own, as in a governor's
+    g²(M + m)² − l²m²ω⁴ (which factors, but into two longer sums).
+
+    >>> M, m, g, l, w = sympy.symbols("M m g l omega", positive=True)
+    >>> factored_sums(g**2*(M**2 + 2*M*m + m**2) - l**2*m**2*w**4)
+    g**2*(M + m)**2 - l**2*m**2*omega**4
+    >>> factored_sums(M**2 - m**2)  # (M - m)*(M + m) takes as many
+    M**2 - m**2
+    """
+    def factored(total):
+        if len(total.args) > _FACTORED_TERMS or not total.is_polynomial() or total.has(sympy.Float):
+            return total  # (factored, 0.3 M² + 0.6 M m + 0.3 m² would read 0.3 (1.0 M + 1.0 m)²)
+        candidate = sympy.factor(total)
+        return candidate if sympy.count_ops(candidate) < sympy.count_ops(total) else total
+
+    return expr.replace(lambda e: e.is_Add, factored)
+
+
+_FACTORED_TERMS = 6  # the largest sum factored_sums tries
 
 
 def spread_denominator(expr: sympy.Expr) -> sympy.Expr:
@@ -317,16 +377,20 @@ def tidy_radicands(expr: sympy.Expr) -> sympy.Expr:
     >>> tidy_radicands(sympy.sqrt(1 - (x + y)**2/36))
     sqrt(1 - (x + y)**2/36)
     """
-    def tidy(root):
-        base = root.base
-        forms = [base, sympy.together(sympy.expand(base)), sympy.cancel(base)]
-        forms.append(sympy.factor_terms(forms[1]))
-        if sympy.count_ops(base) < 40:
-            forms += [sympy.factor(base), _readable_fraction(forms[1])]
-        return min((f ** root.exp for f in forms), key=lambda e: (sympy.count_ops(e), len(str(e))))
-
     return expr.replace(lambda e: e.is_Pow and e.exp.is_Rational and not e.exp.is_Integer and e.base.has(sympy.Add),
-                        tidy)
+                        _tidy_root)
+
+
+@functools.lru_cache(maxsize=1024)
+def _tidy_root(root: sympy.Pow) -> sympy.Expr:
+    """One root of :func:`tidy_radicands` (remembered: the candidates of one form, and the forms of
+    an answer and of what is built on it, share their roots)."""
+    base = root.base
+    forms = [base, sympy.together(sympy.expand(base)), sympy.cancel(base)]
+    forms.append(sympy.factor_terms(forms[1]))
+    if sympy.count_ops(base) < 40:
+        forms += [sympy.factor(base), _readable_fraction(forms[1])]
+    return min((f ** root.exp for f in forms), key=lambda e: (sympy.count_ops(e), len(str(e))))
 
 
 def _points(symbols, count: int, seed: int = 1):

@@ -299,14 +299,19 @@ def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False) ->
         expr = expr.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
         expr = expr.xreplace({c.dot: 0 for c in scene.coordinates.values()})
     along_motion = target | evaluator.parameters | evaluator.state_symbols(velocities=False)
-    attempts = [(everything, at_rest), (along_motion, at_rest)]
+    attempts = [(everything, at_rest, {}), (along_motion, at_rest, {})]
     if not at_rest and _sets_an_acceleration_to_zero(evaluator, spec) and _start_left_out(evaluator, target):
         # θ̈ = 0 that leaves θ and θ̇ (θ̇² in θ̈): along the motion it would depend on the start, which
         # in_terms_of leaves out, so it names an equilibrium: read it at rest before the motion's way.
-        attempts.insert(1, (everything, True))
+        attempts.insert(1, (everything, True, {}))
+        steady = _steady(evaluator, spec)
+        if steady:
+            # r̈ = 0 with ṙ² in r̈ (a particle on a paraboloid): a steady motion, r constant, the other
+            # velocities (the orbit's φ̇) free: read it so before at rest.
+            attempts.insert(1, (everything, False, steady))
     found = []
-    for allowed, resting in attempts:
-        here = expr
+    for allowed, resting, still in attempts:
+        here = expr.xreplace(still)
         if resting and not at_rest:
             here = expr.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
             here = here.xreplace({c.dot: 0 for c in scene.coordinates.values()})
@@ -314,6 +319,7 @@ def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False) ->
             condition = evaluator.reduce(here, allowed, key)
         except SceneError:
             continue
+        condition = condition.xreplace(still)
         if resting:
             condition = condition.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
         condition = _essential(condition)
@@ -329,6 +335,15 @@ def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False) ->
     raise SceneError(scene.source, key,
                      f"the condition must leave exactly one unknown that in_terms_of does not allow; it "
                      f"leaves {names}")
+
+
+def _steady(evaluator, spec) -> dict:
+    """u̇ = 0 for the coordinates whose acceleration the condition sets to zero, when that leaves
+    other velocities free ({} otherwise: then it is the equilibrium's reading, at rest)."""
+    lhs, _ = spec.where
+    independent = evaluator.reduction.independent.values()
+    still = {u.dot: sympy.Integer(0) for u in independent if u.ddot in lhs.free_symbols}
+    return still if still and len(still) < len(independent) else {}
 
 
 def _essential(condition: sympy.Expr) -> sympy.Expr:
@@ -467,7 +482,13 @@ def _select(evaluator, spec, x, roots, value, variable, condition, numeric, poin
         index = _first_reached(evaluator, variable[1], condition, numeric, point, key)
     elif len(groups) == 1:
         index = min(groups[0])
-    elif variable is not None and variable[0] == "velocity":
+    elif variable is not None and variable[0] == "velocity" and _by_momentum(evaluator, variable[1], roots, numeric,
+                                                                             groups, point) is not None:
+        # The velocity of a cyclic coordinate: the orbit goes the way its conserved momentum says
+        # (m r² (ψ̇ + Ω) of a steady orbit seen from a rotating frame, in which ψ̇ may start at 0 or
+        # backwards), rather than the way u̇ starts.
+        index = _by_momentum(evaluator, variable[1], roots, numeric, groups, point)
+    elif variable is not None and variable[0] == "velocity" and evaluator.motion_sign(variable[1]) is not None:
         sign = evaluator.motion_sign(variable[1])
         matching = [i for i, r in numeric.items() if sign is not None and r * sign > 0]
         if sign is None or len({min(g) for g in groups for i in matching if i in g}) != 1:
@@ -484,6 +505,26 @@ def _select(evaluator, spec, x, roots, value, variable, condition, numeric, poin
         return frozenset(next((g for g in groups if i in g), {i}))
 
     return indices, group_of
+
+
+def _by_momentum(evaluator, u, roots, numeric, groups, point) -> int | None:
+    """The root of a cyclic coordinate's velocity u̇ at which its conserved momentum has the sign it
+    has at the start (None when it is not cyclic, [initial] does not fix the momentum or that does not
+    single out one root: then the velocity's sign at the start decides)."""
+    if u not in evaluator.cyclic_coordinates():
+        return None
+    reduction = evaluator.reduction
+    momentum = sympy.diff(reduction.lagrangian, u.dot)
+    start = reduction.initial_value(momentum)
+    p0 = _evaluate(start, point) if start is not None else None
+    if not p0:
+        return None
+    matching = set()
+    for index in numeric:
+        p = _evaluate(momentum.xreplace({u.dot: roots[index]}), point)
+        if p is not None and p * p0 > 0:
+            matching.add(min(next((g for g in groups if index in g), {index})))
+    return matching.pop() if len(matching) == 1 else None
 
 
 def _differ(chosen, indices, group_of) -> bool:
@@ -705,21 +746,26 @@ def _travel(u, u0: float, d: float, speed2, skip: bool = False) -> tuple[float |
     return None, "never turns back"
 
 
-def energy_speed_squared(evaluator, u, key: str) -> sympy.Expr | None:
+def energy_speed_squared(evaluator, u, key: str, readable: bool = True) -> sympy.Expr | None:
     """u̇² as a function of u from the conserved energy (and momenta) of the motion from [initial],
-    or None when energy is not conserved or [initial] does not give it."""
+    or None when energy is not conserved or [initial] does not give it (``readable=False``: not
+    tidied, to be evaluated numerically)."""
     reduction = evaluator.reduction
     h = reduction.jacobi_integral()
     if h is None or reduction.initial_value(h) is None:
         return None
     try:
-        return evaluator.velocity_squared(u, key, evaluator.momentum_substitution(set(), key))
+        return evaluator.velocity_squared(u, key, evaluator.momentum_substitution(set(), key), readable=readable)
     except SceneError:
         return None
 
 
 def _speed_squared(evaluator, u, point: dict, key: str):
-    squared = energy_speed_squared(evaluator, u, key)
+    """u̇²(u) as a float function at ``point`` (numbers only: the form as solved will do, unless
+    only tidying removes a variable from it)."""
+    squared = energy_speed_squared(evaluator, u, key, readable=False)
+    if squared is not None and squared.free_symbols - set(point) - {u.symbol}:
+        squared = energy_speed_squared(evaluator, u, key)
     if squared is None or squared.free_symbols - set(point) - {u.symbol}:
         return None
     return _numeric(squared.xreplace({s: sympy.Float(v, 30) for s, v in point.items()}), u.symbol)

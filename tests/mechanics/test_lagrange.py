@@ -209,6 +209,9 @@ def test_constraint_forces_follow_the_papers_convention(derived):
         # m (v0²/R + g (3 cos φ − 2)), not m (3 R g cos φ − 2 R g + v0²)/R.
         ("loop_inside_track", "normal_force", "m*(g*(3*cos(phi) - 2) + v0**2/R)"),
         ("loop_inside_track", "top_normal_force", "m*(-5*g + v0**2/R)"),
+        # Circular and hyperbolic functions of one argument, each sum over its common factor.
+        ("bead_vertical_rotating_rod", "velocity_in_time",
+         "g*(cos(omega*t) - cosh(omega*t))/(2*omega) + omega*r0*sinh(omega*t)"),
         # The ladder's largest wall force with the halves cleared from (√(sin²θ0 + 18) − 3 sin θ0).
         ("ladder_wall", "largest_wall_force",
          "3*g*m*sqrt(1 - (sqrt(sin(theta0)**2 + 18) + sin(theta0))**2/36)*(sqrt(sin(theta0)**2 + 18) - 3*sin(theta0))/8"),
@@ -216,6 +219,13 @@ def test_constraint_forces_follow_the_papers_convention(derived):
 )
 def test_answers_are_in_the_form_a_person_writes(derived, scene, answer, written):
     assert sympy.sstr(derived(scene).answers[answer]) == written
+
+
+def test_a_sum_that_is_a_square_is_printed_as_one(derived):
+    """Watt's governor: (M + m)², not the M² + 2Mm + m² that cancelling leaves. (Whether its roots
+    are gathered into one depends on how far simplify gets within its budget.)"""
+    printed = sympy.sstr(derived("watt_governor").answers["small_oscillation_frequency"])
+    assert "(M + m)**2" in printed and "M**2" not in printed
 
 
 def test_largest_wall_force_on_the_ladder_is_at_the_stationary_point(derived):

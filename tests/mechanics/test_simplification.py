@@ -120,6 +120,33 @@ def test_a_rewriting_that_changes_the_value_is_dropped(monkeypatch):
     assert sympy.sstr(chosen) != "2*m*omega**2*r0**2*sinh(2*omega*t)"
 
 
+@pytest.mark.parametrize("expr, printed", [
+    (g ** 2 * (M ** 2 + 2 * M * m + m ** 2) - l ** 2 * m ** 2 * w ** 4, "g**2*(M + m)**2 - l**2*m**2*omega**4"),
+    (m1 ** 3 + 3 * m1 ** 2 * m2 + 3 * m1 * m2 ** 2 + m2 ** 3, "(m1 + m2)**3"),
+    # As many operations factored: left as it is.
+    (M ** 2 - m ** 2, "M**2 - m**2"),
+    # Sines and cosines are left to the trigonometric rewritings.
+    (sin(theta) ** 2 + 2 * sin(theta) + 1, "sin(theta)**2 + 2*sin(theta) + 1"),
+])
+def test_small_sums_are_factored_where_shorter(expr, printed):
+    assert sympy.sstr(simplification.factored_sums(expr)) == printed
+
+
+def test_simplify_is_not_run_twice_on_one_cancelled_form(monkeypatch):
+    """An answer and its readable form, read again, cancel to the same form: simplify's part of
+    the work (the costliest) is done once, and the result is the same."""
+    simplification._remembered_form.cache_clear()
+    simplification._simplified_forms.cache_clear()
+    calls = []
+    simplify = sympy.simplify
+    monkeypatch.setattr(simplification.sympy, "simplify", lambda e, *a, **k: calls.append(e) or simplify(e, *a, **k))
+    expr = g * cos(w * t) / (2 * w) - g * cosh(w * t) / (2 * w) + w * r0 * sinh(w * t)
+    once = human_form(expr, seconds=5.0)
+    assert sympy.sstr(once) == "g*(cos(omega*t) - cosh(omega*t))/(2*omega) + omega*r0*sinh(omega*t)"
+    assert human_form(once, seconds=5.0) == once
+    assert len(calls) == 1
+
+
 @pytest.mark.parametrize("a, b, equal", [
     (sin(2 * theta) / 2, sin(theta) * cos(theta), True),
     (sinh(2 * w * t), 2 * sinh(w * t) * cosh(w * t), True),
