@@ -84,14 +84,15 @@ def _swap_sin_cos(expr: sympy.Expr) -> sympy.Expr:
 
 def _splits(factor: sympy.Expr) -> bool:
     """Whether ``expand`` may turn this factor of a product into a sum (so the product into several
-    terms): a sum, a sum raised to a power above 1 (or to a symbol), a logarithm. Everything else
-    expands to one term: a power of a product or to a sum is a product (power_base, power_exp), a
-    sum in a denominator or in a function's argument stays there (trig=False)."""
+    terms): a sum, a logarithm, and a power above 1 (or to a symbol) of anything but a symbol or a
+    number, ((a + b)c)^(3/2) becoming (a + b)^(3/2) c^(3/2) and then a sum. Everything else expands
+    to one term: a power at most 1 is a product of such powers, a sum in a denominator or in a
+    function's argument stays there (trig=False), a power to a sum is a product (power_exp)."""
     if factor.is_Add:
         return True
     if factor.is_Pow:
         base, exp = factor.args
-        return bool(base.is_Add and (not exp.is_Rational or exp > 1))
+        return not (base.is_Symbol or base.is_Number) and not (exp.is_Rational and exp <= 1)
     return factor.func is sympy.log
 
 
