@@ -40,6 +40,10 @@ class Reduction:
         else:
             self.independent, self.phi = self._solve_constraints()
         self.phi_dot = {q: self.time_derivative(expr) for q, expr in self.phi.items()}
+        # [initial] given in coordinates the constraints made dependent (the disk's x of a disk and
+        # a hanging block, when the answers keep the block's y): the independent variables' start
+        # follows from it. The scene read by everything downstream is the one with it completed.
+        self.scene = scene = self._with_completed_initial(scene)
         self.lagrangian = without_hidden_coordinates(sympy.expand(self.to_independent(scene.lagrangian)),
                                                       [u.symbol for u in self.independent.values()])
         self.accelerations: dict[sympy.Symbol, sympy.Expr] = {}
@@ -61,6 +65,49 @@ class Reduction:
                 subs[c.symbol] = self.phi[c.symbol]
                 subs[c.dot] = self.phi_dot[c.symbol]
         return expr.xreplace(subs) if subs else expr
+
+    def _with_completed_initial(self, scene: Scene) -> Scene:
+        """The scene with [initial] values for every independent variable that [initial] fixes
+        through the constraints; the scene itself when nothing is missing or nothing fixes it.
+
+        Positions come from the map q = Φ(u, 0) at the coordinates [initial] gives, velocities from
+        q̇ = Φ̇ (linear in u̇); a value is added only when it is the one solution (a map with
+        several, θ from x = l sin θ, is left to [initial]) and every given value agrees with it.
+        """
+        given = scene.initial
+        us = list(self.independent.values())
+        missing = [u.symbol for u in us if u.name not in given] + [u.dot for u in us if u.dot.name not in given]
+        dependent = [c for c in scene.coordinates.values()
+                     if self.phi.get(c.symbol, c.symbol) != c.symbol or c.name not in self.independent]
+        if not missing or not any(c.name in given or c.dot.name in given for c in dependent):
+            return scene
+        known = {u.symbol: given[u.name] for u in us if u.name in given}
+        known.update({u.dot: given[u.dot.name] for u in us if u.dot.name in given})
+        at_start = {scene.time: sympy.Integer(0)}
+        positions = [(self.phi[c.symbol].xreplace(at_start) - given[c.name]) for c in dependent if c.name in given]
+        velocities = [(self.phi_dot[c.symbol].xreplace(at_start) - given[c.dot.name])
+                      for c in dependent if c.dot.name in given]
+        added = {}
+        for equations, unknowns in ((positions, [u.symbol for u in us]), (velocities, [u.dot for u in us])):
+            equations = [sympy.expand(e.xreplace(known).xreplace(added)) for e in equations]
+            wanted = [x for x in unknowns if x in missing and any(x in e.free_symbols for e in equations)]
+            if not wanted:
+                continue
+            solution = budget.attempt(lambda: _unique_solution(equations, wanted), 1.0, fallback=lambda: None)
+            state = {s for u in us for s in (u.symbol, u.dot)}
+            if solution is None or any(v.free_symbols & state for v in solution.values()):
+                continue
+            added.update(solution)
+        if not added:
+            return scene
+        completed = dict(given)
+        for u in us:
+            for symbol, name in ((u.symbol, u.name), (u.dot, u.dot.name)):
+                if symbol in added and name not in completed:
+                    completed[name] = added[symbol]
+        import dataclasses
+
+        return dataclasses.replace(scene, initial=completed)
 
     def _check_parametrization(self) -> None:
         scene = self.scene
@@ -305,6 +352,22 @@ def _solve_small(A: sympy.Matrix, b: sympy.Matrix) -> list[sympy.Expr]:
             numerator = tidy_trig(numerator)
         result.append(numerator / readable_denominator(denominator))
     return result
+
+
+def _unique_solution(equations: list[sympy.Expr], unknowns: list[sympy.Symbol]) -> dict | None:
+    """The one solution of the equations for the unknowns, consistent with every equation, or None."""
+    try:
+        solutions = sympy.solve(equations, unknowns, dict=True)
+    except (NotImplementedError, ValueError, TypeError):
+        return None
+    if len(solutions) != 1 or set(solutions[0]) != set(unknowns):
+        return None
+    solution = solutions[0]
+    if any(v.free_symbols & set(unknowns) for v in solution.values()):
+        return None
+    if not all(_vanishes(e.xreplace(solution)) for e in equations):
+        return None
+    return solution
 
 
 def _vanishes(expr: sympy.Expr) -> bool:
