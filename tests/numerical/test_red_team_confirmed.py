@@ -1,0 +1,146 @@
+"""The red-team scenes' values that are not a moment of the motion from [initial] (small-oscillation
+frequencies, a steady orbit, the lowest point of a swing), each confirmed by an experiment of its own
+with the numerical machinery, which differentiates the scene's T, V and f numerically and never sees
+the engine's results (see test_special_values_confirmed.py). States are written in each scene's own
+coordinates (Cartesian, for most of them)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.optimize import brentq
+
+from grader.simulate.constrained import Event, simulate
+from grader.simulate.lagrangian_numeric import snapshot
+from tests.numerical.test_special_values_confirmed import closed_form, engine
+
+
+def _frequency(model, q0, qdot0, angle_of, equilibrium: float, period_guess: float) -> float:
+    """Angular frequency from the crossings of angle_of(state) = equilibrium."""
+    crossing = Event("crossing", lambda s: angle_of(s) - equilibrium, terminal=False)
+    motion = simulate(model.numeric, q0, qdot0, 3.2 * period_guess, events=[crossing])
+    times = [s.t for s in motion.events["crossing"]]
+    assert len(times) >= 5, "fewer than two and a half oscillations"
+    return 2 * math.pi / ((times[4] - times[0]) / 2)
+
+
+def test_bead_on_a_hoop_turned_about_its_rim_oscillates_at_omega():
+    model, answers = engine("bead_hoop_turning_about_rim")
+    R, w = model.values["R"], model.values["omega"]
+    theta = 1e-4  # at rest on the hoop, at t = 0 (centre at (R, 0))
+    q0 = [R + R * math.cos(theta), R * math.sin(theta)]
+    qdot0 = [-R * w * math.sin(theta), R * w * (1 + math.cos(theta))]
+
+    def angle(s):
+        c, d = s.q[0] - R * math.cos(w * s.t), s.q[1] - R * math.sin(w * s.t)
+        return math.remainder(math.atan2(d, c) - w * s.t, 2 * math.pi)
+
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, q0, qdot0, angle, 0.0, 2 * math.pi / expected)
+    # (The rheonomic constraint's drift in the integration costs this one digit.)
+    assert abs(measured - expected) < 1e-5 * expected
+
+
+def test_bead_on_a_cycloid_oscillates_at_sqrt_g_over_4a():
+    model, answers = engine("bead_on_cycloid")
+    a = model.values["a"]
+    phi = 1e-4
+    q0 = [a * (phi + math.sin(phi)), a * (1 - math.cos(phi)), phi]
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, q0, [0.0, 0.0, 0.0], lambda s: s.q[2], 0.0, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_bead_on_a_spun_hoop_oscillates_about_its_relative_equilibrium():
+    model, answers = engine("bead_spinning_hoop_cartesian")
+    a, w = model.values["a"], model.values["omega"]
+
+    def state(theta):  # at rest on the hoop at t = 0, the hoop in the x-z plane
+        return [a * math.sin(theta), 0.0, -a * math.cos(theta)], [0.0, a * w * math.sin(theta), 0.0]
+
+    def angle(s):
+        return math.atan2(s.q[0] * math.cos(w * s.t) + s.q[1] * math.sin(w * s.t), -s.q[2])
+
+    def in_plane_acceleration(theta):  # θ̈ a = tangential acceleration, seen at t = 0
+        s = snapshot(model.numeric, 0.0, *state(theta))
+        return (s.qddot[0] + a * w ** 2 * math.sin(theta)) * math.cos(theta) + s.qddot[2] * math.sin(theta)
+
+    equilibrium = brentq(in_plane_acceleration, 0.3, 1.5, xtol=1e-15)
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, *state(equilibrium + 1e-4), angle, equilibrium, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def _paraboloid_state(model, r: float, phidot: float):
+    c = model.values["c"]
+    return [r, 0.0, r * r / (2 * c)], [0.0, r * phidot, 0.0]
+
+
+def test_paraboloid_orbit_at_the_engines_rate_keeps_its_radius():
+    model, answers = engine("particle_in_paraboloid")
+    for radius in (0.2, 0.7):
+        omega = closed_form(model, answers, "orbit_angular_velocity", r=radius)
+        motion = simulate(model.numeric, *_paraboloid_state(model, radius, omega), 2.0,
+                          sample_times=np.linspace(0, 2, 9))
+        assert max(abs(math.hypot(s.q[0], s.q[1]) - radius) for s in motion.samples) < 1e-8 * radius
+
+
+def test_paraboloid_radial_oscillations_about_the_orbit_of_the_starting_momentum():
+    model, answers = engine("particle_in_paraboloid")
+    h = model.values["r0"] ** 2 * model.values["Omega0"]
+
+    def radial_acceleration(r):  # at rest radially, φ̇ = h/r², at φ = 0: r̈ = ẍ + r φ̇²
+        s = snapshot(model.numeric, 0.0, *_paraboloid_state(model, r, h / r ** 2))
+        return s.qddot[0] + r * (h / r ** 2) ** 2
+
+    equilibrium = brentq(radial_acceleration, 0.05, 2.0, xtol=1e-15)
+    r = equilibrium + 1e-5
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, *_paraboloid_state(model, r, h / r ** 2), lambda s: math.hypot(s.q[0], s.q[1]),
+                          equilibrium, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_block_on_a_pulley_and_spring_oscillates_and_turns_back_where_the_engine_says():
+    model, answers = engine("pulley_spring_block")
+    R, m, g, k = (model.values[n] for n in ("R", "m", "g", "k"))
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    # Released from rest with the spring unstretched: the block swings about m g/k, down to 2 m g/k.
+    measured = _frequency(model, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0], lambda s: s.q[0], m * g / k,
+                          2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+    turn = Event("turn", lambda s: s.qdot[0], terminal=True)
+    motion = simulate(model.numeric, [1e-9, 1e-9 / R, 1e-9], [1e-6, 1e-6 / R, 1e-6], 2 * math.pi / expected,
+                      events=[turn])
+    lowest = motion.first("turn").q[0]
+    assert abs(lowest - closed_form(model, answers, "lowest_depth")) < 1e-6 * lowest
+
+
+def test_half_cylinder_rocks_at_the_engines_frequency():
+    model, answers = engine("rocking_half_cylinder")
+    R = model.values["R"]
+    theta = 1e-4
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, [-R * theta, R, theta], [0.0, 0.0, 0.0], lambda s: s.q[2], 0.0,
+                          2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_puck_seen_from_a_rotating_frame_oscillates_radially_at_the_engines_rate():
+    model, answers = engine("rotating_frame_spring_orbit")
+    k, l0, m, w = (model.values[n] for n in ("k", "l0", "m", "Omega"))
+    r_e = k * l0 / (k - m * w ** 2)
+    r = r_e + 1e-5  # the momentum m r_e² Ω of the scene's start, at rest radially
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, [r, 0.0], [0.0, r_e ** 2 * w / r ** 2 - w], lambda s: s.q[0], r_e,
+                          2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_steady_orbit_seen_from_a_rotating_frame_keeps_its_radius():
+    model, answers = engine("rotating_frame_spring_orbit")
+    for radius in (0.5, 0.9):
+        psidot = closed_form(model, answers, "steady_relative_angular_velocity", r=radius)
+        motion = simulate(model.numeric, [radius, 0.0], [0.0, psidot], 2.0, sample_times=np.linspace(0, 2, 9))
+        assert max(abs(s.q[0] - radius) for s in motion.samples) < 1e-8 * radius
