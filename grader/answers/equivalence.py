@@ -595,8 +595,38 @@ def compare_expressions(
             return Comparison(True, "proved", "symbolically identical", evidence={"method": "symbolic"})
     result = compare_numeric(ref, ans, sampler, options, deadline)
     if result.equivalent and options.method == "arb":
-        return _at_landmarks(ref, ans, sampler, (reference, answer), options, deadline) or result
+        return (_hidden_difference(diff, answer, reference, ref, ans, sampler, options)
+                or _at_landmarks(ref, ans, sampler, (reference, answer), options, deadline) or result)
     return result
+
+
+def _hidden_difference(diff: sympy.Expr, answer: sympy.Expr, reference: sympy.Expr, ref: Compiled, ans: Compiled,
+                       sampler: Sampler, options: Options) -> Comparison | None:
+    """A difference below the judge's digits that sympy's exact arithmetic isolates, or None.
+
+    ``x(1 + 10⁻⁴⁰)`` and ``x`` agree to 40 digits at every point, but their difference, built by
+    sympy, is ``x/10⁴⁰``: evaluated by itself its ball excludes zero, a proof that they differ.
+    Only a difference in which sympy combined terms is evaluated (otherwise it is ``answer -
+    reference`` again, which the points already compared).
+    """
+    terms = len(sympy.Add.make_args(diff))
+    if diff == 0 or terms >= len(sympy.Add.make_args(answer)) + len(sympy.Add.make_args(reference)):
+        return None
+    point = sampler.point(0)
+    prec = int(options.digits * LOG2_10) + 32
+    try:
+        d, _ = Compiled(diff, options.backend()).at(point, prec)
+        if d.contains(0):
+            return None
+        a, _ = ans.at(point, prec, 0)
+        r, _ = ref.at(point, prec, 0)
+    except (Undefined, Unresolved, Unsupported):
+        return None
+    result = PointResult("differ", answer=a, reference=r)
+    return Comparison(False, "proved", "your answer and the correct one differ at the point in the counterexample "
+                      "(by less than the judge's digits: their difference alone is not zero there)",
+                      evidence={"method": options.describe(), "points": 1}, counterexample=counterexample(point, result),
+                      values=(_to_float(a), _to_float(r)))
 
 
 # Constants outside the ordinary samples' scale (0.5 .. 3) say where else to look: abs(x - 10)

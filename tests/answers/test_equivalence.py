@@ -228,3 +228,28 @@ def test_round_points_stay_inside_each_domain():
     x = sympy.Symbol("x")
     narrow = parse_domain([0.1, 0.2])
     assert round_values({x: 0.1234}, {x: narrow}) == [{x: 0.1}]  # 0.5 is outside: only one figure fits
+
+
+@pytest.mark.parametrize("answer", [
+    T * (1 + sympy.Rational(1, 10**40)),        # off by far less than the judge's 30 digits
+    T + sympy.exp(-100),                        # a constant term of 1e-44
+    T + m1 * g * sympy.exp(-120),
+    sympy.exp(theta) + sympy.exp(-100) - sympy.exp(theta) + T,
+])
+def test_a_difference_below_the_judges_digits_is_still_found_when_sympy_isolates_it(answer):
+    # The points agree to 40 digits; the difference that sympy's exact arithmetic leaves
+    # (T/10^40, e^-100) evaluated by itself is a proof that the answers differ.
+    s = sampler(m1="positive", m2="positive", g="positive", theta="real")
+    c = compare_expressions(T, answer, s)
+    assert c.equivalent is False and c.certainty == "proved"
+    assert c.counterexample["relative_difference"] < 1e-30
+
+
+@pytest.mark.parametrize("answer", [
+    m1 * m2 * g * (sympy.sin(theta)**2 + sympy.cos(theta)**2) / (m1 + m2),  # equal, not cancelled by sympy
+    m2 * (g - a),
+    T + sympy.exp(theta) - sympy.exp(theta),
+])
+def test_an_equal_answer_whose_difference_sympy_does_not_cancel_stays_equivalent(answer):
+    s = sampler(m1="positive", m2="positive", g="positive", theta="real")
+    assert compare_expressions(T, answer, s).equivalent is True
