@@ -71,6 +71,17 @@ CONFIRMED_ELSEWHERE = {
     ("watt_governor", "small_oscillation_frequency"),
     ("watt_governor", "least_angular_velocity"),
     ("watt_governor", "equilibrium_cos"),
+    # The red-team scenes: tests/numerical/test_red_team_confirmed.py.
+    ("bead_hoop_turning_about_rim", "small_oscillation_frequency"),
+    ("bead_on_cycloid", "small_oscillation_frequency"),
+    ("bead_spinning_hoop_cartesian", "small_oscillation_frequency"),
+    ("particle_in_paraboloid", "orbit_angular_velocity"),
+    ("particle_in_paraboloid", "small_oscillation_frequency"),
+    ("pulley_spring_block", "lowest_depth"),
+    ("pulley_spring_block", "small_oscillation_frequency"),
+    ("rocking_half_cylinder", "small_oscillation_frequency"),
+    ("rotating_frame_spring_orbit", "small_oscillation_frequency"),
+    ("rotating_frame_spring_orbit", "steady_relative_angular_velocity"),
 }
 
 
