@@ -197,6 +197,9 @@ def compare_equations(
             return Comparison(None, "none", "the time budget ran out while comparing", budget_exceeded=True)
     if agreed >= min(needed, 3):
         digits = options.digits if math.isinf(digits_seen) else int(digits_seen)
+        hidden = _hidden_difference(reference, answer, unknowns, parameters, states, options) if k == 1 else None
+        if hidden is not None:
+            return hidden
         return Comparison(
             True,
             "numeric",
@@ -205,6 +208,42 @@ def compare_equations(
             evidence={"method": "ball arithmetic", "points": agreed, "digits": digits},
         )
     return Comparison(None, "none", "could not decide: the equations could not be evaluated reliably")
+
+
+def _hidden_difference(reference: list[sympy.Expr], answer: list[sympy.Expr], unknowns: tuple, parameters: Sampler,
+                       states: Sampler, options: Options) -> Comparison | None:
+    """A difference below the judge's digits between an equation and the reference, or None.
+
+    ``θ̈ = −(g/l) sin θ (1 + 10⁻⁴⁰)`` is a multiple of the reference to 40 digits at every point.
+    Both solved for an acceleration that appears linearly (each residual divided by its
+    coefficient, products distributed), sympy's exact arithmetic leaves their difference,
+    ``−g sin θ/(10⁴⁰ l)``: its ball excluding zero at a sample point proves the equations differ.
+    Only a difference in which sympy combined terms is evaluated.
+    """
+    r, a = reference[0], answer[0]
+    for u in unknowns or tuple(states.domains):
+        if not r.has(u):
+            continue
+        a_u, r_u = a.diff(u), r.diff(u)
+        if a_u == 0 or r_u == 0 or a_u.has(u) or r_u.has(u):
+            return None  # not linear in u: nothing to solve for
+        solved_a, solved_r = sympy.expand_mul(a / a_u), sympy.expand_mul(r / r_u)
+        d = solved_a - solved_r
+        if d == 0 or len(sympy.Add.make_args(d)) >= len(sympy.Add.make_args(solved_a)) + len(
+                sympy.Add.make_args(solved_r)):
+            return None
+        point = {**parameters.point(0), **states.point(0)}
+        try:
+            value, _ = Compiled(d, options.backend()).at(point, int(options.digits * LOG2_10) + 32)
+        except (Undefined, Unresolved, Unsupported):
+            return None
+        if value.contains(0):
+            return None
+        return Comparison(False, "proved", f"solved for {u.name}, your equation and the reference differ at the "
+                          "counterexample (by less than the judge's digits)",
+                          evidence={"method": "ball arithmetic", "points": 1},
+                          counterexample={"values": _named(point), "difference": as_float(value)})
+    return None
 
 
 def _values(compiled: list[Compiled], point: dict, prec: int, key):

@@ -28,6 +28,10 @@ def test_pendulum_equation_in_any_scaled_form_is_right(pendulum, answer):
     ("thetaddot*thetadot = -g/l*sin(theta)*thetadot", "factor thetadot vanishes"),
     ("thetaddot = -g/l*theta", "the small-angle equation is another equation"),
     ("thetaddot = -g/l*sin(theta)*(1 + 10^-9)", "off by 1e-9"),
+    # below the judge's 30 digits: solved for the acceleration, sympy isolates the difference
+    ("thetaddot = -g/l*sin(theta)*(1 + 10^-40)", "off by 1e-40"),
+    ("l thetaddot + g sin(theta) + g exp(-100) = 0", "an extra term of 1e-44"),
+    ("m (l thetaddot + g sin(theta) (1 + 10^-45)) = 0", "scaled, and off by 1e-45"),
 ])
 def test_state_dependent_factors_and_near_misses_are_wrong(pendulum, answer, why):
     v = check(PENDULUM_EOM, answer, pendulum, kind="equation")
