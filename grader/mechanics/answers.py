@@ -147,8 +147,15 @@ class AnswerEvaluator:
             target.add(symbol)
         return target
 
-    def reduce(self, expr: sympy.Expr, target: set[sympy.Symbol], key: str) -> sympy.Expr:
-        """``expr`` with dynamics solved, in the independent variables, free of what target excludes."""
+    def reduce(self, expr: sympy.Expr, target: set[sympy.Symbol], key: str, readable: bool = True) -> sympy.Expr:
+        """``expr`` with dynamics solved, in the independent variables, free of what target excludes.
+
+        ``readable=False``: cancelled (before velocities are eliminated), not tidied
+        (:func:`human_form`), for a caller that only
+        evaluates it or substitutes into it and tidies the result (tidying an expression in a
+        coordinate that is then fixed costs most of a special value). A variable that only tidying
+        removes is then left, and is an error as any other.
+        """
         expr = expr.xreplace(self.values)
         keep = {s for s in target if s.name.endswith("ddot")}
         dynamics = {s: v for s, v in self.dynamics.items() if s not in keep}
@@ -157,8 +164,8 @@ class AnswerEvaluator:
         if expr not in self.values.values():
             # (An earlier answer read again, by a condition on it or an answer that is it, is in its
             # readable form already.)
-            expr = human_form(expr)
-        expr = self.eliminate_velocities(expr, target, key)
+            expr = human_form(expr) if readable else sympy.cancel(expr)
+        expr = self.eliminate_velocities(expr, target, key, readable=readable)
         leftover = expr.free_symbols - target
         hidden = leftover & self.state_symbols(velocities=False)
         if hidden:
@@ -166,7 +173,7 @@ class AnswerEvaluator:
             # from a map in Cartesian coordinates) is not a dependence: remove it with the identity.
             tidied = without_hidden_coordinates(expr, list(hidden), thorough=True)
             if tidied is not expr:
-                expr = human_form(tidied)
+                expr = human_form(tidied) if readable else tidied
                 leftover = expr.free_symbols - target
         if leftover:
             names = ", ".join(sorted(str(s) for s in leftover))
@@ -175,14 +182,18 @@ class AnswerEvaluator:
                              f"cannot be written in terms of {wanted}: it still depends on {names}")
         return expr
 
-    def eliminate_velocities(self, expr: sympy.Expr, target: set[sympy.Symbol], key: str) -> sympy.Expr:
+    def eliminate_velocities(self, expr: sympy.Expr, target: set[sympy.Symbol], key: str,
+                             readable: bool = True) -> sympy.Expr:
         """Remove velocities that target excludes with the first integrals of the motion.
 
         First the conserved momenta p_c = ∂L_r/∂u̇_c of cyclic coordinates (∂L_r/∂u_c = 0), all
         at once (they are linear in the velocities), then the Jacobi integral h (energy) for one
         velocity more: u̇² from h = h(initial), or u̇ itself, as ±√, where the motion from
-        [initial] fixes the sign.
+        [initial] fixes the sign. ``readable=False``: the result not tidied (see :meth:`reduce`).
         """
+        def tidy(e):
+            return human_form(e) if readable else e
+
         extra = [u for u in self.reduction.independent.values()
                  if u.dot in expr.free_symbols and u.dot not in target]
         if not extra:
@@ -195,7 +206,7 @@ class AnswerEvaluator:
             extra = [u for u in self.reduction.independent.values()
                      if u.dot in expr.free_symbols and u.dot not in target]
             if not extra:
-                return human_form(expr)
+                return tidy(expr)
             # Not tidied yet: energy comes next, and the result is tidied once at the end.
         if len(extra) > 1:
             cyclic = ", ".join(u.name for u in self.cyclic_coordinates()) or "none"
@@ -204,6 +215,8 @@ class AnswerEvaluator:
                              f"and each conserved momentum one more (cyclic coordinates: {cyclic}); add the "
                              "others to in_terms_of")
         u = extra[0]
+        # u̇² readable either way: it is computed once for every answer, and its factors
+        # (cos θ − cos θ₀) carry over to where it is substituted.
         squared = self.velocity_squared(u, key, momenta)
         expr = sympy.expand(expr)
         expr = expr.replace(
@@ -220,7 +233,7 @@ class AnswerEvaluator:
             # Until the first turning point, u̇ keeps the sign it starts with (or, from rest,
             # the sign of the initial acceleration).
             expr = expr.xreplace({u.dot: sign * sympy.sqrt(squared)})
-        return human_form(expr)
+        return tidy(expr)
 
     def cyclic_coordinates(self) -> list:
         """Independent coordinates the reduced Lagrangian does not depend on."""

@@ -57,7 +57,6 @@ import math
 
 import numpy
 import sympy
-from scipy.optimize import brentq
 
 from grader.mechanics import budget
 from grader.mechanics.scene import AnswerSpec, SceneError
@@ -117,13 +116,19 @@ def _where(evaluator, spec, target: set, key: str, at_rest: bool) -> sympy.Expr:
     with budget.step("evaluating the answer at the roots", spec.name):
         if spec.kind == "small_oscillation":
             value = _stiffness(evaluator, spec, key)
+            chosen, *others = _choose_root(evaluator, spec, condition, unknown, roots, value, key)
+            result = human_form(value.xreplace({unknown: chosen}))
         else:
-            # Parameters outside in_terms_of may cancel once the root is substituted (b in -2 g b φ
-            # at φ = -h/b); the final check below catches those that do not.
-            value = evaluator.reduce(spec.expr, target | evaluator.parameters | {unknown},
-                                     f"answers ({spec.name}).expr")
-        chosen, *others = _choose_root(evaluator, spec, condition, unknown, roots, value, key)
-        result = human_form(value.xreplace({unknown: chosen}))
+            # The answer in the unknown is only evaluated, at the roots, and tidied where it is
+            # substituted: as solved first (tidying it in the unknown, which nobody reads, is most
+            # of the cost of a special value); readable where that fails (a variable only tidying
+            # removes, a 0/0 only tidying resolves), which decides as before.
+            try:
+                value, chosen, others, result = _at_roots(evaluator, spec, condition, unknown, roots, target, key,
+                                                          readable=False)
+            except SceneError:
+                value, chosen, others, result = _at_roots(evaluator, spec, condition, unknown, roots, target, key,
+                                                          readable=True)
         if others:
             # Several admissible roots, none singled out: every one is a right answer.
             evaluator.alternatives[spec.name] = [
@@ -135,6 +140,40 @@ def _where(evaluator, spec, target: set, key: str, at_rest: bool) -> sympy.Expr:
                           sympy.Pow(signs_in_front(sympy.factor(result)), sympy.S.Half, evaluate=False)]
             result = min(candidates, key=lambda e: (sympy.count_ops(e), len(str(e))))
     return _no_leftover(scene, spec, result, target)
+
+
+def _at_roots(evaluator, spec, condition, unknown, roots, target: set, key: str, readable: bool):
+    """(the answer in the unknown, the root chosen, the other roots admitted, the answer at the
+    chosen root, tidied); ``readable=False``: with the answer in the unknown as solved (see
+    :meth:`AnswerEvaluator.reduce`), refused (SceneError) where it is undefined at a root or at
+    the chosen one, or leaves a variable, so that the caller takes the readable way."""
+    # Parameters outside in_terms_of may cancel once the root is substituted (b in -2 g b φ
+    # at φ = -h/b); the final check catches those that do not.
+    value = evaluator.reduce(spec.expr, target | evaluator.parameters | {unknown}, f"answers ({spec.name}).expr",
+                             readable=readable)
+    if not readable:
+        _defined_at_roots(evaluator, spec, condition, unknown, roots, value, key)
+    chosen, *others = _choose_root(evaluator, spec, condition, unknown, roots, value, key)
+    result = human_form(value.xreplace({unknown: chosen}))
+    if not readable:
+        if result.has(sympy.nan, sympy.zoo, sympy.oo, -sympy.oo):
+            raise SceneError(evaluator.scene.source, key, "undefined at the root as solved")
+        _no_leftover(evaluator.scene, spec, result, target)
+    return value, chosen, others, result
+
+
+def _defined_at_roots(evaluator, spec, condition, x, roots, value, key: str) -> None:
+    """SceneError unless ``value`` has a number at every root (exactly, and at the parameter points)."""
+    scene = evaluator.scene
+    variable = _variable(evaluator, x)
+    for r in roots:
+        if value.xreplace({x: r}).has(sympy.nan, sympy.zoo):
+            raise SceneError(scene.source, key, f"undefined at {x} = {r} as solved")
+    for parameters in _parameter_points(scene):
+        point = _with_state(evaluator, parameters, (condition.free_symbols | value.free_symbols) - {x})
+        for index in _numeric_roots(roots, point, variable):
+            if _evaluate(value.xreplace({x: roots[index]}), point) is None:
+                raise SceneError(scene.source, key, f"undefined at {x} = {roots[index]} as solved")
 
 
 def _no_leftover(scene, spec, result: sympy.Expr, target: set) -> sympy.Expr:
@@ -424,7 +463,8 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> list[
     """The root the answer is at; several when the domain admits several and nothing decides.
 
     The first is the reference, the others its alternatives. An answer that must be one value
-    (see :func:`_must_be_one_value`) gets the error naming the roots instead.
+    (see :func:`_must_be_one_value`) gets the error naming the roots instead. Never empty: where
+    no root can be chosen the SceneError says so.
     """
     scene = evaluator.scene
     variable = _variable(evaluator, x)
@@ -460,6 +500,13 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> list[
             continue
         if _differ(chosen, indices, group_of):
             raise SceneError(scene.source, key, _depends_on_parameters(parameters))
+    if not chosen:
+        # Nothing chosen (the answer has no real value at any admissible root, so no root to
+        # choose by it): refused here, by name, never an empty choice for the caller to unpack.
+        listed = ", ".join(sympy.sstr(r) for r in roots)
+        raise SceneError(scene.source, key,
+                         f"no root of the condition for {x} could be chosen for '{spec.name}': the answer has "
+                         f"no real value at any admissible root ({listed})")
     return [roots[i] for i in chosen]
 
 
@@ -740,6 +787,8 @@ def _travel(u, u0: float, d: float, speed2, skip: bool = False) -> tuple[float |
         value = speed2(nxt)
         if math.isfinite(value) and value < 0 and (k > 1 or not skip):
             if math.isfinite(previous) and previous >= 0:
+                from scipy.optimize import brentq  # here: importing scipy.optimize costs more than most derivations
+
                 return brentq(speed2, min(x, nxt), max(x, nxt), xtol=1e-14), "turns back"
             return x, "turns back"
         x, previous = nxt, value

@@ -244,3 +244,16 @@ def test_the_first_time_must_be_the_same_closed_form_across_the_domains():
     with pytest.raises(SceneError, match="which root holds depends on the parameter values"):
         _first_time(scene, [d / g, m], t, "answers (t).where")
     assert _first_time(scene, [d / g, 2 * d / g], t, "answers (t).where") == d / g
+
+
+def test_a_condition_whose_roots_none_can_be_chosen_at_is_refused_by_name(monkeypatch):
+    """Were the selection to choose none of the roots (once it did, for bead_on_cycloid), the answer
+    is refused with its name and why, not a ValueError from unpacking an empty choice."""
+    from grader.mechanics import special_values
+
+    monkeypatch.setattr(special_values, "_select", lambda *args, **kwargs: ([], lambda i: frozenset({i})))
+    scene = parse_scene(scene_text("bead_on_cycloid"), "t.toml")
+    with pytest.raises(SceneError, match="no root of the condition for phi could be chosen for "
+                                         "'bottom_normal_force': the answer has no real value") as caught:
+        derive(scene)
+    assert caught.value.key == "answers (bottom_normal_force).where"
