@@ -104,7 +104,8 @@ def solve_augmented(A: sympy.Matrix, b: sympy.Matrix, n: int | None = None) -> l
         if dA.domain.is_EX:
             raise _NotPolynomial
         solution = dA.to_field().lu_solve(dB.to_field()).to_Matrix()
-        solution = solution.applyfunc(lambda e: _pythagorean(e, generators)).xreplace(back)
+        memo: dict = {}  # the solution's entries mostly share one denominator (the determinant)
+        solution = solution.applyfunc(lambda e: _pythagorean(e, generators, memo)).xreplace(back)
     except (_NotPolynomial, NotImplementedError, ZeroDivisionError):
         # Entries that are still not polynomials in their generators: sympy's own LU on
         # expressions, slower but general.
@@ -112,20 +113,25 @@ def solve_augmented(A: sympy.Matrix, b: sympy.Matrix, n: int | None = None) -> l
     return list(solution)
 
 
-def _pythagorean(value: sympy.Expr, generators: dict[sympy.Expr, sympy.Dummy]) -> sympy.Expr:
+def _pythagorean(value: sympy.Expr, generators: dict[sympy.Expr, sympy.Dummy],
+                 memo: dict | None = None) -> sympy.Expr:
     """A solved fraction with sin² + cos² = 1 used in its denominator where it shortens it.
 
     The generators sin u and cos u are independent symbols to the solve, so a slot turning at ω
     leaves m (x² + y²)(sin²ωt + cos²ωt) in a denominator. The denominator is reduced modulo
     s² + c² − 1 (as a polynomial in c, then in s) and the shorter form kept. Only the denominator,
     and no new cancellation: the numerators of a top on a pivot are hundreds of terms long, and
-    reducing and cancelling those took seconds for nothing a reader sees.
+    reducing and cancelling those took seconds for nothing a reader sees. ``memo`` remembers
+    each denominator's reduction (the entries of one solution mostly share theirs).
     """
     pairs = [(generators[sympy.sin(f.args[0])], d) for f, d in generators.items()
              if isinstance(f, sympy.cos) and sympy.sin(f.args[0]) in generators]
     if not pairs or value == 0:
         return value
     numerator, denominator = sympy.fraction(value)
+    if memo is not None and denominator in memo:
+        best = memo[denominator]
+        return value if best == denominator else numerator / best
     best = denominator
     for s, c in pairs:
         if not ({s, c} <= best.free_symbols):
@@ -135,6 +141,8 @@ def _pythagorean(value: sympy.Expr, generators: dict[sympy.Expr, sympy.Dummy]) -
             reduced = sympy.factor_terms(sympy.rem(sympy.expand(best), identity, square))
             if sympy.count_ops(reduced) < sympy.count_ops(best):
                 best = reduced
+    if memo is not None:
+        memo[denominator] = best
     return value if best is denominator else numerator / best
 
 
