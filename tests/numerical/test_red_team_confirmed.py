@@ -14,15 +14,7 @@ from scipy.optimize import brentq
 from grader.simulate.constrained import Event, simulate
 from grader.simulate.lagrangian_numeric import snapshot
 from tests.numerical.test_special_values_confirmed import closed_form, engine
-
-
-def _frequency(model, q0, qdot0, angle_of, equilibrium: float, period_guess: float) -> float:
-    """Angular frequency from the crossings of angle_of(state) = equilibrium."""
-    crossing = Event("crossing", lambda s: angle_of(s) - equilibrium, terminal=False)
-    motion = simulate(model.numeric, q0, qdot0, 3.2 * period_guess, events=[crossing])
-    times = [s.t for s in motion.events["crossing"]]
-    assert len(times) >= 5, "fewer than two and a half oscillations"
-    return 2 * math.pi / ((times[4] - times[0]) / 2)
+from tests.numerical.test_special_values_confirmed import frequency_from_crossings as _frequency
 
 
 def test_bead_on_a_hoop_turned_about_its_rim_oscillates_at_omega():

@@ -65,14 +65,19 @@ def test_steady_orbit_angular_velocity_keeps_the_radius(radius):
     assert max(abs(s.q[0] - radius) for s in motion.samples) < 1e-8 * radius
 
 
-def _measured_frequency(model, q_of, coordinate: int, equilibrium: float, epsilon: float, period_guess: float):
-    """Angular frequency of the motion released at rest at equilibrium + epsilon, from its zero crossings."""
-    q0, qdot0 = q_of(equilibrium + epsilon)
-    crossing = Event("crossing", lambda s: s.q[coordinate] - equilibrium, terminal=False)
+def frequency_from_crossings(model, q0, qdot0, angle_of, equilibrium: float, period_guess: float) -> float:
+    """Angular frequency of the motion from (q0, qdot0), from the crossings of angle_of(state) = equilibrium."""
+    crossing = Event("crossing", lambda s: angle_of(s) - equilibrium, terminal=False)
     motion = simulate(model.numeric, q0, qdot0, 3.2 * period_guess, events=[crossing])
     times = [s.t for s in motion.events["crossing"]]
     assert len(times) >= 5, "fewer than two and a half oscillations"
     return 2 * math.pi / ((times[4] - times[0]) / 2)
+
+
+def _measured_frequency(model, q_of, coordinate: int, equilibrium: float, epsilon: float, period_guess: float):
+    """Angular frequency of the motion released at rest at equilibrium + epsilon, from its zero crossings."""
+    q0, qdot0 = q_of(equilibrium + epsilon)
+    return frequency_from_crossings(model, q0, qdot0, lambda s: s.q[coordinate], equilibrium, period_guess)
 
 
 def test_small_oscillations_about_the_spinning_hoops_relative_equilibrium():
