@@ -853,6 +853,9 @@ def parse_system(text: str, namespace: Namespace, *, printed: bool = True) -> li
     if found is not None:
         return [replace(eq, notes=list(eq.notes)) for eq in found]
     tokens = _prepare(text, 4 * MAX_LENGTH)
+    stop = len(tokens) > 2 and tokens[-2].kind == "bad" and tokens[-2].text == "."
+    if stop:  # a sentence's full stop, as after an expression ("= 0." reads the same either way)
+        tokens = tokens[:-2] + tokens[-1:]
     chunks: list[list[Token]] = [[]]
     depth = 0
     for token in tokens[:-1]:
@@ -873,5 +876,7 @@ def parse_system(text: str, namespace: Namespace, *, printed: bool = True) -> li
         equations.append(_equation(_Parser(_without_newlines(chunk) + [end], namespace, text), printed))
     if not equations:
         raise ExpressionError("no equations found", 0, "empty", "write left side = right side")
+    if stop:
+        equations[-1] = replace(equations[-1], notes=equations[-1].notes + ["ignored the full stop at the end"])
     _remember(key, tuple(equations))
     return [replace(eq, notes=list(eq.notes)) for eq in equations]

@@ -489,6 +489,18 @@ def test_a_label_or_a_full_stop_around_the_answer_is_set_aside(ns, text, note):
     assert parsed.expr == ns.symbol("m") * ns.symbol("g") and note in parsed.notes
 
 
+@pytest.mark.parametrize("text", [
+    "x = l sin(theta).",
+    "x - l sin(theta) = 0.",  # "0." is 0 whether the point is a decimal point or a full stop
+    "y = 1; x = l sin(theta).",
+])
+def test_a_full_stop_after_the_last_equation_is_set_aside(ns, text):
+    equations = parse_system(text, ns)
+    last = equations[-1]
+    assert sympy.simplify(last.lhs - last.rhs - (ns.symbol("x") - ns.symbol("l") * sympy.sin(ns.symbol("theta")))) == 0
+    assert "ignored the full stop at the end" in last.notes
+
+
 @pytest.mark.parametrize("text, expected", [
     ("tg x + ctg(x) + cotg x + arctg(x)", lambda x: sympy.tan(x) + 2 * sympy.cot(x) + sympy.atan(x)),
     ("lg(x)", lambda x: sympy.log(x) / sympy.log(10)),
