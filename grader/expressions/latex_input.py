@@ -5,9 +5,12 @@ Supported: ``\frac{a}{b}`` (``\dfrac``, ``\tfrac``), ``\sqrt{x}``, ``\sqrt[n]{x}
 ``\theta``, ``\dot{\theta}``, ``\ddot{\theta}``, ``^{...}``, ``_{...}``, ``{}``
 grouping, ``\pi``, spacing commands and ``\mathrm{...}`` around names, degrees after a number
 (``30^\circ``, ``30\degree``), and ``$ $``, ``\( \)`` or ``\[ \]`` around it all.
-``\frac`` reads an unbraced argument as LaTeX does, one digit or letter: ``\frac12``, ``\frac gl``.
-Time derivatives as ``\frac{d\theta}{dt}``, ``\frac{\mathrm{d}^2x}{\mathrm{d}t^2}`` and
-``\frac{d}{dt}\theta`` are read by :mod:`.leibniz`.
+``\frac`` reads an unbraced argument as LaTeX does, one digit, letter or command: ``\frac12``, ``\frac gl``,
+``\frac\pi2`` (a command's name ends at its last letter, so that is π/2; elsewhere ``\omega2`` is the name
+ω2, as ``ω2`` is).
+Time derivatives as ``\frac{d\theta}{dt}``, ``\frac{\mathrm{d}^2x}{\mathrm{d}t^2}``,
+``\frac{d}{dt}\theta`` and ``\frac d{dt}\theta`` are read by :mod:`.leibniz`.
+``\left.`` and ``\left/`` (no bracket) are refused by name.
 Anything else (``\int``, ``\sum``, ``\partial``) is refused by name.
 """
 

@@ -1,4 +1,6 @@
-r"""Leibniz notation for time derivatives: ``dθ/dt``, ``d²x/dt²``, ``\frac{d\theta}{dt}``, ``d/dt(θ)``.
+r"""Leibniz notation for time derivatives: ``dθ/dt``, ``d²x/dt²``, ``\frac{d\theta}{dt}``, ``d/dt(θ)``,
+``\frac d{dt}\theta`` (an unbraced ``\frac`` argument is one letter, as in TeX; ``\frac{d}dt`` is refused: TeX
+reads it as d/d times t).
 
 A pass over the tokens, before the parser, that replaces each run of tokens spelling the time
 derivative of one coordinate by a single ``derivative`` token spanning the typed text (so every
@@ -271,14 +273,27 @@ def _match(tokens: list[Token], i: int, ns, text: str, memo: dict) -> tuple[Toke
     """The derivative token for a Leibniz derivative starting at ``tokens[i]`` and where it ends."""
     start = tokens[i]
     framed = start.kind == "command"
-    if framed:  # \frac{d…}{dt…}
-        if not _is(_at(tokens, i + 1), "open", "{"):
+    if framed:  # \frac{d…}{dt…}, or \frac d{dt…} (an unbraced argument is one letter, as in TeX)
+        first = _at(tokens, i + 1)
+        if _plain_name(first) and first.text == "d" and not first.order:
+            top, after = _Numerator(1, [first], None, None, None, i + 2), i + 2
+        elif _is(first, "open", "{"):
+            top = _numerator(tokens, i + 2)
+            if top is None or not _is(_at(tokens, top.end), "close", "}"):
+                return None
+            after = top.end + 1
+        else:
             return None
-        top = _numerator(tokens, i + 2)
-        if top is None or not _is(_at(tokens, top.end), "close", "}") \
-                or not _is(_at(tokens, top.end + 1), "open", "{"):
+        if not _is(_at(tokens, after), "open", "{"):
+            bare = _at(tokens, after)  # \frac{d}dt: LaTeX reads d/d, then t
+            if top.coordinate is None and _plain_name(bare) and bare.value == "dt" and bare.text == "dt" \
+                    and not _means_something(top.words + [bare], ns, memo):
+                shown = text[start.pos:bare.end]
+                error = ExpressionError(f"'{shown}' needs braces around dt: LaTeX reads it as d/d times t",
+                                        start.pos, "syntax", "write \\frac{d}{dt}, with dt in braces")
+                return _derivative(start, bare, text, "", 0, ns, error), after + 1
             return None
-        below = _denominator(tokens, top.end + 2)
+        below = _denominator(tokens, after + 1)
         if below is None or not _is(_at(tokens, below[3]), "close", "}"):
             return None
         k = below[3] + 1

@@ -117,7 +117,7 @@ _PYTHON_WORDS = set(keyword.kwlist) | {"eval", "exec", "open", "compile", "getat
 
 
 def resolve_name(raw: str, ns: "Namespace", *, order: int = 0, typed: str | None = None,
-                 position: int = 0, called: bool = False) -> Resolved:
+                 position: int = 0, called: bool = False, before_power: bool = False) -> Resolved:
     """Resolve a typed identifier to a namespace symbol, constant, function or split.
 
     Parameters
@@ -136,6 +136,9 @@ def resolve_name(raw: str, ns: "Namespace", *, order: int = 0, typed: str | None
     called : bool
         Whether ``(`` follows directly; an unknown called name is reported as
         an unsupported function.
+    before_power : bool
+        Whether ``^`` follows: ``ye^x`` is then y·e^x when y is declared and e is not (see
+        :func:`_before_euler`).
 
     Examples
     --------
@@ -148,6 +151,8 @@ def resolve_name(raw: str, ns: "Namespace", *, order: int = 0, typed: str | None
     thetadot
     >>> r = resolve_name("mg", ns); r.kind, r.value, r.notes
     ('split', ['m', 'g'], ["read 'mg' as m·g"])
+    >>> r = resolve_name("me", ns, before_power=True); r.kind, r.value, r.notes
+    ('split', ['m', 'e'], ["read 'me' as m·e"])
     """
     typed = typed if typed is not None else raw
     if len(typed) > 40:  # a 2000-letter "name" should not come back in full in the message
@@ -187,6 +192,9 @@ def resolve_name(raw: str, ns: "Namespace", *, order: int = 0, typed: str | None
     parts = _split(raw, ns, typed, position)
     if parts:
         return Resolved("split", parts, [f"read '{typed}' as {_reading(parts)}"])
+    parts = _before_euler(raw, ns, typed, position) if before_power else None
+    if parts:
+        return Resolved("split", parts, [f"read '{typed}' as {_reading(parts)}"])
     if raw in _PYTHON_WORDS:
         raise ExpressionError(f"'{typed}' is not allowed in an expression", position,
                               "unsupported_function", "write a formula, not program code")
@@ -219,6 +227,31 @@ def _logarithm(raw: str, typed: str, position: int, called: bool) -> Resolved | 
         return Resolved("function", named[base], [f"read '{typed}' as the logarithm to base {base}"])
     raise ExpressionError(f"'{typed}' is a logarithm to base {base}, which is not built in", position,
                           "unsupported_function", f"write log(x)/log({base}) for the logarithm of x to base {base}")
+
+
+def _before_euler(raw: str, ns: "Namespace", typed: str, position: int) -> list[str] | None:
+    """``ye``, ``ae``, ``m_1e``, ``θe`` typed before ``^``: the declared names and then Euler's e, or None.
+
+    Read only when the split is unambiguous: no variable ``e`` is declared (one that is keeps its
+    meaning, and the ordinary glued-name split already reads y·e with it), the part before the
+    ``e`` is one declared name, ``pi`` or an unambiguous glued run of declared names (no function:
+    ``sine^x`` is not sin(e^x)), and the ``e`` is not a subscript (``x_e^2`` is the square of x_e).
+    """
+    if len(raw) < 2 or raw[-1] != "e" or raw[-2] == "_" or _lookup("e", ns) is not None:
+        return None
+    head = raw[:-1]
+    symbol = _lookup(head, ns)
+    if symbol is not None:
+        return [symbol.name, "e"]
+    if head == "pi":
+        return ["pi", "e"]
+    try:
+        parts = _split(head, ns, typed, position)
+    except ExpressionError:  # the head is ambiguous: the unknown name is reported as typed
+        return None
+    if not parts or any(part in FUNCTIONS or part.isdigit() for part in parts):
+        return None
+    return [*parts, "e"]
 
 
 def _variables_only(raw: str, ns: "Namespace") -> list[str] | None:
@@ -361,8 +394,25 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
     if raw in _UNIT_WORDS:
         raise ExpressionError(f"unknown name '{typed}': units are not part of the answer", position, "unknown_name",
                               f"write the answer in the problem's symbols and delete '{typed}'")
+    euler = _before_euler(raw, ns, typed, position)
+    if euler is not None:  # ye alone (no ^ after it): y·e, or a misspelt name? Say both.
+        product = "*".join(euler)
+        suggestion = _suggestion(raw, ns)
+        raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name",
+                              f"write {product} for {_reading(euler)} with e Euler's number"
+                              + (f"; or {suggestion}" if suggestion and suggestion.startswith("did") else ""))
+    latex = _LATEX_DIGITS.match(typed)
+    if latex is not None:  # \pi2, \omega2 with no variable omega2: a command then digits
+        command, digits = latex.groups()
+        subscript = "" if command == "\\pi" else f", or {command}_{{{digits}}} for a variable with subscript {digits}"
+        raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name",
+                              f"write {digits}{command} for the product{subscript}")
     raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name",
                           _suggestion(raw, ns) or "this answer uses no variables: write a number")
+
+
+# A LaTeX command with digits typed after it (\pi2): the name the tokenizer made of both.
+_LATEX_DIGITS = re.compile(r"^(\\[A-Za-z]+)(\d+)$")
 
 
 # Units students append to an answer (m g N, 2.5 newtons): undeclared, they are named as units.

@@ -25,6 +25,7 @@ each before parsing (:mod:`.leibniz`) and read as ``θ̇``, ``ẍ`` do.
 from __future__ import annotations
 
 from collections.abc import Mapping
+import re
 import threading
 from collections import OrderedDict
 from dataclasses import dataclass, field, replace
@@ -50,6 +51,9 @@ MAX_LENGTH = 2000
 MAX_RECURSION = 200
 
 _ADD, _MUL, _POW = 10, 20, 30
+# \pi2, \omega12, \pi2x: a LaTeX command with digits (and letters) after it, which the tokenizer reads
+# as one name (see latex_argument).
+_COMMAND_THEN_DIGITS = re.compile(r"^\\([A-Za-z]+)\d[A-Za-z0-9]*$")
 _I = sympy.I
 _OPERATOR_POWER = {"+": _ADD, "-": _ADD, "*": _MUL, "/": _MUL, "^": _POW}
 _ATOM_STARTS = ("number", "name", "open", "root", "command", "derivative")
@@ -364,7 +368,8 @@ class _Parser:
             value = self.ns.symbol(raw)  # what resolve_name answers for a declared name (no notes)
         else:
             resolved = resolve_name(raw, self.ns, order=token.order, typed=token.text,
-                                    position=token.pos, called=called)
+                                    position=token.pos, called=called,
+                                    before_power=following.kind == "op" and following.value == "^")
             for text in resolved.notes:
                 self.note(text)
             if resolved.kind == "function":
@@ -545,8 +550,20 @@ class _Parser:
 
     def latex_argument(self, command: Token) -> sympy.Expr:
         """An unbraced argument, read as LaTeX does: one character or one command, so ``\\frac12`` is
-        1/2, ``\\frac gl`` is g/l and ``\\frac\\pi2`` is π/2."""
+        1/2, ``\\frac gl`` is g/l and ``\\frac\\pi2`` is π/2 (the tokenizer's name ``\\pi2`` is cut where
+        the command's letters end)."""
         token = self.peek()
+        glued = _COMMAND_THEN_DIGITS.match(token.text) if token.kind == "name" and not token.order else None
+        if glued is not None and not token.forced_function:
+            # \frac\pi2: a command name ends at its last letter, as in TeX, so the argument is \pi
+            # and the 2 is what follows it (alone, \omega2 is the name ω2, as ω2 is: see tokens.py).
+            cut = glued.end(1)
+            rest = token.text[cut:]
+            pieces = [replace(token, value=token.value[:-len(rest)], text=token.text[:cut], end=token.pos + cut)]
+            for piece in tokenize(rest)[:-1]:  # 2, or 2 then x: plain ASCII, so tokenized alike
+                pieces.append(replace(piece, pos=piece.pos + token.pos + cut, end=piece.end + token.pos + cut))
+            self.tokens[self.i:self.i + 1] = pieces
+            token = pieces[0]
         plain = token.text.isascii() and token.text.isalnum() and token.order == 0
         if token.kind in ("number", "name") and plain and len(token.text) > 1:
             first, rest = token.text[0], token.text[1:]

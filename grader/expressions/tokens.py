@@ -9,7 +9,8 @@ student actually typed.  Token kinds:
              ``order`` counts derivative marks (``θ̇``, ``theta'``)
 ``op``       ``+ - * / ^ = , ;`` (``**`` -> ``^``, ``==`` -> ``=``, ``·`` -> ``*``, ``−`` -> ``-``)
 ``open`` / ``close``  ``( [ {`` and ``) ] }`` (``\\left(`` too)
-``sup``      a run of superscript characters, ``²`` or ``⁻¹``, as an int
+``sup``      a run of superscript characters, ``²`` or ``⁻¹``, as an int (superscript letters, ``e⁻ᵃᵇ``, are
+             refused with the power to type, ``e^(-a b)``)
 ``root``     ``√`` (2), ``∛`` (3), ``∜`` (4)
 ``command``  LaTeX structure: ``frac``, ``sqrt``, ``dot``, ``ddot``
 ``prime``    a prime not directly after a name (an error if the parser reaches it)
@@ -25,6 +26,7 @@ from __future__ import annotations
 
 import re
 import string
+import unicodedata
 from dataclasses import dataclass
 
 import sympy
@@ -33,7 +35,8 @@ from .errors import ExpressionError
 from .latex_input import classify_command, subscript_text
 from .magnitudes import MAX_DIGITS
 from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, GREEK_CHARS, MATH_LETTERS, OPERATOR_CHARS, PRIME_CHARS,
-                            ROOT_CHARS, SUBSCRIPT_DIGITS, SUPERSCRIPT_CHARS, VULGAR_FRACTIONS, bad_character,
+                            ROOT_CHARS, SUBSCRIPT_DIGITS, SUPERSCRIPT_CHARS, SUPERSCRIPT_OTHERS, VULGAR_FRACTIONS,
+                            bad_character,
                             is_space)
 
 __all__ = ["Token", "tokenize", "check_brackets", "MAX_NESTING"]
@@ -168,7 +171,7 @@ class _Tokenizer:
             self.command()
         elif ch in OPERATOR_CHARS:
             self.emit("op", OPERATOR_CHARS[ch], start, start + 1)
-        elif ch in SUPERSCRIPT_CHARS:
+        elif ch in SUPERSCRIPT_CHARS or ch in SUPERSCRIPT_OTHERS:
             self.superscript()
         elif ch in ROOT_CHARS:
             self.emit("root", ROOT_CHARS[ch], start, start + 1)
@@ -420,14 +423,31 @@ class _Tokenizer:
         elif ch == "|":  # \left| x \right|: an absolute value whose bars say which side they are
             self.emit("bar", "open" if which == "left" else "close", start, j + 1)
         else:
-            shown, command = ch or "end of text", command or "\\" + which
-            raise ExpressionError(f"{command} followed by '{shown}' is not supported", start,
-                                  "unsupported_function", "use \\left( ... \\right), or \\left| ... \\right| for |x|")
+            command = command or "\\" + which
+            if ch == "\\":  # \left\langle, \right\rangle: name the whole command
+                k = j + 1
+                while k < self.n and self.text[k].isascii() and self.text[k].isalpha():
+                    k += 1
+                ch = self.text[j:k] if k > j + 1 else ch
+            shown = ch or "end of text"
+            hint = "use \\left( ... \\right), or \\left| ... \\right| for |x|"
+            if ch == ".":  # \left. x \right| (evaluated at), \left/ … \right.: an invisible delimiter
+                message = f"'{command}.' (an invisible delimiter) is not supported"
+                hint = (f"delete '{command}.' and the \\left or \\right it pairs with; "
+                        "write plain brackets ( ) where needed")
+            elif ch == "/":
+                message = f"'{command}/' (a slash sized as a delimiter) is not supported"
+                hint = f"write / for division, without {command}, as in a/b or \\frac{{a}}{{b}}"
+            else:
+                message = f"{command} followed by '{shown}' is not supported"
+            raise ExpressionError(message, start, "unsupported_function", hint)
 
     def superscript(self) -> None:
         start, j = self.i, self.i
-        while j < self.n and self.text[j] in SUPERSCRIPT_CHARS:
+        while j < self.n and (self.text[j] in SUPERSCRIPT_CHARS or self.text[j] in SUPERSCRIPT_OTHERS):
             j += 1
+        if any(c in SUPERSCRIPT_OTHERS for c in self.text[start:j]):
+            self.superscript_letters(start, j)
         digits = "".join(SUPERSCRIPT_CHARS[c] for c in self.text[start:j])
         body = digits.lstrip("+-")
         if not body or not body.isdigit() or len(digits) - len(body) > 1:
@@ -436,6 +456,34 @@ class _Tokenizer:
         if len(body) > 4:
             raise ExpressionError("exponent too large", start, "too_large", "no answer here needs powers that high")
         self.emit("sup", int(digits), start, j)
+
+    def superscript_letters(self, start: int, j: int) -> None:
+        """``e⁻ᵃᵇ``, ``xⁿ``, ``e⁽ᵏᵗ⁾``: refused, naming the characters and giving the text to type.
+
+        Superscript letters are not read: the few fonts that have them are pasted from chat and
+        word processors, and which letters multiply which is not written down.
+        """
+        run = self.text[start:j]
+        letters = [c for c in run if c in SUPERSCRIPT_OTHERS]
+        shown = [f"'{c}' ({unicodedata.name(c, 'U+%04X' % ord(c))})" for c in dict.fromkeys(letters)]
+        names, many = ", ".join(shown[:3]) + (", …" if len(shown) > 3 else ""), len(shown) > 1
+        inner, previous = "", ""
+        for c in run:
+            plain = SUPERSCRIPT_OTHERS.get(c) or SUPERSCRIPT_CHARS[c]
+            if plain.isalpha() and previous.isalpha():
+                inner += " "  # ᵃᵇ is a·b: written a b
+            inner += plain
+            previous = plain
+        last = self.tokens[-1] if self.tokens else None
+        base = last.text if last is not None and last.end == start and last.kind in ("name", "number") \
+            and len(last.text) <= 20 else "x"
+        power = inner if len(inner) == 1 or inner.isdigit() or (inner.startswith("(") and inner.endswith(")")) \
+            else f"({inner})"
+        if len(run) > 20:  # a pasted wall of them: the message names them, not all of it again
+            run, power, base = run[:20] + "…", "(-a b)", "e"
+        raise ExpressionError(f"cannot read the superscript '{run}': {names} {'are' if many else 'is'} not read "
+                              "as a power", start, "bad_character",
+                              f"write the power with ^ and ordinary letters, as in {base}^{power}")
 
 
 # After these a bar opens an absolute value (an operand is expected); after anything else it closes one.

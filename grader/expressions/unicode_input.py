@@ -14,7 +14,8 @@ from fractions import Fraction
 
 from .errors import ExpressionError
 
-__all__ = ["GREEK_CHARS", "MATH_LETTERS", "OPERATOR_CHARS", "SUPERSCRIPT_CHARS", "SUBSCRIPT_DIGITS", "ROOT_CHARS",
+__all__ = ["GREEK_CHARS", "MATH_LETTERS", "OPERATOR_CHARS", "SUPERSCRIPT_CHARS", "SUPERSCRIPT_OTHERS",
+           "SUBSCRIPT_DIGITS", "ROOT_CHARS",
            "COMBINING_DOTS", "DOTTED_LETTERS", "PRIME_CHARS", "VULGAR_FRACTIONS", "is_space", "bad_character"]
 
 _GREEK_NAMES = ("alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi "
@@ -74,6 +75,29 @@ VULGAR_FRACTIONS: dict[str, tuple[int, int]] = {
 #: Superscript characters -> the ASCII they stand for (x² is x^2).
 SUPERSCRIPT_CHARS = {"⁰": "0", "¹": "1", "²": "2", "³": "3", "⁴": "4", "⁵": "5", "⁶": "6",
                      "⁷": "7", "⁸": "8", "⁹": "9", "⁻": "-", "⁺": "+"}
+
+
+
+def _superscript_others() -> dict[str, str]:
+    """Superscript letters, brackets and = (``ᵃ``, ``ⁿ``, ``ᶿ``, ``⁽``): what each raises (``a``, ``n``, ``θ``, ``(``).
+
+    Not read (``e⁻ᵃᵇ`` could be e^(-a·b) or a misrendered name), only refused with the text to type
+    instead. The ordinal indicators ª and º are left out: they are not superscripts to a typist.
+    """
+    found = {}
+    blocks = (range(0x2B0, 0x2C0), range(0x2E0, 0x2E5), range(0x1D2C, 0x1DC0), range(0x2070, 0x20A0), (0x2C7D, 0xA770))
+    for code in (code for block in blocks for code in block):
+        ch = chr(code)
+        parts = unicodedata.decomposition(ch).split()
+        if len(parts) == 2 and parts[0] == "<super>":
+            target = chr(int(parts[1], 16))
+            if ch not in SUPERSCRIPT_CHARS and (target.isalpha() or target in "()="):
+                found[ch] = target
+    return found
+
+
+#: Superscript letters and brackets -> the character they raise (ᵃ -> a, ᶿ -> θ, ⁽ -> ().
+SUPERSCRIPT_OTHERS: dict[str, str] = _superscript_others()
 
 #: Subscript digits (m₁ is m_1).
 SUBSCRIPT_DIGITS = {chr(0x2080 + i): str(i) for i in range(10)}

@@ -218,6 +218,50 @@ def test_every_refusal_names_the_text_and_the_fix(ns, text, named, fix, code):
     assert named in err.message and fix in err.hint and err.code == code
 
 
+# -- \frac d{dt}: the unbraced numerator, one letter as TeX reads it ------------------------------
+
+@pytest.mark.parametrize("text, name", [
+    (r"\frac d{dt}\theta", "thetadot"),
+    (r"\frac d {dt} \theta", "thetadot"),
+    (r"\frac d{dt}(\theta)", "thetadot"),
+    (r"\frac d{dt}\left(\theta\right)", "thetadot"),
+    (r"\frac d{d t}x", "xdot"),
+    (r"\dfrac d{dt}\dot{\theta}", "thetaddot"),
+    (r"\frac d{dt}\left(\frac{d\theta}{dt}\right)", "thetaddot"),
+    (r"\frac d{dt}(\frac d{dt}\theta)", "thetaddot"),
+    (r"\frac{d}{dt}\theta", "thetadot"),                     # the braced forms, for comparison
+    (r"\frac{d}{dt}(\theta)", "thetadot"),
+])
+def test_an_unbraced_d_over_a_braced_dt_reads_as_the_braced_form(ns, text, name):
+    parsed = parse_expression(text, ns)
+    assert parsed.expr == ns.symbol(name)
+    assert parsed.notes == [f"read '{text}' as {dotted(name)}"]
+
+
+@pytest.mark.parametrize("text, named, fix, code", [
+    (r"\frac{d}dt\theta", r"'\frac{d}dt' needs braces around dt", r"\frac{d}{dt}", "syntax"),
+    (r"\frac d dt\theta", r"'\frac d dt' needs braces around dt", r"\frac{d}{dt}", "syntax"),
+    (r"\frac d{dt^2}\theta", r"'\frac d{dt^2}' has d on top but dt² below", "d²/dt²", "syntax"),
+    (r"\frac d{dt}\theta^2", r"'\frac d{dt}\theta^2' is ambiguous", r"(d\theta/dt)^2", "ambiguous"),
+    (r"\frac d{dt}(m\theta)", r"'\frac d{dt}' can only be applied to one coordinate", "with dots", "syntax"),
+    (r"\frac d{dt}m", r"'\frac d{dt}m' means mdot", "did you mean", "unknown_name"),
+])
+def test_unbraced_leibniz_refusals_name_the_text_and_the_fix(ns, text, named, fix, code):
+    with pytest.raises(ExpressionError) as caught:
+        parse_expression(text, ns)
+    err = caught.value
+    assert named in err.message and fix in err.hint and err.code == code
+
+
+@pytest.mark.parametrize("declared, text, same_as", [
+    ([Variable("d", "length"), Variable("t", "time")], r"\frac d{dt}\theta", "d/(d*t)*theta"),
+    ([Variable("d", "length"), Variable("t", "time")], r"\frac{d}dt\theta", "d/d*t*theta"),
+])
+def test_a_declared_d_keeps_the_unbraced_frac_a_quotient(declared, text, same_as):
+    ns = _ns(*declared)
+    assert parse(text, ns) == parse(same_as, ns)
+
+
 def test_errors_point_into_the_text_as_typed(ns):
     text = "m l + d²θ/dt"
     with pytest.raises(ExpressionError) as caught:
@@ -251,6 +295,7 @@ HOSTILE = [
     "dq/dt+" * 330,                          # unknown words, each a search for suggestions if not kept
     "d/dt " * 390,                           # the first refusal ends the pass
     r"\frac{d}{dt}" * 160,
+    r"\frac d{dt}" * 160,
     "d/dt(" * 50 + "θ" + ")" * 50,
     "(dθ/dt)^" * 240 + "2",
     "d" + "θ" * 1990 + "/dt",

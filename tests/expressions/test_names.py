@@ -3,7 +3,7 @@
 import pytest
 import sympy
 
-from grader.expressions import ExpressionError, Namespace, Variable
+from grader.expressions import ExpressionError, Namespace, Variable, parse_expression
 from grader.expressions.names import derivative_name, resolve_name
 
 
@@ -74,3 +74,79 @@ def test_unknown_long_name_is_shortened_in_the_message(ns):
     with pytest.raises(ExpressionError) as err:
         resolve_name("q" * 500, ns)
     assert len(err.value.message) < 100
+
+
+# -- a declared name glued to Euler's e before a power: ye^x -------------------------------------
+
+@pytest.mark.parametrize("typed, parts", [
+    ("ye", ["y", "e"]),
+    ("me", ["m", "e"]),
+    ("m_1e", ["m1", "e"]),                 # a subscripted name, underscores ignored as in m_1g
+    ("thetae", ["theta", "e"]),
+    ("mge", ["m", "g", "e"]),              # a glued run of declared names, as mg is read
+    ("pie", ["pi", "e"]),
+])
+def test_a_declared_name_glued_to_e_before_a_power_reads_as_the_name_times_e(ns, typed, parts):
+    resolved = resolve_name(typed, ns, before_power=True)
+    assert resolved.kind == "split" and resolved.value == parts
+    assert resolved.notes == [f"read '{typed}' as {'·'.join(parts)}"]
+
+
+@pytest.mark.parametrize("typed", [
+    "ze",          # z is not declared
+    "sine",        # a function before the e: sin(e^x)? not guessed
+    "x_e",         # a subscript e: x_e^2 is the square of x_e
+    "ee",          # nothing declared before the e
+    "e",
+])
+def test_other_names_ending_in_e_are_not_split_before_a_power(ns, typed):
+    with pytest.raises(ExpressionError) as err:
+        resolve_name(typed + "x" if typed == "e" else typed, ns, before_power=True)
+    assert err.value.code == "unknown_name"
+
+
+def test_without_a_power_after_it_ye_is_refused_with_the_product_to_type(ns):
+    with pytest.raises(ExpressionError) as err:
+        resolve_name("ye", ns)
+    assert err.value.message == "unknown name 'ye'"
+    assert err.value.hint == "write y*e for y·e with e Euler's number; or did you mean 'y'?"
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("ye^x", lambda s: s["y"] * sympy.exp(s["x"])),
+    ("ae^-2x", lambda s: s["a"] * sympy.exp(-2 * s["x"])),   # the exponent keeps its glued factor, as e^-2x does
+    ("ae^(-2x)", lambda s: s["a"] * sympy.exp(-2 * s["x"])),
+    ("m ge^(-t)", lambda s: s["m"] * s["g"] * sympy.exp(-s["t"])),
+    ("mge^{-t}", lambda s: s["m"] * s["g"] * sympy.exp(-s["t"])),
+    ("2ye^x", lambda s: 2 * s["y"] * sympy.exp(s["x"])),
+    ("θe^(x/l)", lambda s: s["theta"] * sympy.exp(s["x"] / s["l"])),
+])
+def test_glued_exponentials_parse(text, expected):
+    ns = Namespace([Variable(n, "1") for n in ("y", "x", "a", "m", "g", "t", "theta", "l")])
+    parsed = parse_expression(text, ns)
+    assert parsed.expr == expected({n: ns.symbol(n) for n in ns.names})
+    assert any(note.startswith("read '") and note.endswith("·e") for note in parsed.notes)
+
+
+def test_a_declared_variable_named_e_keeps_its_meaning():
+    ns = Namespace([Variable("y", "1"), Variable("e", "1"), Variable("x", "1")])
+    e, x, y = (ns.symbol(n) for n in "exy")
+    assert parse_expression("ye^x", ns).expr == y * e ** x
+    assert parse_expression("e^x", ns).expr == e ** x
+
+
+def test_a_declared_name_ending_in_e_keeps_its_meaning():
+    ns = Namespace([Variable("y", "1"), Variable("ye", "1"), Variable("x", "1")])
+    assert parse_expression("ye^x", ns).expr == ns.symbol("ye") ** ns.symbol("x")
+
+
+# -- \pi2, \omega2: a LaTeX command with digits typed after it ------------------------------------
+
+@pytest.mark.parametrize("typed, hint", [
+    ("\\pi2", "write 2\\pi for the product"),
+    ("\\omega2", "write 2\\omega for the product, or \\omega_{2} for a variable with subscript 2"),
+])
+def test_an_unknown_command_with_digits_names_the_product_and_the_subscript(ns, typed, hint):
+    with pytest.raises(ExpressionError) as err:
+        resolve_name(typed[1:], ns, typed=typed)
+    assert err.value.message == f"unknown name '{typed}'" and err.value.hint == hint

@@ -612,7 +612,36 @@ def test_an_unbraced_frac_argument_is_one_character_or_command(wave_ns, latex, p
     assert parse(latex, wave_ns) == parse(plain, wave_ns)
 
 
-@pytest.mark.parametrize("text", ["\\frac2", "\\frac{x}", "\\frac12.5", "\\frac+12", "\\frac"])
+@pytest.mark.parametrize("latex, plain", [
+    ("\\frac\\pi2", "pi/2"), ("\\frac{\\pi}2", "pi/2"), ("\\frac\\pi{2}", "pi/2"), ("\\dfrac\\pi2", "pi/2"),
+    ("\\frac\\omega2", "omega/2"), ("\\frac\\pi2x", "pi/2*x"), ("\\frac\\omega2t", "omega/2*t"),
+    ("\\frac\\pi2\\omega", "pi/2*omega"), ("2\\pi x", "2*pi*x"), ("\\frac2\\pi", "2/pi"),
+])
+def test_a_command_as_an_unbraced_frac_argument_ends_at_its_last_letter(wave_ns, latex, plain):
+    # As TeX reads it: \pi2 is the command \pi, then 2, so \frac\pi2 is π/2.
+    assert parse(latex, wave_ns) == parse(plain, wave_ns)
+
+
+def test_a_command_then_digits_elsewhere_is_a_subscripted_name_as_the_unicode_letter_is():
+    # The choice documented: outside an unbraced \frac argument, \omega2 reads as ω2 does, the name
+    # omega2 (ω₂), since "ω 2" (ω then the number 2) is refused anyway as a missing operator.
+    ns = Namespace([Variable("omega", "angular_velocity"), Variable("omega2", "angular_velocity")])
+    assert parse("\\omega2", ns) == parse("ω2", ns) == parse("\\omega_2", ns) == ns.symbol("omega2")
+    assert parse("\\frac\\omega2", ns) == ns.symbol("omega") / 2     # but a \frac argument is the command alone
+
+
+@pytest.mark.parametrize("text, hint", [
+    ("\\pi2", "write 2\\pi for the product"),
+    ("\\omega2", "write 2\\omega for the product, or \\omega_{2} for a variable with subscript 2"),
+    ("\\sqrt{\\omega2}", "write 2\\omega for the product, or \\omega_{2} for a variable with subscript 2"),
+])
+def test_a_command_then_digits_with_no_such_variable_is_refused_with_both_readings(wave_ns, text, hint):
+    with pytest.raises(ExpressionError) as err:
+        parse(text, wave_ns)
+    assert err.value.message.startswith("unknown name '\\") and err.value.hint == hint
+
+
+@pytest.mark.parametrize("text", ["\\frac2", "\\frac{x}", "\\frac12.5", "\\frac+12", "\\frac", "\\frac\\pi"])
 def test_a_frac_without_its_two_arguments_is_refused(wave_ns, text):
     with pytest.raises(ExpressionError) as err:
         parse(text, wave_ns)

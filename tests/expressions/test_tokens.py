@@ -159,3 +159,53 @@ def test_styled_letters_make_names(text, name):
 @pytest.mark.parametrize("text", ["x—y", "x‒y", "x‐y", "x‑y", "x﹣y"])
 def test_dashes_are_minus(text):
     assert kinds(text) == [("name", "x"), ("op", "-"), ("name", "y")]
+
+
+# -- red team 2026-11: superscript letters and delimiters that are not brackets -----------------
+
+@pytest.mark.parametrize("text, shown, named, fix", [
+    ("e⁻ᵃᵇ", "⁻ᵃᵇ", ["'ᵃ' (MODIFIER LETTER SMALL A)", "'ᵇ' (MODIFIER LETTER SMALL B)"], "e^(-a b)"),
+    ("e⁻ᵗ", "⁻ᵗ", ["'ᵗ' (MODIFIER LETTER SMALL T)"], "e^(-t)"),
+    ("e⁻²ᵗ", "⁻²ᵗ", ["'ᵗ'"], "e^(-2t)"),
+    ("xⁿ", "ⁿ", ["'ⁿ' (SUPERSCRIPT LATIN SMALL LETTER N)"], "x^n"),
+    ("eˣ", "ˣ", ["'ˣ' (MODIFIER LETTER SMALL X)"], "e^x"),
+    ("2ᵏ", "ᵏ", ["'ᵏ'"], "2^k"),
+    ("e⁽ᵏᵗ⁾", "⁽ᵏᵗ⁾", ["'⁽' (SUPERSCRIPT LEFT PARENTHESIS)", "'ᵏ'"], "e^(k t)"),
+    ("eᶿ", "ᶿ", ["'ᶿ' (MODIFIER LETTER SMALL THETA)"], "e^θ"),
+    ("cos θ ᵃ", "ᵃ", ["'ᵃ'"], "x^a"),                         # nothing directly before it: a generic base
+])
+def test_superscript_letters_are_refused_naming_them_and_the_power_to_type(text, shown, named, fix):
+    with pytest.raises(ExpressionError) as err:
+        tokenize(text)
+    error = err.value
+    assert error.code == "bad_character" and error.position == text.index(shown)
+    assert error.message.startswith(f"cannot read the superscript '{shown}'")
+    assert all(name in error.message for name in named)
+    assert error.hint.endswith(f"as in {fix}")
+
+
+@pytest.mark.parametrize("text", ["x²", "x⁻¹", "x⁻¹²"])
+def test_superscript_digits_are_still_powers(text):
+    assert kinds(text)[-1][0] == "sup"
+
+
+@pytest.mark.parametrize("text, named, fix", [
+    ("\\left/ x \\right.", "'\\left/' (a slash sized as a delimiter)", "write / for division, without \\left"),
+    ("\\bigl/ x", "'\\bigl/' (a slash sized as a delimiter)", "without \\bigl"),
+    ("\\left. x \\right|", "'\\left.' (an invisible delimiter)", "delete '\\left.' and the \\left or \\right"),
+    ("\\left( x \\right.", "'\\right.' (an invisible delimiter)", "delete '\\right.'"),
+    ("\\left\\langle x \\right\\rangle", "\\left followed by '\\langle'", "\\left( ... \\right)"),
+])
+def test_delimiters_that_are_not_brackets_are_refused_naming_them_and_the_fix(text, named, fix):
+    with pytest.raises(ExpressionError) as err:
+        tokenize(text)
+    assert named in err.value.message and fix in err.value.hint
+    assert err.value.code == "unsupported_function"
+
+
+@pytest.mark.parametrize("text", ["e" + "ᵃᵇ" * 900, "x" * 500 + "ᵃ",
+                                  "e" + "".join(chr(c) for c in range(0x1D43, 0x1D5B)) * 30])
+def test_a_long_run_of_superscript_letters_is_refused_briefly(text):
+    with pytest.raises(ExpressionError) as err:
+        tokenize(text)
+    assert len(err.value.message) < 300 and len(err.value.hint) < 100

@@ -2,7 +2,8 @@
 
 import pytest
 
-from grader.expressions.unicode_input import GREEK_CHARS, bad_character, is_space
+from grader.expressions.unicode_input import (GREEK_CHARS, SUPERSCRIPT_CHARS, SUPERSCRIPT_OTHERS, bad_character,
+                                              is_space)
 
 
 @pytest.mark.parametrize("char, name", [("θ", "theta"), ("λ", "lambda"), ("ω", "omega"), ("Ω", "Omega"),
@@ -66,3 +67,13 @@ def test_every_dash_is_a_minus(char):
 def test_a_styled_digit_is_refused_naming_the_plain_one(char, plain):
     error = bad_character(char, 0)
     assert char in error.message and f"'{plain}'" in error.hint
+
+
+@pytest.mark.parametrize("ch, plain", [("ᵃ", "a"), ("ⁿ", "n"), ("ˣ", "x"), ("ᶿ", "θ"), ("ᴬ", "A"),
+                                       ("⁽", "(")])
+def test_superscript_letters_know_the_letter_they_raise(ch, plain):
+    assert SUPERSCRIPT_OTHERS[ch] == plain
+
+
+def test_superscript_digits_and_ordinal_indicators_are_not_superscript_letters():
+    assert not set(SUPERSCRIPT_OTHERS) & (set(SUPERSCRIPT_CHARS) | {"ª", "º"})
