@@ -48,7 +48,7 @@ import sympy
 from grader.mechanics import budget
 from grader.mechanics.augmented import singular_directions, solve_augmented
 from grader.mechanics.scene import Scene, SceneError
-from grader.mechanics.simplification import quick_form
+from grader.mechanics.simplification import declared_domains, quick_form
 
 __all__ = ["Derivation", "EquationsOfMotion", "derive", "equations_of_motion", "time_derivative"]
 
@@ -192,7 +192,10 @@ def derive(scene: Scene, budget_s: float | None = None) -> Derivation:
     from grader.mechanics.answers import evaluate_answers
     from grader.mechanics.steps import derivation_steps
 
-    with budget.overall_budget(budget_s):
+    # Declared intervals (an angle in [0.05, 3]) decide signs in the readable forms of the answers.
+    bounds = {v.symbol: (v.domain.lo, v.domain.hi) for v in (*scene.parameters.values(), *scene.coordinates.values())
+              if v.domain.kind == "interval"}
+    with budget.overall_budget(budget_s), declared_domains(bounds):
         with budget.step("solving the equations of motion"):
             eom = equations_of_motion(scene)
         answers, equations, alternatives = evaluate_answers(scene, eom)

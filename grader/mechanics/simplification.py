@@ -20,6 +20,13 @@ double angle (:func:`contract_double_angles`, hyperbolic too); then common facto
 sum (``factor_terms``). A candidate replaces the input only if it has the input's value
 (:func:`_equal`: a numeric check at 30 digits, and a symbolic one where that is cheap).
 
+Two rules more. An expression proved identically zero (:func:`identically_zero`: never nonzero in
+ball arithmetic at a few points of the declared domains, then 0 symbolically) is ``0``; one only
+numerically zero keeps its form. Half angles are candidates too: sines and cosines of φ and φ/2
+written in φ/2 alone (:func:`in_single_angles`), and roots of p(1 ∓ cos x) as √(2p) sin(x/2)
+(√(2p) cos(x/2)), with the sign the declared domains (:func:`declared_domains`) give the half
+angle, or bars where they give none (:func:`half_angles`).
+
 Examples
 --------
 >>> import sympy
@@ -37,11 +44,14 @@ m1*omega**2*sinh(2*omega*t)
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import functools
+import math
 
 import sympy
 
-__all__ = ["contract_double_angles", "factored_sums", "gathered_roots", "grouped", "human_form", "inverse_hyperbolic",
+__all__ = ["contract_double_angles", "declared_domains", "half_angles", "identically_zero", "in_single_angles", "factored_sums", "gathered_roots", "grouped", "human_form", "inverse_hyperbolic",
            "quick_form", "readable_denominator", "signs_in_front", "spread_denominator", "tidy_radicands", "tidy_trig"]
 
 _TRIG = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc)
@@ -94,16 +104,20 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
     expr = sympy.sympify(expr, strict=True)  # an expression or a number, never text
     if expr.is_Atom:
         return expr
-    return _remembered_form(expr, seconds)
+    return _remembered_form(expr, seconds, _bounds_of(expr.free_symbols))
 
 
 @functools.lru_cache(maxsize=512)
-def _remembered_form(expr: sympy.Expr, seconds: float) -> sympy.Expr:
+def _remembered_form(expr: sympy.Expr, seconds: float, bounds: tuple = ()) -> sympy.Expr:
     from grader.mechanics.budget import attempt
 
     allowed = _multiple_angles(expr)
     cancelled = sympy.cancel(expr)
+    if cancelled == 0 or identically_zero(expr, bounds, seconds):
+        return sympy.S.Zero
     candidates = [expr, cancelled, sympy.factor_terms(cancelled)]
+    if _mixed_angles(expr):
+        attempt(lambda: candidates.append(in_single_angles(expr)), seconds / 2, fallback=lambda: None)
     numerator, denominator = sympy.fraction(cancelled)
     if cancelled.has(*_TRIG):
         candidates.append(sympy.factor_terms(tidy_trig(numerator)) / readable_denominator(denominator))
@@ -116,6 +130,9 @@ def _remembered_form(expr: sympy.Expr, seconds: float) -> sympy.Expr:
         candidates.extend([gathered_roots(c) for c in candidates])
     if expr.has(sympy.log):
         candidates.append(inverse_hyperbolic(expr))
+    if expr.has(sympy.cos) and any(p.exp.is_Rational and p.exp.q == 2 for p in expr.atoms(sympy.Pow)):
+        halves = dict.fromkeys(half_angles(c, bounds) for c in candidates)
+        candidates.extend(sympy.factor_terms(h) for h in halves if h not in candidates)
 
     weights: dict = {}
 
@@ -443,22 +460,29 @@ def _equal(a: sympy.Expr, b: sympy.Expr, digits: int = 30) -> bool:
     return compared >= 2 and _symbolically_equal(a, b) is not False
 
 
-def _symbolically_equal(a: sympy.Expr, b: sympy.Expr) -> bool | None:
+def _symbolically_equal(a: sympy.Expr, b: sympy.Expr, limit: int = 80) -> bool | None:
     """True or False where cheap to decide, None where not.
 
     A rational function of the symbols is zero exactly when ``cancel`` makes it 0. With sines and
-    cosines (or sinh and cosh) of products of symbols, after ``expand_trig``, the numerator is
-    zero if it reduces to 0 modulo s² + c² − 1 (c² − s² − 1) for each argument; a nonzero
-    remainder proves nothing (sin x and sin(x/2) are not independent), so that case returns None,
-    as do roots, logarithms and the like.
+    cosines (or sinh and cosh) of rational multiples of symbols (φ and φ/2: each symbol is first
+    scaled so that all its multiples are whole, :func:`_angle_scales`), after ``expand_trig``, the
+    numerator is zero if it reduces to 0 modulo s² + c² − 1 (c² − s² − 1) for each argument; a
+    nonzero remainder proves nothing (sin x and sin(x/2) are not independent), so that case
+    returns None, as do roots, logarithms, differences of more than ``limit`` operations and the
+    like.
     """
     difference = a - b
-    if sympy.count_ops(difference) > 80:
+    if sympy.count_ops(difference) > limit:
         return None
     if any(not p.exp.is_Integer for p in difference.atoms(sympy.Pow)):
         return None
     if not difference.atoms(sympy.Function):
         return sympy.cancel(difference) == 0
+    scales = _angle_scales(difference)
+    if scales is None:
+        return None
+    # x → L·x is a bijection of the reals (and keeps x's sign): zero before exactly when after.
+    difference = difference.xreplace({x: scale * x for x, scale in scales.items() if scale != 1})
     expanded = sympy.expand_trig(difference)
     circular, hyperbolic = (sympy.sin, sympy.cos), (sympy.sinh, sympy.cosh)
     functions = expanded.atoms(sympy.Function)
@@ -479,6 +503,241 @@ def _symbolically_equal(a: sympy.Expr, b: sympy.Expr) -> bool | None:
     generators = dummies + sorted(numerator.free_symbols - set(dummies), key=str)
     _, remainder = sympy.reduced(numerator, relations, *generators)
     return True if remainder == 0 else None
+
+
+def _angle_scales(expr: sympy.Expr) -> dict | None:
+    """For each symbol in the arguments of the (hyperbolic) sines and cosines of ``expr``, the
+    least common denominator of its coefficients there: 2 for φ in sin φ and cos(φ/2). None where
+    an argument is not a sum of rational multiples of symbols and numbers (a symbol's multiples
+    must be whole to expand them into one angle)."""
+    scales: dict = {}
+    for f in expr.atoms(*_TRIG, *_HYPERBOLIC):
+        for term in sympy.Add.make_args(f.args[0]):
+            coefficient, rest = term.as_coeff_Mul()
+            if not coefficient.is_Rational:
+                return None
+            if rest.is_Symbol:
+                scales[rest] = sympy.ilcm(scales.get(rest, 1), coefficient.q)
+            elif rest != 1 and coefficient.q != 1:
+                return None
+    return scales
+
+
+def _mixed_angles(expr: sympy.Expr) -> bool:
+    """Whether a symbol appears in sines or cosines both as φ (or 3φ/2) and as φ/2."""
+    scales = _angle_scales(expr)
+    return bool(scales) and any(scale != 1 for scale in scales.values()) and any(
+        term.as_coeff_Mul()[0].is_Integer and term.as_coeff_Mul()[1] in scales
+        for f in expr.atoms(sympy.sin, sympy.cos) for term in sympy.Add.make_args(f.args[0]))
+
+
+def in_single_angles(expr: sympy.Expr) -> sympy.Expr:
+    """``expr`` with the sines and cosines of φ, 3φ/2, … written in those of the one angle φ/2
+    their multiples share, reduced with sin² + cos² = 1 and cancelled.
+
+    A force on a cycloid along the normal (−sin(φ/2), cos(φ/2)) comes in sin φ and cos φ from the
+    multipliers and in φ/2 from the direction; in φ/2 alone it is m cos(φ/2)(g + a φ̇²).
+
+    >>> m, g, a, phi = sympy.symbols("m g a phi", positive=True)
+    >>> in_single_angles(m*(g*sympy.sin(phi)*sympy.sin(phi/2) + g*(1 + sympy.cos(phi))*sympy.cos(phi/2))/2)
+    g*m*cos(phi/2)
+    """
+    scales = _angle_scales(expr)
+    if not scales or all(scale == 1 for scale in scales.values()):
+        return expr
+    angles = {x: sympy.Dummy(real=True) for x, scale in scales.items() if scale != 1}
+    expanded = sympy.expand_trig(expr.xreplace({x: scales[x] * u for x, u in angles.items()}))
+    back, relations, replacement = {}, [], {}
+    for x, u in angles.items():
+        s, c = sympy.Dummy(), sympy.Dummy()
+        replacement.update({sympy.sin(u): s, sympy.cos(u): c})
+        back.update({s: sympy.sin(x / scales[x]), c: sympy.cos(x / scales[x])})
+        relations.append(s ** 2 + c ** 2 - 1)
+    rest = set(expanded.xreplace(replacement).atoms(sympy.Dummy)) - set(replacement.values())
+    if rest & set(angles.values()):
+        return expr  # an angle left outside a sine or cosine (or in tan): not ours to rewrite
+    # Other functions (cos φ₀ beside φ and φ/2) are symbols to the reduction.
+    masked = {f: sympy.Dummy() for f in expanded.xreplace(replacement).atoms(sympy.Function)}
+    back.update({d: f for f, d in masked.items()})
+    numerator, denominator = sympy.fraction(sympy.together(expanded.xreplace(replacement).xreplace(masked)))
+    forms = []
+    for order in (list(replacement.values()), list(reversed(list(replacement.values())))):
+        generators = order + sorted((numerator.free_symbols | denominator.free_symbols) - set(order), key=str)
+        reduced = [sympy.reduced(sympy.expand(part), relations, *generators)[1] for part in (numerator, denominator)]
+        forms.append(sympy.factor_terms(sympy.cancel(reduced[0] / reduced[1])))
+    best = min(forms, key=lambda e: (sympy.count_ops(e), len(str(e))))
+    return best.xreplace(back)
+
+
+def half_angles(expr: sympy.Expr, bounds: tuple = ()) -> sympy.Expr:
+    """Square roots of p(1 − cos x) and p(1 + cos x) as √(2p)·sin(x/2) and √(2p)·cos(x/2).
+
+    p(1 − cos x) = 2p sin²(x/2) and p(1 + cos x) = 2p cos²(x/2) hold everywhere; the root of the
+    square is |sin(x/2)| (|cos(x/2)|), written without the bars (or with a minus sign) only where
+    the declared domains (``bounds``, :func:`declared_domains`) and the symbols' signs put x/2
+    where it has one sign, and kept with them otherwise.
+
+    >>> th = sympy.Symbol("theta0", positive=True)
+    >>> half_angles(sympy.sqrt(2 - 2*sympy.cos(th)), ((th, 0.05, 3.0),))
+    2*sin(theta0/2)
+    >>> half_angles(sympy.sqrt(2 - 2*sympy.cos(th)))
+    2*Abs(sin(theta0/2))
+    """
+    def rewrite(root):
+        found = _half_angle_square(root.base)
+        if found is None:
+            return root
+        p, half = found
+        sign = _sign(half, bounds)
+        signed = sympy.Abs(half) if sign is None else sign * half
+        return (2 * p) ** root.exp * signed ** (2 * root.exp)
+
+    return expr.replace(lambda e: e.is_Pow and e.exp.is_Rational and e.exp.q == 2, rewrite)
+
+
+def _half_angle_square(base: sympy.Expr):
+    """(p, sin(x/2)) for base = p(1 − cos x), (p, cos(x/2)) for base = p(1 + cos x), else None."""
+    cosines = base.atoms(sympy.cos)
+    if len(cosines) != 1:
+        return None
+    (cosine,) = cosines
+    c = sympy.Dummy()
+    linear = sympy.expand(base.xreplace({cosine: c}))
+    q = linear.coeff(c, 1)
+    p = sympy.expand(linear - q * c)
+    if q == 0 or p.has(c) or q.has(c):
+        return None
+    half = cosine.args[0] / 2
+    if sympy.cancel(p + q) == 0:
+        return sympy.factor_terms(p), sympy.sin(half)
+    if sympy.cancel(p - q) == 0:
+        return sympy.factor_terms(p), sympy.cos(half)
+    return None
+
+
+def _sign(f: sympy.Expr, bounds: tuple) -> int | None:
+    """+1 or −1 where the sine or cosine ``f`` has that sign (or is 0) wherever its argument's
+    symbols are in their declared domains (``bounds``) and signs; None where that is not shown."""
+    interval = _interval(f.args[0], {s: (lo, hi) for s, lo, hi in bounds})
+    if interval is None:
+        return None
+    lo, hi = interval
+    shift = 0.0 if isinstance(f, sympy.sin) else math.pi / 2  # cos y = sin(y + π/2)
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        return 1 if isinstance(f, sympy.sin) and 0 <= lo and hi <= math.pi else None
+    turns = math.floor((lo + shift) / (2 * math.pi))  # sin has period 2π: lo in [0, 2π)
+    lo, hi = lo + shift - 2 * math.pi * turns, hi + shift - 2 * math.pi * turns
+    if hi <= math.pi:
+        return 1
+    if math.pi <= lo and hi <= 2 * math.pi:
+        return -1
+    return None
+
+
+def _interval(expr: sympy.Expr, bounds: dict) -> tuple[float, float] | None:
+    """Bounds of a sum of rational multiples of symbols (and a number) over the symbols' bounds."""
+    lo = hi = 0.0
+    for term in sympy.Add.make_args(expr):
+        coefficient, rest = term.as_coeff_Mul()
+        if rest == 1:
+            lo, hi = lo + float(coefficient), hi + float(coefficient)
+            continue
+        if not (coefficient.is_Rational and rest.is_Symbol):
+            return None
+        if rest in bounds:
+            a, b = bounds[rest]
+        elif rest.is_nonnegative:
+            a, b = 0.0, math.inf
+        elif rest.is_nonpositive:
+            a, b = -math.inf, 0.0
+        else:
+            return None
+        a, b = sorted((float(coefficient) * a, float(coefficient) * b)) if coefficient else (0.0, 0.0)
+        lo, hi = lo + a, hi + b
+    return lo, hi
+
+
+def identically_zero(expr: sympy.Expr, bounds: tuple = (), seconds: float = 0.3) -> bool:
+    """Whether ``expr`` is proved 0: it is never shown nonzero at a few points (:func:`_nonzero_at_a_point`)
+    and then reduces to 0 symbolically (:func:`_symbolically_equal`) within ``seconds``.
+
+    Only a proof makes an answer 0; an expression that is 0 only to the precision of the points
+    stays as it is.
+
+    >>> phi, m, g = sympy.symbols("phi m g", positive=True)
+    >>> identically_zero(m*g*(sympy.sin(phi)*sympy.cos(phi/2) - (1 + sympy.cos(phi))*sympy.sin(phi/2)))
+    True
+    >>> identically_zero(m*g*(sympy.sin(phi)*sympy.cos(phi/2) - sympy.cos(phi)*sympy.sin(phi/2)))
+    False
+    """
+    from grader.mechanics.budget import attempt
+
+    if _nonzero_at_a_point(expr, bounds):
+        return False
+    proved: list = []
+    attempt(lambda: proved.append(_symbolically_equal(expr, sympy.S.Zero, limit=400)), seconds,
+            fallback=lambda: None)
+    return proved == [True]
+
+
+def _nonzero_at_a_point(expr: sympy.Expr, bounds: tuple, count: int = 4, seed: int = 7) -> bool:
+    """Whether ``expr`` is proved nonzero at one of ``count`` seeded points in the declared domains
+    (``bounds``; the symbols' signs elsewhere), in ball arithmetic: a ball that excludes 0. An
+    expression the evaluator does not know counts as nonzero (it is kept as it is)."""
+    import random
+
+    import flint
+
+    from grader.answers.evaluate import SCALE, ArbBackend, Undefined, Unresolved, Unsupported, compile_expr
+
+    try:
+        f = compile_expr(expr, ArbBackend())
+    except Unsupported:
+        return True
+    within = {s: (lo, hi) for s, lo, hi in bounds}
+    symbols = sorted(expr.free_symbols, key=str)
+    rng = random.Random(seed)
+    with flint.ctx.workprec(128):
+        for _ in range(count):
+            point = {SCALE: -math.inf}
+            for s in symbols:
+                r = rng.random()
+                if s in within:
+                    lo, hi = within[s]
+                    value = lo + (0.05 + 0.9 * r) * (hi - lo)
+                else:
+                    value = 0.3 + 1.5 * r
+                    if not (s.is_positive or s.is_nonnegative) and rng.random() < 0.5:
+                        value = -value
+                point[s] = flint.arb(value)
+            try:
+                value = f(point)
+            except (Undefined, Unresolved, ZeroDivisionError, ValueError, TypeError):
+                continue
+            if not value.contains(0):
+                return True
+    return False
+
+
+_DOMAINS: contextvars.ContextVar[dict] = contextvars.ContextVar("declared domains", default={})
+
+
+@contextlib.contextmanager
+def declared_domains(bounds: dict):
+    """Within: the symbols of ``bounds`` ({symbol: (lo, hi)}, a scene's declared intervals) are
+    known to stay in them, for the signs :func:`human_form` may rely on (√(2 − 2 cos θ₀) is
+    2 sin(θ₀/2) for 0 ≤ θ₀ ≤ 2π) and the points where it looks for a nonzero value."""
+    token = _DOMAINS.set(dict(bounds))
+    try:
+        yield
+    finally:
+        _DOMAINS.reset(token)
+
+
+def _bounds_of(symbols) -> tuple:
+    """The declared bounds of ``symbols``, in a fixed order (part of :func:`human_form`'s memory)."""
+    domains = _DOMAINS.get()
+    return tuple(sorted(((s, *domains[s]) for s in symbols if s in domains), key=lambda b: str(b[0])))
 
 
 def inverse_hyperbolic(expr: sympy.Expr) -> sympy.Expr:

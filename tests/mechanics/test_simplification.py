@@ -159,3 +159,118 @@ def test_simplify_is_not_run_twice_on_one_cancelled_form(monkeypatch):
 ])
 def test_equal_decides_by_value(a, b, equal):
     assert _equal(a, b) is equal
+
+
+# --- A reference answer that is identically zero prints as 0; one that is only numerically zero
+# (to the precision of a few points) keeps its form.
+phi, phidot = sympy.symbols("phi phidot", positive=True)
+_lambda_x = -m * (a * phidot ** 2 + g) * sin(phi) / 2  # the cycloid's multipliers (bead_on_cycloid)
+_lambda_y = m * (a * phidot ** 2 + g) * (cos(phi) + 1) / 2
+_tiny = sympy.Float("1e-40", 60)
+
+
+@pytest.mark.parametrize("expr", [
+    # The smooth wire's force along the cycloid's tangent (cos(φ/2), sin(φ/2)).
+    _lambda_x * cos(phi / 2) + _lambda_y * sin(phi / 2),
+    sin(2 * theta) - 2 * sin(theta) * cos(theta),
+    g * (sin(theta) ** 2 + cos(theta) ** 2 - 1) / (1 + cos(theta)),
+    m * (sinh(w * t) ** 2 - cosh(w * t) ** 2 + 1),
+    sin(3 * theta / 2) * cos(theta / 2) - sin(theta) * cos(theta) - sin(theta) / 2
+    + sin(theta / 2) * cos(theta / 2) * (1 - 2 * sin(theta / 2) ** 2 - cos(theta)),
+], ids=["cycloid-tangential-force", "double-angle", "pythagorean-fraction", "hyperbolic", "three-half-angles"])
+def test_an_identically_zero_answer_prints_as_0(expr):
+    assert sympy.cancel(expr) != 0  # not already 0 by cancelling
+    assert simplification.identically_zero(expr)
+    simplification._remembered_form.cache_clear()
+    assert human_form(expr) == 0
+
+
+@pytest.mark.parametrize("expr", [
+    # Zero to far more digits than any point check sees, but not zero: never printed as 0.
+    _tiny * g * sin(theta),
+    _lambda_x * cos(phi / 2) + _lambda_y * sin(phi / 2) + _tiny * m * g,
+    # A root: the symbolic check refuses it (None), so it is not called 0 either way.
+    sqrt(1 - cos(theta) ** 2) - sin(theta) + _tiny,
+], ids=["tiny-multiple", "tiny-offset", "root"])
+def test_an_answer_only_numerically_zero_keeps_its_form(expr):
+    assert not simplification.identically_zero(expr)
+    simplification._remembered_form.cache_clear()
+    assert human_form(expr) != 0
+    assert _equal(human_form(expr), expr)
+
+
+def test_a_nonzero_answer_is_shown_nonzero_in_ball_arithmetic_without_symbolic_work(monkeypatch):
+    calls = []
+    monkeypatch.setattr(simplification, "_symbolically_equal", lambda *a, **k: calls.append(a))
+    assert not simplification.identically_zero(_lambda_x * sin(phi / 2) - _lambda_y * cos(phi / 2))
+    assert calls == []
+
+
+# --- Half angles: 1 − cos x = 2 sin²(x/2), 1 + cos x = 2 cos²(x/2), their roots with the sign the
+# declared domain justifies, and sines and cosines of φ and φ/2 written in φ/2 alone.
+theta_in = ((theta0, 0.05, 3.0),)  # θ₀ ∈ [0.05, 3]: sin(θ₀/2) > 0
+x_real = sympy.Symbol("x", real=True)
+
+
+@pytest.mark.parametrize("expr, bounds, printed", [
+    (sqrt(2 - 2 * cos(theta0)), theta_in, "2*sin(theta0/2)"),
+    (sqrt(2 + 2 * cos(theta0)), theta_in, "2*cos(theta0/2)"),
+    # θ₀ ∈ [0.05, 3] puts θ₀/2 below π/2: cos(θ₀/2) > 0 as well; over [3.5, 6] it is negative.
+    (sqrt(2 + 2 * cos(theta0)), ((theta0, 3.5, 6.0),), "-2*cos(theta0/2)"),
+    # Without a domain the sign is not known: the bars stay.
+    (sqrt(2 - 2 * cos(theta0)), (), "2*Abs(sin(theta0/2))"),
+    (sqrt(l * (1 - cos(x_real))), (), "sqrt(2)*sqrt(l)*Abs(sin(x/2))"),
+    (sqrt(2) * R * sqrt(1 - cos(theta0)), theta_in, "2*R*sin(theta0/2)"),
+    (1 / sqrt(1 + cos(theta0)), theta_in, "sqrt(2)/(2*cos(theta0/2))"),
+])
+def test_half_angle_roots(expr, bounds, printed):
+    rewritten = simplification.half_angles(expr, bounds)
+    assert sympy.sstr(rewritten) == printed
+    _assert_same_value_on(expr, rewritten, bounds)
+
+
+@pytest.mark.parametrize("expr, printed", [
+    # bead_on_cycloid's normal force, −λx sin(φ/2) + λy cos(φ/2).
+    (-_lambda_x * sin(phi / 2) + _lambda_y * cos(phi / 2), "m*(a*phidot**2 + g)*cos(phi/2)"),
+    (sin(phi) / cos(phi / 2), "2*sin(phi/2)"),
+    ((1 + cos(phi)) / cos(phi / 2), "2*cos(phi/2)"),
+])
+def test_mixed_angles_in_one_angle(expr, printed):
+    simplification._remembered_form.cache_clear()
+    single = simplification.in_single_angles(expr)
+    _assert_same_value_on(expr, single, ())
+    assert sympy.sstr(human_form(expr)) == printed
+
+
+@pytest.mark.parametrize("expr, bounds, printed", [
+    # bead_hoop_turning_about_rim's hoop force at the bottom, as the engine hands it over.
+    (-2 * sqrt(2) * R * m * w ** 2 * sqrt(1 - cos(theta0)) + 2 * R * m * w ** 2 * (1 - cos(theta0)) + 2 * R * m * w ** 2,
+     theta_in, "2*R*m*omega**2*(-2*sin(theta0/2) - cos(theta0) + 2)"),
+    (g * sqrt(2 - 2 * cos(theta0)), theta_in, "2*g*sin(theta0/2)"),
+])
+def test_human_form_takes_the_half_angle_where_shorter(expr, bounds, printed):
+    simplification._remembered_form.cache_clear()
+    with simplification.declared_domains({s: (lo, hi) for s, lo, hi in bounds}):
+        chosen = human_form(expr)
+    assert sympy.sstr(chosen) == printed
+    _assert_same_value_on(expr, chosen, bounds)
+
+
+def _assert_same_value_on(a, b, bounds, count: int = 40):
+    """a and b agree at seeded points of the declared domains (and the symbols' signs), 30 digits."""
+    rng = random.Random(3)
+    within = {s: (lo, hi) for s, lo, hi in bounds}
+    symbols = sorted(a.free_symbols | b.free_symbols, key=str)
+    for _ in range(count):
+        point = {}
+        for s in symbols:
+            if s in within:
+                lo, hi = within[s]
+                value = rng.uniform(lo, hi)
+            else:
+                value = rng.uniform(0.01, 7.0)
+                if not s.is_positive and rng.random() < 0.5:
+                    value = -value
+            point[s] = sympy.Float(value, 40)
+        x, y = complex(a.xreplace(point).evalf(30)), complex(b.xreplace(point).evalf(30))
+        assert abs(x - y) <= 1e-25 * max(1.0, abs(x)), (point, x, y)
