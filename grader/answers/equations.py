@@ -221,6 +221,8 @@ def _hidden_difference(reference: list[sympy.Expr], answer: list[sympy.Expr], un
     Only a difference in which sympy combined terms is evaluated.
     """
     r, a = reference[0], answer[0]
+    if _too_big(r) or _too_big(a):
+        return None  # its expansion is not worth a check's budget: the points' verdict stands
     for u in unknowns or tuple(states.domains):
         if not r.has(u):
             continue
@@ -244,6 +246,17 @@ def _hidden_difference(reference: list[sympy.Expr], answer: list[sympy.Expr], un
                           evidence={"method": "ball arithmetic", "points": 1},
                           counterexample={"values": _named(point), "difference": as_float(value)})
     return None
+
+
+def _too_big(expr: sympy.Expr) -> bool:
+    """More than FACTOR_MAX_NODES nodes (a stack walk that stops there)."""
+    stack, nodes = [expr], 0
+    while stack:
+        nodes += 1
+        if nodes > FACTOR_MAX_NODES:
+            return True
+        stack.extend(stack.pop().args)
+    return False
 
 
 def _values(compiled: list[Compiled], point: dict, prec: int, key):
