@@ -325,6 +325,7 @@ def check(
     unit: str = "",
     tolerance: Mapping[str, Any] | None = None,
     dimension: str | None = None,
+    implicit: Mapping[str, Any] | None = None,
 ) -> Verdict:
     """Check a student's answer against a reference answer (or any of its accepted alternatives).
 
@@ -355,10 +356,11 @@ def check(
         Other references that are also right (the mirror equilibrium -theta*, the other sign
         convention), in the reference's grammar. An answer matching one is ``equivalent``, and
         ``evidence["matched"]`` says which: 0 for ``reference``, i for the i-th alternative.
-    values, unit, tolerance, dimension
+    values, unit, tolerance, dimension, implicit
         For ``kind="numeric"`` (`grader.answers.numeric`): the student's parameter values at which
-        the reference is evaluated, the answer's SI unit text, ``{relative?, absolute?, sig_figs?}``
-        and the answer's dimension.
+        the reference is evaluated, the answer's SI unit text, ``{relative?, absolute?, sig_figs?}``,
+        the answer's dimension, and for a reference without a closed form the root its unknown is
+        at (`grader.expressions.implicit.Implicit` as JSON).
 
     Returns
     -------
@@ -382,7 +384,7 @@ def check(
     try:
         if kind == "numeric":
             return _numeric(reference, answer, variables, values, unit, tolerance, dimension, feedback, started,
-                            alternatives)
+                            alternatives, implicit)
         verdict = _check(reference, answer, variables, kind, feedback, budget_s, state, options, started,
                          feedback_detail)
         _partial_credit(verdict, feedback)
@@ -403,7 +405,7 @@ def check(
 
 
 def _numeric(reference, answer, variables, values, unit, tolerance, dimension, feedback, started,
-             alternatives=None) -> Verdict:
+             alternatives=None, implicit=None) -> Verdict:
     from grader.answers.numeric import NumericRequestError, check_numeric
 
     text = answer if isinstance(answer, str) else ""
@@ -413,16 +415,20 @@ def _numeric(reference, answer, variables, values, unit, tolerance, dimension, f
         verdict = Verdict.invalid("'variables' and 'values' must be objects", text)
     elif feedback is not None and not isinstance(feedback, (list, tuple)):
         verdict = Verdict.invalid("'feedback' must be a list of {expr, message}", text)
+    elif implicit is not None and not isinstance(implicit, Mapping):
+        verdict = Verdict.invalid("'implicit' must be an object {condition, unknown, interval, root}", text)
     else:
         entries = [f for f in feedback or () if isinstance(f, Mapping)]
         unit = unit if unit is not None else ""
         try:
-            verdict = check_numeric(reference, text, variables, values, unit, tolerance, dimension, entries)
+            verdict = check_numeric(reference, text, variables, values, unit, tolerance, dimension, entries,
+                                    implicit)
             # Another accepted value (the mirror equilibrium) counts too; a wrong unit stays wrong.
             others = alternatives if isinstance(alternatives, (list, tuple)) else ()
             if verdict.verdict == "not_equivalent" and verdict.evidence.get("method") == "numeric_value":
                 for index, other in enumerate(o for o in others if isinstance(o, str)):
-                    matched = check_numeric(other, text, variables, values, unit, tolerance, dimension)
+                    matched = check_numeric(other, text, variables, values, unit, tolerance, dimension,
+                                            implicit=implicit)
                     if matched.verdict == "equivalent":
                         matched.evidence = {**matched.evidence, "matched": index + 1}
                         verdict = matched
@@ -544,8 +550,8 @@ def check_request(request: Any) -> dict:
 
     The request is ``{"reference", "answer", "variables", "kind"?, "feedback"?, "state"?,
     "budget_s"?, "feedback_detail"?, "alternatives"?}``, and for ``kind="numeric"`` also
-    ``"values"``, ``"unit"``, ``"tolerance"``, ``"dimension"``, as read by ``grader check --jsonl`` and sent by the grading
-    worker.
+    ``"values"``, ``"unit"``, ``"tolerance"``, ``"dimension"``, ``"implicit"``?, as read by
+    ``grader check --jsonl`` and sent by the grading worker.
 
     Examples
     --------
@@ -579,6 +585,7 @@ def check_request(request: Any) -> dict:
                 unit=request.get("unit", ""),
                 tolerance=request.get("tolerance"),
                 dimension=request.get("dimension"),
+                implicit=request.get("implicit"),
             )
     verdict.ms = (time.monotonic() - started) * 1000
     return verdict.to_json()

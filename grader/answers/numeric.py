@@ -25,7 +25,9 @@ from typing import Any, Mapping, Sequence
 
 import sympy
 
+from grader.answers.evaluate import SCALE, FloatBackend, Unsupported, compile_expr
 from grader.answers.verdict import Verdict
+from grader.expressions.implicit import Implicit, ImplicitError
 from grader.expressions import DimensionError, ExpressionError, Namespace, parse_dimension, parse_expression
 from grader.expressions.dimensions import parse_unit
 
@@ -192,6 +194,51 @@ def _reference_expr(text: str, variables_json: str) -> tuple[sympy.Expr, Namespa
     return parse_expression(text, namespace, printed=False).expr, namespace
 
 
+@lru_cache(maxsize=256)
+def _root(implicit_json: str, variables_json: str, numbers: tuple) -> float:
+    """The unknown of an implicit reference (`grader.expressions.implicit`) at the student's numbers."""
+    try:
+        rule = Implicit.from_json(json.loads(implicit_json))
+    except ImplicitError as error:
+        raise NumericRequestError(str(error)) from None
+    condition, namespace = _reference_expr(rule.condition, variables_json)
+    try:
+        x = namespace.symbol(rule.unknown)
+    except KeyError:
+        raise NumericRequestError(f"implicit.unknown {rule.unknown!r} is not one of the variables") from None
+    values = dict(numbers)
+    subs = {}
+    for symbol in condition.free_symbols - {x}:
+        value = values.get(symbol.name)
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise NumericRequestError(f"no number for {symbol.name!r}: a numeric answer needs a value for every "
+                                      f"name in its reference")
+        subs[symbol] = sympy.Float(value)
+    try:
+        compiled = compile_expr(condition.xreplace(subs), FloatBackend())
+    except Unsupported as error:
+        raise NumericRequestError(f"the checker cannot evaluate the condition: {error}") from None
+    root = rule.solve(lambda v: compiled({x: v, SCALE: 0.0}))
+    if root is None:
+        raise NumericRequestError(f"the reference has no value at these numbers: its condition has fewer than "
+                                  f"{rule.root + 1} roots for {rule.unknown} in [{rule.lo:g}, {rule.hi:g}]")
+    return root
+
+
+def _with_root(implicit: Mapping[str, Any] | None, variables_json: str, values: Mapping[str, Any]) -> dict:
+    """``values``, with the implicit reference's unknown at its root (unchanged without one)."""
+    if implicit is None:
+        return dict(values)
+    numbers = tuple(sorted((k, v) for k, v in values.items()
+                           if isinstance(k, str) and isinstance(v, (int, float)) and not isinstance(v, bool)))
+    try:
+        implicit_json = json.dumps(implicit, sort_keys=True)
+    except (TypeError, ValueError):
+        raise NumericRequestError("'implicit' must be JSON data") from None
+    name = implicit.get("unknown") if isinstance(implicit, Mapping) else None
+    return {**values, name: _root(implicit_json, variables_json, numbers)}
+
+
 def _value(text: str, variables_json: str, values: Mapping[str, Any]) -> float:
     """A closed form (engine output or an instructor's feedback expression) at the student's numbers."""
     expr, namespace = _reference_expr(text, variables_json)
@@ -208,8 +255,12 @@ def _value(text: str, variables_json: str, values: Mapping[str, Any]) -> float:
     return result.real
 
 
-def reference_value(reference: str, variables: Mapping[str, Mapping], values: Mapping[str, Any]) -> float:
+def reference_value(reference: str, variables: Mapping[str, Mapping], values: Mapping[str, Any],
+                    implicit: Mapping[str, Any] | None = None) -> float:
     """The reference's value (SI units) at ``values``: for instructors (question tests), never for students.
+
+    ``implicit``: the root the reference's unknown is at, for a reference without a closed form
+    (`grader.expressions.implicit.Implicit` as JSON).
 
     Examples
     --------
@@ -217,7 +268,8 @@ def reference_value(reference: str, variables: Mapping[str, Mapping], values: Ma
     ...                           "g": {"dimension": "acceleration", "domain": "positive"}}, {"m": 0.3, "g": 9.81})
     0.981
     """
-    return _value(reference, json.dumps(variables, sort_keys=True), values)
+    variables_json = json.dumps(variables, sort_keys=True)
+    return _value(reference, variables_json, _with_root(implicit, variables_json, values))
 
 
 def _tolerance(raw: Any) -> dict[str, Any]:
@@ -237,8 +289,11 @@ def _tolerance(raw: Any) -> dict[str, Any]:
 
 def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping], values: Mapping[str, Any] | None,
                   unit: str = "", tolerance: Mapping[str, Any] | None = None, dimension: str | None = None,
-                  feedback: Sequence[Mapping] | None = None) -> Verdict:
+                  feedback: Sequence[Mapping] | None = None, implicit: Mapping[str, Any] | None = None) -> Verdict:
     """A student's number (with unit) against ``reference`` evaluated at ``values``.
+
+    ``implicit``: for a reference without a closed form, the root of a condition its unknown is at,
+    found numerically at ``values`` (`grader.expressions.implicit`).
 
     Raises :class:`NumericRequestError` when the request itself is wrong (the caller, `check`, turns
     it into an ``invalid`` verdict).
@@ -269,7 +324,7 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
         raise NumericRequestError(f"bad unit {unit!r}: {error}") from None
     try:
         variables_json = json.dumps(variables, sort_keys=True)
-        values = dict(values or {})
+        values = _with_root(implicit, variables_json, dict(values or {}))
         target = _value(reference, variables_json, values)
     except ExpressionError as error:
         raise NumericRequestError(f"the reference does not parse: {error}") from None

@@ -66,7 +66,8 @@ def run_question_tests(references: Iterable[Mapping[str, Any] | ReferenceAnswer]
             if values is not None:
                 result["values"] = values
                 try:  # what the grader expected at these numbers: the instructor may see it
-                    result["expected_value"] = reference_value(reference.reference, reference.variables, values)
+                    result["expected_value"] = reference_value(reference.reference, reference.variables, values,
+                                                               reference.implicit)
                 except (NumericRequestError, ValueError):
                     pass
             results.append(result)

@@ -79,6 +79,10 @@ class ReferenceAnswer:
     tests : tuple of dict
         The instructor's question tests ``{"answer", "expect", "score"?, "values"?}``, run when the
         problem is registered (`grader.answers.question_tests`).
+    implicit : dict or None
+        Numeric answers without a closed form: ``reference`` is in an unknown that stands for a root
+        of a condition found numerically at the student's numbers
+        (`grader.expressions.implicit.Implicit`, as JSON).
 
     Examples
     --------
@@ -108,6 +112,7 @@ class ReferenceAnswer:
     weight: float = 1.0
     parameters: dict[str, dict[str, Any]] = field(default_factory=dict)
     tests: tuple[dict[str, Any], ...] = ()
+    implicit: dict[str, Any] | None = None
 
     @classmethod
     def from_json(cls, data: Any) -> "ReferenceAnswer":
@@ -170,13 +175,26 @@ class ReferenceAnswer:
                 isinstance(t, Mapping) and isinstance(t.get("answer"), str) and t.get("expect") in EXPECTS
                 for t in tests):
             raise fail(f"'tests' must be a list of {{answer, expect}} with expect one of {', '.join(EXPECTS)}")
+        implicit = data.get("implicit")
+        if implicit is not None:
+            from grader.expressions.implicit import Implicit, ImplicitError  # only here: sympy comes with it
+
+            if data["kind"] != "numeric":
+                raise fail("'implicit' applies to numeric answers only")
+            try:
+                implicit = Implicit.from_json(implicit).to_json()
+            except ImplicitError as error:
+                raise fail(str(error)) from None
+            if implicit["unknown"] not in variables:
+                raise fail("implicit.unknown must be one of the variables")
         return cls(**{k: data[k] for k in _TEXT_KEYS},
                    variables={k: dict(v) for k, v in variables.items()},
                    feedback=tuple({"expr": f["expr"], "message": f["message"],
                                    **({"score": float(f["score"])} if "score" in f else {})} for f in feedback),
                    feedback_detail=detail, alternatives=tuple(alternatives), unit=unit,
                    tolerance=dict(tolerance) if tolerance is not None else None, weight=float(weight),
-                   parameters={k: dict(v) for k, v in parameters.items()}, tests=tuple(dict(t) for t in tests))
+                   parameters={k: dict(v) for k, v in parameters.items()}, tests=tuple(dict(t) for t in tests),
+                   implicit=implicit)
 
     def to_json(self) -> dict[str, Any]:
         """The JSON object stored in ``problem_versions.references`` (`from_json` reads it back)."""
@@ -184,7 +202,8 @@ class ReferenceAnswer:
                 "variables": self.variables, "dimension": self.dimension, "latex": self.latex,
                 "feedback": [dict(f) for f in self.feedback], "feedback_detail": self.feedback_detail,
                 "alternatives": list(self.alternatives), "unit": self.unit, "tolerance": self.tolerance,
-                "weight": self.weight, "parameters": self.parameters, "tests": [dict(t) for t in self.tests]}
+                "weight": self.weight, "parameters": self.parameters, "tests": [dict(t) for t in self.tests],
+                **({"implicit": dict(self.implicit)} if self.implicit is not None else {})}
 
     def values(self, drawn: Mapping[str, Any] | None = None) -> dict[str, float]:
         """The parameter values a numeric answer is checked at: the fixed ones, then ``drawn`` (the
@@ -209,4 +228,6 @@ class ReferenceAnswer:
             request.update(values=self.values(values), unit=self.unit, dimension=self.dimension)
             if self.tolerance is not None:
                 request["tolerance"] = dict(self.tolerance)
+            if self.implicit is not None:
+                request["implicit"] = dict(self.implicit)
         return request

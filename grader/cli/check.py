@@ -42,7 +42,8 @@ def check(jsonl, source, reference, answer, variables, kind, budget, memory_mb, 
       {"reference", "answer", "variables": {name: {"dimension", "domain"}},
        "kind": "expression"|"equation"|"numeric", "feedback"?: [{"expr", "message", "score"?}],
        "state"?: [names], "feedback_detail"?: "kind"|"full",
-       numeric only: "values": {name: number}, "unit": "N", "tolerance"?: {...}, "dimension"?}
+       numeric only: "values": {name: number}, "unit": "N", "tolerance"?: {...}, "dimension"?,
+       "implicit"?: {"condition", "unknown", "interval": [lo, hi], "root"}}
     and writes one line per request:
       {"verdict", "certainty", "reason", "parsed", "counterexample", "feedback", "ms", "score"?, ...}
     A line that is not UTF-8, not JSON or not an object gets an "invalid" line of its own; the

@@ -32,9 +32,10 @@ __all__ = ["AnswerEvaluator", "evaluate_answers"]
 
 
 def evaluate_answers(scene: Scene, eom) -> tuple[dict[str, sympy.Expr], dict[str, sympy.Equality],
-                                                 dict[str, list[sympy.Expr]]]:
-    """Closed form of every answer, for ``kind = "equation"`` answers the reference equation, and
-    the derived alternatives (a special value at several roots that nothing decides between)."""
+                                                 dict[str, list[sympy.Expr]], dict[str, dict]]:
+    """Closed form of every answer, for ``kind = "equation"`` answers the reference equation, the
+    derived alternatives (a special value at several roots that nothing decides between), and for
+    numeric answers without a closed form the root their unknown is at (special_values._implicit)."""
     evaluator = AnswerEvaluator(scene, eom)
     answers, equations = {}, {}
     for spec in scene.answers:
@@ -42,7 +43,7 @@ def evaluate_answers(scene: Scene, eom) -> tuple[dict[str, sympy.Expr], dict[str
         answers[spec.name] = value
         if spec.kind == "equation":
             equations[spec.name] = sympy.Eq(spec.expr, value, evaluate=False)
-    return answers, equations, evaluator.alternatives
+    return answers, equations, evaluator.alternatives, evaluator.implicit
 
 
 def _factored(value: sympy.Expr) -> sympy.Expr:
@@ -69,6 +70,9 @@ class AnswerEvaluator:
         self.values: dict[sympy.Symbol, sympy.Expr] = {}
         # Other right values of an answer, derived (special values at several admissible roots).
         self.alternatives: dict[str, list[sympy.Expr]] = {}
+        # Numeric answers without a closed form: which root of which condition their unknown is at
+        # (grader.expressions.implicit.Implicit, as JSON).
+        self.implicit: dict[str, dict] = {}
 
     @property
     def parameters(self) -> set[sympy.Symbol]:

@@ -166,6 +166,9 @@ class Derivation:
     references_cache: list | None = None
     # Derived alternatives: other right values of an answer (a special value with several roots).
     alternatives: dict[str, list[sympy.Expr]] = field(default_factory=dict)
+    # Numeric answers without a closed form: the answer is its expression in an unknown, taken at
+    # the root of a condition found numerically ({name: Implicit JSON}, grader.expressions.implicit).
+    implicit: dict[str, dict] = field(default_factory=dict)
 
     def to_json(self) -> dict:
         """The contract of ``grader derive --json``: every expression in sympy's str() syntax."""
@@ -198,8 +201,8 @@ def derive(scene: Scene, budget_s: float | None = None) -> Derivation:
     with budget.overall_budget(budget_s), declared_domains(bounds):
         with budget.step("solving the equations of motion"):
             eom = equations_of_motion(scene)
-        answers, equations, alternatives = evaluate_answers(scene, eom)
-        derivation = Derivation(scene, eom, answers, equations, alternatives=alternatives)
+        answers, equations, alternatives, implicit = evaluate_answers(scene, eom)
+        derivation = Derivation(scene, eom, answers, equations, alternatives=alternatives, implicit=implicit)
         with budget.step("writing the step-by-step derivation"):
             derivation.steps = derivation_steps(derivation)
     return derivation

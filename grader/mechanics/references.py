@@ -25,7 +25,7 @@ from typing import Any
 
 import sympy
 
-from grader.expressions import ExpressionError, Namespace, parse_expression
+from grader.expressions import ExpressionError, Namespace, parse_expression, parse_system
 from grader.mechanics.scene import SceneError
 from grader.mechanics.report import equation_text
 
@@ -74,6 +74,21 @@ def parameter_specs(scene) -> dict[str, dict[str, Any]]:
     return specs
 
 
+def _readable_by_the_checker(scene, spec, texts: list[str], namespace: Namespace) -> None:
+    """SceneError unless the checker reads every reference text back (a closed form with LambertW or
+    a RootOf, which nobody can type, would make every student's answer invalid)."""
+    for text in texts:
+        try:
+            if spec.kind == "equation":
+                parse_system(text, namespace, printed=False)
+            else:
+                parse_expression(text, namespace, printed=False)
+        except ExpressionError as error:
+            numeric = "" if spec.numeric is not None else ' (asked as kind = "numeric", it is found numerically)'
+            raise SceneError(scene.source, f"answers ({spec.name})",
+                             f"the closed form {text} cannot be checked: {error.message}{numeric}") from None
+
+
 def reference_answers(derivation) -> list[dict[str, Any]]:
     """One reference answer (JSON data, see :class:`grader.answers.reference.ReferenceAnswer`) per answer."""
     scene = derivation.scene
@@ -95,6 +110,14 @@ def reference_answers(derivation) -> list[dict[str, Any]]:
         else:
             reference = sympy.sstr(value)
             latex = sympy.latex(value, symbol_names=names)
+        implicit = derivation.implicit.get(spec.name)
+        if implicit is not None:
+            x = scene.namespace.symbol(implicit["unknown"])
+            symbols.add(x)  # the checker reads the condition and the answer in it
+            lo, hi = implicit["interval"]
+            latex += (rf" \text{{ at root {implicit['root'] + 1} of }} "
+                      rf"{sympy.latex(parse_expression(implicit['condition'], scene.namespace).expr, symbol_names=names)}"
+                      rf" = 0 \text{{ in }} {names.get(x, str(x))} \in [{lo:g}, {hi:g}]")
         alternatives = []
         for alternative in [*derivation.alternatives.get(spec.name, ()), *spec.alternatives]:
             symbols |= alternative.free_symbols
@@ -106,6 +129,7 @@ def reference_answers(derivation) -> list[dict[str, Any]]:
             variables[v.name] = {"dimension": dimension_text(v.dimension), "domain": domain_json(v.domain),
                                  "kind": v.kind}
         namespace = Namespace([by_symbol[s] for s in symbols])
+        _readable_by_the_checker(scene, spec, [reference, *alternatives], namespace)
         feedback = []
         for i, f in enumerate(spec.feedback):
             try:
@@ -128,12 +152,17 @@ def reference_answers(derivation) -> list[dict[str, Any]]:
             result[-1]["tests"] = [dict(t) for t in spec.tests]
         if spec.numeric is not None:
             numbers = parameter_specs(scene)
-            unknown = sorted(str(s) for s in value.free_symbols if str(s) not in numbers)
+            depends = value.free_symbols if implicit is None else (
+                value.free_symbols | parse_expression(implicit["condition"], scene.namespace).expr.free_symbols) - {
+                scene.namespace.symbol(implicit["unknown"])}
+            unknown = sorted(str(s) for s in depends if str(s) not in numbers)
             if unknown:
                 raise SceneError(scene.source, f"answers ({spec.name}).kind",
                                  f"a numeric answer needs a number for everything its value depends on; "
                                  f"give {', '.join(unknown)} a value, random range or choices")
             result[-1].update(unit=spec.numeric.unit, parameters=numbers)
+            if implicit is not None:
+                result[-1]["implicit"] = dict(implicit)
             if spec.numeric.tolerance is not None:
                 result[-1]["tolerance"] = dict(spec.numeric.tolerance)
     return result

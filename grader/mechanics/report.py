@@ -41,6 +41,8 @@ def derivation_json(derivation) -> dict:
         "accelerations": {q: sympy.sstr(v) for q, v in eom.accelerations.items()},
         "answers": answers,
         **({"alternatives": alternatives} if alternatives else {}),
+        # Numeric answers without a closed form: the root their unknown is at (grader.expressions.implicit).
+        **({"implicit": dict(derivation.implicit)} if derivation.implicit else {}),
     }
 
 

@@ -58,6 +58,8 @@ import math
 import numpy
 import sympy
 
+from grader.expressions.functions import FUNCTIONS
+from grader.expressions.implicit import real_roots
 from grader.mechanics import budget
 from grader.mechanics.scene import AnswerSpec, SceneError
 from grader.mechanics.simplification import human_form, signs_in_front
@@ -112,7 +114,17 @@ def _where(evaluator, spec, target: set, key: str, at_rest: bool) -> sympy.Expr:
     with budget.step("reducing the condition", spec.name):
         condition, unknown = _condition(evaluator, spec, target, key, at_rest)
     with budget.step(f"solving the condition for {unknown}", spec.name):
-        roots = solve_for(condition, unknown, scene.source, key)
+        try:
+            roots = solve_for(condition, unknown, scene.source, key)
+        except SceneError:
+            if spec.numeric is None:
+                raise
+            roots = []  # over its budget: a numeric answer is found numerically below
+    if spec.kind == "numeric" and not all(map(_typeable, roots)):
+        roots = []  # a LambertW nobody can type or check: found numerically instead
+    if not roots and spec.numeric is not None and spec.kind == "numeric":
+        with budget.step(f"finding the root of the condition for {unknown} numerically", spec.name):
+            return _implicit(evaluator, spec, condition, unknown, target, key)
     with budget.step("evaluating the answer at the roots", spec.name):
         if spec.kind == "small_oscillation":
             value = _stiffness(evaluator, spec, key)
@@ -458,6 +470,113 @@ def _budgeted_solve(expr: sympy.Expr, x) -> list[sympy.Expr] | None:
     return budget.attempt(solve, _SOLVE_BUDGET_S, fallback=lambda: None)
 
 
+# -- no closed form: a numeric answer at a root found numerically ------------------------------------
+# The functions of the one registry: what students type and the checker evaluates.
+_TYPEABLE = frozenset(f.sympy_func for f in FUNCTIONS.values() if f.sympy_func is not None)
+
+
+def _typeable(expr: sympy.Expr) -> bool:
+    """Whether a closed form uses only functions of the registry (not LambertW, a RootOf, a Piecewise).
+
+    >>> x = sympy.Symbol("x", positive=True)
+    >>> _typeable(sympy.acos(x / 2)), _typeable(sympy.LambertW(x))
+    (True, False)
+    """
+    if expr.has(sympy.CRootOf, sympy.Integral, sympy.Derivative):
+        return False
+    return all(f.func in _TYPEABLE for f in expr.atoms(sympy.Function))
+
+
+#: Parameter draws on which the choice of root is confirmed (each student has one).
+IMPLICIT_DRAWS = 12
+
+
+def _implicit(evaluator, spec, condition, x, target: set, key: str) -> sympy.Expr:
+    """The answer in the unknown ``x``, to be taken at a root of the condition found numerically.
+
+    Records in ``evaluator.implicit`` which root (`grader.expressions.implicit.Implicit`): the k-th
+    in the unknown's declared interval, k chosen as a closed-form root would be (:func:`_select`:
+    the one the motion reaches, or the only one), and the same k at the scene's values and on the
+    parameter draws students get.
+    """
+    scene = evaluator.scene
+    variable = _variable(evaluator, x)
+    lo, hi = _root_interval(scene, variable, x, key)
+    for other in scene.answers:
+        used = other.expr.free_symbols | (set().union(*(e.free_symbols for e in other.where)) if other.where else set())
+        if other is not spec and spec.symbol in used:
+            raise SceneError(scene.source, key, f"the condition has no solution for {x} in closed form, and "
+                                                f"answer '{other.name}' uses this one, which is only a number")
+    value = evaluator.reduce(spec.expr, target | evaluator.parameters | {x}, f"answers ({spec.name}).expr",
+                             readable=True)
+    loose = sorted(str(s) for s in (condition.free_symbols | value.free_symbols) - evaluator.parameters - {x})
+    if loose:
+        raise SceneError(scene.source, key, f"the condition has no solution for {x} in closed form, and it "
+                                            f"leaves {', '.join(loose)} without a number")
+    base = _parameter_points(scene)[0]
+    chosen = _implicit_root(evaluator, spec, condition, x, value, variable, base, (lo, hi), key)
+    for point in _draws(scene):
+        if _implicit_root(evaluator, spec, condition, x, value, variable, point, (lo, hi), key) != chosen:
+            raise SceneError(scene.source, key, _depends_on_parameters(point))
+    evaluator.implicit[spec.name] = {"condition": sympy.sstr(condition), "unknown": str(x),
+                                     "interval": [lo, hi], "root": chosen}
+    return value
+
+
+def _root_interval(scene, variable, x, key: str) -> tuple[float, float]:
+    """Where the unknown's roots are searched: its declared interval (an angle without one: one turn)."""
+    if variable is None or variable[0] not in ("coordinate", "parameter"):
+        raise SceneError(scene.source, key, f"the condition has no solution for {x} in closed form, and a "
+                                            "velocity's root is not searched numerically")
+    domain = variable[1].domain
+    if domain.kind == "interval":
+        return float(domain.lo), float(domain.hi)
+    if variable[0] == "coordinate" and variable[1].dimension.is_dimensionless and domain.kind == "real":
+        return -math.pi, math.pi
+    raise SceneError(scene.source, key, f"the condition has no solution for {x} in closed form; to find its root "
+                                        f"numerically, declare {x}'s domain as an interval [lo, hi]")
+
+
+def _implicit_root(evaluator, spec, condition, x, value, variable, point: dict, interval, key: str) -> int:
+    """Which root (from 0, in increasing order) of the condition in ``interval`` the answer is at."""
+    scene = evaluator.scene
+    numbers = {s: sympy.Float(v, 30) for s, v in point.items()}
+    roots = real_roots(_numeric(condition.xreplace(numbers), x), *interval)
+    where = ", ".join(f"{s} = {v:.4g}" for s, v in sorted(point.items(), key=lambda i: str(i[0])))
+    if not roots:
+        raise SceneError(scene.source, key, f"the condition has no root for {x} in [{interval[0]:g}, "
+                                            f"{interval[1]:g}] at {where}")
+    numeric = dict(enumerate(roots))
+    floats = [sympy.Float(r, 17) for r in roots]
+    indices, _ = _select(evaluator, spec, x, floats, value, variable, condition, numeric, point, key)
+    index = indices[0]
+    if _evaluate(value.xreplace({x: floats[index]}), point) is None:
+        raise SceneError(scene.source, key, f"the answer has no real value at the root {x} = {roots[index]:.6g} "
+                                            f"(at {where})")
+    return index
+
+
+def _draws(scene) -> list[dict]:
+    """Parameter values as students get them (random ranges and choices; fixed values as given)."""
+    drawn = [p for p in scene.parameters.values() if p.draw is not None]
+    if not drawn:
+        return []
+    rng = numpy.random.default_rng(13)
+    base = _parameter_points(scene)[0]
+    points = []
+    for _ in range(IMPLICIT_DRAWS):
+        point = dict(base)
+        for p in drawn:
+            if "choices" in p.draw:
+                point[p.symbol] = float(rng.choice(p.draw["choices"]))
+            else:
+                r = p.draw["random"]
+                steps = int((r["max"] - r["min"]) / r["step"] + 1e-9)
+                point[p.symbol] = float(r["min"] + r["step"] * rng.integers(0, steps + 1))
+        points.append(point)
+    return points
+
+
 # -- choosing among roots ---------------------------------------------------------------------------
 def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> list[sympy.Expr]:
     """The root the answer is at; several when the domain admits several and nothing decides.
@@ -469,7 +588,9 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> list[
     scene = evaluator.scene
     variable = _variable(evaluator, x)
     if not roots:
-        raise SceneError(scene.source, key, f"the condition has no solution for {x} in closed form")
+        raise SceneError(scene.source, key, f"the condition has no solution for {x} in closed form (asked as "
+                                            'kind = "numeric", the answer is found numerically at each student\'s '
+                                            "numbers)")
     chosen = base_count = None
     near = _parameter_points(scene)
     for parameters in near:

@@ -105,6 +105,13 @@ def derivation_steps(derivation) -> list[Step]:
         elif spec.kind == "equation":
             s.add(f"{spec.name}: {sympy.sstr(spec.expr)} = {sympy.sstr(value)}",
                   rf"\text{{{_tex_text(spec.name)}}}: {tex(spec.expr)} = {tex(value)}")
+        elif spec.name in derivation.implicit:
+            rule = derivation.implicit[spec.name]
+            at = (f"at root {rule['root'] + 1} (counted upwards) of {rule['condition']} = 0 for {rule['unknown']} "
+                  f"in [{rule['interval'][0]:g}, {rule['interval'][1]:g}]")
+            s.add(f"{spec.name} = {sympy.sstr(spec.expr)}{where} = {sympy.sstr(value)} {at}: no closed form, "
+                  "found numerically at each student's numbers",
+                  rf"\text{{{_tex_text(spec.name)}}} = {tex(value)} \text{{ {at}, found numerically}}")
         else:
             s.add(f"{spec.name} = {sympy.sstr(spec.expr)}{where} = {sympy.sstr(value)}",
                   rf"\text{{{_tex_text(spec.name)}}} = {tex(spec.expr)} = {tex(value)}")

@@ -121,7 +121,7 @@ def _value_at(reference: dict[str, Any], drawn: dict[str, Any] | None) -> str | 
         return None
     try:
         answer = ReferenceAnswer.from_json(reference)
-        value = reference_value(answer.reference, answer.variables, answer.values(drawn))
+        value = reference_value(answer.reference, answer.variables, answer.values(drawn), answer.implicit)
     except (ValueError, ArithmeticError):  # a reference that has no number here: say nothing
         return None
     return f"{value:.4g} {answer.unit or ''}".strip()

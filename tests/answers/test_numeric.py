@@ -281,3 +281,62 @@ def test_an_accepted_alternative_value_is_right_too():
     verdict = check(answer="-30°", **angle)
     assert verdict.verdict == "equivalent" and verdict.evidence["matched"] == 1
     assert check(answer="45°", **angle).verdict == "not_equivalent"
+
+
+# -- a reference without a closed form: its unknown at a root found at the student's numbers ----------
+# The tilted equilibrium of an upright pendulum held by a torsion spring: m g l sin θ = k θ.
+TORSION = {"reference": "theta", "kind": "numeric", "unit": "rad", "dimension": "dimensionless",
+           "variables": {"m": {"dimension": "mass", "domain": "positive"},
+                         "g": {"dimension": "acceleration", "domain": "positive"},
+                         "l": {"dimension": "length", "domain": "positive"},
+                         "k": {"dimension": "energy", "domain": "positive"},
+                         "theta": {"dimension": "angle", "domain": [0, 3.1416]}},
+           "implicit": {"condition": "g*l*m*sin(theta) - k*theta", "unknown": "theta",
+                        "interval": [0, 3.1416], "root": 1}}
+
+
+@pytest.mark.parametrize("k, answer, verdict", [
+    (5.0, "1.873 rad", "equivalent"),        # brentq: 1.8730555
+    (5.0, "107.32 deg", "equivalent"),
+    (5.0, "1.5 rad", "not_equivalent"),
+    (5.0, "0 rad", "not_equivalent"),        # the upright root is not the one asked
+    (9.0, "0.7129 rad", "equivalent"),       # another student's numbers: another root
+    (9.0, "1.873 rad", "not_equivalent"),
+])
+def test_a_reference_without_a_closed_form_is_its_root_at_the_students_numbers(k, answer, verdict):
+    request = dict(TORSION, answer=answer, values={"m": 1.0, "g": 9.81, "l": 1.0, "k": k})
+    assert check_request(request)["verdict"] == verdict
+
+
+def test_numbers_at_which_the_root_does_not_exist_are_an_invalid_request_never_a_wrong_verdict():
+    request = dict(TORSION, answer="1.0 rad", values={"m": 1.0, "g": 9.81, "l": 1.0, "k": 12.0})
+    reply = check_request(request)
+    assert reply["verdict"] == "invalid" and "fewer than 2 roots for theta" in reply["reason"]
+
+
+@pytest.mark.parametrize("implicit, message", [
+    ("theta", "'implicit' must be an object"),
+    ({"condition": "g*sin(theta)", "unknown": "phi", "interval": [0, 1], "root": 0}, "not one of the variables"),
+    ({"condition": "g*sin(theta", "unknown": "theta", "interval": [0, 1], "root": 0}, "does not parse"),
+    ({"condition": "g*sin(theta)", "unknown": "theta", "interval": [1, 0], "root": 0}, "interval"),
+])
+def test_a_malformed_implicit_reference_is_an_invalid_request(implicit, message):
+    request = dict(TORSION, answer="1 rad", implicit=implicit, values={"m": 1.0, "g": 9.81, "l": 1.0, "k": 5.0})
+    reply = check_request(request)
+    assert reply["verdict"] == "invalid" and message in reply["reason"]
+
+
+def test_the_stored_reference_carries_its_root_to_the_checker_and_the_instructor():
+    from grader.answers.numeric import reference_value
+
+    data = dict(TORSION, name="tilt", prompt="tilt", latex="", parameters={
+        "m": {"dimension": "kg", "value": 1.0}, "g": {"dimension": "m*s^-2", "value": 9.81},
+        "l": {"dimension": "m", "value": 1.0}, "k": {"dimension": "kg*m^2*s^-2", "value": 5.0}})
+    data.pop("unit")
+    reference = ReferenceAnswer.from_json(dict(data, unit="rad"))
+    assert ReferenceAnswer.from_json(reference.to_json()) == reference
+    assert check_request(reference.request("1.873 rad"))["verdict"] == "equivalent"
+    assert reference_value(reference.reference, reference.variables, reference.values(),
+                           reference.implicit) == pytest.approx(1.8730555106317808)
+    with pytest.raises(ValueError, match="'implicit' applies to numeric answers only"):
+        ReferenceAnswer.from_json(dict(data, unit="rad", kind="expression"))

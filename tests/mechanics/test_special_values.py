@@ -257,3 +257,83 @@ def test_a_condition_whose_roots_none_can_be_chosen_at_is_refused_by_name(monkey
                                          "'bottom_normal_force': the answer has no real value") as caught:
         derive(scene)
     assert caught.value.key == "answers (bottom_normal_force).where"
+
+
+# -- no closed form: a numeric answer at a root found numerically ------------------------------------
+# An upright pendulum (bob m on a light rod l) held by a torsion spring k < m g l buckles:
+# m l² θ̈ = m g l sin θ − k θ, so its tilted equilibrium solves m g l sin θ = k θ, which has no
+# closed form. Released at θ = 0.5 it swings about that equilibrium, the root after θ = 0.
+TORSION = "inverted_pendulum_torsion_spring"
+
+
+def test_a_numeric_answer_without_a_closed_form_is_the_root_the_motion_swings_about():
+    from scipy.optimize import brentq
+
+    from grader.answers.numeric import reference_value
+
+    derivation = derive(parse_scene(scene_text(TORSION), f"{TORSION}.toml"))
+    reference = derivation.references()[0]
+    assert reference["implicit"] == {"condition": "g*l*m*sin(theta) - k*theta", "unknown": "theta",
+                                     "interval": [0.0, 3.1416], "root": 1}
+    by_hand = brentq(lambda t: 1.0 * 9.81 * 1.0 * math.sin(t) - 5.0 * t, 0.5, 3.0)
+    values = {"m": 1.0, "g": 9.81, "l": 1.0, "k": 5.0}
+    assert reference_value(reference["reference"], reference["variables"], values,
+                           reference["implicit"]) == pytest.approx(by_hand, rel=1e-12)
+    assert "found numerically" in " ".join(derivation.steps[-1].text)
+
+
+def test_an_expression_answer_without_a_closed_form_is_refused_with_the_numeric_way_named():
+    text = scene_text(TORSION, ('kind = "numeric"\nunit = "rad"\n', ""))
+    with pytest.raises(SceneError, match='no solution for theta in closed form.*kind = "numeric"'):
+        derive(parse_scene(text, f"{TORSION}.toml"))
+
+
+def test_a_numerically_found_root_must_be_the_same_one_for_every_students_numbers():
+    # With k drawn up to 12 > m g l, some students' pendulums stay upright: no tilted equilibrium.
+    text = scene_text(TORSION, ('k = { dimension = "energy", domain = "positive", value = 5.0 }',
+                                'k = { dimension = "energy", domain = "positive", random = { min = 3, max = 12, '
+                                'step = 1 } }'))
+    with pytest.raises(SceneError, match="which root holds depends on the parameter values"):
+        derive(parse_scene(text, f"{TORSION}.toml"))
+
+
+def test_an_angle_without_a_declared_interval_is_searched_over_one_turn():
+    text = scene_text(TORSION, ('theta = { dimension = "angle", domain = [0, 3.1416] }',
+                                'theta = { dimension = "angle" }'))
+    rule = derive(parse_scene(text, f"{TORSION}.toml")).implicit["tilt"]
+    # roots −θ*, 0, θ* in [−π, π]: the motion from θ = 0.5 swings about the third
+    assert rule["interval"] == [-math.pi, math.pi] and rule["root"] == 2
+
+
+def test_a_length_without_a_declared_interval_is_refused_with_what_to_declare():
+    # A bead on a rod with a nonlinear spring: k (r − r0) = c exp(−r/a) has no closed form for r.
+    text = """
+id = "bead_nonlinear_spring"
+title = "Bead pushed by a repulsive field against a spring"
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 1.0 }
+k = { dimension = "stiffness", domain = "positive", value = 2.0 }
+r0 = { dimension = "length", domain = "positive", value = 1.0 }
+c = { dimension = "force", domain = "positive", value = 3.0 }
+a = { dimension = "length", domain = "positive", value = 0.5 }
+[coordinates]
+r = { dimension = "length", domain = "positive" }
+[energy]
+kinetic = "m/2*rdot^2"
+potential = "k/2*(r - r0)^2 + c*a*exp(-r/a)"
+[initial]
+r = 1.5
+rdot = 0
+[[answers]]
+name = "rest_length"
+kind = "numeric"
+unit = "m"
+expr = "r"
+where = "rddot = 0"
+"""
+    with pytest.raises(SceneError, match=r"declare r's domain as an interval"):
+        derive(parse_scene(text, "bead_nonlinear_spring.toml"))
+    rule = derive(parse_scene(text.replace('r = { dimension = "length", domain = "positive" }',
+                                           'r = { dimension = "length", domain = [0, 5] }'),
+                              "bead_nonlinear_spring.toml")).implicit["rest_length"]
+    assert rule["interval"] == [0.0, 5.0] and rule["root"] == 0

@@ -95,6 +95,29 @@ def test_numeric_answers_are_checked_at_the_given_values(client, make_token, ans
     assert response.status_code == 200 and response.get_json()["verdict"] == verdict
 
 
+@pytest.mark.parametrize("k, status, verdict", [(5.0, 200, "equivalent"), (9.0, 200, "not_equivalent")])
+def test_a_numeric_answer_without_a_closed_form_is_checked_at_its_root(client, make_token, k, status, verdict):
+    # the tilt of an upright pendulum on a torsion spring: g sin θ = k θ (root 2 in [0, π])
+    _, student = make_token("student")
+    response = client.post("/api/v1/check", headers=student, json={
+        "reference": "theta", "answer": "1.873 rad", "kind": "numeric", "unit": "rad",
+        "variables": {"g": {"dimension": "acceleration", "domain": "positive"},
+                      "k": {"dimension": "1/s^2", "domain": "positive"},
+                      "theta": {"dimension": "angle", "domain": [0, 3.1416]}},
+        "values": {"g": 9.81, "k": k},
+        "implicit": {"condition": "g*sin(theta) - k*theta", "unknown": "theta", "interval": [0, 3.1416], "root": 1}})
+    assert response.status_code == status and response.get_json()["verdict"] == verdict
+
+
+def test_a_malformed_implicit_root_is_refused_by_the_schema(client, make_token):
+    _, student = make_token("student")
+    response = client.post("/api/v1/check", headers=student, json={
+        "reference": "theta", "answer": "1 rad", "kind": "numeric", "unit": "rad", "values": {},
+        "variables": {"theta": {"dimension": "angle", "domain": [0, 3.1416]}},
+        "implicit": {"condition": "sin(theta)", "unknown": "theta", "interval": [0], "root": 0}})
+    assert response.status_code == 422 and "implicit" in response.get_data(as_text=True)
+
+
 def test_partial_credit_of_a_matched_feedback_entry_is_in_the_verdict(client, make_token):
     _, student = make_token("student")
     response = client.post("/api/v1/check", headers=student, json={

@@ -84,6 +84,15 @@ CHECK_REQUEST = {
             "sig_figs": {"type": "integer", "minimum": 1, "maximum": 15}},
             "description": "Numeric answers: within relative or absolute (default 1 % relative); sig_figs: "
                            "rounded to that many significant figures."},
+        "implicit": {"type": "object", "additionalProperties": False,
+                     "required": ["condition", "unknown", "interval", "root"], "properties": {
+                         "condition": {"type": "string", "maxLength": MAX_REFERENCE_CHARS},
+                         "unknown": {"type": "string", "maxLength": 64},
+                         "interval": {"type": "array", "minItems": 2, "maxItems": 2, "items": {"type": "number"}},
+                         "root": {"type": "integer", "minimum": 0, "maximum": 1000}},
+                     "description": "Numeric answers without a closed form: 'reference' is in 'unknown', taken at "
+                                    "root number 'root' (from 0, counted upwards) of condition = 0 in 'interval', "
+                                    "found numerically at 'values'."},
     },
 }
 

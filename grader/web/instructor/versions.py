@@ -35,7 +35,7 @@ REGRADE_REFRESH_S = 2  # how often the regrade progress page reloads itself whil
 DIFF_CONTEXT_LINES = 3
 # What a reference answer holds besides its name, in the order the comparison table lists changes.
 REFERENCE_FIELDS = ("reference", "kind", "prompt", "dimension", "variables", "feedback", "feedback_detail",
-                    "weight", "unit", "tolerance")
+                    "weight", "unit", "tolerance", "implicit")
 
 
 # --- edit the draft ------------------------------------------------------------------------------
