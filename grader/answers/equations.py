@@ -160,6 +160,7 @@ def compare_equations(
     anss = [Compiled(a, backend, answer_conditions) for a in answer]
     target = options.digits * LOG2_10
     agreed, digits_seen = 0, math.inf
+    signs = {}  # the sign of det M at the agreeing parameter points -> one such point
     # each parameter point checks k + 2 states, so half as many parameter points as expression points
     needed = max(3, options.points // 2)
     for p in range(needed * 2):
@@ -168,6 +169,9 @@ def compare_equations(
         if kind == "agree":
             agreed += 1
             digits_seen = min(digits_seen, outcome[1])
+            signs.setdefault(outcome[2], parameters.point(p))
+            if len(signs) == 2:
+                return _vanishing_multiple(k, signs)
             if agreed >= needed:
                 break
         elif kind == "differ":
@@ -196,6 +200,13 @@ def compare_equations(
         elif kind == "budget":
             return Comparison(None, "none", "the time budget ran out while comparing", budget_exceeded=True)
     if agreed >= min(needed, 3):
+        if k == 1 and signs:
+            signs = _multiple_signs(refs[0], anss[0], parameters, states, needed * 2, target, signs)
+            if len(signs) == 2:
+                return _vanishing_multiple(k, signs)
+        factor = _parameter_factor(reference, answer, parameters, states)
+        if factor is not None:
+            return factor
         digits = options.digits if math.isinf(digits_seen) else int(digits_seen)
         hidden = _hidden_difference(reference, answer, unknowns, parameters, states, options) if k == 1 else None
         if hidden is not None:
@@ -208,6 +219,73 @@ def compare_equations(
             evidence={"method": "ball arithmetic", "points": agreed, "digits": digits},
         )
     return Comparison(None, "none", "could not decide: the equations could not be evaluated reliably")
+
+
+# Further parameter points (ordinary and wide) at which a single equation's multiple is screened for
+# a sign change, one state each.
+SIGN_POINTS = 6
+
+
+def _multiple_signs(ref: Compiled, ans: Compiled, parameters: Sampler, states: Sampler, start: int, target: float,
+                    signs: dict) -> dict:
+    """``signs`` with the sign of answer/reference at further parameter points, up to two signs.
+
+    Either sign change proves the answer wrong: at those parameters the answer is the reference
+    times a factor of the other sign, or no multiple of it at all."""
+    prec = int(target) + 32
+    points = [parameters.point(start + i) for i in range(SIGN_POINTS)]
+    points += [parameters.wide_point(i) for i in range(SIGN_POINTS)]
+    for i, params in enumerate(points):
+        point = {**params, **states.point(i)}
+        try:
+            r, _ = ref.at(point, prec)
+            a, _ = ans.at(point, prec)
+        except (Undefined, Unresolved):
+            continue
+        if r.contains(0) or a.contains(0) or not (r.is_finite() and a.is_finite()):
+            continue
+        signs.setdefault(1 if (r > 0) == (a > 0) else -1, params)
+        if len(signs) == 2:
+            break
+    return signs
+
+
+def _parameter_factor(reference: list[sympy.Expr], answer: list[sympy.Expr], parameters: Sampler,
+                      states: Sampler) -> Comparison | None:
+    """A refusal when an equation of the answer is multiplied (or divided) by a factor free of the
+    state that cannot be shown nonzero for every value of the parameters, else None.
+
+    A square does not change sign, so the parameter points cannot see ``(omega**2 - g/R)**2`` vanish;
+    its base is then proved nonzero on the parameters' domains (`_nonzero_on`) or the answer refused.
+    Only the factors the reference's own equation does not have are asked about."""
+    state = set(states.domains)
+    for i, row in enumerate(answer):
+        own = set(sympy.Mul.make_args(reference[i])) if i < len(reference) else set()
+        for factor in sympy.Mul.make_args(row):
+            base = factor.base if factor.is_Pow and factor.exp.is_Integer else factor
+            if base.is_number or base in own or factor in own or base.free_symbols & state \
+                    or base.is_positive or base.is_negative:
+                continue
+            if _nonzero_on(base, parameters.domains) is not True:
+                return Comparison(False, "numeric", f"your equation{f' {i + 1}' if len(answer) > 1 else ''} is "
+                                  f"multiplied by {base}, which depends on the parameters and could not be shown "
+                                  "nonzero for all their values: where it vanishes your equation no longer gives "
+                                  "the motion", evidence={"method": "symbolic"})
+    return None
+
+
+def _vanishing_multiple(k: int, signs: dict) -> Comparison:
+    """The answer is the reference times a factor (``k = 1``) or a mixing matrix free of the state whose
+    determinant has opposite signs at two parameter points: on the connected parameter domain it
+    vanishes (or has a pole) in between, and for those parameters the answer says nothing or is undefined:
+    ``(omega**2 - g/R)*(thetaddot - ...) = 0``, ``xddot/(m1 - m2) = g/(m1 + m2)``."""
+    what = ("your equation is the reference multiplied by a factor" if k == 1 else
+            "your equations are combinations of the reference equations by a matrix")
+    why = ("zero or undefined" if k == 1 else "singular or undefined")
+    return Comparison(False, "numeric", f"{what} that depends on the parameters and changes sign between the two "
+                      f"parameter values in the counterexample: it is {why} for some parameters in between, where "
+                      "your answer no longer gives the motion", evidence={"method": "ball arithmetic"},
+                      counterexample={"values": _named(signs[1]), "other_parameters": _named(signs[-1])})
 
 
 def _hidden_difference(reference: list[sympy.Expr], answer: list[sympy.Expr], unknowns: tuple, parameters: Sampler,
@@ -269,7 +347,7 @@ def _values(compiled: list[Compiled], point: dict, prec: int, key):
 
 
 def _one_parameter_point(refs, anss, parameters, states, p, target, options, deadline):
-    """At parameter point p: ("agree", digits) | ("differ", reason, counterexample) | ("skip",) | ("budget",)."""
+    """At parameter point p: ("agree", digits, sign of det M) | ("differ", reason, counterexample) | ("skip",) | ("budget",)."""
     k = len(refs)
     params = parameters.point(p)
     prec = int(target) + 32
@@ -324,8 +402,9 @@ def _try_precision(refs, anss, params, states, p, k, prec, target):
                 noise = max(noise, _log2_mag(d[i, 0].rad()))
         if noise > scale - target:
             return None
-        if not M.det().contains(0):
-            return ("agree", (scale - noise) / LOG2_10)
+        det_m = M.det()
+        if not det_m.contains(0):
+            return ("agree", (scale - noise) / LOG2_10, 1 if det_m > 0 else -1)
         if k > 1:
             m_scale = max(_log2_mag(M[i, j]) for i in range(k) for j in range(k))
             if _log2_mag(M.det()) <= k * m_scale - target:
@@ -741,7 +820,10 @@ def _zero_on_circles(expr: sympy.Expr) -> bool:
         expr = expr.replace(pattern, replacement)
     expr = sympy.expand_trig(expr)  # sin(theta1 - theta2) -> products of sin(theta1), cos(theta2), ...
     angles = {f.args[0] for f in expr.atoms(sympy.sin, sympy.cos)}
-    if not angles or not all(a.is_Symbol for a in angles):
+    if not angles:
+        # cot(x)*sin(x) - cos(x) is already 0 once written with sines and cosines
+        return sympy.cancel(sympy.together(expr)) == 0
+    if not all(a.is_Symbol for a in angles):
         return False
     replacements, circles, generators = {}, [], []
     for angle in sorted(angles, key=lambda a: a.name):
@@ -812,8 +894,11 @@ def _nonzero_in_balls(expr: sympy.Expr, domains: dict) -> bool | None:
     """Ball arithmetic over the whole box of bounded domains: True if ``expr`` provably excludes 0.
 
     A polynomial in variables over the half-line x > 0 is first brought onto 0 <= t <= 1 (`_compactified`):
-    ``1 - x + x**2`` has no zero for x > 0, which no box of finite x can show.
+    ``1 - x + x**2`` has no zero for x > 0, which no box of finite x can show. A sine or cosine of
+    an unbounded variable is first set free in [-1, 1] (`_trig_freed`): ``2 + cos(w*t)`` for every
+    real t.
     """
+    expr, trig_bounds = _trig_freed(expr, domains)
     half_lines = sorted((s for s in expr.free_symbols if _half_line(domains.get(s))), key=lambda s: s.name)
     bounds = {}
     if half_lines:
@@ -822,6 +907,7 @@ def _nonzero_in_balls(expr: sympy.Expr, domains: dict) -> bool | None:
         if compact is None:
             return None
         expr, bounds = compact
+    bounds.update(trig_bounds)
     symbols = sorted(expr.free_symbols, key=lambda s: s.name)
     boxes = []
     for s in symbols:
@@ -862,6 +948,25 @@ def _nonzero_in_balls(expr: sympy.Expr, domains: dict) -> bool | None:
             pending.append(box[:widest] + [(lo, middle)] + box[widest + 1:])
             pending.append(box[:widest] + [(middle, hi)] + box[widest + 1:])
     return True
+
+
+def _trig_freed(expr: sympy.Expr, domains: dict) -> tuple[sympy.Expr, dict]:
+    """``expr`` with each sine and cosine of an argument over an unbounded domain replaced by a free
+    variable in [-1, 1], and those bounds.
+
+    The values such a sine takes are a subset of [-1, 1] (and sin and cos of one argument are set
+    free of each other), so ``expr`` nonzero over the freed box is nonzero over the domain: a proof
+    stays a proof, which no box of a finite t could give for ``2 + cos(w*t)``."""
+    def unbounded(symbol):
+        domain = domains.get(symbol)
+        return domain is not None and not (math.isfinite(getattr(domain, "lo", -math.inf))
+                                           and math.isfinite(getattr(domain, "hi", math.inf)))
+    freed, bounds = {}, {}
+    for f in expr.atoms(sympy.sin, sympy.cos):
+        if any(unbounded(s) for s in f.args[0].free_symbols):
+            freed[f] = sympy.Dummy(f"{type(f).__name__}_{f.args[0]}", real=True)
+            bounds[freed[f]] = (-1.0, 1.0)
+    return (expr.xreplace(freed), bounds) if freed else (expr, {})
 
 
 def _half_line(domain) -> bool:

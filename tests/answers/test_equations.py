@@ -43,9 +43,13 @@ def test_state_is_inferred_from_dot_names_or_given_explicitly(pendulum):
     # without kinds, theta/thetadot/thetaddot are the state because their names say so
     v = check(PENDULUM_EOM, "thetaddot*cos(theta) = -g/l*sin(theta)*cos(theta)", pendulum, kind="equation")
     assert v.verdict == "not_equivalent"
-    # declaring only thetaddot as state makes a cos(theta) factor acceptable
+    # declaring only thetaddot as state makes theta a parameter: a factor free of the state, but one
+    # that vanishes for some of the parameter's values (theta = pi/2), where the equation says 0 = 0
     v = check(PENDULUM_EOM, "thetaddot*cos(theta) = -g/l*sin(theta)*cos(theta)", pendulum, kind="equation",
               state=["thetaddot"])
+    assert v.verdict == "not_equivalent" and "parameters" in v.reason
+    v = check(PENDULUM_EOM, "thetaddot*(2 + cos(theta)) = -g/l*sin(theta)*(2 + cos(theta))", pendulum,
+              kind="equation", state=["thetaddot"])
     assert v.verdict == "equivalent"
 
 
@@ -364,3 +368,99 @@ def test_a_mixing_is_accepted_only_if_its_determinant_never_vanishes(coefficient
         ends = [{**GRID[0], **v.counterexample[key]} for key in ("values", "other_state")]
         path = [det({n: x + i / 2000 * (ends[1][n] - x) for n, x in ends[0].items()}) for i in range(2001)]
         assert min(path) <= 0 <= max(path) or min(map(abs, path)) <= 1e-4 * max(map(abs, path)), answer
+
+
+HOOP = {"g": {"dimension": "acceleration", "domain": "positive"}, "R": {"dimension": "length", "domain": "positive"},
+        "omega": {"dimension": "angular_velocity", "domain": "positive"},
+        "m1": {"dimension": "mass", "domain": "positive"}, "m2": {"dimension": "mass", "domain": "positive"},
+        "theta": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "coordinate"},
+        "thetadot": {"dimension": "angular_velocity", "kind": "velocity"},
+        "thetaddot": {"dimension": "angular_acceleration", "kind": "acceleration"}}
+HOOP_EOM = "thetaddot = (omega^2 cos(theta) - g/R) sin(theta)"
+HOOP_RESIDUAL = "(thetaddot - omega^2 sin(theta) cos(theta) + (g/R) sin(theta))"
+
+
+@pytest.mark.parametrize("answer, expected", [
+    (f"(omega^2 R - g) {HOOP_RESIDUAL} = 0", "not_equivalent"),        # 0 = 0 when omega^2 R = g
+    (f"(omega^2 - g/R)^2 {HOOP_RESIDUAL} = 0", "not_equivalent"),      # vanishes without changing sign
+    (f"{HOOP_RESIDUAL}/(omega^2 R - g) = 0", "not_equivalent"),        # undefined when omega^2 R = g
+    (f"(m1 - m2) {HOOP_RESIDUAL} = 0", "not_equivalent"),
+    (f"(m1 - m2)^2 {HOOP_RESIDUAL} = 0", "not_equivalent"),
+    (f"(omega^2 R + g)^2 {HOOP_RESIDUAL} = 0", "equivalent"),
+    (f"(m1 + m2) {HOOP_RESIDUAL} / (omega R) = 0", "equivalent"),
+])
+def test_a_factor_of_the_parameters_must_be_nonzero_for_all_their_values(answer, expected):
+    # The factor is free of the state, so every parameter point agrees; where it vanishes (or has
+    # a pole) for some parameters, the equation no longer gives the motion for those parameters.
+    v = check(HOOP_EOM, answer, HOOP, kind="equation")
+    assert v.verdict == expected, v.reason
+
+
+DOUBLE_ATWOOD = {"g": {"dimension": "acceleration", "domain": "positive"},
+                 **{m: {"dimension": "mass", "domain": "positive"} for m in ("m1", "m2", "m3")},
+                 **{f"{q}{d}": {"dimension": dim, "kind": kind} for q in "xy" for d, dim, kind in
+                    (("", "length", "coordinate"), ("dot", "velocity", "velocity"),
+                     ("ddot", "acceleration", "acceleration"))}}
+DOUBLE_ATWOOD_EQ1 = "((m1 + m2 + m3) xddot + (m3 - m2) yddot - (m1 - m2 - m3) g)"
+DOUBLE_ATWOOD_EQ2 = "((m3 - m2) xddot + (m2 + m3) yddot - (m2 - m3) g)"
+
+
+@pytest.mark.parametrize("answer, expected", [
+    (f"m2 {DOUBLE_ATWOOD_EQ1} + m3 {DOUBLE_ATWOOD_EQ2} = 0; m3 {DOUBLE_ATWOOD_EQ1} + m2 {DOUBLE_ATWOOD_EQ2} = 0",
+     "not_equivalent"),   # det = m2^2 - m3^2: singular when m2 = m3
+    (f"m2 {DOUBLE_ATWOOD_EQ1} + m3 {DOUBLE_ATWOOD_EQ2} = 0; m3 {DOUBLE_ATWOOD_EQ1} - m2 {DOUBLE_ATWOOD_EQ2} = 0",
+     "equivalent"),       # det = -(m2^2 + m3^2)
+    (f"{DOUBLE_ATWOOD_EQ1} = 0; (m2 - m3) {DOUBLE_ATWOOD_EQ2} = 0", "not_equivalent"),
+])
+def test_a_combination_by_parameters_must_be_invertible_for_all_their_values(answer, expected):
+    v = check(f"{DOUBLE_ATWOOD_EQ1} = 0; {DOUBLE_ATWOOD_EQ2} = 0", answer, DOUBLE_ATWOOD, kind="equation")
+    assert v.verdict == expected, v.reason
+
+
+DRIVEN = {"g": {"dimension": "acceleration", "domain": "positive"}, "l": {"dimension": "length", "domain": "positive"},
+          "A": {"dimension": "length", "domain": "positive"}, "w": {"dimension": "angular_velocity", "domain": "positive"},
+          "t": {"dimension": "time", "domain": "real", "kind": "time"},
+          "theta": {"dimension": "angle", "domain": "real", "kind": "coordinate"},
+          "thetadot": {"dimension": "angular_velocity", "kind": "velocity"},
+          "thetaddot": {"dimension": "angular_acceleration", "kind": "acceleration"}}
+DRIVEN_EOM = "l thetaddot = -g sin(theta) + A w^2 cos(w t) cos(theta)"
+DRIVEN_RESIDUAL = "(l thetaddot + g sin(theta) - A w^2 cos(w t) cos(theta))"
+
+
+@pytest.mark.parametrize("answer, expected", [
+    (f"(2 + cos(w t)) {DRIVEN_RESIDUAL} = 0", "equivalent"),           # t over the whole real line
+    (f"(3 + sin(w t) + cos(theta)) {DRIVEN_RESIDUAL} = 0", "equivalent"),   # theta real too
+    (f"(2 - sin(w t)^2) {DRIVEN_RESIDUAL} = 0", "equivalent"),
+    (f"(1 + cos(w t)) {DRIVEN_RESIDUAL} = 0", "not_equivalent"),       # zero at w t = pi
+    (f"(1/2 + sin(theta)) {DRIVEN_RESIDUAL} = 0", "not_equivalent"),
+])
+def test_a_factor_with_sines_of_an_unbounded_variable_is_proved_nonzero_through_their_bounds(answer, expected):
+    v = check(DRIVEN_EOM, answer, DRIVEN, kind="equation")
+    assert v.verdict == expected, v.reason
+    if expected == "equivalent":
+        assert v.certainty == "proved"
+
+
+SPHERICAL = {"g": {"dimension": "acceleration", "domain": "positive"}, "l": {"dimension": "length", "domain": "positive"},
+             **{f"{q}{d}": {"dimension": dim, "kind": kind, **({"domain": dom} if dom else {})}
+                for q, dom in (("theta", [0.05, 3.09]), ("phi", None))
+                for d, dim, kind in (("", "angle", "coordinate"), ("dot", "angular_velocity", "velocity"),
+                                     ("ddot", "angular_acceleration", "acceleration"))}}
+SPHERICAL_EOM = ("thetaddot = sin(theta) cos(theta) phidot^2 - (g/l) sin(theta); "
+                 "sin(theta)^2 phiddot + 2 sin(theta) cos(theta) thetadot phidot = 0")
+
+
+@pytest.mark.parametrize("azimuthal, expected", [
+    ("phiddot = -2 cot(theta) thetadot phidot", "equivalent"),
+    ("phiddot = -2 thetadot phidot / tan(theta)", "equivalent"),
+    ("phiddot csc(theta) + 2 thetadot phidot cot(theta) csc(theta) = 0", "equivalent"),
+    ("phiddot tan(theta) + 2 thetadot phidot = 0", "not_equivalent"),   # undefined at theta = pi/2
+    ("phiddot = -2 tan(theta) thetadot phidot", "not_equivalent"),
+])
+def test_a_mixing_with_cot_tan_csc_is_proved_when_they_cancel_to_nothing(azimuthal, expected):
+    # written with sines and cosines, the identity row is 0 before any circle reduction is needed
+    v = check(SPHERICAL_EOM, f"thetaddot = sin(theta) cos(theta) phidot^2 - (g/l) sin(theta); {azimuthal}",
+              SPHERICAL, kind="equation")
+    assert v.verdict == expected, v.reason
+    if expected == "equivalent":
+        assert v.certainty == "proved"
