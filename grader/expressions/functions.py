@@ -240,7 +240,7 @@ _TABLE = [
              real=lambda lib, x: lib.cosh(x) * _real_inverse(lib.sinh(x), "coth at 0")),
     Function("sech", sympy.sech, sympy_func=sympy.sech, latex=_op("sech"),
              arb=lambda x: 1 / x.cosh(), real=lambda lib, x: 1 / lib.cosh(x)),
-    Function("csch", sympy.csch, sympy_func=sympy.csch, latex=_op("csch"),
+    Function("csch", sympy.csch, aliases=("cosech",), sympy_func=sympy.csch, latex=_op("csch"),
              arb=lambda x: _inverse(x.sinh(), "csch at 0"),
              real=lambda lib, x: _real_inverse(lib.sinh(x), "csch at 0")),
     Function("asinh", sympy.asinh, aliases=("arsinh", "arcsinh"), sympy_func=sympy.asinh, latex=_op("asinh"),

@@ -32,7 +32,8 @@ def test_arities():
 
 @pytest.mark.parametrize("alias, name", [("ln", "log"), ("Abs", "abs"), ("arcsin", "asin"), ("arctan2", "atan2"),
                                          ("cosec", "csc"), ("sgn", "sign"), ("arsinh", "asinh"), ("tg", "tan"),
-                                         ("ctg", "cot"), ("arctg", "atan"), ("lg", "log10")])
+                                         ("ctg", "cot"), ("arctg", "atan"), ("lg", "log10"),
+                                         ("cosech", "csch")])  # the hyperbolic cosecant as UK texts spell it
 def test_aliases_are_the_same_function(alias, name):
     assert FUNCTIONS[alias] is REGISTRY[name]
 
