@@ -380,6 +380,39 @@ def _rounder_witness(ref: Compiled, ans: Compiled, sampler: Sampler, point: dict
     return point, result
 
 
+# How far the neighbours of a point where only one side is undefined lie (relative to each value).
+NEIGHBOUR_STEP = 1e-6
+
+
+def _isolated(ref: Compiled, ans: Compiled, sampler: Sampler, point: dict, options: Options,
+              deadline: float | None) -> bool:
+    """Whether a point where only one of the two is undefined is isolated: at two neighbouring
+    points (every variable moved by a relative 1e-6, one way and the other) both are defined.
+
+    Such a point is a removable one, ``x = 2`` of ``|x² − 4|/(|x − 2||x + 2|)`` against 1, or
+    ``d = 0`` of ``d x/(d t)`` against ``x/t``: the two are the same function wherever both are
+    defined, and the set where only one is has no extent, so it is no counterexample (a sample
+    point lands on it only when it is a round value). A region where one side is undefined, ``x <
+    0`` of ``(x³)^(1/3)`` against ``x``, has its neighbours in it too, and stays a counterexample.
+    """
+    for sign in (1, -1):
+        neighbour = {}
+        for symbol, value in point.items():
+            moved = value
+            if isinstance(value, float) and math.isfinite(value):
+                moved = value + sign * NEIGHBOUR_STEP * max(abs(value), 1.0)
+                domain = sampler.domains.get(symbol)
+                if domain is not None and not domain.contains(moved):
+                    moved = value - sign * NEIGHBOUR_STEP * max(abs(value), 1.0)
+                    if not domain.contains(moved):
+                        return False
+            neighbour[symbol] = moved
+        there = compare_at(ref, ans, neighbour, None, options, deadline)
+        if there.kind not in ("agree", "differ"):
+            return False
+    return True
+
+
 def _points_evidence(options: Options, agreed: int, digits: float, unresolved: int) -> dict:
     evidence = {"method": options.describe(), "points": agreed}
     if options.method == "arb":
@@ -399,7 +432,7 @@ def compare_numeric(
     """Compare two compiled expressions at the sampler's points.
 
     Points where both are undefined are skipped (as WeBWorK does); a point where only one of them
-    is undefined is a counterexample. Once the reference is undefined somewhere, every other point
+    is undefined is a counterexample, unless it is isolated (`_isolated`: a removable point). Once the reference is undefined somewhere, every other point
     is drawn across the domains' whole scale (`Sampler.wide_point`), so that an expression defined
     only for x >= 5 is still decided, and more points are tried.
     """
@@ -422,6 +455,9 @@ def compare_numeric(
             digits = min(digits, result.digits)
             if agreed >= needed:
                 break
+        elif result.kind in ("answer_undefined", "answer_defined") and _isolated(ref, ans, sampler, point, options,
+                                                                                 deadline):
+            continue  # a removable point: see _isolated
         elif result.kind in ("differ", "answer_undefined", "answer_defined"):
             point, result = _rounder_witness(ref, ans, sampler, point, result, options, deadline)
             example = counterexample(point, result)
@@ -669,6 +705,9 @@ def _at_landmarks(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, options
             point = {**base, **{s: v for s in free}}
             # keyed by the value itself: the reference's cache is shared by every answer to it
             result = compare_at(ref, ans, point, ("landmark", v), options, deadline)
+            if result.kind in ("answer_undefined", "answer_defined") and _isolated(ref, ans, sampler, point, options,
+                                                                                   deadline):
+                continue  # a removable point: see _isolated
             if result.kind in ("differ", "answer_undefined", "answer_defined"):
                 example = counterexample(point, result)
                 values_ = (_to_float(result.answer), _to_float(result.reference)) if result.kind == "differ" else None

@@ -151,6 +151,25 @@ def test_power_laws_hold_only_where_the_domain_allows(reference, answer, expecte
         assert c.certainty == "proved" and c.counterexample["values"]["x"] < 0
 
 
+# -- removable points ---------------------------------------------------------------------------
+# Where only one side is undefined at an isolated point (a zero of a denominator that cancels) the
+# two are the same function wherever both are defined: a sample or landmark point that lands there
+# (x = 2 is twice half of the constant 4) is no counterexample. A region where only one side is
+# undefined still is one (the power laws above).
+@pytest.mark.parametrize("reference, answer, expected", [
+    ("1", "abs(x^2 - 4)/(abs(x - 2) abs(x + 2))", True),   # landmark x = 2 was a counterexample
+    ("abs(x^2 - 4)/(abs(x - 2) abs(x + 2))", "1", True),   # the reference undefined there
+    ("x + 8", "(x^2 - 64)/(x - 8)", True),                 # a removable point at x = 8
+    ("x - 8", "(x^2 - 64)/(x - 8)", False),                # a removable point, but wrong elsewhere
+    ("1", "abs(x - 4)/(x - 4)", False),                    # -1 for x < 4: a region, not a point
+    ("x", "sqrt(x - 4)^2 + 4", False),                     # undefined on x < 4: a region
+])
+def test_an_isolated_point_where_only_one_side_is_undefined_is_no_counterexample(reference, answer, expected):
+    r, a, s = _parsed_pair(reference, answer)
+    c = compare_expressions(r.expr, a.expr, s, answer_conditions=a.conditions, reference_conditions=r.conditions)
+    assert c.equivalent is expected
+
+
 # -- the whole domain is sampled ----------------------------------------------------------------
 X_REAL = {"x": {"domain": "real"}}
 
