@@ -364,6 +364,11 @@ class _Parser:
             return self.function(token.value, token)
         if raw in ("dot", "ddot") and raw not in self.ns and following.kind == "open":
             return self.derivative_call(token, 1 if raw == "dot" else 2)
+        if (following.kind == "open" and following.value == "[" and following.pos == token.end and not token.order
+                and raw.lower() not in FUNCTIONS):  # sin[x] is a call, as Mathematica writes it
+            indexed = self.indexed_name(token)
+            if indexed is not None:
+                return indexed
         if not token.order and raw in self.ns.names:
             value = self.ns.symbol(raw)  # what resolve_name answers for a declared name (no notes)
         else:
@@ -383,6 +388,27 @@ class _Parser:
         if called and not following.space_before and not token.order:
             self.note(f"read '{token.text}(…)' as {token.text}·(…): {token.text} is a variable, not a function")
         return value
+
+    def indexed_name(self, token: Token) -> sympy.Expr | None:
+        """``m[1]``, ``epsilon[0]``, ``x[i]``: a name with an index in square brackets right after it,
+        which Maxima (STACK) and programming languages read as a subscript. It is the declared
+        ``m_1`` (or ``m1``) when there is one; otherwise it is refused, never read as the product
+        m·1 (``epsilon[0]`` would be 0). None when the brackets hold more than one number or name
+        (``m[g - a]``: brackets as grouping, a product)."""
+        inner, closer = self.tokens[self.i + 1:self.i + 3]
+        simple = (inner.kind == "number" and inner.text.isdigit()) or (inner.kind == "name" and not inner.order)
+        if not (simple and closer.kind == "close" and closer.value == "]"):
+            return None
+        typed = self.text[token.pos:closer.end]
+        index = inner.text
+        for candidate in (f"{token.value}_{index}", f"{token.value}{index}"):
+            if candidate in self.ns.names:
+                self.i += 3
+                self.note(f"read '{typed}' as {candidate}")
+                return self.ns.symbol(candidate)
+        raise ExpressionError(f"'{typed}' reads as a subscript in some systems, and there is no variable "
+                              f"{token.value}_{index}", token.pos, "syntax",
+                              f"write {token.value}_{index} for a subscript, or {token.value}*({index}) for a product")
 
     def time_argument(self, token: Token, value: sympy.Expr) -> bool:
         """Skip a ``(t)`` typed right after a variable (``θ(t)``, ``θ̈(t)``, ``\\ddot{\\theta}(t)``) when no
@@ -475,8 +501,11 @@ class _Parser:
             wanted = (f"{spec.min_args}" if spec.min_args == spec.max_args
                       else f"{spec.min_args} or {spec.max_args}")
             example = f"{spec.name}(" + ", ".join("yxz"[:spec.min_args] if spec.min_args > 1 else "x") + ")"
+            hint = f"write it as {example}"
+            if spec.name in ("log10", "log2") and len(args) == 2:  # STACK's lg(x, b): a base given
+                hint = "write log(x, b) for the logarithm of x to base b"
             raise ExpressionError(f"{token.text} takes {wanted} argument{'s' if spec.max_args > 1 else ''}, "
-                                  f"got {len(args)}", token.pos, "syntax", f"write it as {example}")
+                                  f"got {len(args)}", token.pos, "syntax", hint)
         return args
 
     def function_argument(self, token: Token, name: str) -> sympy.Expr:

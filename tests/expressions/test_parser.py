@@ -720,3 +720,27 @@ def test_a_time_argument_is_noted_and_only_skipped_when_no_variable_t_is_declare
     for text in ("θ (t)", "θ(s)", "θ(2t)"):  # not the argument t right after the name: refused as before
         with pytest.raises(ExpressionError):
             parse(text, timeless_ns)
+
+
+# -- a name with an index in square brackets: Maxima's (STACK's) subscript, never a product ------
+@pytest.fixture
+def indexed_ns():
+    return Namespace([Variable(n, "dimensionless", "real") for n in ("m", "m_1", "epsilon", "epsilon_0", "g", "a", "v2")])
+
+
+@pytest.mark.parametrize("text, plain", [
+    ("m[1]", "m_1"), ("epsilon[0]", "epsilon_0"), ("m[1]*g", "m_1*g"), ("2 m[1] g", "2*m_1*g"), ("v[2]^2", "v2^2"),
+    ("m[g - a]", "m*(g - a)"),          # brackets holding an expression: grouping, a product
+    ("m [1]", "m*1"),                   # a space: the bracket is no index
+    ("sin[g]", "sin(g)"),               # a function's argument in square brackets, as Mathematica writes it
+])
+def test_an_index_in_square_brackets_is_the_declared_subscripted_variable(indexed_ns, text, plain):
+    assert parse(text, indexed_ns) == parse(plain, indexed_ns)
+
+
+@pytest.mark.parametrize("text", ["epsilon[1]", "g[0]", "m[2]+1", "a[g]"])
+def test_an_index_in_square_brackets_without_such_a_variable_is_refused_not_multiplied(indexed_ns, text):
+    # epsilon[1] was epsilon*1 and g[0] was 0: a subscript read as a product
+    with pytest.raises(ExpressionError) as error:
+        parse(text, indexed_ns)
+    assert "subscript" in str(error.value) and "_" in str(error.value)
