@@ -386,11 +386,35 @@ def _suggestion(name: str, ns: "Namespace", functions_only: bool = False) -> str
     return None
 
 
+# Functions other systems (Maxima/STACK, calculators) know that the grammar leaves out, and how to
+# write each with the ones it has (an inverse cotangent's value for negative x differs between
+# conventions, so it is spelt out rather than guessed).
+_ACOT = "write pi/2 - atan(x) or atan(1/x), the one you mean (they differ for x < 0)"
+_WRITE_INSTEAD = {
+    "root": "write x^(1/n) for the n-th root of x, or sqrt(x)",
+    "logbase": "write log(x, b) for the logarithm of x to base b",
+    "acot": _ACOT,
+    "arccot": _ACOT,
+    "arcctg": _ACOT,
+    "asec": "write acos(1/x) for the inverse secant",
+    "arcsec": "write acos(1/x) for the inverse secant",
+    "acsc": "write asin(1/x) for the inverse cosecant",
+    "arccsc": "write asin(1/x) for the inverse cosecant",
+    "arccosec": "write asin(1/x) for the inverse cosecant",
+    "binomial": "write the binomial coefficient out with products",
+    "factorial": "write the product out, as in 2*3",
+}
+
+
 def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called: bool):
     if called:
+        suggestion = _suggestion(raw, ns, functions_only=True)
+        instead = _WRITE_INSTEAD.get(raw.lower())
+        if instead:
+            suggestion = f"{instead}; or {suggestion}" if suggestion else instead
         raise ExpressionError(f"'{typed}' is not a function you can use here", position,
                               "unsupported_function",
-                              _suggestion(raw, ns, functions_only=True) or "allowed functions: " + ", ".join(function_names()))
+                              suggestion or "allowed functions: " + ", ".join(function_names()))
     if raw in _UNIT_WORDS:
         raise ExpressionError(f"unknown name '{typed}': units are not part of the answer", position, "unknown_name",
                               f"write the answer in the problem's symbols and delete '{typed}'")

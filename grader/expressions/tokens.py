@@ -96,6 +96,10 @@ _PUNCTUATION = {
 }
 
 
+# Maxima's constants, typed after a '%' (STACK's %pi, %e, %i).
+_MAXIMA_CONSTANT = re.compile(r"(pi|e|i)(?![A-Za-z0-9_])")
+
+
 class _Tokenizer:
     def __init__(self, text: str) -> None:
         self.text = text
@@ -188,6 +192,17 @@ class _Tokenizer:
             code = "unsupported_function" if previous in ("name", "close") else "syntax"
             hint = "use * for a product" if previous in ("name", "close") else "write 0.5, not .5. or 5."
             self.emit("bad", ".", start, start + 1, error=ExpressionError(message, start, code, hint))
+        elif ch == "%" and _MAXIMA_CONSTANT.match(self.text, start + 1):
+            # Maxima's (STACK's) %pi, %e, %i: name the constant to type instead.
+            word = _MAXIMA_CONSTANT.match(self.text, start + 1).group(0)
+            hint = {"pi": "write pi (or π)", "e": "write e, or exp(x) for e^x"}.get(
+                word, "complex numbers are not part of these answers")
+            self.emit("bad", ch, start, start + 1 + len(word),
+                      error=ExpressionError(f"'%{word}' is Maxima's notation", start, "syntax", hint))
+        elif ch == ":" and self.peek(1) == "=":
+            self.emit("bad", ch, start, start + 2,
+                      error=ExpressionError("':=' (a definition) is not part of a formula", start, "syntax",
+                                            "write an equation with ="))
         elif ch in _PUNCTUATION:
             message, code, hint = _PUNCTUATION[ch]
             self.emit("bad", ch, start, start + 1, error=ExpressionError(message, start, code, hint))

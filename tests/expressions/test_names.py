@@ -150,3 +150,17 @@ def test_an_unknown_command_with_digits_names_the_product_and_the_subscript(ns, 
     with pytest.raises(ExpressionError) as err:
         resolve_name(typed[1:], ns, typed=typed)
     assert err.value.message == f"unknown name '{typed}'" and err.value.hint == hint
+
+
+# Functions other systems (STACK/Maxima, calculators) have and the grammar leaves out: the refusal
+# says how to write each with the functions it has, not only "did you mean cot".
+@pytest.mark.parametrize("text, hint", [
+    ("root(x, 3)", "x^(1/n)"), ("logbase(x, 2)", "log(x, b)"), ("lg(x, 3)", "log(x, b)"), ("log10(x, 3)", "log(x, b)"),
+    ("acot(x)", "atan(1/x)"), ("arccot(x)", "atan(1/x)"), ("asec(x)", "acos(1/x)"), ("acsc(x)", "asin(1/x)"),
+    ("arcsec(x)", "acos(1/x)"),
+])
+def test_functions_of_other_systems_are_refused_with_the_way_to_write_them(text, hint):
+    ns = Namespace([Variable("x", "dimensionless", "real")])
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text, ns)
+    assert hint in err.value.hint

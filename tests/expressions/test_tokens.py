@@ -76,6 +76,16 @@ def test_stray_punctuation_is_reported_where_the_parser_meets_it(text):
     assert token.kind == "bad" and token.error.position == 1
 
 
+# Maxima's (STACK's) notation: the refusal names what was typed and what to type instead.
+@pytest.mark.parametrize("text, named, hint", [
+    ("%pi/2", "'%pi'", "write pi"), ("2*%pi*r", "'%pi'", "write pi"), ("%e^x", "'%e'", "write e"),
+    ("a + %i*b", "'%i'", "complex"), ("f := x^2", "':='", "equation with ="), ("x:=1", "':='", "equation with ="),
+])
+def test_maxima_notation_is_refused_naming_it_and_the_fix(text, named, hint):
+    token = next(t for t in tokenize(text) if t.kind == "bad")
+    assert named in str(token.error) and hint in token.error.hint
+
+
 @pytest.mark.parametrize("text, code, position", [
     ("(a", "unbalanced", 0),
     ("a)", "unbalanced", 1),
