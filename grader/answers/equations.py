@@ -261,7 +261,7 @@ def _parameter_factor(reference: list[sympy.Expr], answer: list[sympy.Expr], par
     state = set(states.domains)
     for i, row in enumerate(answer):
         own = set(sympy.Mul.make_args(reference[i])) if i < len(reference) else set()
-        for factor in sympy.Mul.make_args(row):
+        for factor in _common_factors(row):
             base = factor.base if factor.is_Pow and factor.exp.is_Integer else factor
             if base.is_number or base in own or factor in own or base.free_symbols & state \
                     or base.is_positive or base.is_negative:
@@ -272,6 +272,20 @@ def _parameter_factor(reference: list[sympy.Expr], answer: list[sympy.Expr], par
                                   "nonzero for all their values: where it vanishes your equation no longer gives "
                                   "the motion", evidence={"method": "symbolic"})
     return None
+
+
+def _common_factors(expr: sympy.Expr) -> set:
+    """The factors of ``expr`` as typed, or those every term of a sum has (``a**2*x - a**2*y``: ``a**2``);
+    the intersection of the terms' factors is cheaper than `sympy.factor_terms`, and finds what was typed."""
+    if not expr.is_Add:
+        return set(sympy.Mul.make_args(expr))
+    terms = iter(expr.args)
+    common = set(sympy.Mul.make_args(next(terms)))
+    for term in terms:
+        common &= set(sympy.Mul.make_args(term))
+        if not common:
+            break
+    return common
 
 
 def _vanishing_multiple(k: int, signs: dict) -> Comparison:
@@ -492,6 +506,7 @@ def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: d
         return None
     if _nonzero_on(denominator, domains) is not True:
         return None  # not a multiple of the reference at all
+    numerator = _without_powers_of(numerator, reference)
     if _nonzero_on(numerator, domains) is True:
         return Comparison(True, "proved", "the reference multiplied by a factor that depends on the state "
                           "and is nonzero on the whole declared domain", evidence={"method": "symbolic"})
@@ -504,6 +519,26 @@ def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: d
     return Comparison(False, "numeric", "your equation is the reference multiplied by a factor that depends on "
                       "the state and could not be shown to be nonzero on the whole declared domain",
                       evidence={"method": "symbolic"})
+
+
+def _without_powers_of(numerator: sympy.Expr, reference: sympy.Expr) -> sympy.Expr:
+    """``numerator`` with the reference's own numerator divided out as often as it goes.
+
+    A factor that vanishes only where the reference does adds no solution: ``(l*thetaddot + g*sin(theta))**2 = 0``
+    holds exactly where the reference does, so only the rest of the factor must be nonzero."""
+    try:
+        own = sympy.fraction(sympy.together(reference))[0]
+        if own.is_number:
+            return numerator
+        for _ in range(FACTOR_MAX_POWER):
+            quotient, remainder = sympy.div(numerator, own)
+            if remainder != 0 or quotient == 0:
+                break
+            numerator = quotient
+    except (sympy.PolynomialError, sympy.polys.polyerrors.PolificationFailed, ValueError, TypeError,
+            ZeroDivisionError):
+        pass
+    return numerator
 
 
 # Largest system whose mixing matrix is worth symbolic determinants.

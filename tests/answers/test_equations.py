@@ -464,3 +464,28 @@ def test_a_mixing_with_cot_tan_csc_is_proved_when_they_cancel_to_nothing(azimuth
     assert v.verdict == expected, v.reason
     if expected == "equivalent":
         assert v.certainty == "proved"
+
+
+@pytest.mark.parametrize("answer, expected", [
+    ("(l thetaddot + g sin(theta))^2 = 0", "equivalent"),        # zero exactly where the reference is
+    ("(l thetaddot + g sin(theta))^3 = 0", "equivalent"),
+    ("(1 + thetadot^2 l/g) (l thetaddot + g sin(theta))^2 = 0", "equivalent"),
+    ("thetadot (l thetaddot + g sin(theta))^2 = 0", "not_equivalent"),   # also zero at thetadot = 0
+    ("(l thetaddot + g sin(theta))/g + ((l thetaddot + g sin(theta))/g)^2 = 0", "not_equivalent"),  # and at -1
+])
+def test_a_power_of_the_reference_adds_no_solution(pendulum, answer, expected):
+    v = check(PENDULUM_EOM, answer, pendulum, kind="equation")
+    assert v.verdict == expected, v.reason
+
+
+@pytest.mark.parametrize("answer, expected", [
+    ("thetaddot (omega^2 - g/R)^2 = (omega^2 - g/R)^2 (omega^2 sin(theta) cos(theta) - (g/R) sin(theta))",
+     "not_equivalent"),   # the factor every term has, typed twice
+    ("thetaddot/(omega^2 R - g)^2 = (omega^2 sin(theta) cos(theta) - (g/R) sin(theta))/(omega^2 R - g)^2",
+     "not_equivalent"),
+    ("thetaddot (omega^2 R + g)^2 = (omega^2 R + g)^2 (omega^2 sin(theta) cos(theta) - (g/R) sin(theta))",
+     "equivalent"),
+])
+def test_a_parameter_factor_common_to_every_term_must_be_nonzero_too(answer, expected):
+    v = check(HOOP_EOM, answer, HOOP, kind="equation")
+    assert v.verdict == expected, v.reason
