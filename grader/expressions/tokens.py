@@ -152,6 +152,16 @@ class _Tokenizer:
             self.emit("bar", None, start, start + 1)
         elif ch == "^" and _DEGREES.match(self.text, start):
             self.degrees(start, _DEGREES.match(self.text, start).end())
+        elif ch in "+-" and (self.peek(1) == "+-".replace(ch, "") or (ch == "+" and self.text.startswith("/-", start + 1))):
+            # +- (or +/-, -+) typed together is the ASCII spelling of ± (∓): a silent reading as
+            # +(-b) turned "-b +- sqrt(D)" and "x = +-2" into one sign
+            typed = self.text[start:start + (3 if self.peek(1) == "/" else 2)]
+            sign = "∓" if ch == "-" else "±"
+            self.emit("bad", typed, start, start + len(typed),
+                      error=ExpressionError(f"'{typed}' reads as {sign} ({'plus or minus' if ch == '+' else 'minus or plus'})",
+                                            start, "syntax",
+                                            "give one sign (the answer with + or the one with -); for a plus "
+                                            "then a negative number, write + (-2)"))
         elif ch in "+-*/^=,;":
             self.emit("op", ch, start, start + 1)
         elif ch in _PAIRS:

@@ -76,6 +76,20 @@ def test_stray_punctuation_is_reported_where_the_parser_meets_it(text):
     assert token.kind == "bad" and token.error.position == 1
 
 
+# ± typed in ASCII: "-b +- sqrt(D)" and "x = +-2" were read as one sign, -b - sqrt(D) and x = -2.
+@pytest.mark.parametrize("text, typed", [
+    ("-b +- sqrt(b^2 - 4*a*c)", "'+-'"), ("x = +-2", "'+-'"), ("x = +/-2", "'+/-'"), ("a -+ b", "'-+'"),
+])
+def test_plus_minus_typed_in_ascii_is_refused_not_read_as_one_sign(text, typed):
+    token = next(t for t in tokenize(text) if t.kind == "bad")
+    assert typed in str(token.error) and "one sign" in token.error.hint
+
+
+@pytest.mark.parametrize("text", ["x + (-2)", "x+ -2", "x - -2", "x--2", "1e-3", "a*-b", "a/-b", "a^-2"])
+def test_a_sign_after_an_operator_is_still_read(text):
+    assert not any(t.kind == "bad" for t in tokenize(text))
+
+
 # Maxima's (STACK's) notation: the refusal names what was typed and what to type instead.
 @pytest.mark.parametrize("text, named, hint", [
     ("%pi/2", "'%pi'", "write pi"), ("2*%pi*r", "'%pi'", "write pi"), ("%e^x", "'%e'", "write e"),
