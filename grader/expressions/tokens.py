@@ -100,6 +100,12 @@ _PUNCTUATION = {
 _MAXIMA_CONSTANT = re.compile(r"(pi|e|i)(?![A-Za-z0-9_])")
 
 
+def _sign(ch: str) -> str:
+    """'+' or '-' for a plus or minus sign as typed (ASCII or a Unicode minus or dash), else ''."""
+    sign = OPERATOR_CHARS.get(ch, ch)
+    return sign if ch and sign in ("+", "-") else ""
+
+
 class _Tokenizer:
     def __init__(self, text: str) -> None:
         self.text = text
@@ -152,14 +158,14 @@ class _Tokenizer:
             self.emit("bar", None, start, start + 1)
         elif ch == "^" and _DEGREES.match(self.text, start):
             self.degrees(start, _DEGREES.match(self.text, start).end())
-        elif ch in "+-" and (self.peek(1) == "+-".replace(ch, "") or (ch == "+" and self.text.startswith("/-", start + 1))):
+        elif _sign(ch) and (_sign(self.peek(1)) == "+-".replace(_sign(ch), "")
+                            or (_sign(ch) == "+" and self.peek(1) == "/" and _sign(self.peek(2)) == "-")):
             # +- (or +/-, -+) typed together is the ASCII spelling of ± (∓): a silent reading as
             # +(-b) turned "-b +- sqrt(D)" and "x = +-2" into one sign
             typed = self.text[start:start + (3 if self.peek(1) == "/" else 2)]
-            sign = "∓" if ch == "-" else "±"
+            sign, words = ("∓", "minus or plus") if _sign(ch) == "-" else ("±", "plus or minus")
             self.emit("bad", typed, start, start + len(typed),
-                      error=ExpressionError(f"'{typed}' reads as {sign} ({'plus or minus' if ch == '+' else 'minus or plus'})",
-                                            start, "syntax",
+                      error=ExpressionError(f"'{typed}' reads as {sign} ({words})", start, "syntax",
                                             "give one sign (the answer with + or the one with -); for a plus "
                                             "then a negative number, write + (-2)"))
         elif ch in "+-*/^=,;":

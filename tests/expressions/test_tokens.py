@@ -79,6 +79,7 @@ def test_stray_punctuation_is_reported_where_the_parser_meets_it(text):
 # ± typed in ASCII: "-b +- sqrt(D)" and "x = +-2" were read as one sign, -b - sqrt(D) and x = -2.
 @pytest.mark.parametrize("text, typed", [
     ("-b +- sqrt(b^2 - 4*a*c)", "'+-'"), ("x = +-2", "'+-'"), ("x = +/-2", "'+/-'"), ("a -+ b", "'-+'"),
+    ("x = +\u22122", "'+\u2212'"), ("a \u2212+ b", "'\u2212+'"),   # a Unicode minus
 ])
 def test_plus_minus_typed_in_ascii_is_refused_not_read_as_one_sign(text, typed):
     token = next(t for t in tokenize(text) if t.kind == "bad")
