@@ -17,14 +17,21 @@ The reading only ever replaces text that is an error today: it applies when
 * the coordinate, or one of its time derivatives, is declared (``dq/dt`` with no q at all stays
   an unknown name).
 
-A missing derivative variable, orders that disagree (``d²θ/dt``), a ``t`` that is not a time, and
-``d/dt`` of anything but one coordinate are refused with the text and the fix.
+``d/dt`` of a bracketed expression (``d/dt(m r² φ̇)``, ``\frac{d}{dt}\left(m l^2\dot\theta\right)``)
+becomes a ``time_derivative`` token: the parser reads the bracket and differentiates it by the chain
+rule through the declared derivatives (`time_derivative`), parameters constant.
+
+A missing derivative variable (also one the chain rule needs: ``d/dt(m ẍ)``), orders that disagree
+(``d²θ/dt``), a ``t`` that is not a time, and a power right after ``d/dt(…)`` are refused with the text
+and the fix.
 """
 
 from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+
+import sympy
 
 from .dimensions import parse_dimension
 from .errors import ExpressionError
@@ -34,11 +41,11 @@ from .names import derivative_name, resolve_name
 from .names import _lookup, _resolve_derivative
 from .tokens import Token
 
-__all__ = ["read_leibniz", "dotted"]
+__all__ = ["read_leibniz", "dotted", "time_derivative"]
 
 _TIME = parse_dimension("time")
 _OPEN_OPERAND = {"(": ")", "[": "]", "{": "}"}
-_ATOMS = ("number", "name", "open", "root", "command", "derivative")
+_ATOMS = ("number", "name", "open", "root", "command", "derivative", "time_derivative")
 # ``\mathrm{d}x``, ``\operatorname{d}x``: the wrapper the tokenizer read into the name ``dx``.
 _WRAPPED_D = re.compile(r"^\\[A-Za-z]+\s*\{d\}")
 _GREEK_CHAR = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "zeta": "ζ",
@@ -332,6 +339,9 @@ def _match(tokens: list[Token], i: int, ns, text: str, memo: dict) -> tuple[Toke
         error = error or operand.error
     if error is None and (operand is None or not _known_coordinate(raw, ns)):
         where = _at(tokens, k)
+        if operand is None and nested is None and where.kind == "open":
+            # d/dt(m r² φ̇): the parser reads the bracket and differentiates it (time_derivative)
+            return Token("time_derivative", order, start.pos, last.end, operator, start.space_before), k
         error = ExpressionError(f"'{operator}' can only be applied to one coordinate here, as in {operator}(θ)",
                                 where.pos, "syntax",
                                 "differentiate it yourself and write the derivatives with dots, as in θ̇ or ẍ")
@@ -405,3 +415,44 @@ def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
             out.extend(tokens[i:])
             break
     return out if out is not None else tokens
+
+
+def _rate(symbol: sympy.Symbol, ns, shown: str, position: int) -> sympy.Expr:
+    """``d symbol/dt`` in the namespace: the declared derivative (θ -> θ̇, θ̇ -> θ̈), 1 for the time,
+    0 for a parameter; an error for a quantity of the motion whose derivative is not declared."""
+    name = symbol.name
+    variable = ns[name] if name in ns.names else None
+    if variable is not None and (variable.kind == "time" or (name == "t" and variable.dimension == _TIME)):
+        return sympy.S.One
+    wanted = derivative_name(name, 1)
+    found = _lookup(wanted, ns) if not name.endswith("ddot") else None
+    if found is not None:
+        return found
+    moving = (variable is None or variable.kind not in ("parameter",) or name.endswith("dot")
+              or _lookup(derivative_name(name, 2), ns) is not None)
+    if not moving:
+        return sympy.S.Zero  # a parameter: constant in time
+    raise ExpressionError(f"'{shown}' needs the time derivative of {name}, which this problem has no "
+                          "variable for", position, "unknown_name",
+                          "differentiate it yourself and write the derivatives with dots, as in θ̇ or ẍ")
+
+
+def time_derivative(expr: sympy.Expr, order: int, ns, shown: str, position: int) -> sympy.Expr:
+    """The total time derivative of ``expr`` (``d/dt(m r² φ̇)`` = 2 m r ṙ φ̇ + m r² φ̈), by the chain rule
+    through the namespace's declared derivatives; parameters are constant.
+
+    Examples
+    --------
+    >>> from grader.expressions import Namespace, Variable
+    >>> ns = Namespace([Variable("m", "mass", "positive"), Variable("r", "length", "positive", "coordinate"),
+    ...                 Variable("rdot", "velocity", "real", "velocity"),
+    ...                 Variable("phidot", "angular_velocity", "real", "velocity"),
+    ...                 Variable("phiddot", "angular_acceleration", "real", "acceleration")])
+    >>> r, rdot, phidot, phiddot, m = (ns.symbol(n) for n in ("r", "rdot", "phidot", "phiddot", "m"))
+    >>> time_derivative(m*r**2*phidot, 1, ns, "d/dt", 0) == 2*m*r*rdot*phidot + m*r**2*phiddot
+    True
+    """
+    for _ in range(order):
+        rates = {s: _rate(s, ns, shown, position) for s in sorted(expr.free_symbols, key=lambda s: s.name)}
+        expr = sympy.Add(*(expr.diff(s) * rate for s, rate in rates.items() if rate != 0))
+    return expr

@@ -19,7 +19,8 @@ single argument, one following factor: ``cos theta``, ``sin 2x`` (= sin(2x)),
 asin(x).  Names resolve only through the :class:`~.variables.Namespace`
 (:mod:`.names`).  Numbers are exact: ``0.5*m == m/2``.  Time derivatives in
 Leibniz notation (``dθ/dt``, ``\\frac{d^2x}{dt^2}``, ``d/dt(θ)``) become one token
-each before parsing (:mod:`.leibniz`) and read as ``θ̇``, ``ẍ`` do.
+each before parsing (:mod:`.leibniz`) and read as ``θ̇``, ``ẍ`` do; ``d/dt(m r² φ̇)`` is the bracket
+differentiated by the chain rule.
 """
 
 from __future__ import annotations
@@ -36,7 +37,7 @@ from .printing import to_latex, to_text
 
 from .errors import ExpressionError
 from .functions import FUNCTIONS, INVERSES
-from .leibniz import dotted, read_leibniz
+from .leibniz import dotted, read_leibniz, time_derivative
 from .magnitudes import checked, guarded_pow, not_real
 from .names import resolve_name
 from .tokens import Token, check_brackets, tokenize
@@ -56,7 +57,7 @@ _ADD, _MUL, _POW = 10, 20, 30
 _COMMAND_THEN_DIGITS = re.compile(r"^\\([A-Za-z]+)\d[A-Za-z0-9]*$")
 _I = sympy.I
 _OPERATOR_POWER = {"+": _ADD, "-": _ADD, "*": _MUL, "/": _MUL, "^": _POW}
-_ATOM_STARTS = ("number", "name", "open", "root", "command", "derivative")
+_ATOM_STARTS = ("number", "name", "open", "root", "command", "derivative", "time_derivative")
 # Left binding power of the tokens that are not operators: a superscript is a power, an atom
 # starts an implicit product, a prime binds tightest (so the parser reaches it and complains).
 _KIND_POWER = {"sup": _POW, "prime": _POW + 10, **{kind: _MUL for kind in _ATOM_STARTS}}
@@ -353,7 +354,28 @@ class _Parser:
                 raise token.error
             self.note(f"read '{token.text}' as {dotted(token.value.name)}")
             return token.value
+        if kind == "time_derivative":  # d/dt(…) of an expression: the bracket, differentiated
+            return self.time_derivative(token)
         raise self.unexpected(token)
+
+    def time_derivative(self, token: Token) -> sympy.Expr:
+        """``d/dt(m r² φ̇)``: the bracket after the operator, differentiated by the chain rule through the
+        declared derivatives (`leibniz.time_derivative`); a power right after the bracket is refused as
+        ambiguous (the derivative of the square, or the square of the derivative?)."""
+        opener = self.advance()
+        inner = self.expression(0)
+        self.expect_close(opener)
+        following = self.peek()
+        if following.kind == "sup" or (following.kind == "op" and following.value == "^"):
+            last = following if following.kind == "sup" else self.tokens[min(self.i + 1, len(self.tokens) - 1)]
+            shown = self.text[token.pos:last.end]
+            raise ExpressionError(f"'{shown}' is ambiguous: it is not clear what {token.text} applies to",
+                                  token.pos, "ambiguous",
+                                  f"write ({self.text[token.pos:self.tokens[self.i - 1].end]})^2 for the square "
+                                  "of the derivative, or differentiate the whole yourself")
+        value = checked(time_derivative(inner, token.value, self.ns, token.text, token.pos), token.pos)
+        self.note(f"read '{self.text[token.pos:self.tokens[self.i - 1].end]}' as {value}")
+        return value
 
     # -- names and functions ------------------------------------------------
     def name(self, token: Token, rbp: int = 0) -> sympy.Expr:

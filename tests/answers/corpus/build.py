@@ -863,7 +863,7 @@ def leibniz_items() -> None:
         ("m l d²θ/dt² + m g cos θ", INV, "notation"),         # no thetaddot in this problem
         ("m l (dθ/dx)^2 + m g cos θ", INV, "notation"),       # not a time derivative
         ("m l d/dt θ^2 + m g cos θ", INV, "notation"),        # d/dt of θ², or (d/dt θ)²?
-        ("m l d/dt(θ^2) + m g cos θ", INV, "notation"),       # d/dt of an expression, not one coordinate
+        ("m l d/dt(θ^2) + m g cos θ", NE, ["notation", "dimension"], "dimension"),  # 2 m l θ θ̇: a momentum
     ])
     add("leibniz", "pendulum_equation_of_motion", "thetaddot = -g/l*sin(theta)", PENDULUM_EOM, [
         ("d²θ/dt² = -g/l sin θ", EQ, "notation"),
