@@ -455,4 +455,9 @@ def time_derivative(expr: sympy.Expr, order: int, ns, shown: str, position: int)
     for _ in range(order):
         rates = {s: _rate(s, ns, shown, position) for s in sorted(expr.free_symbols, key=lambda s: s.name)}
         expr = sympy.Add(*(expr.diff(s) * rate for s, rate in rates.items() if rate != 0))
+    if expr.has(sympy.DiracDelta, sympy.Heaviside, sympy.Derivative, sympy.Subs):
+        # sign(x), Abs(x)'s derivative at 0, atan2 across its cut: no derivative everywhere
+        raise ExpressionError(f"'{shown}' is applied to something with no derivative everywhere (a jump, as "
+                              "in sign)", position, "syntax",
+                              "differentiate it yourself and write the derivatives with dots, as in θ̇ or ẍ")
     return expr

@@ -343,6 +343,7 @@ def test_d_dt_of_an_expression_with_a_declared_time_differentiates_it_too():
     ("d/dt(m θ̇₁)", "'d/dt' needs the time derivative of theta1dot", "with dots", "unknown_name"),
     ("d/dt(x θ)^2", "'d/dt(x θ)^2' is ambiguous", "(d/dt(x θ))^2", "ambiguous"),
     ("d/dt(x θ)²", "'d/dt(x θ)²' is ambiguous", "(d/dt(x θ))^2", "ambiguous"),
+    ("d/dt(m sign(x) ẋ)", "'d/dt' is applied to something with no derivative everywhere", "with dots", "syntax"),
 ])
 def test_d_dt_of_an_expression_is_refused_where_a_derivative_is_missing_or_the_power_is_ambiguous(ns, text, named,
                                                                                                   fix, code):
