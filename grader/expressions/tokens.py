@@ -96,6 +96,12 @@ _PUNCTUATION = {
 }
 
 
+# LaTeX environments that only lay equations out (\begin{aligned} ... \end{aligned}).
+# (Not alignat, whose column count {2} would read as a factor.)
+_LAYOUT_ENVIRONMENTS = {"aligned", "align", "gather", "gathered", "split", "equation", "eqnarray", "multline",
+                        "flalign"}
+
+
 # Maxima's constants, typed after a '%' (STACK's %pi, %e, %i).
 _MAXIMA_CONSTANT = re.compile(r"(pi|e|i)(?![A-Za-z0-9_])")
 
@@ -113,6 +119,7 @@ class _Tokenizer:
         self.i = 0
         self.tokens: list[Token] = []
         self.space = False
+        self.aligned = 0  # depth of \begin{aligned} and the like, where '&' only aligns
 
     def emit(self, kind: str, value, start: int, end: int, **extra) -> Token:
         token = Token(kind, value, start, end, self.text[start:end], self.space, **extra)
@@ -219,6 +226,9 @@ class _Tokenizer:
             self.emit("bad", ch, start, start + 2,
                       error=ExpressionError("':=' (a definition) is not part of a formula", start, "syntax",
                                             "write an equation with ="))
+        elif ch == "&" and self.aligned:  # an alignment point of \begin{aligned}: nothing to a grader
+            self.space = True
+            self.i += 1
         elif ch in _PUNCTUATION:
             message, code, hint = _PUNCTUATION[ch]
             self.emit("bad", ch, start, start + 1, error=ExpressionError(message, start, code, hint))
@@ -386,6 +396,9 @@ class _Tokenizer:
         if text[start + 1:j] == "degree":
             self.degrees(start, j)
             return
+        if text[start + 1:j] in ("begin", "end"):
+            self.environment(start, j, text[start + 1:j])
+            return
         kind, value = classify_command(text[start + 1:j], start)
         if kind == "function" and value == "log" and j < self.n and text[j] == "_":
             self.logarithm_base(start, j)
@@ -414,6 +427,24 @@ class _Tokenizer:
             self.emit("bar", {"lvert": "open", "rvert": "close"}.get(value), start, j)
         else:
             self.emit("command", value, start, j)
+
+    def environment(self, start: int, j: int, which: str) -> None:
+        r"""``\begin{aligned}`` … ``\end{aligned}`` (and align, gather, split, equation, eqnarray) around
+        equations pasted from a LaTeX document: only layout, with ``&`` alignment points and ``\\``
+        between the equations (read as new lines). Any other environment is refused by name."""
+        k = j
+        while k < self.n and is_space(self.text[k]):
+            k += 1
+        close = self.matching_brace(k) if k < self.n and self.text[k] == "{" else -1
+        name = self.text[k + 1:close].strip() if close > k else ""
+        shown = self.text[start:close + 1] if close > k else self.text[start:j]
+        if name.rstrip("*") not in _LAYOUT_ENVIRONMENTS:
+            raise ExpressionError(f"the LaTeX environment {shown} is not supported", start, "unsupported_function",
+                                  "type the equations one per line, or separated by ';', without \\begin and "
+                                  "\\end (\\begin{aligned} … \\end{aligned} is read)")
+        self.aligned = max(0, self.aligned + (1 if which == "begin" else -1))
+        self.space = True
+        self.i = close + 1
 
     def logarithm_base(self, start: int, j: int) -> None:
         r"""``\log_{10}``, ``\log_2``: a name ``log_10`` that `resolve_name` reads as a logarithm to a base."""

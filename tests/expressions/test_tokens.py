@@ -234,3 +234,32 @@ def test_a_long_run_of_superscript_letters_is_refused_briefly(text):
     with pytest.raises(ExpressionError) as err:
         tokenize(text)
     assert len(err.value.message) < 300 and len(err.value.hint) < 100
+
+
+@pytest.mark.parametrize("text, expected", [
+    (r"\begin{aligned} x &= 1 \\ y &= 2 \end{aligned}",
+     [("name", "x"), ("op", "="), ("number", 1), ("newline", "\n"), ("name", "y"), ("op", "="), ("number", 2)]),
+    (r"\begin{align*} x &= 1 \end{align*}", [("name", "x"), ("op", "="), ("number", 1)]),
+    ("\\begin {gather}\nx = 1\n\\end {gather}", [("newline", "\n"), ("name", "x"), ("op", "="), ("number", 1),
+                                                 ("newline", "\n")]),
+])
+def test_a_layout_environment_around_pasted_equations_is_only_layout(text, expected):
+    # \begin{aligned} ... \end{aligned}: its & are alignment points, its \\ separate the equations
+    assert kinds(text) == expected
+
+
+@pytest.mark.parametrize("text, named", [
+    (r"\begin{cases} x = 1 \end{cases}", r"\begin{cases}"),
+    (r"\begin{alignat}{2} x &= 1 \end{alignat}", r"\begin{alignat}"),   # its {2} would read as a factor
+    (r"\begin{pmatrix} 1 & 2 \end{pmatrix}", r"\begin{pmatrix}"),
+])
+def test_other_environments_are_refused_by_name(text, named):
+    with pytest.raises(ExpressionError) as err:
+        tokenize(text)
+    assert named in err.value.message and r"\begin{aligned}" in err.value.hint
+
+
+@pytest.mark.parametrize("text", ["x &= 1", r"\end{aligned} x &= 1", "a & b"])
+def test_an_ampersand_outside_an_aligned_environment_is_still_refused(text):
+    tokens = tokenize(text)
+    assert any(t.kind == "bad" and t.text == "&" for t in tokens)
