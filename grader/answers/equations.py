@@ -504,12 +504,20 @@ def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: d
     numerator, denominator = sympy.fraction(ratio)
     if deadline is not None and time.monotonic() > deadline:
         return None
-    if _nonzero_on(denominator, domains) is not True:
+    # A denominator that vanishes only where the answer does (x = 1 against (x - 1)**3 = 0: the ratio
+    # is 1/(x - 1)**2) removes no solution either.
+    rest_of_denominator = _without_powers_of(denominator, answer)
+    if _nonzero_on(rest_of_denominator, domains) is not True:
         return None  # not a multiple of the reference at all
-    numerator = _without_powers_of(numerator, reference)
-    if _nonzero_on(numerator, domains) is True:
-        return Comparison(True, "proved", "the reference multiplied by a factor that depends on the state "
-                          "and is nonzero on the whole declared domain", evidence={"method": "symbolic"})
+    rest = _without_powers_of(numerator, reference)
+    if _nonzero_on(rest, domains) is True:
+        if rest == numerator and rest_of_denominator == denominator:
+            return Comparison(True, "proved", "the reference multiplied by a factor that depends on the state "
+                              "and is nonzero on the whole declared domain", evidence={"method": "symbolic"})
+        return Comparison(True, "proved", "the same solutions as the reference: your equation is the reference "
+                          "multiplied by a factor that is zero or undefined only where both equations hold",
+                          evidence={"method": "symbolic"})
+    numerator = rest
     example = _sign_change(numerator, *samplers) if samplers is not None else None
     if example is not None:
         return Comparison(False, "proved", "your equation is the reference multiplied by a factor that depends "
@@ -522,19 +530,21 @@ def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: d
 
 
 def _without_powers_of(numerator: sympy.Expr, reference: sympy.Expr) -> sympy.Expr:
-    """``numerator`` with the reference's own numerator divided out as often as it goes.
+    """``numerator`` with every factor it shares with the reference's own numerator divided out, as
+    often as it goes (their greatest common divisor, so a part of the reference counts too).
 
     A factor that vanishes only where the reference does adds no solution: ``(l*thetaddot + g*sin(theta))**2 = 0``
-    holds exactly where the reference does, so only the rest of the factor must be nonzero."""
+    holds exactly where the reference does, and ``(x - 1)*(x + 3) = 0`` where ``(x - 1)**2*(x + 3) = 0``
+    does, so only the rest of the factor must be nonzero."""
     try:
         own = sympy.fraction(sympy.together(reference))[0]
         if own.is_number:
             return numerator
         for _ in range(FACTOR_MAX_POWER):
-            quotient, remainder = sympy.div(numerator, own)
-            if remainder != 0 or quotient == 0:
+            common = sympy.gcd(numerator, own)
+            if common.is_number:
                 break
-            numerator = quotient
+            numerator = sympy.cancel(numerator / common)
     except (sympy.PolynomialError, sympy.polys.polyerrors.PolificationFailed, ValueError, TypeError,
             ZeroDivisionError):
         pass
@@ -901,11 +911,36 @@ def _nonzero_on(expr: sympy.Expr, domains: dict) -> bool | None:
             if factor.is_zero is False and factor.is_finite:
                 continue
             return None
-        if factor.is_positive or factor.is_negative or _signed_as_squares(factor):
+        if factor.is_positive or factor.is_negative or _signed_as_squares(factor) or _no_real_root(factor, domains):
             continue
         if _nonzero_in_balls(factor, domains) is not True:
             return None
     return True
+
+
+def _no_real_root(expr: sympy.Expr, domains: dict) -> bool:
+    """Whether ``expr``, a polynomial in one variable with rational coefficients, has no real root
+    in that variable's declared domain (ends included), counted exactly (Sturm): ``x**2 + 2*x + 4``
+    on the whole real line, which no box of finite x can bound away from zero."""
+    symbols = expr.free_symbols
+    if len(symbols) != 1 or _nodes(expr) > FACTOR_MAX_NODES:
+        return False
+    (symbol,) = symbols
+    domain = domains.get(symbol)
+    if domain is None:
+        return False
+    lo, hi = getattr(domain, "lo", -math.inf), getattr(domain, "hi", math.inf)
+    if getattr(domain, "kind", None) in ("positive", "nonnegative"):
+        lo = 0.0
+    try:
+        poly = sympy.Poly(expr, symbol)
+        if poly.degree() < 1 or poly.get_domain() not in (sympy.ZZ, sympy.QQ):
+            return False
+        roots = poly.count_roots(None if math.isinf(lo) else sympy.Rational(lo),
+                                 None if math.isinf(hi) else sympy.Rational(hi))
+    except (sympy.PolynomialError, ValueError, TypeError):
+        return False
+    return roots == 0
 
 
 _SQUARES = ((sympy.cos(_U)**2, 1 - sympy.sin(_U)**2), (sympy.sin(_U)**2, 1 - sympy.cos(_U)**2),

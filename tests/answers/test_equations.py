@@ -489,3 +489,28 @@ def test_a_power_of_the_reference_adds_no_solution(pendulum, answer, expected):
 def test_a_parameter_factor_common_to_every_term_must_be_nonzero_too(answer, expected):
     v = check(HOOP_EOM, answer, HOOP, kind="equation")
     assert v.verdict == expected, v.reason
+
+
+# The same solutions the other way round, and factors with no real root anywhere on the real line.
+ONE_UNKNOWN = {"x": {"dimension": "dimensionless", "domain": "real"}}
+
+
+@pytest.mark.parametrize("reference, answer, expected", [
+    ("(x - 1)^3 = 0", "x = 1", "equivalent"),          # the answer is a root of the reference: 1/(x - 1)^2
+    ("(x - 1)^2 (x + 3) = 0", "(x - 1)(x + 3) = 0", "equivalent"),
+    ("(x - 1)^2 (x + 3) = 0", "x = 1", "not_equivalent"),   # x = -3 lost
+    ("x = 2", "x^3 = 8", "equivalent"),                # x^2 + 2x + 4 has no real root (Sturm)
+    ("x = 2", "(x^2 + 1)(x - 2) = 0", "equivalent"),
+    ("x = 2", "(x^2 - 2)(x - 2) = 0", "not_equivalent"),   # x = ±sqrt(2) added
+    ("x = 2", "x^4 = 16", "not_equivalent"),           # x = -2 added
+])
+def test_equations_with_the_same_real_solutions_in_one_unknown(reference, answer, expected):
+    v = check(reference, answer, ONE_UNKNOWN, kind="equation")
+    assert v.verdict == expected, v.reason
+
+
+def test_a_root_free_polynomial_factor_is_proved_nonzero_only_inside_the_domain():
+    # x^2 - 5x + 6 = (x - 2)(x - 3): no root on [3.5, 10], two on the whole line
+    assert check("x = 4", "(x^2 - 5x + 6)(x - 4) = 0", {"x": {"dimension": "dimensionless", "domain": [3.5, 10]}},
+                 kind="equation").verdict == "equivalent"
+    assert check("x = 4", "(x^2 - 5x + 6)(x - 4) = 0", ONE_UNKNOWN, kind="equation").verdict == "not_equivalent"
