@@ -159,7 +159,7 @@ def compare_equations(
     refs = compiled_reference or [Compiled(r, backend) for r in reference]
     anss = [Compiled(a, backend, answer_conditions) for a in answer]
     target = options.digits * LOG2_10
-    agreed, digits_seen = 0, math.inf
+    agreed, digits_seen, mixing = 0, math.inf, None
     signs = {}  # the sign of det M at the agreeing parameter points -> one such point
     # each parameter point checks k + 2 states, so half as many parameter points as expression points
     needed = max(3, options.points // 2)
@@ -170,6 +170,7 @@ def compare_equations(
             agreed += 1
             digits_seen = min(digits_seen, outcome[1])
             signs.setdefault(outcome[2], parameters.point(p))
+            mixing = outcome[3]
             if len(signs) == 2:
                 return _vanishing_multiple(k, signs)
             if agreed >= needed:
@@ -208,9 +209,12 @@ def compare_equations(
         if factor is not None:
             return factor
         digits = options.digits if math.isinf(digits_seen) else int(digits_seen)
-        hidden = _hidden_difference(reference, answer, unknowns, parameters, states, options) if k == 1 else None
-        if hidden is not None:
-            return hidden
+        for i, j in _paired_rows(mixing, k):
+            hidden = _hidden_difference([reference[j]], [answer[i]], unknowns, parameters, states, options)
+            if hidden is not None:
+                if k > 1:
+                    hidden.reason = f"equation {i + 1}: {hidden.reason}"
+                return hidden
         return Comparison(
             True,
             "numeric",
@@ -340,6 +344,23 @@ def _hidden_difference(reference: list[sympy.Expr], answer: list[sympy.Expr], un
     return None
 
 
+def _paired_rows(mixing, k: int) -> list[tuple[int, int]]:
+    """``(i, j)``: the answer's equation i is a multiple of the reference's equation j alone (row i of the
+    mixing matrix has one entry that excludes zero, the others contain it); every equation when k = 1.
+    Only such a pair may be compared by `_hidden_difference`: a combination of several reference
+    equations, solved for an acceleration, differs from each of them."""
+    if k == 1:
+        return [(0, 0)]
+    if mixing is None:
+        return []
+    pairs = []
+    for i in range(k):
+        nonzero = [j for j in range(k) if not mixing[i, j].contains(0)]
+        if len(nonzero) == 1:
+            pairs.append((i, nonzero[0]))
+    return pairs
+
+
 def _too_big(expr: sympy.Expr) -> bool:
     """More than FACTOR_MAX_NODES nodes (a stack walk that stops there)."""
     stack, nodes = [expr], 0
@@ -361,7 +382,8 @@ def _values(compiled: list[Compiled], point: dict, prec: int, key):
 
 
 def _one_parameter_point(refs, anss, parameters, states, p, target, options, deadline):
-    """At parameter point p: ("agree", digits, sign of det M) | ("differ", reason, counterexample) | ("skip",) | ("budget",)."""
+    """At parameter point p: ("agree", digits, sign of det M, M) | ("differ", reason, counterexample) | ("skip",)
+    | ("budget",)."""
     k = len(refs)
     params = parameters.point(p)
     prec = int(target) + 32
@@ -418,7 +440,7 @@ def _try_precision(refs, anss, params, states, p, k, prec, target):
             return None
         det_m = M.det()
         if not det_m.contains(0):
-            return ("agree", (scale - noise) / LOG2_10, 1 if det_m > 0 else -1)
+            return ("agree", (scale - noise) / LOG2_10, 1 if det_m > 0 else -1, M)
         if k > 1:
             m_scale = max(_log2_mag(M[i, j]) for i in range(k) for j in range(k))
             if _log2_mag(M.det()) <= k * m_scale - target:

@@ -514,3 +514,18 @@ def test_a_root_free_polynomial_factor_is_proved_nonzero_only_inside_the_domain(
     assert check("x = 4", "(x^2 - 5x + 6)(x - 4) = 0", {"x": {"dimension": "dimensionless", "domain": [3.5, 10]}},
                  kind="equation").verdict == "equivalent"
     assert check("x = 4", "(x^2 - 5x + 6)(x - 4) = 0", ONE_UNKNOWN, kind="equation").verdict == "not_equivalent"
+
+
+@pytest.mark.parametrize("answer, expected", [
+    (f"{SPRING_RADIAL} = 0; m r^2 thetaddot + 2 m r rdot thetadot + m g r sin(theta) (1 + 10^-40) = 0",
+     "not_equivalent"),   # one row off by less than the judge's digits
+    (f"m rddot - m r thetadot^2 - m g cos(theta) (1 + 10^-40) + k (r - L) = 0; {SPRING_ANGULAR} = 0",
+     "not_equivalent"),
+    (f"{SPRING_ANGULAR} = 0; 3 ({SPRING_RADIAL}) (1 + 10^-40) = 0", "equivalent"),   # a factor, not a difference
+    (f"{SPRING_RADIAL} + ({SPRING_ANGULAR})/r = 0; {SPRING_RADIAL} - ({SPRING_ANGULAR})/r = 0", "equivalent"),
+])
+def test_a_system_row_off_below_the_judges_digits_is_found_as_for_one_equation(answer, expected):
+    # rows that are multiples of one reference row each are compared solved for an acceleration
+    lagrange = f"{SPRING_RADIAL} = 0; {SPRING_ANGULAR} = 0"
+    v = check(lagrange, answer, ELASTIC, kind="equation")
+    assert v.verdict == expected, v.reason
