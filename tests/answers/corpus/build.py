@@ -1002,8 +1002,8 @@ def build() -> dict[str, int]:
     for n, item in enumerate(items):
         item = {"id": f"{item['problem']}/{item['question']}/{n:04d}", **item}
         by_problem.setdefault(item["problem"], []).append(item)
-    for old in HERE.glob("*.jsonl"):
-        old.unlink()
+    # Only the files built here are rewritten: other corpus files (other_graders_stack, redteam_2026_11,
+    # equations_redteam) are written by hand or by their own scripts and must survive a rebuild.
     for problem, rows in by_problem.items():
         with open(HERE / f"{problem}.jsonl", "w", encoding="utf-8") as f:
             for row in rows:
