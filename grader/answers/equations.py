@@ -203,8 +203,11 @@ def compare_equations(
     if agreed >= min(needed, 3):
         if k == 1 and signs:
             signs = _multiple_signs(refs[0], anss[0], parameters, states, needed * 2, target, signs)
-            if len(signs) == 2:
-                return _vanishing_multiple(k, signs)
+        elif signs and len(_paired_rows(mixing, k)) < k:
+            # rows that combine reference equations (a row each multiple of one is screened by its factor)
+            signs = _mixing_signs(refs, anss, parameters, states, needed * 2, target, signs, options.max_bits)
+        if len(signs) == 2:
+            return _vanishing_multiple(k, signs)
         factor = _parameter_factor(reference, answer, parameters, states)
         if factor is not None:
             return factor
@@ -254,6 +257,29 @@ def _multiple_signs(ref: Compiled, ans: Compiled, parameters: Sampler, states: S
     return signs
 
 
+# Further parameter points (ordinary and wide) at which a system's mixing matrix is screened, k + 2 states each.
+MIXING_SIGN_POINTS = 2
+
+
+def _mixing_signs(refs: list[Compiled], anss: list[Compiled], parameters: Sampler, states: Sampler, start: int,
+                  target: float, signs: dict, max_bits: int) -> dict:
+    """`_multiple_signs` for a system: the sign of det M at further parameter points (a point where the
+    answer is no combination at all is left to the points already compared)."""
+    k, prec = len(refs), int(target) + 32
+    points = [(start + i, parameters.point(start + i)) for i in range(MIXING_SIGN_POINTS)]
+    points += [(start + MIXING_SIGN_POINTS + i, parameters.wide_point(i)) for i in range(MIXING_SIGN_POINTS)]
+    for p, params in points:
+        outcome, bits = None, prec
+        while outcome is None and bits <= max_bits:  # more bits where a wide point's scales need them
+            outcome = _try_precision(refs, anss, params, states, p, k, bits, target)
+            bits *= 2
+        if outcome is not None and outcome[0] == "agree":
+            signs.setdefault(outcome[2], params)
+            if len(signs) == 2:
+                break
+    return signs
+
+
 def _parameter_factor(reference: list[sympy.Expr], answer: list[sympy.Expr], parameters: Sampler,
                       states: Sampler) -> Comparison | None:
     """A refusal when an equation of the answer is multiplied (or divided) by a factor free of the
@@ -270,6 +296,8 @@ def _parameter_factor(reference: list[sympy.Expr], answer: list[sympy.Expr], par
             if base.is_number or base in own or factor in own or base.free_symbols & state \
                     or base.is_positive or base.is_negative:
                 continue
+            if _cancels_inside(row, factor, base):
+                continue  # (g - c)*(l*thetaddot/(g - c) + ...): it cancels, as tan(x)*cos(x) does
             if _nonzero_on(base, parameters.domains) is not True:
                 return Comparison(False, "numeric", f"your equation{f' {i + 1}' if len(answer) > 1 else ''} is "
                                   f"multiplied by {base}, which depends on the parameters and could not be shown "
@@ -290,6 +318,17 @@ def _common_factors(expr: sympy.Expr) -> set:
         if not common:
             break
     return common
+
+
+def _cancels_inside(row: sympy.Expr, factor: sympy.Expr, base: sympy.Expr) -> bool:
+    """Whether the rest of ``row`` divides by ``base`` where ``factor`` multiplies by it (or the other way):
+    then the product is defined and the same where ``base`` vanishes (a removable point), no factor."""
+    try:
+        numerator, denominator = sympy.fraction(sympy.together(row / factor))
+    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+        return False
+    divides = factor.is_Pow and factor.exp.is_negative
+    return (numerator if divides else denominator).has(base)
 
 
 def _vanishing_multiple(k: int, signs: dict) -> Comparison:
