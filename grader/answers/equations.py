@@ -7,7 +7,9 @@ same equations: the student's residuals are ``M @`` the reference's residuals fo
 that is invertible and free of the state, or, for equations of motion, ``A(state) @`` them for a
 mixing matrix that depends on the state and is provably invertible on the whole declared domain
 (the unsolved Euler-Lagrange equations ``M(q) qddot = F(q, qdot)`` against the solved reference
-``qddot = M(q)**-1 F``): see `state_dependent_mixing`.
+``qddot = M(q)**-1 F``): see `state_dependent_mixing`. A factor (or mixing) free of the state must
+still be nonzero (invertible) for every value of the parameters: ``(omega**2 R - g)(...) = 0`` says
+nothing when ``omega**2 R = g`` (`_vanishing_multiple`, `_parameter_factor`).
 
 Numerically: fix the parameters at a sample point, take ``k + 2`` states (``k`` equations), solve
 ``M`` from the first ``k`` states and check, in ball arithmetic, that the others satisfy

@@ -4,7 +4,9 @@ Supported: ``\frac{a}{b}`` (``\dfrac``, ``\tfrac``), ``\sqrt{x}``, ``\sqrt[n]{x}
 ``\cdot``, ``\times``, ``\left( \right)`` (and the sized ``\bigl( \Bigr)``), ``\sin`` and friends, Greek letters
 ``\theta``, ``\dot{\theta}``, ``\ddot{\theta}``, ``^{...}``, ``_{...}``, ``{}``
 grouping, ``\pi``, spacing commands and ``\mathrm{...}`` around names, degrees after a number
-(``30^\circ``, ``30\degree``), and ``$ $``, ``\( \)`` or ``\[ \]`` around it all.
+(``30^\circ``, ``30\degree``), and ``$ $``, ``\( \)`` or ``\[ \]`` around it all; equations in
+``\begin{aligned}`` … ``\end{aligned}`` (and align, gather, split, equation) with ``&`` and ``\\``
+(read by :mod:`.tokens`).
 ``\frac`` reads an unbraced argument as LaTeX does, one digit, letter or command: ``\frac12``, ``\frac gl``,
 ``\frac\pi2`` (a command's name ends at its last letter, so that is π/2; elsewhere ``\omega2`` is the name
 ω2, as ``ω2`` is).
