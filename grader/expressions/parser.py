@@ -35,11 +35,12 @@ import sympy
 
 from .printing import to_latex, to_text
 
+from .dimensions import parse_dimension
 from .errors import ExpressionError
 from .functions import FUNCTIONS, INVERSES
 from .leibniz import dotted, read_leibniz, time_derivative
 from .magnitudes import checked, guarded_pow, not_real
-from .names import resolve_name
+from .names import derivative_name, resolve_name
 from .tokens import Token, check_brackets, tokenize
 from .variables import Namespace
 
@@ -52,6 +53,7 @@ MAX_LENGTH = 2000
 MAX_RECURSION = 200
 
 _ADD, _MUL, _POW = 10, 20, 30
+_TIME = parse_dimension("time")
 # \pi2, \omega12, \pi2x: a LaTeX command with digits (and letters) after it, which the tokenizer reads
 # as one name (see latex_argument).
 _COMMAND_THEN_DIGITS = re.compile(r"^\\([A-Za-z]+)\d[A-Za-z0-9]*$")
@@ -434,10 +436,12 @@ class _Parser:
 
     def time_argument(self, token: Token, value: sympy.Expr) -> bool:
         """Skip a ``(t)`` typed right after a variable (``θ(t)``, ``θ̈(t)``, ``\\ddot{\\theta}(t)``) when no
-        variable t is declared: the variable as a function of time, which it is. True when skipped."""
+        variable t is declared, or t is the declared time and the variable moves (a coordinate or one of
+        its derivatives: the driven pendulum's ``l θ̈(t) = -g sin θ(t) + …``): the variable as a function
+        of time, which it is. A parameter's ``l(t)`` with t declared stays the product. True when skipped."""
         opener = self.peek()
         if not (isinstance(value, sympy.Symbol) and opener.kind == "open" and opener.value == "("
-                and opener.pos == token.end and "t" not in self.ns.names):
+                and opener.pos == token.end and ("t" not in self.ns.names or self.moves_in_time(value.name))):
             return False
         inner, closer = self.tokens[self.i + 1:self.i + 3]
         if not (inner.kind == "name" and inner.value == "t" and inner.order == 0
@@ -446,6 +450,16 @@ class _Parser:
         self.i += 3
         self.note(f"read '{self.text[token.pos:closer.end]}' as {token.text}, a function of time")
         return True
+
+    def moves_in_time(self, name: str) -> bool:
+        """With a variable t declared as the time: whether ``name`` is a coordinate or a derivative of one
+        (by kind, or by a declared derivative when no kind is given)."""
+        time = self.ns["t"]
+        if not (time.kind == "time" or time.dimension == _TIME) or name not in self.ns.names:
+            return False
+        if self.ns[name].kind in ("coordinate", "velocity", "acceleration"):
+            return True
+        return self.ns[name].kind == "parameter" and (name.endswith("dot") or derivative_name(name, 1) in self.ns.names)
 
     def splice(self, token: Token, parts: list[str]) -> None:
         """Replace a glued name (``mg``, ``sin2x``) by one token per part, then parse on.

@@ -714,9 +714,29 @@ def test_a_variable_of_time_written_with_its_argument(timeless_ns, text, plain):
     assert parse(text, timeless_ns) == parse(plain, timeless_ns)
 
 
-def test_a_time_argument_is_noted_and_only_skipped_when_no_variable_t_is_declared(timeless_ns, ns):
+@pytest.mark.parametrize("declared, text, plain", [
+    (("t", "time", "real", "time"), "θ(t)", "theta"),
+    (("t", "time", "real", "time"), "l θ̈(t) + g sin θ(t)", "l thetaddot + g sin(theta)"),
+    (("t", "time", "real", "time"), "\\ddot{\\theta}(t) cos(t g/l)", "thetaddot cos(t g/l)"),
+    (("t", "time", "real", "parameter"), "θ'(t)", "thetadot"),      # a time by its dimension
+    (("t", "time", "real", "time"), "l(t)", "l t"),                  # a parameter: the product
+    (("t", "length", "real", "parameter"), "θ(t)", "theta t"),       # t no time: the product
+])
+def test_a_variable_of_the_motion_takes_the_declared_time_as_its_argument(declared, text, plain):
+    # the driven pendulum declares t (its support moves with cos(w t)) and students write θ(t) there too
+    namespace = Namespace([Variable("g", "acceleration", "positive"), Variable("l", "length", "positive"),
+                           Variable("theta", "angle", "real", "coordinate"),
+                           Variable("thetadot", "angular_velocity", "real", "velocity"),
+                           Variable("thetaddot", "angular_acceleration", "real", "acceleration"),
+                           Variable(*declared)])
+    assert parse(text, namespace) == parse(plain, namespace)
+
+
+def test_a_time_argument_is_noted_and_only_skipped_for_a_variable_of_the_motion(timeless_ns, ns):
     assert "read 'θ(t)' as θ, a function of time" in parse_expression("θ(t)", timeless_ns).notes
-    assert parse("theta(t)", ns) == sym(ns, "theta") * sym(ns, "t")  # t declared: a product, as before
+    # t declared as the time: a coordinate's θ(t) is still θ at time t, a parameter's l(t) the product
+    assert parse("theta(t)", ns) == sym(ns, "theta")
+    assert parse("l(t)", ns) == sym(ns, "l") * sym(ns, "t")
     for text in ("θ (t)", "θ(s)", "θ(2t)"):  # not the argument t right after the name: refused as before
         with pytest.raises(ExpressionError):
             parse(text, timeless_ns)
