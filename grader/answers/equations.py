@@ -523,6 +523,42 @@ FACTOR_MAX_BOXES = 256
 def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: dict,
                            samplers: tuple[Sampler, Sampler] | None = None,
                            deadline: float | None = None) -> Comparison | None:
+    """`_state_dependent_factor`, tried again with every positive variable under a root written as
+    the square of a new positive variable when the first try finds no nonzero factor: ``T = 2 pi
+    sqrt(L/g)`` against ``g = 4 pi^2 L/T^2`` (all positive) is a multiple that sympy cancels only once
+    ``sqrt(L/g)`` is ``l/k`` with ``L = l^2``, ``g = k^2`` (a bijection of the positive reals, so a
+    factor nonzero in the new variables is nonzero in the old)."""
+    found = _state_dependent_factor(reference, answer, domains, samplers, deadline)
+    if found is not None and found.equivalent:
+        return found
+    squares = _positive_roots_as_squares(reference, answer, domains)
+    if squares is not None and not (deadline is not None and time.monotonic() > deadline):
+        again = _state_dependent_factor(*squares, samplers=None, deadline=deadline)
+        if again is not None and again.equivalent:
+            return again
+    return found
+
+
+def _positive_roots_as_squares(reference: sympy.Expr, answer: sympy.Expr, domains: dict):
+    """(reference, answer, domains) with each positive variable that appears under a fractional power
+    replaced by the square of a new positive variable, or None when there is none."""
+    under_roots = set()
+    for expr in (reference, answer):
+        for power in expr.atoms(sympy.Pow):
+            if power.exp.is_Rational and not power.exp.is_Integer:
+                under_roots |= {s for s in power.base.free_symbols
+                                if getattr(domains.get(s), "kind", None) == "positive"}
+    if not under_roots:
+        return None
+    squares = {s: sympy.Dummy(s.name, positive=True) for s in under_roots}
+    replacement = {s: t**2 for s, t in squares.items()}
+    new_domains = {squares.get(s, s): d for s, d in domains.items()}
+    return reference.xreplace(replacement), answer.xreplace(replacement), new_domains
+
+
+def _state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: dict,
+                            samplers: tuple[Sampler, Sampler] | None = None,
+                            deadline: float | None = None) -> Comparison | None:
     """Is ``answer`` the ``reference`` residual times a factor that is nonzero on the whole domain?
 
     The ratio ``answer/reference`` is cancelled to ``n/d`` in lowest terms. When ``d`` is provably
@@ -561,8 +597,11 @@ def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: d
     if not (_nodes(reference) <= FACTOR_MAX_NODES and _nodes(answer) <= FACTOR_MAX_NODES):
         return None
     try:
-        ratio = sympy.cancel(sympy.together(answer / reference))
-    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+        ratio = sympy.together(answer / reference)
+        # a root of a number (sqrt(2 g h) = sqrt(2) sqrt(g) sqrt(h)) cancels only in its extension
+        roots = any(p.base.is_Rational and not p.exp.is_Integer for p in ratio.atoms(sympy.Pow))
+        ratio = sympy.cancel(ratio, extension=True) if roots else sympy.cancel(ratio)
+    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError, NotImplementedError):
         return None
     numerator, denominator = sympy.fraction(ratio)
     if deadline is not None and time.monotonic() > deadline:

@@ -544,3 +544,23 @@ def test_a_system_row_off_below_the_judges_digits_is_found_as_for_one_equation(a
     lagrange = f"{SPRING_RADIAL} = 0; {SPRING_ANGULAR} = 0"
     v = check(lagrange, answer, ELASTIC, kind="equation")
     assert v.verdict == expected, v.reason
+
+
+# A positive variable under a root: sympy cancels the factor only once the variable is a square.
+PERIOD = {n: {"dimension": "dimensionless", "domain": "positive"} for n in ("T", "L", "g", "a", "b", "x", "v", "h")}
+
+
+@pytest.mark.parametrize("reference, answer, expected", [
+    ("g = 4 pi^2 L/T^2", "T = 2 pi sqrt(L/g)", "equivalent"),   # make T the subject
+    ("T = 2 pi sqrt(L/g)", "g = 4 pi^2 L/T^2", "equivalent"),
+    ("T^2 = 4 pi^2 L/g", "T = 2 pi sqrt(L/g)", "equivalent"),
+    ("a = b", "sqrt(a) = sqrt(b)", "equivalent"),
+    ("x^2 = a", "x = sqrt(a)", "equivalent"),                   # x > 0: the root -sqrt(a) is outside
+    ("v^2 = 2 g h", "v = sqrt(2 g h)", "equivalent"),
+    ("g = 4 pi^2 L/T^2", "T = pi sqrt(L/g)", "not_equivalent"),
+    ("g = 4 pi^2 L/T^2", "T = 2 pi sqrt(g/L)", "not_equivalent"),
+    ("x^2 = a", "x = sqrt(a) + sqrt(b)", "not_equivalent"),
+])
+def test_a_positive_variable_under_a_root_is_handled_as_a_square(reference, answer, expected):
+    v = check(reference, answer, PERIOD, kind="equation")
+    assert v.verdict == expected, v.reason
