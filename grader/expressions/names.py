@@ -300,7 +300,16 @@ def _lookup(raw: str, ns: "Namespace"):
     matches = ns.names_by_key.get(raw.replace("_", ""), ())
     if len(matches) == 1:
         return ns.symbol(matches[0])
+    # thetaddot_1, thetadot2: the dots typed before the index, for theta1ddot, theta2dot
+    moved = _DOTS_BEFORE_INDEX.match(raw)
+    if moved is not None:
+        matches = ns.names_by_key.get(moved.group(1).replace("_", "") + moved.group(3) + moved.group(2), ())
+        if len(matches) == 1:
+            return ns.symbol(matches[0])
     return None
+
+
+_DOTS_BEFORE_INDEX = re.compile(r"^([A-Za-z_]*?[A-Za-z])_?(d?dot)_?(\d+)$")
 
 
 def _resolve_derivative(raw: str, ns: "Namespace", order: int, typed: str, position: int) -> Resolved:

@@ -368,9 +368,14 @@ class _Tokenizer:
         return "", i
 
     def finish_name(self, start: int, name: str, i: int, order: int, **extra) -> None:
+        primed = i < self.n and self.text[i] in PRIME_CHARS
         while i < self.n and self.text[i] in PRIME_CHARS:
             order += PRIME_CHARS[self.text[i]]
             i += 1
+        if primed and i < self.n and (self.text[i] in SUBSCRIPT_DIGITS or self.text[i] == "_"):
+            # θ''₁, theta''_1, x'_{2}: the subscript typed after the primes (not x'2: a product)
+            suffix, i = self.subscript_after_accent(i)
+            name += suffix
         self.emit("name", name, start, i, order=order, **extra)
 
     def matching_brace(self, open_at: int) -> int:

@@ -164,3 +164,19 @@ def test_functions_of_other_systems_are_refused_with_the_way_to_write_them(text,
     with pytest.raises(ExpressionError) as err:
         parse_expression(text, ns)
     assert hint in err.value.hint
+
+
+@pytest.mark.parametrize("typed, canonical", [
+    ("thetaddot_1", "theta1ddot"), ("thetaddot1", "theta1ddot"), ("thetadot_2", "theta2dot"),
+    ("theta_ddot_1", "theta1ddot"), ("xddot_2", "x2ddot"), ("theta1ddot", "theta1ddot"),
+])
+def test_the_dots_typed_before_the_index_name_the_indexed_derivative(typed, canonical):
+    ns = Namespace([Variable(name, "1/s^2") for name in ("theta1ddot", "theta2ddot", "x2ddot")]
+                   + [Variable(name, "1/s") for name in ("theta1dot", "theta2dot")])
+    resolved = resolve_name(typed, ns)
+    assert resolved.kind == "symbol" and resolved.value == ns.symbol(canonical)
+
+
+def test_the_dots_before_an_index_do_not_shadow_a_declared_name():
+    ns = Namespace([Variable("thetadot1", "1/s"), Variable("theta1dot", "1/s")])
+    assert resolve_name("thetadot1", ns).value == ns.symbol("thetadot1")

@@ -263,3 +263,15 @@ def test_other_environments_are_refused_by_name(text, named):
 def test_an_ampersand_outside_an_aligned_environment_is_still_refused(text):
     tokens = tokenize(text)
     assert any(t.kind == "bad" and t.text == "&" for t in tokens)
+
+
+@pytest.mark.parametrize("text, name, order", [
+    ("theta''_1", "theta_1", 2), ("θ''₁", "theta_1", 2), ("x'_{2}", "x_2", 1), ("θ'₁₂", "theta_12", 1),
+])
+def test_a_subscript_typed_after_the_primes_belongs_to_the_name(text, name, order):
+    [token] = tokenize(text)[:-1]
+    assert (token.kind, token.value, token.order) == ("name", name, order)
+
+
+def test_digits_after_a_prime_without_an_underscore_are_not_a_subscript():
+    assert [t.kind for t in tokenize("x'2")[:-1]] == ["name", "number"]
