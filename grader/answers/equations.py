@@ -173,7 +173,7 @@ def compare_equations(
             digits_seen = min(digits_seen, outcome[1])
             signs.setdefault(outcome[2], parameters.point(p))
             mixing = outcome[3]
-            if len(signs) == 2:
+            if len(signs) == 2 and unknowns:
                 return _vanishing_multiple(k, signs)
             if agreed >= needed:
                 break
@@ -202,7 +202,11 @@ def compare_equations(
             )
         elif kind == "budget":
             return Comparison(None, "none", "the time budget ran out while comparing", budget_exceeded=True)
-    if agreed >= min(needed, 3):
+    if agreed >= min(needed, 3) and unknowns:
+        # Equations of motion, whose reference determines the accelerations for every parameter value:
+        # a factor (a mixing) free of the state must then be nonzero (invertible) for every one too. An
+        # equation in an answer X may be degenerate itself ((k - m w^2) X = F0 at resonance, where
+        # X = F0/(k - m w^2) is undefined: no solution either way), so it is not screened so.
         if k == 1 and signs:
             signs = _multiple_signs(refs[0], anss[0], parameters, states, needed * 2, target, signs)
         elif signs and len(_paired_rows(mixing, k)) < k:
@@ -213,6 +217,7 @@ def compare_equations(
         factor = _parameter_factor(reference, answer, parameters, states)
         if factor is not None:
             return factor
+    if agreed >= min(needed, 3):
         digits = options.digits if math.isinf(digits_seen) else int(digits_seen)
         for i, j in _paired_rows(mixing, k):
             hidden = _hidden_difference([reference[j]], [answer[i]], unknowns, parameters, states, options)

@@ -564,3 +564,18 @@ PERIOD = {n: {"dimension": "dimensionless", "domain": "positive"} for n in ("T",
 def test_a_positive_variable_under_a_root_is_handled_as_a_square(reference, answer, expected):
     v = check(reference, answer, PERIOD, kind="equation")
     assert v.verdict == expected, v.reason
+
+
+FORCED = {"k": {"dimension": "stiffness", "domain": "positive"}, "m": {"dimension": "mass", "domain": "positive"},
+          "w": {"dimension": "angular_velocity", "domain": "positive"}, "F0": {"dimension": "force", "domain": "positive"},
+          "X": {"dimension": "length", "domain": "real", "kind": "answer"}}
+
+
+@pytest.mark.parametrize("reference, answer", [
+    ("(k - m w^2) X = F0", "X = F0/(k - m w^2)"),
+    ("X = F0/(k - m w^2)", "X (k - m w^2) = F0"),
+])
+def test_an_equation_degenerate_for_some_parameters_itself_is_not_held_to_the_parameter_rule(reference, answer):
+    # at resonance k = m w^2 the reference has no solution and the answer is undefined: no solution either
+    v = check(reference, answer, FORCED, kind="equation")
+    assert v.verdict == "equivalent", v.reason
