@@ -652,8 +652,7 @@ def _without_powers_of(numerator: sympy.Expr, reference: sympy.Expr) -> sympy.Ex
             if common.is_number:
                 break
             numerator = sympy.cancel(numerator / common)
-    except (sympy.PolynomialError, sympy.polys.polyerrors.PolificationFailed, ValueError, TypeError,
-            ZeroDivisionError):
+    except (sympy.polys.polyerrors.BasePolynomialError, ValueError, TypeError, ZeroDivisionError):
         pass
     return numerator
 
