@@ -96,6 +96,11 @@ _PUNCTUATION = {
 }
 
 
+# An equation's number after a wide space, \quad (2), as the last thing of the equation; \tag{2}.
+_LABEL_AFTER_SPACE = re.compile(r"\s*\(\s*\d+[a-z]?\s*\)(?=\s*(?:$|\\\\|;|,|\n|\\end\b))")
+_TAG = re.compile(r"\*?\s*\{[^{}]*\}")
+
+
 # LaTeX environments that only lay equations out (\begin{aligned} ... \end{aligned}).
 # (Not alignat, whose column count {2} would read as a factor.)
 _LAYOUT_ENVIRONMENTS = {"aligned", "align", "gather", "gathered", "split", "equation", "eqnarray", "multline",
@@ -403,6 +408,14 @@ class _Tokenizer:
             return
         if text[start + 1:j] in ("begin", "end"):
             self.environment(start, j, text[start + 1:j])
+            return
+        label = _LABEL_AFTER_SPACE.match(text, j) if text[start + 1:j] in ("quad", "qquad") else None
+        if text[start + 1:j] == "tag":
+            label = _TAG.match(text, j)
+        if label is not None:
+            # \quad (2), \tag{2}: an equation's number, never a factor 2 of it
+            self.space = True
+            self.i = label.end()
             return
         kind, value = classify_command(text[start + 1:j], start)
         if kind == "function" and value == "log" and j < self.n and text[j] == "_":

@@ -275,3 +275,25 @@ def test_a_subscript_typed_after_the_primes_belongs_to_the_name(text, name, orde
 
 def test_digits_after_a_prime_without_an_underscore_are_not_a_subscript():
     assert [t.kind for t in tokenize("x'2")[:-1]] == ["name", "number"]
+
+
+@pytest.mark.parametrize("text, expected", [
+    (r"x = 1 \quad (2)", [("name", "x"), ("op", "="), ("number", 1)]),
+    (r"x = 1 \qquad (12a)", [("name", "x"), ("op", "="), ("number", 1)]),
+    (r"x = 1 \tag{2}", [("name", "x"), ("op", "="), ("number", 1)]),
+    (r"x = 1 \tag*{A}", [("name", "x"), ("op", "="), ("number", 1)]),
+    (r"x = 1 \quad (2) \\ y = 2", [("name", "x"), ("op", "="), ("number", 1), ("newline", "\n"),
+                                   ("name", "y"), ("op", "="), ("number", 2)]),
+    (r"x = 1 \quad (2); y", [("name", "x"), ("op", "="), ("number", 1), ("op", ";"), ("name", "y")]),
+])
+def test_an_equation_number_after_a_wide_space_or_in_a_tag_is_no_factor(text, expected):
+    # θ̈ = −(g/(2l)) sin θ \quad (2) must not read as the right equation times 2
+    assert kinds(text) == expected
+
+
+@pytest.mark.parametrize("text, expected", [
+    (r"x \quad (2) y", [("name", "x"), ("open", "("), ("number", 2), ("close", ")"), ("name", "y")]),
+    ("x (2)", [("name", "x"), ("open", "("), ("number", 2), ("close", ")")]),
+])
+def test_a_bracketed_number_elsewhere_is_still_a_factor(text, expected):
+    assert kinds(text) == expected
