@@ -130,7 +130,8 @@ class AnswerEvaluator:
             except SceneError as refused:
                 # Both: what the answer still depends on, and why the motion gives no closed form.
                 raise SceneError(self.scene.source, key, f"{first.problem}; {refused.problem}") from None
-            value = self.reduce(spec.expr, target | self.state_symbols(), key)
+            # Every parameter meanwhile: R in the block's y1 − Rφ cancels only along the motion.
+            value = self.reduce(spec.expr, target | self.state_symbols() | self.parameters, key)
             return self.reduce(human_form(value.xreplace(motion)), target, key)
 
     def target(self, spec: AnswerSpec, default_state: bool = True) -> set[sympy.Symbol]:
@@ -151,14 +152,17 @@ class AnswerEvaluator:
             target.add(symbol)
         return target
 
-    def reduce(self, expr: sympy.Expr, target: set[sympy.Symbol], key: str, readable: bool = True) -> sympy.Expr:
+    def reduce(self, expr: sympy.Expr, target: set[sympy.Symbol], key: str, readable: bool = True,
+               signs: dict | None = None) -> sympy.Expr:
         """``expr`` with dynamics solved, in the independent variables, free of what target excludes.
 
         ``readable=False``: cancelled (before velocities are eliminated), not tidied
         (:func:`human_form`), for a caller that only
         evaluates it or substitutes into it and tidies the result (tidying an expression in a
         coordinate that is then fixed costs most of a special value). A variable that only tidying
-        removes is then left, and is an error as any other.
+        removes is then left, and is an error as any other. ``signs``: {coordinate name: ±1}, the
+        sign of a velocity eliminated at an odd power, instead of the one it starts with (a special
+        point reached after the motion has turned back).
         """
         expr = expr.xreplace(self.values)
         keep = {s for s in target if s.name.endswith("ddot")}
@@ -169,7 +173,7 @@ class AnswerEvaluator:
             # (An earlier answer read again, by a condition on it or an answer that is it, is in its
             # readable form already.)
             expr = human_form(expr) if readable else sympy.cancel(expr)
-        expr = self.eliminate_velocities(expr, target, key, readable=readable)
+        expr = self.eliminate_velocities(expr, target, key, readable=readable, signs=signs)
         leftover = expr.free_symbols - target
         hidden = leftover & self.state_symbols(velocities=False)
         if hidden:
@@ -187,13 +191,14 @@ class AnswerEvaluator:
         return expr
 
     def eliminate_velocities(self, expr: sympy.Expr, target: set[sympy.Symbol], key: str,
-                             readable: bool = True) -> sympy.Expr:
+                             readable: bool = True, signs: dict | None = None) -> sympy.Expr:
         """Remove velocities that target excludes with the first integrals of the motion.
 
         First the conserved momenta p_c = ∂L_r/∂u̇_c of cyclic coordinates (∂L_r/∂u_c = 0), all
         at once (they are linear in the velocities), then the Jacobi integral h (energy) for one
         velocity more: u̇² from h = h(initial), or u̇ itself, as ±√, where the motion from
-        [initial] fixes the sign. ``readable=False``: the result not tidied (see :meth:`reduce`).
+        [initial] fixes the sign (or ``signs`` gives it). ``readable=False``: the result not tidied
+        (see :meth:`reduce`).
         """
         def tidy(e):
             return human_form(e) if readable else e
@@ -228,14 +233,15 @@ class AnswerEvaluator:
             lambda e: squared ** (e.exp // 2),
         )
         if u.dot in expr.free_symbols:
-            sign = self.motion_sign(u)
+            sign = (signs or {}).get(u.name) or self.motion_sign(u, pushed=True)
             if sign is None:
                 raise SceneError(self.scene.source, key,
                                  f"{u.dot.name} appears to an odd power, so its sign is not fixed by energy "
                                  "conservation and the motion from [initial] does not fix it either; add it "
                                  "to in_terms_of")
             # Until the first turning point, u̇ keeps the sign it starts with (or, from rest,
-            # the sign of the initial acceleration).
+            # the sign of the initial acceleration); a special point reached after it turns back
+            # gets its sign from the caller (special_values._at_roots).
             expr = expr.xreplace({u.dot: sign * sympy.sqrt(squared)})
         return tidy(expr)
 
@@ -272,8 +278,9 @@ class AnswerEvaluator:
         # Cancelled, not tidied for reading: they are only ever substituted into what is.
         return {v: sympy.factor(sympy.cancel(e)) for v, e in zip(unknowns, solution)}
 
-    def motion_sign(self, u) -> int | None:
-        """The sign of u̇ at the start of the motion from [initial], if [initial] fixes it."""
+    def motion_sign(self, u, pushed: bool = False) -> int | None:
+        """The sign of u̇ at the start of the motion from [initial], if [initial] fixes it
+        (``pushed``: at rest at an equilibrium, +1, the push the roots' search assumes)."""
         from grader.mechanics.special_values import _parameter_points
 
         velocity = self.scene.initial.get(u.dot.name)
@@ -286,7 +293,15 @@ class AnswerEvaluator:
         signs = set()
         for point in _parameter_points(self.scene):
             value = complex(sympy.N(candidate.xreplace({s: sympy.Float(v, 30) for s, v in point.items()})))
-            if abs(value.imag) > 1e-12 or value.real == 0:
+            if abs(value.imag) > 1e-12:
+                return None
+            if value.real == 0:
+                # At rest at an equilibrium (a disk on top of a cylinder): the infinitesimal push
+                # forwards that the roots' search assumes (special_values._direction) and simulation
+                # gives, when this is the one coordinate; with others, what moves it is not known.
+                if (pushed and velocity is not None and len(self.reduction.independent) == 1
+                        and sympy.simplify(candidate) == 0):
+                    return 1
                 return None
             signs.add(1 if value.real > 0 else -1)
         return signs.pop() if len(signs) == 1 else None

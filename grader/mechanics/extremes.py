@@ -43,8 +43,8 @@ def extreme_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     """Closed form of the maximum or minimum of ``spec.expr`` over the motion from [initial]."""
     scene = evaluator.scene
     key = f"answers ({spec.name})"
+    allowed = evaluator.parameters | evaluator.state_symbols(velocities=False) | {scene.time}
     with budget.step("writing the quantity in one coordinate", spec.name):
-        allowed = evaluator.parameters | evaluator.state_symbols(velocities=False) | {scene.time}
         value = evaluator.reduce(spec.expr, allowed, key)
     coordinates = [u for u in evaluator.reduction.independent.values() if u.symbol in value.free_symbols]
     if len(coordinates) != 1 or scene.time in value.free_symbols:
@@ -54,8 +54,16 @@ def extreme_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     u = coordinates[0]
     if u.name not in scene.initial:
         raise SceneError(scene.source, key, f"an extreme over the motion follows it from [initial]; give {u.name}")
+    # The quantity on the way out (u̇ with the sign it starts with) and on the way back (the other
+    # sign): θ̇ of a swing is −√(…) one way and +√(…) the other, and its maximum is on the way back.
+    start = int(_direction(evaluator, u, _parameter_points(scene)[0]))
+    with budget.step("writing the quantity in one coordinate", spec.name):
+        branches = {sign: evaluator.reduce(spec.expr, allowed, key, signs={u.name: sign}) for sign in (start, -start)}
     with budget.step(f"solving for the stationary and turning points in {u.name}", spec.name):
-        candidates = solve_for(sympy.diff(value, u.symbol), u.symbol, scene.source, key)
+        candidates = []
+        for branch in dict.fromkeys(branches.values()):
+            candidates += [r for r in solve_for(sympy.diff(branch, u.symbol), u.symbol, scene.source, key)
+                           if r not in candidates]
         squared = _turning_condition(evaluator, u, key)
         if squared is not None:
             candidates += [r for r in solve_for(squared, u.symbol, scene.source, key) if r not in candidates]
@@ -63,30 +71,33 @@ def extreme_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     want_max = spec.kind == "maximum"
     chosen = None
     for point in _parameter_points(scene):
-        low, high = _motion_range(evaluator, u, point, key)
+        legs = _motion_legs(evaluator, u, point, key)
         best = None
-        for index, candidate in enumerate(candidates):
-            position = _evaluate(candidate, point)
-            if position is None or not _inside(position, low, high, periodic):
-                continue
-            amount = _evaluate(value.xreplace({u.symbol: candidate}), point)
-            if amount is None:
-                continue
-            if best is None or (amount > best[0] + 1e-12 * abs(amount) if want_max
-                                else amount < best[0] - 1e-12 * abs(amount)):
-                best = (amount, index)
+        for sign, low, high in legs:
+            for index, candidate in enumerate(candidates):
+                position = _evaluate(candidate, point)
+                if position is None or not _inside(position, low, high, periodic):
+                    continue
+                amount = _evaluate(branches[sign * start].xreplace({u.symbol: candidate}), point)
+                if amount is None:
+                    continue
+                if best is None or (amount > best[0] + 1e-12 * abs(amount) if want_max
+                                    else amount < best[0] - 1e-12 * abs(amount)):
+                    best = (amount, index, sign * start)
         if best is None:
+            low, high = legs[0][1], legs[0][2]
             raise SceneError(scene.source, key,
                              f"{spec.expr} has no {spec.kind} on the motion from [initial] (no stationary or "
                              f"turning point between {u.name} = {low:.6g} and {high:.6g})"
                              if low is not None and high is not None else
                              f"{spec.expr} has no {spec.kind} on the motion from [initial]: the motion runs away")
         if chosen is None:
-            chosen = best[1]
-        elif _evaluate(candidates[chosen], point) is None or abs(
-                _evaluate(value.xreplace({u.symbol: candidates[chosen]}), point) - best[0]) > 1e-9 * max(1, abs(best[0])):
+            chosen = best[1:]
+        elif _evaluate(candidates[chosen[0]], point) is None or abs(
+                _evaluate(branches[chosen[1]].xreplace({u.symbol: candidates[chosen[0]]}), point) - best[0]
+        ) > 1e-9 * max(1, abs(best[0])):
             raise SceneError(scene.source, key, f"where the {spec.kind} lies depends on the parameter values")
-    result = human_form(value.xreplace({u.symbol: candidates[chosen]}))
+    result = human_form(branches[chosen[1]].xreplace({u.symbol: candidates[chosen[0]]}))
     leftover = result.free_symbols - evaluator.target(spec, default_state=False)
     if leftover:
         raise SceneError(scene.source, key, f"the {spec.kind} still depends on {', '.join(sorted(map(str, leftover)))}")
@@ -99,19 +110,26 @@ def _turning_condition(evaluator, u, key: str) -> sympy.Expr | None:
     return None if squared is None else sympy.numer(sympy.together(squared))
 
 
-def _motion_range(evaluator, u, point: dict, key: str) -> tuple[float | None, float | None]:
+def _motion_legs(evaluator, u, point: dict, key: str) -> list[tuple[int, float | None, float | None]]:
+    """The stretches of the motion from [initial] as (+1 on the way out, −1 on the way back; the
+    range of u covered): out until energy turns it back (or it leaves the domain), back until it
+    turns again, and, if it does, out again over the whole swing."""
     u0 = _evaluate(evaluator.scene.initial[u.name], point)
     direction = _direction(evaluator, u, point)
     speed2 = _speed_squared(evaluator, u, point, key)
     end, why = _travel(u, u0, direction, speed2)
-    other = u0
-    if why == "turns back" or why == "leaves the domain":
-        back, _ = _travel(u, end, -direction, speed2, skip=True) if why == "turns back" else (None, "")
-        other = back if back is not None else (u0 if why == "leaves the domain" else None)
-    ends = [e for e in (end, other) if e is not None]
-    if len(ends) < 2:
-        return (min(u0, end), max(u0, end)) if end is not None else (None, None)
-    return min(ends), max(ends)
+    if end is None:
+        return [(1, None, None)]
+    legs = [(1, min(u0, end), max(u0, end))]
+    if why == "turns back":
+        back, again = _travel(u, end, -direction, speed2, skip=True)
+        if back is None:
+            legs.append((-1, None, None))
+        else:
+            legs.append((-1, min(end, back), max(end, back)))
+            if again == "turns back":
+                legs.append((1, min(end, back), max(end, back)))
+    return legs
 
 
 def _inside(x: float, low: float | None, high: float | None, periodic: bool) -> bool:

@@ -479,8 +479,9 @@ def _invert(evaluator, quad: Quadrature) -> dict[sympy.Symbol, sympy.Expr]:
     return {q: position, u.dot: _readable(sympy.diff(position, t))}
 
 
-def _transcendental_in(expr: sympy.Expr, q: sympy.Symbol) -> sympy.Expr | None:
-    """An inverse circular or hyperbolic function of q in ``expr`` when q is also outside it, else None.
+def _transcendental_in(expr: sympy.Expr, q: sympy.Symbol, functions: tuple = ()) -> sympy.Expr | None:
+    """An inverse circular or hyperbolic function of q in ``expr`` when q is also outside it, else None
+    (``functions``: these function classes instead).
 
     Then t = expr mixes q with a transcendental function of q, as Kepler's equation does
     (t = asin(√r) − √r √(1 − r) for a radial fall): it has no solution for q in elementary
@@ -493,7 +494,8 @@ def _transcendental_in(expr: sympy.Expr, q: sympy.Symbol) -> sympy.Expr | None:
     >>> _transcendental_in(sympy.asin(r/2), r) is None, _transcendental_in(sympy.log(r) + r, r) is None
     (True, True)
     """
-    inverses = sorted((f for f in expr.atoms(*_INVERSES) if q in f.free_symbols), key=sympy.default_sort_key)
+    inverses = sorted((f for f in expr.atoms(*(functions or _INVERSES)) if q in f.free_symbols),
+                      key=sympy.default_sort_key)
     if inverses and q in expr.xreplace({f: sympy.Dummy() for f in inverses}).free_symbols:
         return inverses[0]
     return None
@@ -587,11 +589,14 @@ class _Run:
         for i, u in enumerate(self.coordinates):
             lo = {"positive": 0.0, "nonnegative": 0.0}.get(u.domain.kind, u.domain.lo)
             hi = u.domain.hi
-            for bound in (lo, hi):
+            for bound, outwards in ((lo, -1), (hi, 1)):
                 if math.isfinite(bound):
                     def leave(time, y, i=i, bound=bound):
                         return y[2 * i] - bound
                     leave.terminal = True
+                    # Only leaving counts: a start on the bound moving inwards (θ = 0 of a string
+                    # winding on a post, θ ≥ 0) ended the run at t = 0.
+                    leave.direction = outwards
                     events.append(leave)
 
         def blow_up(time, y):
@@ -682,7 +687,10 @@ def _confirm(evaluator, motion: dict, what: str) -> None:
     point = _point(evaluator)
     run = numeric_motion(evaluator, point)
     t = evaluator.scene.time
-    times = [run.t_end * (k + 1) / _SAMPLES for k in range(_SAMPLES)]
+    # A run that ended early (an event, or the step shrinking to nothing: a string wound up on its post,
+    # θ̇ → ∞) is compared short of its end, where the closed form may already be past its own.
+    ended = run.solution.status != 0
+    times = [run.t_end * (k + 1) / (_SAMPLES + ended) for k in range(_SAMPLES)]
     turns = [run.turning_time(u) for u in run.coordinates]
     turns = [x for x in turns if x is not None]
     for symbol, closed in motion.items():
@@ -703,6 +711,14 @@ def _confirm(evaluator, motion: dict, what: str) -> None:
 
 def _readable(expr: sympy.Expr) -> sympy.Expr:
     """r₀ cosh ωt rather than r₀ e^{ωt}/2 + r₀ e^{−ωt}/2."""
+    if expr.has(sympy.exp):
+        # e^{±x} gathered into cosh x and sinh x first: when that removes every exponential and
+        # shortens the form (an undamped motion), the exponential forms are not worth tidying
+        # (human_form of them costs half a second each; s(t) of a bead on a turning wire).
+        hyperbolic = budget.attempt(lambda: _hyperbolic(expr), 1.0, fallback=lambda: None)
+        if (hyperbolic is not None and not hyperbolic.has(sympy.exp)
+                and sympy.count_ops(hyperbolic) < sympy.count_ops(expr)):
+            return min([hyperbolic, human_form(hyperbolic)], key=lambda e: (sympy.count_ops(e), len(str(e))))
     candidates = [human_form(expr)]
     if expr.has(sympy.exp):
         candidates.append(human_form(exptrigsimp(expr)))

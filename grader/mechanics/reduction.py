@@ -44,8 +44,10 @@ class Reduction:
         # a hanging block, when the answers keep the block's y): the independent variables' start
         # follows from it. The scene read by everything downstream is the one with it completed.
         self.scene = scene = self._with_completed_initial(scene)
+        # The time too: a wire turned at ω, in Cartesian coordinates, leaves sin²ωt + cos²ωt in L_r,
+        # which is free of t (its Jacobi integral, written with t, costs a tidy-up at every use).
         self.lagrangian = without_hidden_coordinates(sympy.expand(self.to_independent(scene.lagrangian)),
-                                                      [u.symbol for u in self.independent.values()])
+                                                      [u.symbol for u in self.independent.values()] + [scene.time])
         self.accelerations: dict[sympy.Symbol, sympy.Expr] = {}
         self.multipliers: dict[str, sympy.Expr] = {}
 
@@ -263,12 +265,60 @@ class Reduction:
         self.multipliers = {k.name: solution[len(us) + i] for i, k in enumerate(scene.constraints)}
 
     def jacobi_integral(self) -> sympy.Expr | None:
-        """h = Σ u̇ ∂L_r/∂u̇ − L_r when it is conserved (L_r free of t), else None."""
-        if sympy.diff(self.lagrangian, self.scene.time) != 0:
+        """h = Σ u̇ ∂L/∂u̇ − L when it is conserved (L free of t), else None.
+
+        L is L_r, or an equivalent Lagrangian free of t when L_r depends on t only through a total
+        derivative dF/dt and a function of t alone (:meth:`autonomous_lagrangian`): a pendulum in a
+        car accelerating at A, whose energy in the car's frame is conserved.
+        """
+        L = self.autonomous_lagrangian()
+        if L is None:
             return None
-        h = sum((u.dot * sympy.diff(self.lagrangian, u.dot) for u in self.independent.values()),
-                sympy.Integer(0)) - self.lagrangian
+        h = sum((u.dot * sympy.diff(L, u.dot) for u in self.independent.values()), sympy.Integer(0)) - L
         return sympy.expand(h)
+
+    def autonomous_lagrangian(self) -> sympy.Expr | None:
+        """L_r, or L_r − dF/dt − g(t) free of t (same equations of motion), or None.
+
+        The terms of L_r linear in the velocities, Σ aᵢ(u, t) u̇ᵢ, are split as aᵢ(u, 0) u̇ᵢ plus
+        ∂F/∂uᵢ with F = ∫ (a₁(u, t) − a₁(u, 0)) du₁, when every aᵢ(u, t) − aᵢ(u, 0) is ∂F/∂uᵢ;
+        dF/dt = Σ ∂F/∂uᵢ u̇ᵢ + ∂F/∂t is then removed, and the terms free of the state (m A² t²/2 of
+        the car) are dropped. The result is kept only when it is free of t.
+
+        >>> import sympy
+        >>> from types import SimpleNamespace as NS
+        >>> th, thd, t, A, l = sympy.symbols("theta thetadot t A l")
+        >>> r = NS(scene=NS(time=t), independent={"theta": NS(symbol=th, dot=thd)})
+        >>> r.lagrangian = sympy.expand(((A*t + l*sympy.cos(th)*thd)**2 + (l*sympy.sin(th)*thd)**2)/2)
+        >>> sympy.expand(sympy.trigsimp(Reduction.autonomous_lagrangian(r)))
+        -A*l*sin(theta) + l**2*thetadot**2/2
+        """
+        L, t = self.lagrangian, self.scene.time
+        if sympy.diff(L, t) == 0:
+            return L
+        us = list(self.independent.values())
+        velocities = [u.dot for u in us]
+        try:
+            poly = sympy.Poly(L, *velocities)
+        except sympy.PolynomialError:
+            return None
+        linear = [poly.coeff_monomial(v) for v in velocities]
+        gauge = [sympy.expand(a - a.xreplace({t: 0})) for a in linear]
+        if gauge[0] == 0:
+            F = sympy.Integer(0)
+        else:
+            F = budget.attempt(lambda: sympy.integrate(gauge[0], us[0].symbol), 1.0, fallback=lambda: None)
+            if F is None or F.has(sympy.Integral):
+                return None
+        if any(sympy.expand(sympy.diff(F, u.symbol) - a) != 0 for u, a in zip(us, gauge)):
+            return None
+        dF = sympy.diff(F, t) + sum((sympy.diff(F, u.symbol) * u.dot for u in us), sympy.Integer(0))
+        reduced = sympy.expand(L - dF)
+        state = {s for u in us for s in (u.symbol, u.dot)}
+        reduced = sympy.Add(*[term for term in sympy.Add.make_args(reduced) if term.free_symbols & state])
+        if t in reduced.free_symbols:
+            reduced = without_hidden_coordinates(reduced, [t])
+        return reduced if t not in reduced.free_symbols else None
 
     def initial_value(self, expr: sympy.Expr) -> sympy.Expr | None:
         """expr at the [initial] state, or None when [initial] does not fix every variable it uses."""

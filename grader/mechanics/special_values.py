@@ -128,7 +128,7 @@ def _where(evaluator, spec, target: set, key: str, at_rest: bool) -> sympy.Expr:
     with budget.step("evaluating the answer at the roots", spec.name):
         if spec.kind == "small_oscillation":
             value = _stiffness(evaluator, spec, key)
-            chosen, *others = _choose_root(evaluator, spec, condition, unknown, roots, value, key)
+            chosen, *others = _choose_root(evaluator, spec, condition, unknown, roots, value, key, at_rest)
             result = human_form(value.xreplace({unknown: chosen}))
         else:
             # The answer in the unknown is only evaluated, at the roots, and tidied where it is
@@ -137,10 +137,10 @@ def _where(evaluator, spec, target: set, key: str, at_rest: bool) -> sympy.Expr:
             # removes, a 0/0 only tidying resolves), which decides as before.
             try:
                 value, chosen, others, result = _at_roots(evaluator, spec, condition, unknown, roots, target, key,
-                                                          readable=False)
+                                                          readable=False, at_rest=at_rest)
             except SceneError:
                 value, chosen, others, result = _at_roots(evaluator, spec, condition, unknown, roots, target, key,
-                                                          readable=True)
+                                                          readable=True, at_rest=at_rest)
         if others:
             # Several admissible roots, none singled out: every one is a right answer.
             evaluator.alternatives[spec.name] = [
@@ -154,24 +154,59 @@ def _where(evaluator, spec, target: set, key: str, at_rest: bool) -> sympy.Expr:
     return _no_leftover(scene, spec, result, target)
 
 
-def _at_roots(evaluator, spec, condition, unknown, roots, target: set, key: str, readable: bool):
+def _at_roots(evaluator, spec, condition, unknown, roots, target: set, key: str, readable: bool,
+              at_rest: bool = False):
     """(the answer in the unknown, the root chosen, the other roots admitted, the answer at the
     chosen root, tidied); ``readable=False``: with the answer in the unknown as solved (see
     :meth:`AnswerEvaluator.reduce`), refused (SceneError) where it is undefined at a root or at
     the chosen one, or leaves a variable, so that the caller takes the readable way."""
     # Parameters outside in_terms_of may cancel once the root is substituted (b in -2 g b φ
     # at φ = -h/b); the final check catches those that do not.
-    value = evaluator.reduce(spec.expr, target | evaluator.parameters | {unknown}, f"answers ({spec.name}).expr",
-                             readable=readable)
+    allowed = target | evaluator.parameters | {unknown}
+    velocities = {u.dot: sympy.Integer(0) for u in evaluator.reduction.independent.values()}
+    if at_rest:
+        # At an equilibrium the answer is taken at rest too: the normal force on a particle resting
+        # relative to a turning plane has no Coriolis term (rather than "udot cannot be eliminated").
+        allowed = allowed | set(velocities)
+    value = evaluator.reduce(spec.expr, allowed, f"answers ({spec.name}).expr", readable=readable)
+    if at_rest:
+        value = value.xreplace(velocities)
     if not readable:
         _defined_at_roots(evaluator, spec, condition, unknown, roots, value, key)
-    chosen, *others = _choose_root(evaluator, spec, condition, unknown, roots, value, key)
+    chosen, *others = _choose_root(evaluator, spec, condition, unknown, roots, value, key, at_rest)
+    turned = None if at_rest else _turned_back(evaluator, spec, condition, unknown, roots, chosen, key)
+    if turned is not None:
+        # Reached after the motion has turned back: u̇ there has the other sign than at the start
+        # (θ̇ < 0 where a bob launched upwards comes back down through θ = 0.1).
+        value = evaluator.reduce(spec.expr, allowed, f"answers ({spec.name}).expr", readable=readable, signs=turned)
     result = human_form(value.xreplace({unknown: chosen}))
     if not readable:
         if result.has(sympy.nan, sympy.zoo, sympy.oo, -sympy.oo):
             raise SceneError(evaluator.scene.source, key, "undefined at the root as solved")
         _no_leftover(evaluator.scene, spec, result, target)
     return value, chosen, others, result
+
+
+def _turned_back(evaluator, spec, condition, x, roots, chosen, key: str) -> dict | None:
+    """{u: sign} when the chosen root of the one motion from [initial] is reached moving the other way
+    than u starts (after a turning point), else None."""
+    variable = _variable(evaluator, x)
+    if variable is None or variable[0] != "coordinate" or not _one_motion(evaluator, spec, variable[1]):
+        return None
+    u = variable[1]
+    start = evaluator.motion_sign(u, pushed=True)
+    if start is None:
+        return None
+    point = _with_state(evaluator, _parameter_points(evaluator.scene)[0], condition.free_symbols - {x})
+    numeric = _numeric_roots(roots, point, variable)
+    index = roots.index(chosen)
+    if index not in numeric:
+        return None
+    try:
+        _, direction = _first_reached_on(evaluator, u, condition, {index: numeric[index]}, point, key)
+    except SceneError:  # (chosen otherwise than by the motion: nothing to say about its direction)
+        return None
+    return {u.name: int(direction)} if direction * start < 0 else None
 
 
 def _defined_at_roots(evaluator, spec, condition, x, roots, value, key: str) -> None:
@@ -361,6 +396,7 @@ def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False) ->
             # velocities (the orbit's φ̇) free: read it so before at rest.
             attempts.insert(1, (everything, False, steady))
     found = []
+    deferred = False
     for allowed, resting, still in attempts:
         here = expr.xreplace(still)
         if resting and not at_rest:
@@ -374,6 +410,15 @@ def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False) ->
         if resting:
             condition = condition.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
         condition = _essential(condition)
+        state = (condition.free_symbols & evaluator.state_symbols()) - target
+        if (not deferred and allowed is everything and not resting and not still and state
+                and not state & evaluator.state_symbols(velocities=False)):
+            # Velocities and no coordinate (θ̇ = 0, the end of a swing): a moment of the motion, read
+            # along it (the velocity from energy, the coordinate the unknown) before as it stands,
+            # which would solve θ̇ = 0 for θ̇ and leave the answer in θ.
+            deferred = True
+            attempts.append((allowed, resting, still))
+            continue
         # A state variable is the unknown when there is one (the condition picks a configuration;
         # parameters outside in_terms_of may still cancel from the answer); else a parameter
         # (a threshold).
@@ -421,8 +466,13 @@ def solve_for(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> 
     >>> solve_for(3*sympy.cos(theta) - 2, theta, "f.toml", "k")
     [acos(2/3), -acos(2/3)]
     """
-    factors = budget.attempt(lambda: [f for f, _ in sympy.factor_list(condition)[1]], _SOLVE_BUDGET_S,
-                             fallback=lambda: [condition])
+    def factors_of():
+        try:
+            return [f for f, _ in sympy.factor_list(condition)[1]]
+        except sympy.PolynomialError:  # e^{ωt} beside e^{−ωt}: factor_list refuses them
+            return [condition]
+
+    factors = budget.attempt(factors_of, _SOLVE_BUDGET_S, fallback=lambda: [condition])
     roots = []
     for factor in factors:
         if x not in factor.free_symbols:
@@ -434,6 +484,7 @@ def solve_for(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> 
 
 
 def _solve_factor(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> list[sympy.Expr]:
+    from grader.mechanics.motion import _transcendental_in
     from grader.mechanics.simplification import _pythagorean
 
     S = sympy.Dummy("S")
@@ -453,11 +504,124 @@ def _solve_factor(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str)
             for v in values:
                 roots += [r for r in inverse(v) if r not in roots]
             return roots
+    homogeneous = _homogeneous_in_sin_cos(condition, x, source, key)
+    if homogeneous is not None:
+        return homogeneous
+    exponential = _through_exponentials(condition, x, source, key)
+    if exponential is not None:
+        return exponential
+    if _transcendental_in(condition, x, _TRANSCENDENTAL) is not None:
+        # x beside a function of x (m g l sin θ = k θ, x eˣ = c): no closed form a student could type
+        # (at best a LambertW), and solve would spend its whole budget finding that out.
+        return []
     roots = _budgeted_solve(condition, x)
     if roots is None:
         raise SceneError(source, key, f"solving the condition for {x} ran out of its {_SOLVE_BUDGET_S:g} s "
                                       "budget; write the condition in a simpler form")
     return roots
+
+
+# Functions that, applied to the unknown beside the unknown itself, leave no elementary solution.
+_TRANSCENDENTAL = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc, sympy.sinh, sympy.cosh,
+                   sympy.tanh, sympy.coth, sympy.sech, sympy.csch, sympy.exp, sympy.log, sympy.asin, sympy.acos,
+                   sympy.atan, sympy.acot, sympy.asinh, sympy.acosh, sympy.atanh)
+
+
+def _homogeneous_in_sin_cos(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> list[sympy.Expr] | None:
+    """Roots of a condition that is a homogeneous polynomial in sin x and cos x (each term of the
+    same degree n, A cos θ + g sin θ: a pendulum in an accelerating car): cosⁿx times a polynomial
+    in tan x, so x = atan(v) (and atan(v) − π), with ±π/2 where cos x = 0 is a root. None otherwise.
+
+    (solve gives 2 atan((g − √(A² + g²))/A), right but unreadable, and the answers at the root with it.)
+
+    >>> th, A, g = sympy.symbols("theta A g", positive=True)
+    >>> _homogeneous_in_sin_cos(A*sympy.cos(th) + g*sympy.sin(th), th, "f.toml", "k")
+    [-atan(A/g), -atan(A/g) - pi]
+    """
+    s, c, T = sympy.Dummy("s"), sympy.Dummy("c"), sympy.Dummy("T")
+    replaced = sympy.expand(condition.xreplace({sympy.sin(x): s, sympy.cos(x): c}))
+    if x in replaced.free_symbols or not replaced.has(s) or not replaced.has(c):
+        return None
+    try:
+        poly = sympy.Poly(replaced, s, c)
+    except sympy.PolynomialError:
+        return None
+    degrees = {sum(monomial) for monomial in poly.monoms()}
+    if len(degrees) != 1:
+        return None
+    (n,) = degrees
+    in_tan = sympy.expand(replaced.xreplace({s: T, c: 1}))
+    values = _budgeted_solve(in_tan, T)
+    if values is None:
+        raise SceneError(source, key, f"solving the condition for {x} ran out of its {_SOLVE_BUDGET_S:g} s "
+                                      "budget; write the condition in a simpler form")
+    roots = []
+    for v in values:
+        roots += [r for r in (sympy.atan(v), sympy.atan(v) - sympy.pi) if r not in roots]
+    # cos x = 0 is a root when the sinⁿ term is missing.
+    if poly.coeff_monomial(s ** n) == 0:
+        roots += [sympy.pi / 2, -sympy.pi / 2]
+    return roots
+
+
+def _through_exponentials(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> list[sympy.Expr] | None:
+    """Roots of a condition in which x appears only through exp, cosh, sinh, tanh of c x + b, the
+    slopes c commensurate (a motion in time r₀ cosh ωt, s* + (s₀ − s*) cosh(ω t sin α) = L): a
+    polynomial in E = e^{kx}, solved for E, x = log(E)/k; through one of cosh, sinh, tanh of k x
+    alone, a polynomial in it, x = acosh(v)/k, ... None when x appears otherwise.
+
+    (solve, given the hyperbolic functions, rewrites every one of them, those of the parameters too,
+    and spends its whole budget.)
+
+    >>> t, w, a, L = sympy.symbols("t omega a L", positive=True)
+    >>> _through_exponentials(a*sympy.cosh(w*t) + a*sympy.sinh(w*t) - L, t, "f.toml", "k")
+    [log(L/a)/omega]
+    >>> _through_exponentials(a*sympy.cosh(2*w*t) - L, t, "f.toml", "k")
+    [acosh(L/a)/(2*omega), -acosh(L/a)/(2*omega)]
+    """
+    functions = [f for f in condition.atoms(sympy.exp, sympy.cosh, sympy.sinh, sympy.tanh) if x in f.free_symbols]
+    if not functions:
+        return None
+    slopes = {}
+    for f in functions:
+        argument = sympy.expand(f.args[0])
+        slope = argument.coeff(x)
+        if slope == 0 or x in slope.free_symbols or x in (argument - slope * x).free_symbols:
+            return None
+        slopes[f] = (slope, argument - slope * x)
+    if len(functions) == 1 and functions[0].func is not sympy.exp and slopes[functions[0]][1] == 0:
+        # One hyperbolic function of k x: a polynomial in it, as sin θ above (acosh(L/r₀)/ω, not a log).
+        (f,) = functions
+        H = sympy.Dummy("H")
+        values = _budgeted_solve(sympy.numer(sympy.together(condition.xreplace({f: H}))), H)
+        if values is None:
+            raise SceneError(source, key, f"solving the condition for {x} ran out of its {_SOLVE_BUDGET_S:g} s "
+                                          "budget; write the condition in a simpler form")
+        k = slopes[f][0]
+        inverse = {sympy.cosh: lambda v: [sympy.acosh(v), -sympy.acosh(v)], sympy.sinh: lambda v: [sympy.asinh(v)],
+                   sympy.tanh: lambda v: [sympy.atanh(v)]}[f.func]
+        return [r / k for v in values for r in inverse(v)]
+    base = next(iter(slopes.values()))[0]
+    ratios = {f: sympy.cancel(slope / base) for f, (slope, _) in slopes.items()}
+    if not all(r.is_Rational for r in ratios.values()):
+        return None
+    n = sympy.ilcm(1, *(r.q for r in ratios.values()))
+    k = base / n
+    E = sympy.Dummy("E")
+    replaced = {}
+    for f, (_, offset) in slopes.items():
+        up = sympy.exp(offset) * E ** (ratios[f] * n)
+        down = 1 / up
+        replaced[f] = {sympy.exp: up, sympy.cosh: (up + down) / 2, sympy.sinh: (up - down) / 2,
+                       sympy.tanh: (up - down) / (up + down)}[f.func]
+    substituted = condition.xreplace(replaced)
+    if x in substituted.free_symbols:
+        return None
+    values = _budgeted_solve(sympy.numer(sympy.together(substituted)), E)
+    if values is None:
+        raise SceneError(source, key, f"solving the condition for {x} ran out of its {_SOLVE_BUDGET_S:g} s "
+                                      "budget; write the condition in a simpler form")
+    return [sympy.log(v) / k for v in values if v != 0]
 
 
 def _budgeted_solve(expr: sympy.Expr, x) -> list[sympy.Expr] | None:
@@ -578,8 +742,9 @@ def _draws(scene) -> list[dict]:
 
 
 # -- choosing among roots ---------------------------------------------------------------------------
-def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> list[sympy.Expr]:
-    """The root the answer is at; several when the domain admits several and nothing decides.
+def _choose_root(evaluator, spec, condition, x, roots, value, key: str, at_rest: bool = False) -> list[sympy.Expr]:
+    """The root the answer is at; several when the domain admits several and nothing decides
+    (``at_rest``: the condition read at rest names an equilibrium, see :func:`_select`).
 
     The first is the reference, the others its alternatives. An answer that must be one value
     (see :func:`_must_be_one_value`) gets the error naming the roots instead. Never empty: where
@@ -600,7 +765,8 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> list[
             raise SceneError(scene.source, key,
                              f"the condition has no real root for {x} anywhere in its domain (closed forms: "
                              f"{', '.join(sympy.sstr(r) for r in roots)})")
-        indices, group_of = _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key)
+        indices, group_of = _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key,
+                                    at_rest)
         if chosen is None:
             chosen, base_count = indices, _distinct(numeric)
         elif _differ(chosen, indices, group_of):
@@ -616,7 +782,8 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> list[
         if _distinct(numeric) != base_count:
             continue
         try:
-            indices, group_of = _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key)
+            indices, group_of = _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key,
+                                        at_rest)
         except SceneError:
             continue
         if _differ(chosen, indices, group_of):
@@ -631,8 +798,9 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str) -> list[
     return [roots[i] for i in chosen]
 
 
-def _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key):
-    """(indices of the roots the answer is at, their groups of equal value) at one parameter point."""
+def _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key, at_rest: bool = False):
+    """(indices of the roots the answer is at, their groups of equal value) at one parameter point
+    (``at_rest``: the condition, read at rest, names an equilibrium)."""
     scene = evaluator.scene
     values = {}
     for index, r in numeric.items():
@@ -641,9 +809,10 @@ def _select(evaluator, spec, x, roots, value, variable, condition, numeric, poin
             values[index] = v
     groups = _groups(values)
     one_motion = variable is not None and variable[0] == "coordinate" and _one_motion(evaluator, spec, variable[1])
-    if one_motion and spec.kind == "small_oscillation" and len(groups) == 1:
-        # An equilibrium need not be reached to oscillate about it; the motion only
-        # chooses among equilibria.
+    if one_motion and (spec.kind == "small_oscillation" or at_rest) and len(groups) == 1:
+        # An equilibrium need not be reached to oscillate about it, nor to be asked for (the unstable
+        # relative equilibrium of a bead on a turning wire, which the motion from [initial] runs away
+        # from); the motion only chooses among equilibria.
         index = min(groups[0])
     elif one_motion:
         # Even a single root must be reached: the motion may turn back before it.
@@ -656,8 +825,8 @@ def _select(evaluator, spec, x, roots, value, variable, condition, numeric, poin
         # (m r² (ψ̇ + Ω) of a steady orbit seen from a rotating frame, in which ψ̇ may start at 0 or
         # backwards), rather than the way u̇ starts.
         index = _by_momentum(evaluator, variable[1], roots, numeric, groups, point)
-    elif variable is not None and variable[0] == "velocity" and evaluator.motion_sign(variable[1]) is not None:
-        sign = evaluator.motion_sign(variable[1])
+    elif variable is not None and variable[0] == "velocity" and evaluator.motion_sign(variable[1], True) is not None:
+        sign = evaluator.motion_sign(variable[1], True)
         matching = [i for i, r in numeric.items() if sign is not None and r * sign > 0]
         if sign is None or len({min(g) for g in groups for i in matching if i in g}) != 1:
             raise SceneError(scene.source, key, _ambiguous(x, roots, numeric))
@@ -835,17 +1004,28 @@ def _parameter_points(scene) -> list[dict]:
 # -- following the motion ----------------------------------------------------------------------------
 def _first_reached(evaluator, u, condition, numeric: dict[int, float], point: dict, key: str) -> int:
     """Which root the motion from [initial] reaches first (see the module notes)."""
+    return _first_reached_on(evaluator, u, condition, numeric, point, key)[0]
+
+
+def _first_reached_on(evaluator, u, condition, numeric: dict[int, float], point: dict, key: str) -> tuple[int, float]:
+    """(which root the motion from [initial] reaches first, the direction u moves in as it gets there)."""
     scene = evaluator.scene
     u0 = float(sympy.N(scene.initial[u.name].xreplace({s: sympy.Float(v, 30) for s, v in point.items()})))
-    direction = _direction(evaluator, u, point)
-    speed2 = _speed_squared(evaluator, u, point, key)
     periodic = not _bounded(u) and _periodic(condition, u.symbol)
-    path = []  # (start, direction, end or None, why it ends)
-    end, why = _travel(u, u0, direction, speed2)
-    path.append((direction, end, why))
-    if why == "turns back":
-        other_end, other_why = _travel(u, end, -direction, speed2, skip=True)
-        path.append((-direction, other_end, other_why))
+    # The path depends on the motion only: remembered for the other answers and conditions.
+    paths = evaluator.__dict__.setdefault("_motion_paths", {})
+    remembered = (u.name, tuple(sorted((str(s), v) for s, v in point.items())))
+    if remembered not in paths:
+        direction = _direction(evaluator, u, point)
+        speed2 = _speed_squared(evaluator, u, point, key)
+        path = []  # (direction, end or None, why it ends)
+        end, why = _travel(u, u0, direction, speed2)
+        path.append((direction, end, why))
+        if why == "turns back":
+            other_end, other_why = _travel(u, end, -direction, speed2, skip=True)
+            path.append((-direction, other_end, other_why))
+        paths[remembered] = path
+    path = paths[remembered]
     best = None
     start = u0
     for leg, (d, stop, _) in enumerate(path):
@@ -860,7 +1040,7 @@ def _first_reached(evaluator, u, condition, numeric: dict[int, float], point: di
                 if best is None or distance < best[0]:
                     best = (distance, index)
         if best is not None:
-            return best[1]
+            return best[1], d
         start = stop if stop is not None else start
     stops = ", then ".join(f"{why} at {u.name} = {stop:.6g}" for _, stop, why in path if stop is not None)
     roots = ", ".join(f"{u.name} = {r:.6g}" for r in numeric.values())
@@ -900,9 +1080,11 @@ def _travel(u, u0: float, d: float, speed2, skip: bool = False) -> tuple[float |
     step = (2 * math.pi if u.dimension.is_dimensionless else max(abs(u0), 1.0)) / _SCAN_STEPS
     x, previous = u0, speed2(u0)
     # The scan has no fixed range: it goes on until the motion turns back or leaves the domain;
-    # the step grows with the distance so that a runaway motion costs O(log) steps.
-    for k in range(1, 200 * _SCAN_STEPS):
-        nxt = x + d * step * (1 + k // _SCAN_STEPS)
+    # the step doubles every _SCAN_STEPS steps (a step a few thousandths of the distance covered),
+    # so that a runaway motion costs O(log) blocks (it grew linearly: 800,000 steps, 0.7 s, to
+    # find that a bead on a turning wire runs away).
+    for k in range(1, 40 * _SCAN_STEPS):
+        nxt = x + d * step * 2 ** (k // _SCAN_STEPS)
         if limit is not None and d * (nxt - limit) > 0:
             return limit, "leaves the domain"
         value = speed2(nxt)

@@ -262,3 +262,21 @@ def test_every_symbolic_step_runs_under_a_budget(monkeypatch):
     error = refusal(scene_text("radial_fall"))
     assert time.process_time() - start < 30
     assert "is not an elementary function" in error.problem
+
+
+def test_a_start_on_the_bound_of_a_domain_moving_inwards_is_integrated():
+    """θ ≥ 0 of a string winding on a post, from θ = 0: the numerical confirmation stopped at t = 0 (the
+    bound's event fired on the way in), then compared the closed form past the end of the motion
+    (the string wound up, θ̇ → ∞), where it is not real."""
+    d = derive(parse_scene(scene_text("puck_winding_on_post"), "puck.toml"))
+    expected = parse_expression("(L0 - sqrt(L0^2 - 2*R*v0*t))/R", d.scene.namespace).expr
+    assert sympy.simplify(d.answers["angle_in_time"] - expected) == 0
+
+
+def test_an_undamped_motion_in_time_reads_in_hyperbolic_functions():
+    g, w, a, s0, t = sympy.symbols("g omega alpha s0 t", positive=True)
+    k, star = w * sympy.sin(a), g * sympy.cos(a) / (w ** 2 * sympy.sin(a) ** 2)
+    solved = star + (s0 - star) * (sympy.exp(k * t) + sympy.exp(-k * t)) / 2
+    readable = motion._readable(solved)
+    assert not readable.has(sympy.exp)
+    assert sympy.simplify((readable - solved).rewrite(sympy.exp)) == 0

@@ -36,6 +36,8 @@ def agree(derivation, answer: str, expected: str) -> None:
 
 DISK = "(3*M + 8*m)"
 WEDGE = "(M + m*sin(alpha)^2)"
+WIRE = "(g*cos(alpha)/(omega^2*sin(alpha)^2))"
+TRAMMEL = "(m1*cos(theta)^2 + m2*sin(theta)^2)"
 
 
 @pytest.mark.parametrize(
@@ -122,6 +124,107 @@ WEDGE = "(M + m*sin(alpha)^2)"
         ("rotating_frame_spring_orbit", "azimuthal_equation", "-2*rdot*(psidot + Omega)/r"),
         ("rotating_frame_spring_orbit", "steady_relative_angular_velocity", "sqrt(k*(r - l0)/(m*r)) - Omega"),
         ("rotating_frame_spring_orbit", "small_oscillation_frequency", "sqrt(3*Omega^2 + k/m)"),
+        # -- the second red team (2026-11) --
+        # String paid out at v, l = l0 + v t (ring at the origin): radially r̈ = 0, so
+        # m (0 − l θ̇²) = −T + m g cos θ; across it m (l θ̈ + 2 v θ̇) = −m g sin θ. The string's force
+        # −T r̂ on a bob whose radial velocity is v delivers the power −T v.
+        ("pendulum_lengthening_string", "equation_of_motion", "-(g*sin(theta) + 2*v*thetadot)/(l0 + v*t)"),
+        ("pendulum_lengthening_string", "tension", "m*((l0 + v*t)*thetadot^2 + g*cos(theta))"),
+        ("pendulum_lengthening_string", "reel_power", "-m*v*((l0 + v*t)*thetadot^2 + g*cos(theta))"),
+        ("pendulum_lengthening_string", "bottom_tension", "m*((l0 + v*t)*thetadot^2 + g)"),
+        ("pendulum_lengthening_string", "turning_angular_velocity", "-g*sin(theta)/(2*v)"),
+        # Wire at α to the vertical axis, turned at ω (Goldstein): in its frame along the wire
+        # s̈ = ω² s sin²α − g cos α (the centrifugal force m ω² s sin α has the component sin α along
+        # it); across it in its vertical plane 0 = N + m g sin α + m ω² s sin α cos α, and the
+        # Coriolis force −2 m ω ṡ sin α φ̂ is balanced sideways. s* = g cos α/(ω² sin²α) (unstable):
+        # s = s* + (s0 − s*) cosh(ω t sin α), at L when cosh = (L − s*)/(s0 − s*).
+        ("bead_inclined_rotating_wire", "equation_of_motion", "omega^2*s*sin(alpha)^2 - g*cos(alpha)"),
+        ("bead_inclined_rotating_wire", "sideways_force", "2*m*omega*sdot*sin(alpha)"),
+        ("bead_inclined_rotating_wire", "in_plane_force", "-m*sin(alpha)*(g + omega^2*s*cos(alpha))"),
+        ("bead_inclined_rotating_wire", "equilibrium_distance", f"{WIRE}"),
+        ("bead_inclined_rotating_wire", "distance_in_time", f"{WIRE} + (s0 - {WIRE})*cosh(omega*t*sin(alpha))"),
+        ("bead_inclined_rotating_wire", "time_to_end", f"acosh((L - {WIRE})/(s0 - {WIRE}))/(omega*sin(alpha))"),
+        # Plane through a horizontal line, at α, turned at ω about the vertical: in its frame
+        # (s up the slope, u along the horizontal line, normal n = (−sin α, 0, cos α)) the
+        # centrifugal force m ω² (s cos α, u, 0) and the Coriolis force 2 m ω (u̇, −ṡ cos α, 0):
+        # s̈ = −g sin α + ω² s cos²α + 2 ω u̇ cos α, ü = ω² u − 2 ω ṡ cos α and
+        # N = m g cos α + m ω² s sin α cos α + 2 m ω u̇ sin α. At rest relative to the plane (u = 0),
+        # s* = g sin α/(ω² cos²α) and N = m g/cos α.
+        ("particle_rotating_inclined_plane", "equations_of_motion",
+         "-g*sin(alpha) + omega^2*s*cos(alpha)^2 + 2*omega*udot*cos(alpha)"),
+        ("particle_rotating_inclined_plane", "sideways_equation", "omega^2*u - 2*omega*sdot*cos(alpha)"),
+        ("particle_rotating_inclined_plane", "normal_force",
+         "m*(g*cos(alpha) + omega^2*s*sin(alpha)*cos(alpha) + 2*omega*udot*sin(alpha))"),
+        ("particle_rotating_inclined_plane", "equilibrium_distance", "g*sin(alpha)/(omega^2*cos(alpha)^2)"),
+        ("particle_rotating_inclined_plane", "equilibrium_normal_force", "m*g/cos(alpha)"),
+        # Disk (I = m a²/2) rolling on the outside of a cylinder: its centre at R + a moves at
+        # (R + a) θ̇ and it spins at (R + a) θ̇/a; tangentially m (R + a) θ̈ = m g sin θ − F,
+        # I ψ̈ = F a gives F = m g sin θ/3 and θ̈ = 2 g sin θ/(3(R + a)); energy from the top gives
+        # (R + a) θ̇² = 4 g (1 − cos θ)/3, so N = m g cos θ − m (R + a) θ̇² = m g (7 cos θ − 4)/3:
+        # it leaves at cos θ = 4/7 with v² = 4 g (R + a)/7 (Kleppner–Kolenkow).
+        ("disk_rolling_off_cylinder", "angular_acceleration", "2*g*sin(theta)/(3*(R + a))"),
+        ("disk_rolling_off_cylinder", "normal_force", "m*g*(7*cos(theta) - 4)/3"),
+        ("disk_rolling_off_cylinder", "friction_force", "m*g*sin(theta)/3"),
+        ("disk_rolling_off_cylinder", "separation_cos", "4/7"),
+        ("disk_rolling_off_cylinder", "speed_at_separation", "sqrt(4*g*(R + a)/7)"),
+        # Yo-yo over a pulley to a block: M ÿ1 = M g − T, (M R²/2) φ̈ = T R, m ÿ2 = m g − T, and the
+        # string ÿ1 − R φ̈ + ÿ2 = 0: 2 g = T (3/M + 1/m), T = 2 M m g/(M + 3m). The block stays for
+        # M = 3m; from rest it rises (M > 3m) g (M − 3m) t²/(2 (M + 3m)).
+        ("yoyo_counterweight", "cylinder_acceleration", "g*(M + m)/(M + 3*m)"),
+        ("yoyo_counterweight", "block_acceleration", "g*(3*m - M)/(M + 3*m)"),
+        ("yoyo_counterweight", "angular_acceleration", "4*g*m/(R*(M + 3*m))"),
+        ("yoyo_counterweight", "tension", "2*M*m*g/(M + 3*m)"),
+        ("yoyo_counterweight", "balancing_mass", "3*m"),
+        ("yoyo_counterweight", "block_height_in_time", "g*(M - 3*m)*t^2/(2*(M + 3*m))"),
+        ("yoyo_counterweight", "time_to_rise", "sqrt(2*h*(M + 3*m)/(g*(M - 3*m)))"),
+        # Trammel: x1 = l sin θ, y2 = l cos θ, T = l² θ̇² (m1 cos²θ + m2 sin²θ)/2,
+        # V = m2 g l cos θ + k l² sin²θ/2. With C the rod's compression, m1: m1 ẍ1 = −k x1 + C sin θ,
+        # m2: m2 ÿ2 = −m2 g + C cos θ; eliminating θ̈, C (m1 cos²θ + m2 sin²θ) =
+        # m2 (m1 g cos θ + l (k sin²θ − m1 θ̇²)); the slots: N1 = m1 g + C cos θ, N2 = C sin θ.
+        # Upright, from rest at θ0: m1 l θ̇² = (1 − cos θ0)(k l (1 + cos θ0) − 2 m2 g), C = m2 (g − l θ̇²);
+        # ω² = V''(0)/(m1 l²) = (k l − m2 g)/(m1 l).
+        ("trammel_spring", "equation_of_motion",
+         f"sin(theta)*(m2*g/l - k*cos(theta) + (m1 - m2)*cos(theta)*thetadot^2)/{TRAMMEL}"),
+        ("trammel_spring", "rod_compression", f"m2*(m1*g*cos(theta) + l*(k*sin(theta)^2 - m1*thetadot^2))/{TRAMMEL}"),
+        ("trammel_spring", "lower_slot_force",
+         f"m1*g + cos(theta)*m2*(m1*g*cos(theta) + l*(k*sin(theta)^2 - m1*thetadot^2))/{TRAMMEL}"),
+        ("trammel_spring", "upper_slot_force",
+         f"sin(theta)*m2*(m1*g*cos(theta) + l*(k*sin(theta)^2 - m1*thetadot^2))/{TRAMMEL}"),
+        ("trammel_spring", "upright_rod_force", "m2*(g - (1 - cos(theta0))*(k*l*(1 + cos(theta0)) - 2*m2*g)/m1)"),
+        ("trammel_spring", "small_oscillation_frequency", "sqrt((k*l - m2*g)/(m1*l))"),
+        # Car accelerating at A: in its frame gravity g down and −A forwards, g_eff = √(g² + A²):
+        # l θ̈ = −g sin θ − A cos θ, T = m (l θ̇² + g cos θ − A sin θ); tilt tan θ* = −A/g,
+        # ω² = g_eff/l. From rest hanging vertically the swing is symmetric about θ*: at θ*
+        # l θ̇² = 2 g_eff (1 − cos θ*) with cos θ* = g/g_eff, T = m (3 g_eff − 2 g); the far end is
+        # θ = 2θ*, cos 2θ* = (g² − A²)/(g² + A²).
+        ("pendulum_accelerating_car", "equation_of_motion", "-(g*sin(theta) + A*cos(theta))/l"),
+        ("pendulum_accelerating_car", "tension", "m*(l*thetadot^2 + g*cos(theta) - A*sin(theta))"),
+        ("pendulum_accelerating_car", "equilibrium_tan", "-A/g"),
+        ("pendulum_accelerating_car", "equilibrium_tension", "m*(3*sqrt(g^2 + A^2) - 2*g)"),
+        ("pendulum_accelerating_car", "small_oscillation_frequency", "(g^2 + A^2)^(1/4)/sqrt(l)"),
+        ("pendulum_accelerating_car", "far_end_cos", "(g^2 - A^2)/(g^2 + A^2)"),
+        # Spool held by a thread from its axle's top (no degree of freedom): along the slope
+        # T + F = M g sin α, about the axis T r = F R (Morin).
+        ("spool_held_on_incline", "tension", "M*g*R*sin(alpha)/(R + r)"),
+        ("spool_held_on_incline", "friction_force", "M*g*r*sin(alpha)/(R + r)"),
+        # Upper bob along the rod (r̂₁ = (sin θ₁, −cos θ₁), centripetal −l₁ θ̇₁² r̂₁): the spring pulls it
+        # with k (r − l0) ê, ê = (sin θ₂, −cos θ₂), ê·r̂₁ = cos(θ₁ − θ₂); T = m₁ l₁ θ̇₁² + m₁ g cos θ₁ +
+        # k (r − l0) cos(θ₁ − θ₂); the light rod passes −T sin θ₁ horizontally to the pivot.
+        ("pendulum_with_spring_pendulum", "rod_tension",
+         "m1*(l1*theta1dot^2 + g*cos(theta1)) + k*(r - l0)*cos(theta1 - theta2)"),
+        ("pendulum_with_spring_pendulum", "pivot_force_horizontal",
+         "-sin(theta1)*(m1*(l1*theta1dot^2 + g*cos(theta1)) + k*(r - l0)*cos(theta1 - theta2))"),
+        # String winding on a post (an involute): the puck moves at (L0 − R θ) θ̇ about the point the
+        # string leaves the post, and the string, perpendicular to its velocity, does no work: the
+        # speed stays v0, θ̇ = v0/(L0 − Rθ), θ̈ = R θ̇²/(L0 − Rθ), T = m v0²/(L0 − Rθ);
+        # t = (L0 θ − R θ²/2)/v0, so θ(t) = (L0 − √(L0² − 2 R v0 t))/R, and half the length is
+        # free (θ = L0/(2R)) at t = 3 L0²/(8 R v0).
+        ("puck_winding_on_post", "equation_of_motion", "R*thetadot^2/(L0 - R*theta)"),
+        ("puck_winding_on_post", "tension_state", "m*(L0 - R*theta)*thetadot^2"),
+        ("puck_winding_on_post", "tension", "m*v0^2/(L0 - R*theta)"),
+        ("puck_winding_on_post", "half_length_tension", "2*m*v0^2/L0"),
+        ("puck_winding_on_post", "angle_in_time", "(L0 - sqrt(L0^2 - 2*R*v0*t))/R"),
+        ("puck_winding_on_post", "time_to_half_length", "3*L0^2/(8*R*v0)"),
     ],
 )
 def test_red_team_scenes(derived, scene, answer, expected):

@@ -42,3 +42,30 @@ def test_an_answer_free_of_a_coordinate_only_through_the_identity_is_not_refused
     phi = d.scene.namespace.symbol("phi")
     assert phi in d.eom.multipliers["pivotz"].free_symbols
     assert phi not in d.answers["vertical_pivot_force"].free_symbols
+
+
+def test_a_lagrangian_whose_time_dependence_is_a_total_derivative_has_an_energy_integral():
+    """A pendulum in a car accelerating at A: L_r has m A t l cos θ θ̇ + m A² t²/2, which is
+    d/dt(m A t l sin θ) − m A l sin θ plus a function of t; the energy in the car's frame,
+    m l² θ̇²/2 − m g l cos θ + m A l sin θ, is conserved (it was 'energy is not conserved')."""
+    scene = load_scene(SCENES / "pendulum_accelerating_car.toml")
+    reduction = Reduction(scene)
+    assert scene.time in reduction.lagrangian.free_symbols
+    h = reduction.jacobi_integral()
+    m, g, l, A = (scene.namespace.symbol(n) for n in ("m", "g", "l", "A"))
+    theta = scene.parametrization.variables["theta"]
+    expected = (m * l ** 2 * theta.dot ** 2 / 2 - m * g * l * sympy.cos(theta.symbol)
+                + m * A * l * sympy.sin(theta.symbol))
+    assert sympy.simplify(h - expected) == 0
+
+
+def test_a_driven_lagrangian_whose_time_dependence_is_not_a_total_derivative_has_none():
+    """A pendulum whose string is paid out (l = l0 + v t): no energy integral."""
+    scene = load_scene(SCENES / "pendulum_lengthening_string.toml")
+    assert Reduction(scene).jacobi_integral() is None
+
+
+def test_the_time_hidden_by_sin2_plus_cos2_is_removed_from_the_lagrangian():
+    """A wire turned at ω in Cartesian coordinates: sin²ωt + cos²ωt in L_r, which is free of t."""
+    scene = load_scene(SCENES / "bead_inclined_rotating_wire.toml")
+    assert scene.time not in Reduction(scene).lagrangian.free_symbols

@@ -337,3 +337,167 @@ where = "rddot = 0"
                                            'r = { dimension = "length", domain = [0, 5] }'),
                               "bead_nonlinear_spring.toml")).implicit["rest_length"]
     assert rule["interval"] == [0.0, 5.0] and rule["root"] == 0
+
+
+# -- the second red team (2026-11) -----------------------------------------------------------------
+_t = sympy.Symbol("t", positive=True)
+_g, _w, _a, _s0, _L, _A = sympy.symbols("g omega alpha s0 L A", positive=True)
+
+
+@pytest.mark.parametrize(
+    "condition, first_root",
+    [
+        # A bead on a wire at α to a turning axis: s* + (s0 − s*) cosh(ω t sin α) = L (solve spent its
+        # whole 3 s budget rewriting cos α and sin α in exponentials too).
+        (_g * (1 - sympy.cosh(_w * _t * sympy.sin(_a))) * sympy.cos(_a)
+         + _w ** 2 * _s0 * sympy.sin(_a) ** 2 * sympy.cosh(_w * _t * sympy.sin(_a)) - _L * _w ** 2 * sympy.sin(_a) ** 2,
+         None),
+        # One hyperbolic function alone: acosh, not a logarithm.
+        (_s0 * sympy.cosh(2 * _w * _t) - _L, sympy.acosh(_L / _s0) / (2 * _w)),
+        # Mixed: a polynomial in e^{ωt}.
+        (_s0 * sympy.cosh(_w * _t) + _s0 * sympy.sinh(_w * _t) - _L, sympy.log(_L / _s0) / _w),
+        (_s0 * sympy.exp(_w * _t) - _s0 * sympy.exp(-_w * _t) / 2 - _L, None),
+    ],
+)
+def test_a_condition_in_exponentials_of_the_unknown_is_a_polynomial_in_one_of_them(condition, first_root):
+    start = time.process_time()
+    roots = solve_for(condition, _t, "f.toml", "k")
+    assert time.process_time() - start < 1.0
+    point = {_g: 9.81, _w: 6.0, _a: 0.6, _s0: 0.8, _L: 1.5}
+    real = [v.real for v in (complex(r.evalf(30, subs=point)) for r in roots) if abs(v.imag) < 1e-20]
+    assert [v for v in real if v > 0], roots
+    for v in real:
+        assert abs(complex(condition.evalf(30, subs={**point, _t: v}))) < 1e-12
+    if first_root is not None:
+        assert roots[0] == first_root
+
+
+def test_a_homogeneous_condition_in_sin_and_cos_is_solved_through_tan():
+    """A cos θ + g sin θ = 0 (a pendulum in an accelerating car): θ = atan(−A/g), so tan θ at the root is
+    −A/g, not tan(2 atan((g − √(A² + g²))/A)); sin θ cos θ + 2 cos²θ = 0 has cos θ = 0 too."""
+    theta = sympy.Symbol("theta", real=True)
+    roots = solve_for(_A * sympy.cos(theta) + _g * sympy.sin(theta), theta, "f.toml", "k")
+    assert {sympy.tan(r) for r in roots} == {-_A / _g}
+    roots = solve_for(sympy.sin(theta) * sympy.cos(theta) + 2 * sympy.cos(theta) ** 2, theta, "f.toml", "k")
+    values = sorted(float(r) for r in roots)
+    assert values == pytest.approx(sorted([math.atan(-2), math.atan(-2) - math.pi, math.pi / 2, -math.pi / 2]))
+
+
+@pytest.mark.parametrize("s0", ["0.8", "0.6"])
+def test_an_unstable_equilibrium_the_motion_runs_away_from_is_still_the_equilibrium(s0):
+    """s* = g cos α/(ω² sin²α) of a bead on a turning inclined wire: from s0 above it the bead climbs
+    away, from below it slides down; s̈ = 0 read at rest names s* all the same (it was refused: 'the
+    motion from [initial] runs away before it reaches a root')."""
+    text = scene_text("bead_inclined_rotating_wire", ("value = 0.8 }", f"value = {s0} }}"))
+    text = text[:text.index('[[answers]]\nname = "distance_in_time"')]  # (from 0.6 it never gets to L)
+    scene = parse_scene(text, "wire.toml")
+    value = derive(scene).answers["equilibrium_distance"]
+    expected = parse_expression("g*cos(alpha)/(omega^2*sin(alpha)^2)", scene.namespace).expr
+    assert sympy.simplify(value - expected) == 0
+
+
+def test_a_value_at_an_equilibrium_read_at_rest_is_taken_at_rest():
+    """The normal force on a particle resting relative to a turning inclined plane, where s̈ = 0 at rest:
+    m g/cos α, the Coriolis term 2 m ω u̇ sin α gone with u̇ (it was 'udot appears to an odd power')."""
+    scene = parse_scene(scene_text("particle_rotating_inclined_plane"), "plane.toml")
+    value = derive(scene).answers["equilibrium_normal_force"]
+    assert sympy.simplify(value - parse_expression("m*g/cos(alpha)", scene.namespace).expr) == 0
+
+
+def test_a_condition_on_a_velocity_alone_is_a_moment_of_the_motion():
+    """θ̇ = 0: the far end of the swing of a pendulum released hanging in an accelerating car, θ = 2θ*
+    (it was read as θ̇ = 0 solved for θ̇, leaving the answer in θ)."""
+    scene = parse_scene(scene_text("pendulum_accelerating_car"), "car.toml")
+    value = derive(scene).answers["far_end_cos"]
+    expected = parse_expression("(g^2 - A^2)/(g^2 + A^2)", scene.namespace).expr
+    point = {scene.namespace.symbol("g"): 9.81, scene.namespace.symbol("A"): 3.0}
+    assert abs(float(value.subs(point)) - float(expected.subs(point))) < 1e-12
+
+
+def test_a_runaway_motion_is_scanned_in_few_steps():
+    """A motion that never turns back is followed with a step that doubles every block, not one that
+    grows by a block's step each block (800,000 evaluations, 0.7 s for one runaway bead)."""
+    from grader.mechanics import special_values
+    from grader.mechanics.scene import Coordinate  # noqa: F401  (the domain object's module)
+
+    calls = []
+
+    def speed2(x):
+        calls.append(x)
+        return 1.0 + x * x
+
+    class Real:  # a length on the whole real line
+        kind = "real"
+
+    u = type("U", (), {"domain": Real(), "dimension": type("D", (), {"is_dimensionless": False})()})()
+    end, why = special_values._travel(u, 0.5, 1.0, speed2)
+    assert (end, why) == (None, "never turns back")
+    assert len(calls) <= 40 * special_values._SCAN_STEPS
+
+
+PENDULUM_LAUNCHED_UP = '''
+id = "launched"
+title = "Pendulum launched upwards"
+statement = "A bob on a light rod, launched upwards from 0.2 rad; it turns back at about 0.256 rad."
+
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 1.0 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+l = { dimension = "length", domain = "positive", value = 1.0 }
+
+[coordinates]
+theta = { dimension = "angle", domain = [-3.1416, 3.1416] }
+
+[energy]
+kinetic = "m/2*l^2*thetadot^2"
+potential = "-m*g*l*cos(theta)"
+
+[initial]
+theta = 0.2
+thetadot = 0.5
+
+[[answers]]
+name = "angular_velocity_there"
+expr = "thetadot"
+where = "theta = ANGLE"
+in_terms_of = ["g", "l"]
+'''
+
+
+@pytest.mark.parametrize("angle, sign", [("0.25", 1), ("0.1", -1), ("-0.1", -1)])
+def test_a_velocity_at_a_point_reached_after_the_motion_turns_back_has_the_sign_it_has_there(angle, sign):
+    """Launched upwards from θ = 0.2 at θ̇ = 0.5, the bob passes 0.25 going up, then turns back at
+    ≈ 0.256 and passes 0.1 and −0.1 coming down: θ̇ = −√(…) there (it was +√(…), the start's sign)."""
+    scene = parse_scene(PENDULUM_LAUNCHED_UP.replace("ANGLE", angle), "launched.toml")
+    value = derive(scene).answers["angular_velocity_there"]
+    g, l = 9.81, 1.0
+    magnitude = math.sqrt(0.25 + 2 * g / l * (math.cos(float(angle)) - math.cos(0.2)))
+    assert float(value.subs({scene.namespace.symbol("g"): g, scene.namespace.symbol("l"): l})) == \
+        pytest.approx(sign * magnitude, rel=1e-12)
+
+
+SWING_EXTREMES = PENDULUM_LAUNCHED_UP.replace("theta = 0.2\nthetadot = 0.5", 'theta = "theta0"\nthetadot = 0').replace(
+    'l = { dimension = "length", domain = "positive", value = 1.0 }',
+    'l = { dimension = "length", domain = "positive", value = 1.0 }\n'
+    'theta0 = { dimension = "angle", domain = [0.01, 1.5], value = 0.5 }')
+SWING_EXTREMES = SWING_EXTREMES[:SWING_EXTREMES.index("[[answers]]")] + '''
+[[answers]]
+name = "largest"
+kind = "maximum"
+expr = "EXPR"
+'''
+
+
+@pytest.mark.parametrize("expr, expected", [
+    ("thetadot", "2*sqrt(g/l)*sin(theta0/2)"),
+    ("m*l*cos(theta)*thetadot", "2*m*sqrt(g*l)*sin(theta0/2)"),
+])
+def test_the_largest_value_of_a_velocity_over_a_swing_is_on_the_way_back(expr, expected):
+    """Released at θ0, the bob swings down (θ̇ < 0) and back (θ̇ > 0): the largest θ̇ is +2√(g/l) sin(θ0/2)
+    at the bottom on the way back; it was 0, with θ̇ = −√(…) taken over the whole swing."""
+    scene = parse_scene(SWING_EXTREMES.replace("EXPR", expr), "swing.toml")
+    value = derive(scene).answers["largest"]
+    want = parse_expression(expected, scene.namespace).expr
+    for numbers in ({"g": 9.81, "l": 0.7, "m": 0.3, "theta0": 0.5}, {"g": 2.0, "l": 1.9, "m": 1.1, "theta0": 1.2}):
+        point = {scene.namespace.symbol(n): v for n, v in numbers.items()}
+        assert float(value.subs(point)) == pytest.approx(float(want.subs(point)), rel=1e-12)

@@ -83,6 +83,13 @@ CONFIRMED_ELSEWHERE = {
     ("rocking_half_cylinder", "small_oscillation_frequency"),
     ("rotating_frame_spring_orbit", "small_oscillation_frequency"),
     ("rotating_frame_spring_orbit", "steady_relative_angular_velocity"),
+    # The second red team's: the same file.
+    ("bead_inclined_rotating_wire", "equilibrium_distance"),
+    ("particle_rotating_inclined_plane", "equilibrium_distance"),
+    ("particle_rotating_inclined_plane", "equilibrium_normal_force"),
+    ("pendulum_accelerating_car", "small_oscillation_frequency"),
+    ("trammel_spring", "small_oscillation_frequency"),
+    ("yoyo_counterweight", "balancing_mass"),
 }
 
 
@@ -165,8 +172,12 @@ def _follow_motion(model: SceneModel, start, conditions: list[Event]):
         elif released_at == math.inf:
             states += motion.samples
         for event in conditions:
-            if event.name not in found and motion.first(event.name) is not None:
-                found[event.name] = motion.first(event.name)
+            # A condition that holds at the start (θ̇ = 0 of a swing released at rest) is not reached
+            # there: the motion leaves it, as the engine reads it (the integration's first microsecond
+            # may cross it back and forth by rounding).
+            hits = [s for s in motion.events.get(event.name, []) if s.t > start.t + 1e-6]
+            if event.name not in found and hits:
+                found[event.name] = hits[0]
         t, q, qdot = motion.end.t, motion.end.q, motion.end.qdot
         if len(found) == len(conditions) or t >= T_MAX:
             return [s for s in states if s.t <= released_at], found

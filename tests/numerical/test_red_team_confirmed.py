@@ -136,3 +136,95 @@ def test_steady_orbit_seen_from_a_rotating_frame_keeps_its_radius():
         psidot = closed_form(model, answers, "steady_relative_angular_velocity", r=radius)
         motion = simulate(model.numeric, [radius, 0.0], [0.0, psidot], 2.0, sample_times=np.linspace(0, 2, 9))
         assert max(abs(s.q[0] - radius) for s in motion.samples) < 1e-8 * radius
+
+
+# -- the second red team (2026-11): relative equilibria, frequencies and a threshold ------------------
+
+def _wire_state(model, s: float):
+    """Coordinates (x, y, z) on the wire at t = 0 (in the x-z plane), at rest relative to it."""
+    a, w = model.values["alpha"], model.values["omega"]
+    return [s * math.sin(a), 0.0, s * math.cos(a)], [0.0, w * s * math.sin(a), 0.0]
+
+
+def test_bead_on_a_turning_inclined_wire_rests_at_the_engines_distance():
+    model, answers = engine("bead_inclined_rotating_wire")
+    a, w = model.values["alpha"], model.values["omega"]
+    s_eq = closed_form(model, answers, "equilibrium_distance")
+    # At rest relative to the wire the bead only goes round: its acceleration is centripetal.
+    s = snapshot(model.numeric, 0.0, *_wire_state(model, s_eq))
+    rho = s_eq * math.sin(a)
+    assert np.allclose(s.qddot, [-w ** 2 * rho, 0.0, 0.0], atol=1e-9 * w ** 2 * rho)
+    # ... and stays (the equilibrium is unstable: 0.5 s multiplies a 1e-12 error by a few).
+    motion = simulate(model.numeric, *_wire_state(model, s_eq), 0.5, sample_times=np.linspace(0, 0.5, 6))
+    assert max(abs(np.linalg.norm(m.q) - s_eq) for m in motion.samples) < 1e-8 * s_eq
+    # A little further out it climbs away, a little further in it slides down.
+    for factor, sign in ((1.001, 1), (0.999, -1)):
+        s = snapshot(model.numeric, 0.0, *_wire_state(model, factor * s_eq))
+        assert sign * s.qddot[2] > 0
+
+
+def _plane_state(model, s: float):
+    """Coordinates (x, y, z) on the plane at t = 0 (u = 0), at rest relative to it."""
+    a, w = model.values["alpha"], model.values["omega"]
+    return [s * math.cos(a), 0.0, s * math.sin(a)], [0.0, w * s * math.cos(a), 0.0]
+
+
+def test_particle_on_a_turning_inclined_plane_rests_at_the_engines_distance_and_normal_force():
+    model, answers = engine("particle_rotating_inclined_plane")
+    a, w = model.values["alpha"], model.values["omega"]
+    s_eq = closed_form(model, answers, "equilibrium_distance")
+    s = snapshot(model.numeric, 0.0, *_plane_state(model, s_eq))
+    rho = s_eq * math.cos(a)
+    assert np.allclose(s.qddot, [-w ** 2 * rho, 0.0, 0.0], atol=1e-9 * w ** 2 * rho)
+    normal = closed_form(model, answers, "equilibrium_normal_force")
+    assert abs(s.multipliers[0] - normal) < 1e-9 * normal
+    motion = simulate(model.numeric, *_plane_state(model, s_eq), 0.5, sample_times=np.linspace(0, 0.5, 6))
+    assert max(abs(np.linalg.norm(m.q) - s_eq) for m in motion.samples) < 1e-8 * s_eq
+
+
+def test_pendulum_in_an_accelerating_car_oscillates_about_its_tilt_at_the_engines_rate():
+    model, answers = engine("pendulum_accelerating_car")
+    l, A = model.values["l"], model.values["A"]
+
+    def state(theta):  # at t = 0 the car is at rest (it accelerates from rest), the bob at rest with it
+        return [l * math.sin(theta), -l * math.cos(theta)], [0.0, 0.0]
+
+    def relative_tangential(theta):  # l θ̈ = (ẍ − A) cos θ + ÿ sin θ, at rest relative to the car
+        s = snapshot(model.numeric, 0.0, *state(theta))
+        return (s.qddot[0] - A) * math.cos(theta) + s.qddot[1] * math.sin(theta)
+
+    tilt = brentq(relative_tangential, -1.5, 0.0, xtol=1e-15)
+
+    def angle(s):
+        return math.atan2(s.q[0] - A * s.t ** 2 / 2, -s.q[1])
+
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, *state(tilt + 1e-4), angle, tilt, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_trammel_with_a_spring_oscillates_about_the_upright_position_at_the_engines_rate():
+    model, answers = engine("trammel_spring")
+    l = model.values["l"]
+    theta = 1e-4
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, [l * math.sin(theta), 0.0, 0.0, l * math.cos(theta)], [0.0] * 4,
+                          lambda s: math.atan2(s.q[0], s.q[3]), 0.0, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_a_yoyo_of_the_balancing_mass_leaves_its_counterweight_at_rest():
+    from tests.numerical.test_special_values_confirmed import scene_of
+    from grader.simulate.scene_numeric import SceneModel
+
+    model, answers = engine("yoyo_counterweight")
+    M = closed_form(model, answers, "balancing_mass")
+    line = 'M = { dimension = "mass", domain = "positive", value = 2.0 }'
+    for factor, sign in ((1.0, 0), (1.001, -1)):
+        balanced = SceneModel(scene_of("yoyo_counterweight", ((line, line.replace("2.0", repr(M * factor))),)))
+        start = balanced.initial_state()
+        y2ddot = snapshot(balanced.numeric, 0.0, start.q, start.qdot).qddot[2]
+        if sign == 0:
+            assert abs(y2ddot) < 1e-9 * model.values["g"]
+        else:
+            assert y2ddot < 0  # a heavier yo-yo lifts the block
