@@ -417,6 +417,20 @@ def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
     return out if out is not None else tokens
 
 
+# Largest operand (in nodes) of d/dt (first order) and d²/dt² (second order): the Lagrangian's
+# momenta and energies students differentiate are a few dozen nodes.
+_MAX_OPERAND = {1: 150, 2: 60}
+
+
+def _size(expr: sympy.Expr, limit: int) -> int:
+    """Nodes of ``expr``, counted up to just past ``limit``."""
+    count, stack = 0, [expr]
+    while stack and count <= limit:
+        count += 1
+        stack.extend(stack.pop().args)
+    return count
+
+
 def _rate(symbol: sympy.Symbol, ns, shown: str, position: int) -> sympy.Expr:
     """``d symbol/dt`` in the namespace: the declared derivative (θ -> θ̇, θ̇ -> θ̈), 1 for the time,
     0 for a parameter; an error for a quantity of the motion whose derivative is not declared."""
@@ -452,6 +466,12 @@ def time_derivative(expr: sympy.Expr, order: int, ns, shown: str, position: int)
     >>> time_derivative(m*r**2*phidot, 1, ns, "d/dt", 0) == 2*m*r*rdot*phidot + m*r**2*phiddot
     True
     """
+    limit = _MAX_OPERAND.get(order, _MAX_OPERAND[2])
+    if _size(expr, limit) > limit:
+        # the product rule multiplies a product's size by its length, at each order: a 500-character
+        # product of 80 factors would take a minute to differentiate twice
+        raise ExpressionError(f"'{shown}' is applied to an expression too long to differentiate here", position,
+                              "too_large", "differentiate it yourself and write the derivatives with dots, as in θ̇ or ẍ")
     for _ in range(order):
         rates = {s: _rate(s, ns, shown, position) for s in sorted(expr.free_symbols, key=lambda s: s.name)}
         expr = sympy.Add(*(expr.diff(s) * rate for s, rate in rates.items() if rate != 0))

@@ -351,3 +351,16 @@ def test_d_dt_of_an_expression_is_refused_where_a_derivative_is_missing_or_the_p
         parse_expression(text, ns)
     err = caught.value
     assert named in err.message and fix in err.hint and err.code == code
+
+
+@pytest.mark.parametrize("text", [
+    "d²/dt²(" + "".join(f"(x + {i} l)" for i in range(1, 40)) + ")",
+    "d/dt(" + "".join(f"(x + {i} l)" for i in range(1, 80)) + ")",
+])
+def test_d_dt_of_a_long_product_is_refused_at_once(ns, text):
+    # the product rule multiplies the size by the product's length at each order: minutes, unchecked
+    started = time.monotonic()
+    with pytest.raises(ExpressionError) as caught:
+        parse_expression(text, ns)
+    assert time.monotonic() - started < 0.5
+    assert caught.value.code == "too_large" and "with dots" in caught.value.hint
