@@ -25,6 +25,11 @@ time derivative, so restarting at an event, with the state the event reports, co
 same mode and does not fire the event again. Event functions have a direction (only a crossing
 into the forbidden sign counts), so a function that starts at zero and moves away (the gap just
 after a tangential lift-off, the slip velocity just after slipping starts) does not fire.
+scipy tests event functions only at the ends of its steps; each function is also tested at three
+points inside every step, and a minimum between them is followed down on the dense output, so a
+force that turns negative and back within one step (a bob whirled just below the critical speed)
+is a release (:meth:`Simulation._within_steps`). A gap or contact force fires only below −1e-13
+of its scale and never at exactly zero (:data:`_NOISE`): rounding is not an impact or a release.
 
 Examples
 --------
@@ -49,6 +54,7 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq, minimize_scalar
 
 from grader.simulate.compiled import CompiledScene, kkt_solve, parameter_values
 from grader.simulate.effects import Effect, Mode, declared_effects
@@ -60,6 +66,8 @@ __all__ = ["Simulation", "Trajectory", "simulate_scene"]
 _TOL = 1e-9          # relative: what counts as zero for a gap, a rate or a force at a mode decision
 _H = 1e-6            # s: step of the central differences along the flow (signs, Newton step)
 _MAX_EVENTS = 10_000
+_SCAN = np.array([0.0, 0.25, 0.5, 0.75])  # where inside each step event functions are also tested
+_NOISE = 1e-13      # relative: a gap or contact force this far below zero is rounding (event functions)
 _BAND = 1e-11        # relative: friction within this of μ_s N still holds (rounding, not physics)
 
 
@@ -191,9 +199,23 @@ class Simulation:
 
         return margin
 
-    def event_functions(self, mode: Mode, evaluator: _Evaluator) -> list[tuple[Callable, str, int]]:
-        """(g, effect, constraint index) per event the mode can meet; g has its direction set."""
+    def event_functions(self, mode: Mode, evaluator: _Evaluator, t0: float | None = None,
+                        y0: np.ndarray | None = None) -> list[tuple[Callable, str, int]]:
+        """(g, effect, constraint index) per event the mode can meet; g has its direction set.
+
+        With the segment's start (t0, y0), the gap of an open contact and the force of a closed
+        one fire only below −1e-13 of their scale (:data:`_NOISE`), and never at exactly zero:
+        after a lift-off whose gap grows only like t³ (a string going slack where its tension
+        barely turns negative) the gap stays at rounding level, ±1e-16, for many steps; counting
+        that as an impact closed the contact, which released again at once, thousands of times.
+        A contact force that is exactly 0 all along (a block sliding on a floor without gravity)
+        is a crossing for scipy (0 ≤ 0), which reported a release after the first step."""
         functions = []
+        gap_band = force_band = np.zeros(self.m)
+        if y0 is not None:
+            force_tol, gap_tol, _ = self._noise_scales(t0, y0, mode)
+            force_band = _NOISE / _TOL * force_tol + 1e-300
+            gap_band = _NOISE / _TOL * gap_tol + 1e-300
 
         def add(g, direction, effect, index):
             g.terminal, g.direction = True, direction
@@ -203,9 +225,11 @@ class Simulation:
             i = e.index
             if e.kind == "unilateral":
                 if i in mode.active:
-                    add(lambda t, y, i=i: evaluator.at(t, y)[1][i], -1.0, "release", i)
+                    add(lambda t, y, i=i, o=float(force_band[i]): evaluator.at(t, y)[1][i] + o,
+                        -1.0, "release", i)
                 else:
-                    add(lambda t, y, i=i: self.compiled.gaps(t, y[:self.n])[0][i], -1.0, "contact", i)
+                    add(lambda t, y, i=i, o=float(gap_band[i]): self.compiled.gaps(t, y[:self.n])[0][i] + o,
+                        -1.0, "contact", i)
             elif e.kind == "rolling" and e.normal in mode.active:
                 if i in mode.active:
                     for sign in (1.0, -1.0):
@@ -426,14 +450,17 @@ class Simulation:
         while t < t_end:
             stop = next(x for x in stops if x > t)
             evaluator = _Evaluator(self, mode)
-            functions = self.event_functions(mode, evaluator)
+            functions = self.event_functions(mode, evaluator, t, y)
             guarded = [guard_start(g, t, y) for g, _, _ in functions]
             solution = self._integrate(evaluator.rhs, t, stop, y, guarded)
-            self._sample(solution, mode, self._inside(wanted, t, solution.t[-1], rows), rows)
-            if solution.status != 1:
+            hits = [(hit[0], k) for k, hit in enumerate(solution.t_events or []) if len(hit)]
+            missed = self._within_steps(solution, guarded)
+            if missed is not None and (not hits or missed[0] < min(hits)[0]):
+                hits = [missed]
+            self._sample(solution, mode, self._inside(wanted, t, min(hits)[0] if hits else solution.t[-1], rows), rows)
+            if not hits:
                 t, y = stop, self.project(stop, solution.y[:, -1], mode)
                 continue
-            hits = [(hit[0], k) for k, hit in enumerate(solution.t_events) if len(hit)]
             t_hit, k = min(hits)
             g, effect, i = functions[k]
             t_hit, y_hit = self._refine(g, t_hit, solution.sol(t_hit), mode)
@@ -444,6 +471,55 @@ class Simulation:
                 raise SimulationError(f"more than {max_events} events by t = {t_hit:.9g} (chattering contact?)")
             t = t_hit
         return self._trajectory(rows, events)
+
+    def _noise_scales(self, t: float, y: np.ndarray, mode: Mode):
+        """What counts as zero for a force, a gap and a rate at a mode decision (as in :meth:`settle`)."""
+        _, _, f_tol, v_tol, norms = self._scales(t, y)
+        _, lam, _, F = self.solve(t, y, mode)
+        return _TOL * (np.linalg.norm(F) + np.abs(lam).max(initial=0.0)) / norms, f_tol, v_tol
+
+    @staticmethod
+    def _within_steps(solution, guarded) -> tuple[float, int] | None:
+        """The first crossing scipy missed: it tests event functions only at the ends of its steps,
+        so a force that dips below zero and recovers within one step (the tension of a bob
+        whirled just below the critical speed, negative for a few ms about the top) kept its
+        contact. Each function is also evaluated at three points inside every step; a sign change
+        between them, or a minimum among them that the dense output puts below zero, is a
+        crossing, located with brentq (the functions carry their rounding band, see
+        :meth:`event_functions`). Returns (t, index of the function) or None."""
+        if not guarded or len(solution.t) < 2:
+            return None
+        ts = solution.t
+        points = np.concatenate([(ts[:-1, None] + np.diff(ts)[:, None] * _SCAN).ravel(), ts[-1:]])
+        states = solution.sol(points)
+        found = None
+        for k, g in enumerate(guarded):
+            away = -g.direction
+
+            def h(tt, g=g, away=away):
+                return away * g(tt, solution.sol(tt))
+
+            values = np.array([away * g(tt, states[:, j]) for j, tt in enumerate(points)])
+            for j in range(1, len(points)):
+                if found is not None and points[j - 1] >= found[0]:
+                    break
+                root = None
+                if values[j] < 0 <= values[j - 1]:
+                    root = points[j - 1] if values[j - 1] == 0 else brentq(h, points[j - 1], points[j], xtol=1e-15,
+                                                                          rtol=4 * np.finfo(float).eps)
+                elif (j + 1 < len(points) and 0 < values[j] <= min(values[j - 1], values[j + 1])
+                      and values[j] <= max(values[j - 1], values[j + 1]) - values[j]):
+                    # A quadratic through three such samples has its minimum at most 1/4 of that
+                    # rise below the middle one: only these minima can reach zero.
+                    low = minimize_scalar(h, bounds=(points[j - 1], points[j + 1]), method="bounded",
+                                          options={"xatol": 1e-14 * max(1.0, abs(points[j]))})
+                    if low.fun < 0:
+                        root = brentq(h, points[j - 1], low.x, xtol=1e-15, rtol=4 * np.finfo(float).eps)
+                if root is not None:
+                    if found is None or root < found[0]:
+                        found = (float(root), k)
+                    break
+        return found
 
     @staticmethod
     def _inside(wanted: np.ndarray, start: float, stop: float, rows: list) -> np.ndarray:
