@@ -3,7 +3,8 @@
 ``[initial]`` may give some coordinates and velocities (numbers or expressions in the parameters),
 or the variables of a ``[parametrization]``. Coordinates it leaves out are solved from the
 constraints (all of them: a scene starts with its contacts closed unless it places the body off
-them), velocities it leaves out from ḟ = 0; whatever is neither given nor fixed starts at 0. The
+them; when the coordinates left out cannot close every constraint they enter, they must be given),
+velocities it leaves out from ḟ = 0; whatever is neither given nor fixed starts at 0. The
 completed state must satisfy every bilateral and rolling constraint, and lie on the allowed side
 (f ≥ 0) of every unilateral one; otherwise :class:`InitialStateError` says which constraint fails.
 
@@ -73,6 +74,7 @@ def initial_state(scene, compiled, t0: float = 0.0) -> tuple[np.ndarray, np.ndar
         qdot = np.array([_number(scene, scene.initial[c.dot.name], values) if g else 0.0
                          for c, g in zip(coordinates, given_v)])
         q = _solve_positions(compiled, t0, q, ~given_q)
+        _check_solved(scene, compiled, t0, q, ~given_q)
     f, J = compiled.gaps(t0, q)
     closed = np.array([abs(v) <= _TOL * (1 + np.abs(Ji) @ np.abs(q)) for v, Ji in zip(f, J)], dtype=bool)
     if np.any(~given_v) and np.any(closed):
@@ -92,6 +94,26 @@ def _solve_positions(compiled, t0: float, q: np.ndarray, free: np.ndarray) -> np
         if np.all(np.abs(step) <= 1e-15 * (1 + np.abs(q[free]))):
             break
     return q
+
+
+def _check_solved(scene, compiled, t0: float, q: np.ndarray, free: np.ndarray) -> None:
+    """The coordinates left out must close every constraint they enter. Two contacts that cannot
+    hold at once (a body on a sphere above a floor, with r left out) got a least-squares compromise
+    on neither, refused as 'the wrong side of surface' without saying that r was the problem."""
+    if not compiled.m or not np.any(free):
+        return
+    f, J = compiled.gaps(t0, q)
+    involved = np.any(J[:, free] != 0, axis=1)
+    open_ = [k.name for k, v, Ji, used in zip(scene.constraints, f, J, involved)
+             if used and abs(v) > _TOL * (1 + np.abs(Ji) @ np.abs(q))]
+    if open_:
+        names = [c.name for c, left in zip(scene.coordinates.values(), free) if left]
+        closing = [k.name for k, used in zip(scene.constraints, involved) if used]
+        raise InitialStateError(
+            f"{scene.source}: [initial] leaves out {', '.join(names)}, and no value of "
+            f"{'it' if len(names) == 1 else 'them'} closes every constraint "
+            f"{'it enters' if len(names) == 1 else 'they enter'} ({', '.join(closing)}) at once: "
+            f"give {', '.join(names)} in [initial] (a contact may start open)")
 
 
 def _solve_velocities(compiled, t0, q, qdot, free, closed) -> np.ndarray:

@@ -76,3 +76,36 @@ def test_a_parametrization_without_its_variables_is_refused():
     scene.initial.pop("theta")
     with pytest.raises(InitialStateError, match="gives no value for theta"):
         start(scene)
+
+
+def test_a_coordinate_left_out_that_cannot_close_every_contact_is_named():
+    # A body on a sphere above a floor: r from both contacts at once has no solution; the
+    # least-squares compromise was refused as 'the wrong side of surface', not naming r.
+    scene = parse_scene('''
+id = "sphere_floor"
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 1.0 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+R = { dimension = "length", domain = "positive", value = 0.8 }
+[coordinates]
+r = { dimension = "length", domain = "positive" }
+theta = { dimension = "angle", domain = "real" }
+[energy]
+kinetic = "m/2*(rdot^2 + r^2*thetadot^2)"
+potential = "m*g*r*cos(theta)"
+[[constraints]]
+name = "surface"
+f = "r - R"
+kind = "unilateral"
+[[constraints]]
+name = "floor"
+f = "r*cos(theta) + R"
+kind = "unilateral"
+[initial]
+theta = 0.3
+''', source="sphere_floor.toml")
+    with pytest.raises(InitialStateError, match=r"leaves out r, .*\(surface, floor\) at once: give r in \[initial\]"):
+        start(scene)
+    scene.initial["r"] = scene.parameters["R"].symbol
+    q, _ = start(scene)
+    assert q.tolist() == [0.8, 0.3]
