@@ -233,3 +233,84 @@ def test_a_ladder_leaves_the_wall_but_not_the_floor_and_keeps_its_energy():
     assert motion.active[:, 1].all() and motion.multipliers[:, 1].min() > 0
     kinetic = m / 2 * (motion.qdot[:, 1] ** 2 + motion.qdot[:, 2] ** 2) + m * l ** 2 / 24 * motion.qdot[:, 0] ** 2
     assert np.ptp(kinetic + m * G * motion.q[:, 2]) < 1e-7
+
+
+@pytest.mark.parametrize("mu", [0.3, 1.0, 100.0])
+def test_a_disk_rolling_off_a_cylinder_slips_where_friction_runs_out_then_leaves_where_n_vanishes(mu):
+    # Rolling: (R + a) θ̇² = (4/3) g (cos θ₀ − cos θ), N = m g cos θ − m (R + a) θ̇², friction
+    # m g sin θ / 3: it slips where sin θ / 3 = μ ((7/3) cos θ − (4/3) cos θ₀), before
+    # N = 0 (cos θ = (4/7) cos θ₀) for any μ. Then kinetic friction μ N until N = 0, integrated
+    # here independently: ρ θ̈ = g sin θ − μ N/m, (a/2) φ̈ = μ N/m.
+    from scipy.integrate import solve_ivp
+
+    g, rho, a, theta0 = G, 1.2, 0.2, 0.05
+    motion = simulate_scene(load_scene(SCENES / "disk_off_cylinder.toml"), {"mu": mu}, t_end=3.0)
+    assert [(e.effect, e.constraint) for e in motion.events] == [("slip", "roll"), ("release", "contact")]
+    slip, release = motion.events
+    expected = brentq(lambda th: math.sin(th) / 3 - mu * (7 / 3 * math.cos(th) - 4 / 3 * math.cos(theta0)),
+                      theta0, math.acos(4 / 7 * math.cos(theta0)), xtol=1e-15)
+    assert slip.state["theta"] == pytest.approx(expected, abs=1e-9)
+
+    def rhs(t, y):
+        theta, w, _, wphi = y
+        normal = g * math.cos(theta) - rho * w * w
+        return [w, (g * math.sin(theta) - mu * normal) / rho, wphi, 2 * mu * normal / a]
+
+    def leaves(t, y):
+        return g * math.cos(y[0]) - rho * y[1] ** 2
+
+    leaves.terminal = True
+    s = slip.state
+    check = solve_ivp(rhs, (slip.t, 3.0), [s["theta"], s["thetadot"], s["phi"], s["phidot"]], method="DOP853",
+                      rtol=1e-12, atol=1e-12, events=leaves)
+    assert release.t == pytest.approx(check.t_events[0][0], abs=1e-9)
+    assert release.state["theta"] == pytest.approx(check.y_events[0][0][0], abs=1e-9)
+    assert release.state["phidot"] == pytest.approx(check.y_events[0][0][3], rel=1e-9)
+
+
+def test_a_body_that_leaves_a_sphere_lands_on_the_floor_and_bounces_with_its_restitution():
+    R, e = 0.8, 0.5
+    scene = parse_scene(f'''
+id = "sphere_floor"
+[parameters]
+m = {{ dimension = "mass", domain = "positive", value = 1.0 }}
+g = {{ dimension = "acceleration", domain = "positive", value = {G} }}
+R = {{ dimension = "length", domain = "positive", value = {R} }}
+e = {{ dimension = "dimensionless", domain = [0, 1], value = {e} }}
+[coordinates]
+r = {{ dimension = "length", domain = "positive" }}
+theta = {{ dimension = "angle", domain = "real" }}
+[energy]
+kinetic = "m/2*(rdot^2 + r^2*thetadot^2)"
+potential = "m*g*r*cos(theta)"
+[[constraints]]
+name = "surface"
+f = "r - R"
+kind = "unilateral"
+[[constraints]]
+name = "floor"
+f = "r*cos(theta) + R"
+kind = "unilateral"
+restitution = "e"
+[initial]
+r = "R"
+theta = 0.3
+''', source="sphere_floor.toml")
+    motion = simulate_scene(scene, {}, t_end=1.6)
+    assert [(x.effect, x.constraint) for x in motion.events] == [("release", "surface"), ("bounce", "floor"),
+                                                                ("bounce", "floor")]
+    release, land, again = motion.events
+    assert math.cos(release.state["theta"]) == pytest.approx(2 / 3 * math.cos(0.3), abs=1e-9)
+
+    def cartesian(state):
+        r, th, rdot, thdot = state["r"], state["theta"], state["rdot"], state["thetadot"]
+        return (r * math.sin(th), r * math.cos(th), rdot * math.sin(th) + r * thdot * math.cos(th),
+                rdot * math.cos(th) - r * thdot * math.sin(th))
+
+    x0, y0, vx, vy = cartesian(release.state)
+    fall = (vy + math.sqrt(vy * vy + 2 * G * (y0 + R))) / G
+    assert land.t == pytest.approx(release.t + fall, abs=1e-10)
+    x1, y1, vx1, vy1 = cartesian(land.state)
+    assert (x1, y1, vx1) == pytest.approx((x0 + vx * fall, -R, vx), abs=1e-9)
+    assert vy1 == pytest.approx(-e * (vy - G * fall), rel=1e-9)
+    assert again.t == pytest.approx(land.t + 2 * vy1 / G, abs=1e-10)
