@@ -222,3 +222,37 @@ def test_a_contact_force_exactly_zero_all_along_is_not_a_release():
     motion = simulate_scene(BALL, {"g": 0.0}, t_end=1.0, initial={"y": 0})
     assert motion.events == []
     assert motion.active.all()
+
+
+@pytest.mark.parametrize("depth", [1e-1, 1e-3, 1e-6])
+def test_a_body_whose_path_crosses_a_surface_within_one_step_hits_it(depth):
+    # Without gravity the flight is a straight line, which DOP853 crosses in steps as long as the
+    # run: the gap to the sphere was negative only between two step ends and the body went
+    # through the sphere (no event). It hits where the line meets the circle.
+    R = 0.8
+    scene = parse_scene(f'''
+id = "through"
+[parameters]
+m = {{ dimension = "mass", domain = "positive", value = 1.0 }}
+R = {{ dimension = "length", domain = "positive", value = {R} }}
+[coordinates]
+x = {{ dimension = "length" }}
+y = {{ dimension = "length" }}
+[energy]
+kinetic = "m/2*(xdot^2 + ydot^2)"
+potential = "0"
+[[constraints]]
+name = "sphere"
+f = "x^2 + y^2 - R^2"
+kind = "unilateral"
+restitution = 1
+[initial]
+x = -2
+y = {R - depth!r}
+xdot = 20
+''', source="through.toml")
+    motion = simulate_scene(scene, {}, t_end=0.3)
+    assert [e.effect for e in motion.events] == ["bounce"]
+    # (to 1e-10 s: a gap counts as closed 1e-13 of its scale below zero, here at grazing incidence)
+    assert motion.events[0].t == pytest.approx((2 - math.sqrt(R ** 2 - (R - depth) ** 2)) / 20, abs=1e-10)
+    assert np.all(np.hypot(motion.q[:, 0], motion.q[:, 1]) >= R - 1e-12)
