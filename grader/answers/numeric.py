@@ -4,9 +4,16 @@ A ``kind = "numeric"`` answer's reference is still the engine's closed form (``g
 carries the student's parameter values (`grader.answers.randomised`), and the checker evaluates the
 closed form there, in SI units. The student's text is read with a small grammar of our own (never
 ``float()`` on arbitrary text, never ``eval``): a decimal or scientific number (``14.7``, ``1.47e1``,
-``1.47×10^1``, ``1.47·10¹``, a unicode minus), then a unit read by
-:func:`grader.expressions.dimensions.parse_unit` (the one unit table). A decimal comma is refused with
-a message, since ``1,470`` could be either 1.47 or 1470.
+``1.47×10^1``, ``1.47·10¹``, ``10^3``, a unicode minus; a name or ``≈`` before it, ``F = 14.7 N``), then a
+unit read by :func:`grader.expressions.dimensions.read_unit` (the one unit table, with the students'
+spellings: ``Nm``, ``m/s2``, ``newtons``). A decimal comma is refused with a message, since ``1,470``
+could be either 1.47 or 1470.
+
+Units of one dimension that are still not interchangeable are refused with what to type where the
+scene's ``unit`` says which is asked (`_unit_conflict`): Hz against rad/s (ω = 2πf), J for a torque
+asked in N·m, % for an angle. A bare number for a dimensionless answer is in the unit asked (``30``
+when degrees are asked). Readings that are only a guess are refused, never judged, when they do not
+give the answer's dimension: ``9.8 ms^-2`` (ms is the millisecond; m s^-2 was meant), ``14.7 Nm``.
 
 Verdicts: a number outside the tolerance is ``not_equivalent``; a unit of the wrong dimension is
 ``not_equivalent`` with the dimension named in words; a missing unit (when the answer has one) or an
@@ -29,7 +36,7 @@ from grader.answers.evaluate import SCALE, FloatBackend, Unsupported, compile_ex
 from grader.answers.verdict import Verdict
 from grader.expressions.implicit import Implicit, ImplicitError
 from grader.expressions import DimensionError, ExpressionError, Namespace, parse_dimension, parse_expression
-from grader.expressions.dimensions import parse_unit
+from grader.expressions.dimensions import parse_unit, read_unit
 
 __all__ = ["DEFAULT_TOLERANCE", "NumericRequestError", "Quantity", "QuantityError", "check_numeric",
            "parse_quantity", "reference_value", "within_tolerance"]
@@ -40,13 +47,22 @@ _MINUSES = str.maketrans({"\u2212": "-", "\u2012": "-", "\u2013": "-", "\ufe63":
 _SUPERSCRIPT_DIGITS = str.maketrans("⁺⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "+-0123456789")
 _NUMBER = re.compile(r"""
     \s*(?P<sign>[-+])?\s*
-    (?P<mantissa>\d+(?:\.\d*)?|\.\d+)
     (?:
-        [eE](?P<e>[-+]?\d+)
-      | \s*[×x*·]\s*10\s*(?:\^|\*\*)\s*(?P<p>[-+]?\d+|\(\s*[-+]?\d+\s*\))
-      | \s*[×x*·]\s*10(?P<s>[⁺⁻]?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)
-    )?
+        (?P<ten>10)(?:\s*(?:\^|\*\*)\s*(?P<tp>[-+]?\d+|\(\s*[-+]?\d+\s*\))|(?P<ts>[⁺⁻]?[⁰¹²³⁴⁵⁶⁷⁸⁹]+))
+      | (?P<mantissa>\d+(?:\.\d*)?|\.\d+)
+        (?:
+            [eE](?P<e>[-+]?\d+)
+          | \s*[×xX*·⋅∙]\s*10\s*(?:\^|\*\*)\s*(?P<p>[-+]?\d+|\(\s*[-+]?\d+\s*\))
+          | \s*[×xX*·⋅∙]\s*10(?P<s>[⁺⁻]?[⁰¹²³⁴⁵⁶⁷⁸⁹]+)
+        )?
+    )
     """, re.VERBOSE)
+# "F = 14.7 N", "≈ 14.7 N", "~14.7 N": a name the student gives the quantity, or "about", before the number.
+_LABEL = re.compile(r"\s*(?:[^\W\d]\w{0,19}(?:\s*\(\s*\w{0,8}\s*\))?\s*)?(?:=|≈|≃|~|∼)\s*")
+_THOUSANDS = re.compile(r"[-+]?(\d{1,3})((?:,\d{3})+)(?![\d.,])")
+_ANGLE_UNITS = frozenset({"rad", "deg", "°"})
+_UNIT_NAMES = {"s": "second", "N": "newton", "J": "joule", "W": "watt", "Pa": "pascal", "rad": "radian",
+               "Hz": "hertz", "g": "gram", "m": "metre"}
 
 
 class QuantityError(ValueError):
@@ -79,6 +95,8 @@ class Quantity:
     size: float
     dimension: Any
     sig_figs: int
+    symbols: tuple = ()
+    joined: tuple = ()
 
     @property
     def si(self) -> float:
@@ -116,6 +134,14 @@ def parse_quantity(text: str) -> Quantity:
     if len(text) > _MAX_TEXT:
         raise QuantityError(f"a number with its unit is at most {_MAX_TEXT} characters")
     text = text.translate(_MINUSES).strip()
+    label = _LABEL.match(text)
+    if label:
+        text = text[label.end():]  # "F = 14.7 N", "≈ 14.7 N"
+    thousands = _THOUSANDS.match(text)
+    if thousands:
+        whole, groups = thousands[1], thousands[2]
+        raise QuantityError(f"type the number without commas: {whole}{groups.replace(',', '')} (or "
+                            f"{whole}.{groups[1:].replace(',', '')} if the comma is a decimal point)")
     comma = re.search(r"(\d+),(\d+)", text)
     if comma:
         raise QuantityError(f"write a decimal point, not a comma: {comma[1]}.{comma[2]}, not {comma[1]},{comma[2]}")
@@ -123,28 +149,40 @@ def parse_quantity(text: str) -> Quantity:
         raise QuantityError("type one number with a decimal point (no commas)")
     match = _NUMBER.match(text)
     if not match:
+        if "π" in text or re.search(r"(?<![A-Za-z])pi(?![A-Za-z])", text, re.IGNORECASE):
+            raise QuantityError("type the value as a decimal number (such as 0.524), not in terms of π")
         raise QuantityError("type a number first, such as 14.7 or 1.47e1, then its unit")
-    mantissa = match["mantissa"]
-    exponent = match["e"] or (match["p"] or "").strip("() ") or (match["s"] or "").translate(_SUPERSCRIPT_DIGITS)
+    if match["ten"]:  # 10^3: a power of ten alone
+        mantissa = "1"
+        exponent = (match["tp"] or "").strip("() ") or (match["ts"] or "").translate(_SUPERSCRIPT_DIGITS)
+    else:
+        mantissa = match["mantissa"]
+        exponent = match["e"] or (match["p"] or "").strip("() ") or (match["s"] or "").translate(_SUPERSCRIPT_DIGITS)
     try:
         number = float(f"{match['sign'] or ''}{mantissa}e{exponent or 0}")
     except (ValueError, OverflowError):
         raise QuantityError("the number is not readable") from None
-    if not math.isfinite(number) or (number != 0 and not 1e-300 < abs(number) < 1e300):
+    underflow = number == 0 and mantissa.strip("0.") != ""
+    if not math.isfinite(number) or underflow or (number != 0 and not 1e-300 < abs(number) < 1e300):
         raise QuantityError("the number is too large or too small")
     rest = text[match.end():].strip()
-    if rest[:1].isdigit() or rest[:1] == ".":
+    if rest.endswith(".") and not rest.endswith(".."):
+        rest = rest[:-1].rstrip()  # "14.7 N." at the end of a sentence
+    if (rest[:1].isdigit() or rest[:1] == ".") and not re.match(r"1\s*/\s*[^\W\d]", rest):  # "5 1/s" is a unit
         raise QuantityError("type one number, without spaces inside it (1000, not 1 000)")
-    if rest[:1] in "+-^(" and rest:
+    if rest[:1] in "+-^" and rest or re.match(r"\(\s*[-+\d.]", rest):
         raise QuantityError("type one number (such as 14.7), not a calculation")
     if rest[:1] in "*/" and re.match(r"[*/]\s*[\d.(]", rest):
         raise QuantityError("type one number (such as 14.7), not a calculation")
     try:
-        size, dimension = parse_unit(rest)
+        reading = read_unit(rest)
     except DimensionError as error:
+        if re.search(r"(?:^|[\s×*·(])\d*\.?\d+(?![\d/])", rest):
+            raise QuantityError("type one number (such as 14.7), not a calculation") from None
         raise QuantityError(f"the unit is not readable: {error}") from None
     digits = mantissa.replace(".", "").lstrip("0")
-    return Quantity(number, rest, size, dimension, max(len(digits), 1))
+    return Quantity(number, rest, reading.size, reading.dimension, max(len(digits), 1), reading.symbols,
+                    reading.joined)
 
 
 def within_tolerance(value: float, reference: float, tolerance: Mapping[str, Any], size: float = 1.0) -> bool:
@@ -315,7 +353,8 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
     if not isinstance(unit, str):
         raise NumericRequestError("'unit' must be a string")
     try:
-        _, expected_dim = parse_unit(unit)
+        expected = read_unit(unit)
+        expected_dim = expected.dimension
         if dimension:
             declared = parse_dimension(dimension)
             if declared != expected_dim:
@@ -340,18 +379,45 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
         return Verdict.invalid(str(error), text, feedback=[{"code": "number", "message": f"{str(error)[:1].upper()}"
                                                                                            f"{str(error)[1:]}."}])
     parsed = {"text": text.strip(), "latex": quantity.latex, "notes": []}
+    angle = expected_dim.is_dimensionless and (bool(_ANGLE_UNITS & set(expected.symbols))
+                                               or str(dimension or "").strip().lower() == "angle")
+    if quantity.unit == "" and expected_dim.is_dimensionless and expected.size != 1.0:
+        # A bare number for an angle or a ratio is in the unit asked (30 when degrees are asked, 50 when %).
+        quantity = Quantity(quantity.number, "", expected.size, quantity.dimension, quantity.sig_figs)
+        parsed["notes"].append(f"read in {unit}, the unit asked")
     if quantity.unit == "" and not expected_dim.is_dimensionless:
         reason = f"give a unit: the answer is {expected_dim.describe()}, for example in {unit}"
         return Verdict("invalid", "none", reason, parsed=parsed,
                        feedback=[{"code": "missing_unit", "message": f"Give a unit: the answer is "
                                                                      f"{expected_dim.describe()}."}])
     if quantity.dimension != expected_dim:
+        try:
+            metre = read_unit(quantity.unit, milli_as_metre=True)
+        except DimensionError:
+            metre = None
+        if metre is not None and metre.split and metre.dimension == expected_dim:
+            milli = metre.split[0]
+            unit_name = _UNIT_NAMES.get(milli[1:], milli[1:])
+            message = (f"{milli} is the milli{unit_name}; if you meant metres times {unit_name}s, put a space "
+                       f"between them: m {milli[1:]}.")
+            return Verdict("invalid", "none", message[:1].lower() + message[1:-1], parsed=parsed,
+                           feedback=[{"code": "unit", "message": message}])
         mine = "a pure number" if quantity.dimension.is_dimensionless else quantity.dimension.describe()
         wanted = "a pure number" if expected_dim.is_dimensionless else expected_dim.describe()
+        if quantity.joined:  # Nm read as N m was a guess: refuse rather than judge it
+            name, read_as = quantity.joined[0]
+            message = (f"{quantity.unit} was read as {quantity.unit.replace(name, read_as, 1)} ({name} as units "
+                       f"written together), {mine}; the answer is {wanted}. Type the units apart, with spaces or *.")
+            return Verdict("invalid", "none", message[:1].lower() + message[1:-1], parsed=parsed,
+                           feedback=[{"code": "unit", "message": message}])
         message = f"Your unit {quantity.unit} is {mine}; the answer is {wanted}."
         return Verdict("not_equivalent", "proved", f"wrong unit: {quantity.unit} is {mine}, the answer is {wanted}",
                        parsed=parsed, feedback=[{"code": "dimension", "message": message}],
                        evidence={"method": "units"})
+    conflict = _unit_conflict(expected.symbols, angle, quantity.symbols, expected_dim == parse_dimension("energy"))
+    if conflict:
+        return Verdict("invalid", "none", conflict[:1].lower() + conflict[1:-1], parsed=parsed,
+                       feedback=[{"code": "unit", "message": conflict}])
     if quantity.unit and quantity.size != 1.0:
         parsed["notes"].append(f"converted from {quantity.unit} to SI units")
     figures = tol.get("sig_figs")
@@ -363,12 +429,41 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
         return Verdict("equivalent", "numeric", "within the tolerance of the expected value", parsed=parsed,
                        evidence={"method": "numeric_value", "tolerance": tol})
     items = _numeric_feedback(quantity.si, target, tol, feedback or (), variables_json, values)
+    if not items and quantity.unit == "" and (angle or expected.size != 1.0):
+        other = math.pi / 180 if expected.size == 1.0 else 1.0  # the other of rad and degrees (or % and 1)
+        if within_tolerance(quantity.number * other, target, tol, other):
+            asked = "rad" if expected.size == 1.0 else unit
+            meant = ("°" if expected.size == 1.0 else "rad") if angle else None
+            items = [{"code": "angle_unit" if angle else "unit",
+                      "message": f"A number without a unit is read in {asked}, the unit asked"
+                                 + (f"; type {meant} after it if you meant that unit." if meant else ".")}]
     verdict = Verdict("not_equivalent", "numeric", "outside the tolerance of the expected value", parsed=parsed,
                       feedback=items, evidence={"method": "numeric_value", "tolerance": tol})
     scores = [item["score"] for item in items if "score" in item]
     if scores:
         verdict.score = max(scores)
     return verdict
+
+
+def _unit_conflict(asked: Sequence[str], angle: bool, typed: Sequence[str], energy: bool) -> str | None:
+    """Why a unit of the right dimension is still not the one meant; None if it is.
+
+    Units the dimensions cannot tell apart: an angular frequency in rad/s is not one in Hz (cycles
+    per second, ω = 2πf), a torque is in N·m and not in joules (an energy), an angle is not a
+    percentage. The message says what to type; it never says which number is right.
+    """
+    asked, typed = set(asked), set(typed)
+    if angle and "%" in typed:
+        return "Give the angle in rad or ° (not in %)."
+    if asked & _ANGLE_UNITS and "Hz" in typed:
+        return ("Hz counts cycles per second (f = ω/2π); give this angular frequency in rad/s "
+                "(or s⁻¹).")
+    if "Hz" in asked and typed & _ANGLE_UNITS:
+        return ("Give this frequency in Hz (cycles per second, or s⁻¹); rad/s measures an angular "
+                "frequency (ω = 2πf).")
+    if energy and {"N", "m"} <= asked and "J" not in asked and "J" in typed and "rad" not in typed:  # J/rad is fine
+        return "A torque is given in N·m (the joule is for energy): type N*m."
+    return None
 
 
 def _numeric_feedback(value: float, target: float, tol: Mapping[str, Any], feedback, variables_json: str,

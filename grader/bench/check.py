@@ -28,6 +28,8 @@ from pathlib import Path
 import click
 
 DEFAULT_CORPUS = Path("tests/answers/corpus")
+# A numeric answer's request also carries the student's numbers, the unit asked and the tolerance.
+NUMERIC_KEYS = ("values", "unit", "tolerance", "dimension", "implicit")
 
 
 def load_corpus(folder: Path) -> list[dict]:
@@ -64,7 +66,8 @@ def _run_ours(items, options=None, budget_s=2.0, clock=time.perf_counter, cold=F
         started = clock()
         verdict = check(item["reference"], item["answer"], item["variables"], kind=item["kind"],
                         feedback=item.get("feedback"), state=item.get("state"), budget_s=budget_s,
-                        options=options or DEFAULT_OPTIONS, alternatives=item.get("alternatives"))
+                        options=options or DEFAULT_OPTIONS, alternatives=item.get("alternatives"),
+                        **{k: item[k] for k in NUMERIC_KEYS if k in item})
         ms = (clock() - started) * 1000
         results.append({"id": item["id"], "verdict": verdict.verdict, "ms": ms,
                         "codes": [f["code"] for f in verdict.feedback]})
@@ -361,6 +364,9 @@ def bench_check(corpus: Path, out: Path, baseline_timeout: float, no_baseline: b
     out.mkdir(parents=True, exist_ok=True)
     hostile = [i for i in items if "hostile" in i["tags"]]
     benign = [i for i in items if "hostile" not in i["tags"]]
+    # The naive baseline and the precision sweep judge expressions: numeric answers (a number with a
+    # unit, no symbolic judge) are left out of both, explicitly.
+    symbolic = [i for i in benign if i["kind"] != "numeric"]
     typical = [i for i in items if "typical" in i["tags"]]
     click.echo(f"corpus: {len(items)} items ({len(benign)} answers, {len(hostile)} hostile inputs) from {corpus}")
 
@@ -379,7 +385,7 @@ def bench_check(corpus: Path, out: Path, baseline_timeout: float, no_baseline: b
         sandboxed = []
         for item in items:
             request = {k: item[k] for k in ("reference", "answer", "variables", "kind") if k in item}
-            for k in ("feedback", "state", "alternatives"):
+            for k in ("feedback", "state", "alternatives", *NUMERIC_KEYS):
                 if k in item:
                     request[k] = item[k]
             started = time.perf_counter()
@@ -392,11 +398,12 @@ def bench_check(corpus: Path, out: Path, baseline_timeout: float, no_baseline: b
         figures["sandbox"]["restarts"] = box.restarts
 
     if not no_baseline:
-        base = _run_baseline(benign, baseline_timeout)
-        figures["baseline"] = _summary(benign, base)
+        base = _run_baseline(symbolic, baseline_timeout)
+        figures["baseline"] = _summary(symbolic, base)
         figures["baseline"]["timeouts"] = sum(r["verdict"] == "timeout" for r in base)
         figures["baseline"]["timeout_s"] = baseline_timeout
-        figures["speedup_median"] = figures["baseline"]["p50_ms"] / figures["ours_benign"]["p50_ms"]
+        ours_symbolic = _summary(symbolic, [by_id[i["id"]] for i in symbolic])
+        figures["speedup_median"] = figures["baseline"]["p50_ms"] / ours_symbolic["p50_ms"]
         baseline_by_id = {r["id"]: r for r in base}
     else:
         baseline_by_id = None
@@ -410,7 +417,7 @@ def bench_check(corpus: Path, out: Path, baseline_timeout: float, no_baseline: b
         figures["textbook"] = _textbook(textbook, baseline_by_id, transliterated)
 
     if not no_sweep:
-        figures["sweep"] = _sweep(benign)
+        figures["sweep"] = _sweep(symbolic)
         _plot(figures["sweep"], out / "check-precision.png")
 
     (out / "check.json").write_text(json.dumps(figures, indent=2, default=str))

@@ -20,7 +20,8 @@ from sympy.core.function import AppliedUndef
 from .errors import DimensionError
 from .functions import BY_SYMPY
 
-__all__ = ["Dimension", "parse_dimension", "parse_unit", "dimension_of", "NAMED_DIMENSIONS", "UNITS", "PREFIXES"]
+__all__ = ["Dimension", "parse_dimension", "parse_unit", "read_unit", "UnitReading", "dimension_of", "NAMED_DIMENSIONS",
+           "UNITS", "PREFIXES"]
 
 _SUPERSCRIPTS = str.maketrans("0123456789-", "⁰¹²³⁴⁵⁶⁷⁸⁹⁻")
 
@@ -172,36 +173,102 @@ UNITS: dict[str, tuple[float, Dimension, bool]] = {
     "W": (1.0, _M * _L ** 2 / _T ** 3, True), "Pa": (1.0, _M / _L / _T ** 2, True),
     "rad": (1.0, DIMENSIONLESS, True), "Hz": (1.0, DIMENSIONLESS / _T, True),
     "deg": (math.pi / 180, DIMENSIONLESS, False), "°": (math.pi / 180, DIMENSIONLESS, False),
+    "%": (0.01, DIMENSIONLESS, False),
 }
 PREFIXES: dict[str, float] = {"T": 1e12, "G": 1e9, "M": 1e6, "k": 1e3, "h": 1e2, "d": 1e-1, "c": 1e-2,
                               "m": 1e-3, "µ": 1e-6, "μ": 1e-6, "u": 1e-6, "n": 1e-9, "p": 1e-12}
 _SI_UNITS: dict[str, Dimension] = {name: dim for name, (size, dim, _) in UNITS.items()
                                    if size == 1.0 and name != "g"}
 
-_DIM_TOKEN = re.compile(r"\s*(?:(\d+(?:/\d+)?)|([A-Za-z_µμ°]+)|(\*\*|[*/^()·.\-+]))")
+_DIM_TOKEN = re.compile(r"\s*(?:(\d+(?:/\d+)?)|([A-Za-z_µμ°]+|%)|(\*\*|[*/^()·.\-+]))")
+# A quantity's unit as students type it: the unit's names in words, any case, singular or plural
+# ("newtons", "Metres", "secs"), with prefixes in words ("kilometres"); "per", "squared", "cubed".
+_UNIT_WORDS: dict[str, str] = {
+    "second": "s", "sec": "s", "metre": "m", "meter": "m", "gram": "g", "gramme": "g", "newton": "N",
+    "joule": "J", "watt": "W", "pascal": "Pa", "radian": "rad", "rad": "rad", "degree": "deg", "deg": "deg",
+    "hertz": "Hz", "minute": "min", "min": "min", "hour": "h", "hr": "h", "percent": "%",
+}
+_PREFIX_WORDS: dict[str, str] = {"tera": "T", "giga": "G", "mega": "M", "kilo": "k", "hecto": "h", "deci": "d",
+                                 "centi": "c", "milli": "m", "micro": "µ", "nano": "n", "pico": "p"}
+_PURE_WORDS = ("dimensionless", "unitless")
+# Look-alikes of the degree sign and of the multiplication dot.
+_UNIT_LOOKALIKES = str.maketrans({"º": "°", "˚": "°", "⋅": "·", "∙": "·", "•": "·", "×": "*", "\u2212": "-"})
 _SUPERSCRIPT_RUN = re.compile("[⁺⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+")
 _FROM_SUPERSCRIPTS = str.maketrans("⁺⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "+-0123456789")
 
 
 def _unit_size(name: str) -> tuple[float, Dimension] | None:
     """(size in SI, dimension) of a unit symbol such as ``kN`` or ``min``; None if it is not one."""
+    found = _unit_parts(name)
+    return None if found is None else found[:2]
+
+
+def _unit_parts(name: str) -> tuple[float, Dimension, str] | None:
+    """(size in SI, dimension, the unit without its prefix) of a unit symbol such as ``kN``."""
     if name in UNITS:
         size, dim, _ = UNITS[name]
-        return size, dim
+        return size, dim, name
     for prefix, factor in PREFIXES.items():
         if name.startswith(prefix) and name[len(prefix):] in UNITS:
             size, dim, prefixable = UNITS[name[len(prefix):]]
             if prefixable:
-                return factor * size, dim
+                return factor * size, dim, name[len(prefix):]
     return None
+
+
+def _unit_word(word: str) -> str | None:
+    """The symbol of a unit written in words (``newtons``, ``Kilometres``, ``msec``); None if none."""
+    lower = word.lower()
+    for stem in (lower, lower[:-1] if lower.endswith("s") and len(lower) > 2 else None):
+        if stem is None:
+            continue
+        if stem in _UNIT_WORDS:
+            return _UNIT_WORDS[stem]
+        for prefix_word, prefix in _PREFIX_WORDS.items():
+            rest = stem[len(prefix_word):]
+            if stem.startswith(prefix_word) and _UNIT_WORDS.get(rest) and _unit_size(prefix + _UNIT_WORDS[rest]):
+                return prefix + _UNIT_WORDS[rest]
+    if word[:1] in PREFIXES and word[1:].lower() in ("sec", "secs"):
+        return word[:1] + "s"  # msec, µsec
+    return None
+
+
+def _unit_splits(name: str, depth: int = 0) -> list[list[str]]:
+    """Every way to read ``name`` as unit symbols written together (``Nm``: N m; ``kgm``: kg m)."""
+    if not name:
+        return [[]]
+    if depth > 6:
+        return []
+    splits = []
+    for end in range(1, len(name) + 1):
+        head = name[:end]
+        if _unit_size(head) is not None:
+            splits.extend([head, *tail] for tail in _unit_splits(name[end:], depth + 1))
+    return splits
+
+
+def _case_hint(name: str) -> str:
+    """`` (did you mean kN?)`` for a unit typed in the wrong case; ``""`` if none is meant."""
+    lower = name.lower()
+    candidates = sorted({symbol for symbol in UNITS if symbol.lower() == lower}
+                        | {prefix + symbol for symbol, (_, _, prefixable) in UNITS.items() if prefixable
+                           for prefix in PREFIXES if prefix not in "μu" and (prefix + symbol).lower() == lower})
+    if not candidates:
+        return ""
+    return f" (unit symbols are case-sensitive: did you mean {' or '.join(candidates)}?)"
 
 
 def parse_unit(text: str) -> tuple[float, Dimension]:
     """Read a unit as a student writes it after a number: (size in SI units, dimension).
 
-    Units are ``kg g m s min h N J W Pa rad Hz deg °`` with SI prefixes (``kN``, ``cm``, ``ms``,
+    Units are ``kg g m s min h N J W Pa rad Hz deg ° %`` with SI prefixes (``kN``, ``cm``, ``ms``,
     ``µs``), combined with ``* / ^ **``, ``·``, a space (``kg m/s^2``), parentheses and
-    superscripts (``m/s²``); an empty text is a pure number.
+    superscripts (``m/s²``); an empty text is a pure number. Also as students type them: symbols
+    written together (``Nm``, ``kgm/s^2``; refused where two readings differ, ``Nms``), an exponent
+    right after its unit (``m/s2``, ``m s-2``), a hyphen between units (``N-m``), a unit in words
+    (``newtons``, ``Metres``, ``kilometres``, ``secs``, ``msec``, ``per``, ``squared``), a capital
+    first letter where that is no other unit (``Kg``, ``Rad``; ``Nm`` stays N m, ``Ms`` the
+    megasecond). Symbols are otherwise case-sensitive (``mN``, ``MN``); a wrong case gets a hint.
 
     Examples
     --------
@@ -209,19 +276,75 @@ def parse_unit(text: str) -> tuple[float, Dimension]:
     (0.2777777777777778, 'a velocity (m/s)')
     >>> parse_unit("kg m/s²") == parse_unit("N")
     True
-    >>> parse_unit("Nm")
+    >>> parse_unit("Nm") == parse_unit("N m") == parse_unit("newton-metres") == parse_unit("N*m")
+    True
+    >>> parse_unit("m s-2") == parse_unit("m/s2") == parse_unit("metres per second squared") == parse_unit("m/s^2")
+    True
+    >>> parse_unit("Nms")
     Traceback (most recent call last):
     ...
-    grader.expressions.errors.DimensionError: unknown unit 'Nm' (write a product with '*', as in N*m)
+    grader.expressions.errors.DimensionError: 'Nms' could be N*ms or N*m*s: write the units apart, with spaces or '*'
+    >>> parse_unit("kn")
+    Traceback (most recent call last):
+    ...
+    grader.expressions.errors.DimensionError: unknown unit 'kn' in 'kn' (unit symbols are case-sensitive: did you mean kN?)
+    """
+    reading = read_unit(text)
+    return reading.size, reading.dimension
+
+
+@dataclass(frozen=True)
+class UnitReading:
+    """A quantity's unit, read (:func:`read_unit`).
+
+    Attributes
+    ----------
+    size : float
+        The unit's size in SI units.
+    dimension : Dimension
+    symbols : tuple of str
+        The units it is made of, without prefixes (``kN*m`` has ``("N", "m")``): which of
+        the units of one dimension was meant (``J`` or ``N*m``, ``Hz`` or ``rad/s``).
+    split : tuple of str
+        With ``milli_as_metre``, the milli-prefixed units read as metre products.
+    joined : tuple of str
+        ``(name, reading)`` of names read as unit symbols written together (``("Nm", "N m")``): a
+        guess at what was meant.
+    """
+
+    size: float
+    dimension: Dimension
+    symbols: tuple = ()
+    split: tuple = ()
+    joined: tuple = ()
+
+
+def read_unit(text: str, milli_as_metre: bool = False) -> UnitReading:
+    """Read a unit as a student writes it after a number (:func:`parse_unit`), with the units it names.
+
+    ``milli_as_metre``: read a milli-prefixed unit (``ms``, ``mN``) as the metre times that unit
+    instead (``m s``, ``m N``): what a student who typed ``9.8 ms^-2`` may have meant; for a
+    message, never to accept.
+
+    Examples
+    --------
+    >>> reading = read_unit("kNm")
+    >>> reading.size, reading.symbols, reading.dimension.describe()
+    (1000.0, ('N', 'm'), 'an energy or torque (kg·m²/s²)')
+    >>> read_unit("ms^-2").dimension.describe(), read_unit("ms^-2", milli_as_metre=True).dimension.describe()
+    ('an angular acceleration (1/s²)', 'an acceleration (m/s²)')
     """
     if not isinstance(text, str) or len(text) > 200:
         raise DimensionError("a unit is short text such as 'N' or 'kg*m/s^2'")
-    text = _SUPERSCRIPT_RUN.sub(lambda m: "^" + m.group().translate(_FROM_SUPERSCRIPTS), text.strip())
+    text = _SUPERSCRIPT_RUN.sub(lambda m: "^" + m.group().translate(_FROM_SUPERSCRIPTS),
+                                text.translate(_UNIT_LOOKALIKES).strip())
     if not text:
-        return 1.0, DIMENSIONLESS
+        return UnitReading(1.0, DIMENSIONLESS)
     if text.startswith("/"):
         text = "1" + text  # "5 /s"
-    return _UnitParser(text, scaled=True).parse_scaled()
+    parser = _UnitParser(text, scaled=True, milli_as_metre=milli_as_metre)
+    size, dim = parser.parse_scaled()
+    return UnitReading(size, dim, tuple(parser.symbols), tuple(parser.split), tuple(parser.joined))
 
 
 def parse_dimension(text: "str | Dimension") -> Dimension:
@@ -259,10 +382,15 @@ class _UnitParser:
     and named dimensions are refused (``14 force`` is no quantity).
     """
 
-    def __init__(self, text: str, scaled: bool = False) -> None:
+    def __init__(self, text: str, scaled: bool = False, milli_as_metre: bool = False) -> None:
         self.text = text
         self.scaled = scaled
+        self.milli_as_metre = milli_as_metre
+        self.symbols: list[str] = []  # the units read, without prefixes (scaled)
+        self.split: list[str] = []    # milli-prefixed units read as metre products (milli_as_metre)
+        self.joined: list[str] = []   # names read as symbols written together (Nm)
         self.tokens: list[tuple[str, str]] = []
+        attached: list[bool] = []  # no space before the token
         pos = 0
         stripped = text.rstrip()
         while pos < len(stripped):
@@ -272,8 +400,86 @@ class _UnitParser:
                 raise DimensionError(f"cannot read {what} {text!r} at character {pos + 1}")
             number, name, op = match.groups()
             self.tokens.append(("num", number) if number else ("name", name) if name else ("op", op))
+            attached.append(match.start(match.lastindex) == pos)
             pos = match.end()
+        if scaled:
+            self.tokens = self._as_typed(self.tokens, attached)
         self.i = 0
+
+    def _as_typed(self, raw: list[tuple[str, str]], attached: list[bool]) -> list:
+        """A quantity's tokens with the students' habits read: every name becomes ("unit", symbols)
+        (``Nm``: N, m), an exponent right after its unit gets its ``^`` (``s2``, ``s-2``), a hyphen
+        between two units multiplies (``N-m``), ``per`` divides, ``squared``/``cubed`` raise."""
+        tokens: list = []
+        for k, (kind, value) in enumerate(raw):
+            after = raw[k + 1] if k + 1 < len(raw) else None
+            glued = k + 1 < len(raw) and attached[k + 1]
+            if kind == "op" and value in "-+" and tokens and tokens[-1][0] == "unit" and attached[k]:
+                if after is not None and after[0] == "num" and glued:
+                    tokens.append(("op", "^"))  # s-2
+                elif value == "-" and after is not None and after[0] == "name" and glued:
+                    tokens.append(("op", "*"))  # N-m
+                    continue
+            if kind == "num" and tokens and tokens[-1][0] == "unit" and attached[k]:
+                tokens.append(("op", "^"))  # s2
+            if kind != "name":
+                tokens.append((kind, value))
+                continue
+            exponent_next = after in (("op", "^"), ("op", "**"))
+            lower = value.lower()
+            if lower == "per":
+                tokens.extend([("op", "/")] if tokens else [("num", "1"), ("op", "/")])  # "5 per second"
+            elif lower in ("squared", "cubed") and tokens:
+                tokens.extend([("op", "^"), ("num", "2" if lower == "squared" else "3")])
+            elif lower in _PURE_WORDS:
+                tokens.append(("num", "1"))
+            else:
+                tokens.append(("unit", self._symbols(value, exponent_next)))
+        return tokens
+
+    def _symbols(self, name: str, exponent_next: bool) -> tuple[str, ...]:
+        """The unit symbols a name stands for (``kN``: kN; ``Nm``: N, m; ``newtons``: N)."""
+        word = _unit_word(name)
+        splits = [split for split in _unit_splits(name) if len(split) > 1] if len(name) <= 12 else []
+        if _unit_size(name) is not None:
+            symbols = (name,)
+        elif word is not None and not (exponent_next and splits):
+            symbols = (word,)  # "rads" is radians, but "rads^-1" is rad s^-1
+        elif splits:
+            readings = {tuple(split): self._group_size(split) for split in splits}
+            if len(set(readings.values())) > 1:
+                ways = " or ".join("*".join(split) for split in sorted(readings, key=len))
+                raise DimensionError(f"{name!r} could be {ways}: write the units apart, with spaces or '*'")
+            symbols = min(readings, key=len)
+            self.joined.append((name, " ".join(symbols)))
+        elif name[:1].isupper() and name[1:].islower() and _unit_size(name.lower()) is not None:
+            symbols = (name.lower(),)  # Kg, Rad (a capital only where it is no other unit: Ms, Nm)
+        elif len(name) >= 4 and name.isalpha() and not _case_hint(name):
+            raise DimensionError(f"{name!r} is not a unit: type only the number and its unit (a direction is the "
+                                 f"sign), in SI units such as kg g m s min h N J W Pa rad Hz deg")
+        else:
+            raise DimensionError(f"unknown unit {name!r} in {self.text!r}"
+                                 + (_case_hint(name) or "; use SI units such as kg g m s min h N J W Pa rad Hz deg, "
+                                                        "with prefixes (kN, cm, ms)"))
+        if self.milli_as_metre:
+            spread = []
+            for symbol in symbols:
+                rest = symbol[1:]
+                if symbol.startswith("m") and rest in UNITS and UNITS[rest][2] and symbol not in UNITS:
+                    spread.extend(["m", rest])
+                    self.split.append(symbol)
+                else:
+                    spread.append(symbol)
+            symbols = tuple(spread)
+        return symbols
+
+    @staticmethod
+    def _group_size(symbols) -> tuple[float, Dimension]:
+        size, dim = 1.0, DIMENSIONLESS
+        for symbol in symbols:
+            s, d = _unit_size(symbol)
+            size, dim = size * s, dim * d
+        return round(size, 12), dim
 
     def peek(self) -> tuple[str, str] | None:
         return self.tokens[self.i] if self.i < len(self.tokens) else None
@@ -294,7 +500,9 @@ class _UnitParser:
         size, dim = self.product(0)
         if self.peek() is not None:
             what = "unit" if self.scaled else "dimension"
-            raise DimensionError(f"cannot read {what} {self.text!r}: unexpected {self.peek()[1]!r}")
+            token = self.peek()
+            shown = "".join(token[1]) if token[0] == "unit" else token[1]
+            raise DimensionError(f"cannot read {what} {self.text!r}: unexpected {shown!r}")
         return size, dim
 
     def product(self, depth: int) -> tuple[float, Dimension]:
@@ -305,7 +513,7 @@ class _UnitParser:
             token = self.peek()
             if token in (("op", "*"), ("op", "/"), ("op", "·"), ("op", ".")):
                 op = self.take()[1]
-            elif self.scaled and token is not None and (token[0] == "name" or token == ("op", "(")):
+            elif self.scaled and token is not None and (token[0] == "unit" or token == ("op", "(")):
                 op = "*"  # "kg m/s^2": a space between units multiplies
             else:
                 return size, dim
@@ -317,6 +525,7 @@ class _UnitParser:
 
     def power(self, depth: int) -> tuple[float, Dimension]:
         kind, value = self.take()
+        head_size, head_dim = 1.0, DIMENSIONLESS  # units written together before the last (kgm^2: kg)
         if (kind, value) == ("op", "("):
             size, dim = self.product(depth + 1)
             if self.take() != ("op", ")"):
@@ -324,15 +533,14 @@ class _UnitParser:
         elif kind == "num" and value == "1":
             size, dim = 1.0, DIMENSIONLESS
         elif self.scaled:
-            found = _unit_size(value) if kind == "name" else None
-            if found is None:
-                hint = ""
-                if kind == "name" and len(value) > 1 and _unit_size(value[0]) and _unit_size(value[1:]):
-                    hint = f" (write a product with '*', as in {value[0]}*{value[1:]})"
-                raise DimensionError(f"unknown unit {value!r}{hint}" if hint else
-                                     f"unknown unit {value!r} in {self.text!r}; use SI units such as "
-                                     f"kg g m s min h N J W Pa rad Hz deg, with prefixes (kN, cm, ms)")
-            size, dim = found
+            if kind != "unit":
+                raise DimensionError(f"cannot read unit {self.text!r}: unexpected {value!r}")
+            for symbol in value[:-1]:
+                found = _unit_parts(symbol)
+                head_size, head_dim = head_size * found[0], head_dim * found[1]
+                self.symbols.append(found[2])
+            size, dim, base = _unit_parts(value[-1])
+            self.symbols.append(base)
         elif kind == "name" and value in _SI_UNITS:
             size, dim = 1.0, _SI_UNITS[value]
         elif kind == "name" and value.lower() in NAMED_DIMENSIONS:
@@ -347,7 +555,7 @@ class _UnitParser:
             if abs(exponent) > 12:
                 raise DimensionError(f"a unit exponent of {exponent} is not plausible in {self.text!r}")
             size, dim = size ** float(exponent), dim ** exponent
-        return size, dim
+        return head_size * size, head_dim * dim
 
     def exponent(self) -> Fraction:
         sign = 1

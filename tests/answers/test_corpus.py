@@ -12,6 +12,13 @@ from grader.answers.sandbox import SandboxedChecker
 CORPUS = Path(__file__).parent / "corpus"
 ITEMS = [json.loads(line) for path in sorted(CORPUS.glob("*.jsonl")) for line in open(path, encoding="utf-8")]
 HOSTILE = [item for item in ITEMS if "hostile" in item["tags"]]
+# A numeric answer's request also carries the student's numbers, the unit asked and the tolerance.
+NUMERIC_KEYS = ("values", "unit", "tolerance", "dimension", "implicit")
+
+
+def numeric_fields(item: dict) -> dict:
+    """The numeric-answer fields of a corpus item, as keyword arguments of `check`."""
+    return {k: item[k] for k in NUMERIC_KEYS if k in item}
 
 
 def test_the_corpus_is_large_and_balanced():
@@ -26,7 +33,8 @@ def test_every_corpus_item_gets_its_labelled_verdict():
     wrong = []
     for item in ITEMS:
         v = check(item["reference"], item["answer"], item["variables"], kind=item["kind"],
-                  feedback=item.get("feedback"), state=item.get("state"), alternatives=item.get("alternatives"))
+                  feedback=item.get("feedback"), state=item.get("state"), alternatives=item.get("alternatives"),
+                  **numeric_fields(item))
         codes = [f["code"] for f in v.feedback]
         if v.verdict != item["expected"] or (item.get("expect_feedback") and item["expect_feedback"] not in codes):
             wrong.append((item["id"], item["answer"][:60], item["expected"], v.verdict, codes, v.reason))
@@ -41,7 +49,7 @@ def sandbox():
 
 @pytest.mark.parametrize("item", HOSTILE, ids=[i["id"] for i in HOSTILE])
 def test_hostile_input_is_rejected_cleanly_in_under_a_second(sandbox, item):
-    request = {k: item[k] for k in ("reference", "answer", "variables", "kind")}
+    request = {**{k: item[k] for k in ("reference", "answer", "variables", "kind")}, **numeric_fields(item)}
     started = time.monotonic()
     reply = sandbox.run(request)
     assert time.monotonic() - started < 1.0

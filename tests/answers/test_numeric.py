@@ -27,6 +27,12 @@ WEIGHT = dict(reference="m*g", variables=VARIABLES, kind="numeric", values=VALUE
     ("1.47×10^1 N", 14.7), ("1.47 × 10^1 N", 14.7), ("1.47·10¹ N", 14.7), ("1.47*10**1 N", 14.7),
     ("1.47 x 10^1 N", 14.7), ("1.47×10^(1) N", 14.7), ("1.47×10⁻¹ N", 0.147),
     ("−14.7 N", -14.7), ("-14.7 N", -14.7), ("+14.7 N", 14.7), (".5 m", 0.5), ("5. m", 5.0), ("0 N", 0.0),
+    # more ways to write a power of ten: another times sign, a power of ten alone
+    ("1.47 ⋅ 10^1 N", 14.7), ("1.47∙10^1 N", 14.7), ("1.47X10^1 N", 14.7), ("10^3 N", 1000.0), ("10^-3 m", 1e-3),
+    ("10**2 N", 100.0), ("10⁻³ m", 1e-3), ("-10^2 N", -100.0),
+    # a name for the quantity, or "about", before the number; a full stop after the unit
+    ("F = 14.7 N", 14.7), ("T=14.7N", 14.7), ("≈ 14.7 N", 14.7), ("~14.7 N", 14.7), ("F ≈ 14.7 N", 14.7),
+    ("ω = 5 rad/s", 5.0), ("v(t) = 5 m/s", 5.0), ("14.7 N.", 14.7), ("14.7.", 14.7), ("5 1/s", 5.0),
 ])
 def test_number_forms(text, number):
     assert parse_quantity(text).number == pytest.approx(number, rel=1e-15)
@@ -34,7 +40,8 @@ def test_number_forms(text, number):
 
 @pytest.mark.parametrize("text, message", [
     ("14,7 N", "decimal point, not a comma: 14.7, not 14,7"),
-    ("1,000 N", "decimal point, not a comma"),
+    ("1,000 N", "without commas: 1000 .or 1.000 if the comma is a decimal point"),
+    ("14,715 N", "without commas: 14715 .or 14.715 if the comma is a decimal point"),
     ("", "type a number"),
     ("N", "type a number first"),
     ("abc", "type a number first"),
@@ -46,7 +53,11 @@ def test_number_forms(text, number):
     ("1e999 N", "too large"),
     ("inf", "type a number first"),
     ("nan N", "type a number first"),
-    ("14.7 Nm", "write a product with '*', as in N*m"),
+    ("14.7 Nms", "could be N*ms or N*m*s"),
+    ("1e-999 N", "too small"),
+    ("π/6", "not in terms of π"), ("pi/6 rad", "not in terms of π"),
+    ("1.5 kg × 9.81 m/s²", "not a calculation"), ("1.47 10^1 N", "without spaces"),
+    ("14.7 N (upward)", "'upward' is not a unit"), ("14.7 n", "did you mean N?"),
     ("14.7 xyz", "unknown unit 'xyz'"),
     ("14.7 N^", "unit is not readable"),
     ("1" * 300, "at most 200 characters"),
@@ -340,3 +351,84 @@ def test_the_stored_reference_carries_its_root_to_the_checker_and_the_instructor
                            reference.implicit) == pytest.approx(1.8730555106317808)
     with pytest.raises(ValueError, match="'implicit' applies to numeric answers only"):
         ReferenceAnswer.from_json(dict(data, unit="rad", kind="expression"))
+
+
+# -- units a dimension cannot tell apart, and readings we only guess -----------------------------
+
+OMEGA = dict(reference="sqrt(k/m)", variables={"m": {"dimension": "mass", "domain": "positive"},
+                                               "k": {"dimension": "stiffness", "domain": "positive"}},
+             kind="numeric", values={"m": 4.0, "k": 100.0})  # 5 rad/s, f = 0.796 Hz
+
+
+@pytest.mark.parametrize("unit, answer, verdict", [
+    ("rad/s", "5 rad/s", "equivalent"), ("rad/s", "5 s^-1", "equivalent"), ("rad/s", "286.5 deg/s", "equivalent"),
+    ("rad/s", "5 Hz", "invalid"), ("rad/s", "0.796 Hz", "invalid"), ("rad/s", "5 kHz", "invalid"),
+    ("Hz", "0.796 Hz", "equivalent"), ("Hz", "0.796 s^-1", "equivalent"), ("Hz", "796 mHz", "equivalent"),
+    ("Hz", "5 rad/s", "invalid"), ("Hz", "0.796 rad/s", "invalid"),
+    ("s^-1", "5 Hz", "equivalent"), ("s^-1", "5 rad/s", "equivalent"),  # the scene did not say which
+])
+def test_hertz_and_radians_per_second_are_not_mixed(unit, answer, verdict):
+    # 1 Hz is one cycle per second, 2π rad/s: where the scene's unit says which is asked, the other is
+    # refused (never judged: "5 Hz" for ω = 5 rad/s is wrong by 2π, "0.796 Hz" is f, not ω).
+    reference = OMEGA["reference"] + ("/(2*pi)" if unit == "Hz" else "")
+    reply = check(answer=answer, **dict(OMEGA, reference=reference, unit=unit))
+    assert reply.verdict == verdict, reply.reason
+    if verdict == "invalid":
+        assert "2π" in reply.feedback[0]["message"] and "0.796" not in reply.feedback[0]["message"]
+
+
+TORQUE = dict(reference="F*r", variables={"F": {"dimension": "force", "domain": "positive"},
+                                          "r": {"dimension": "length", "domain": "positive"}},
+              kind="numeric", values={"F": 10.0, "r": 0.5})  # 5 N m
+
+
+@pytest.mark.parametrize("unit, answer, verdict", [
+    ("N*m", "5 N m", "equivalent"), ("N*m", "5 Nm", "equivalent"), ("N*m", "5 N-m", "equivalent"),
+    ("N*m", "0.005 kNm", "equivalent"), ("N*m", "5 J/rad", "equivalent"), ("N*m", "5 kg m^2/s^2", "equivalent"),
+    ("N*m", "5 J", "invalid"), ("N*m", "5000 mJ", "invalid"),
+    ("J", "5 J", "equivalent"), ("J", "5 N m", "equivalent"), ("J", "5 Nm", "equivalent"),  # 1 J is 1 N m of work
+])
+def test_a_torque_asked_in_newton_metres_is_not_given_in_joules(unit, answer, verdict):
+    reply = check(answer=answer, **dict(TORQUE, unit=unit))
+    assert reply.verdict == verdict, reply.reason
+
+
+ANGLE = dict(WEIGHT, reference="asin(m/(2*m))")  # 30°
+
+
+@pytest.mark.parametrize("unit, answer, verdict, code", [
+    ("deg", "30", "equivalent", None), ("deg", "30.0", "equivalent", None), ("deg", "0.5236 rad", "equivalent", None),
+    ("deg", "0.5236", "not_equivalent", "angle_unit"),  # read in degrees, as asked
+    ("rad", "0.5236", "equivalent", None), ("rad", "30", "not_equivalent", "angle_unit"),
+    ("rad", "30 degrees", "equivalent", None), ("rad", "30º", "equivalent", None), ("rad", "0.52 radians", "equivalent", None),
+    ("rad", "52.36 %", "invalid", "unit"), ("deg", "52.36%", "invalid", "unit"),
+    ("%", "50", "equivalent", None), ("%", "50 %", "equivalent", None),  # a ratio asked in %: 50 is 50 %
+])
+def test_a_bare_number_for_an_angle_is_in_the_unit_asked(unit, answer, verdict, code):
+    reference = ANGLE["reference"] if unit != "%" else "m/(2*m)"
+    reply = check(answer=answer, **dict(ANGLE, reference=reference, unit=unit))
+    assert reply.verdict == verdict, reply.reason
+    assert [f["code"] for f in reply.feedback][:1] == ([code] if code else [])
+
+
+@pytest.mark.parametrize("unit, answer", [
+    ("m/s^2", "9.8 ms^-2"), ("m/s^2", "9.8 ms⁻²"), ("m/s", "5 ms^-1"), ("m/s", "5 ms-1"), ("N*m", "5 mN"),
+])
+def test_a_milli_prefix_that_may_be_metres_times_a_unit_is_refused_with_the_spacing_to_type(unit, answer):
+    # ms is the millisecond: "9.8 ms^-2" is strictly 9.8e6 s^-2, but what the student meant is m s^-2.
+    request = {"m/s^2": dict(WEIGHT, reference="g"), "m/s": dict(WEIGHT, reference="g*m/m"),
+               "N*m": dict(TORQUE)}[unit]
+    reply = check(answer=answer, **dict(request, unit=unit))
+    assert reply.verdict == "invalid" and "put a space between them: m " in reply.feedback[0]["message"]
+
+
+@pytest.mark.parametrize("answer", ["14.7 Nm", "14.7 kgm", "14.7 Nms/s"])
+def test_units_written_together_are_a_guess_refused_rather_than_judged_when_their_dimension_is_wrong(answer):
+    reply = check(answer=answer, **WEIGHT)
+    assert reply.verdict == "invalid", reply.reason
+
+
+@pytest.mark.parametrize("answer", ["14.7 newtons", "14.7 kgm/s^2", "14.7 kg m/s2", "14.7 kg m s-2", "14.7 N.",
+                                    "F = 14.7 N", "≈ 14.7 N", "14.7 Kg m/s^2", "1.47⋅10^1 N", "14.7 kg⋅m/s²"])
+def test_a_force_as_students_type_it(answer):
+    assert check(answer=answer, **WEIGHT).verdict == "equivalent"

@@ -131,3 +131,73 @@ def test_a_mismatch_deep_in_nested_sums_is_found_quickly():
     with pytest.raises(DimensionError, match="adds an acceleration"):
         dimension_of(expr, DIMS)
     assert time.perf_counter() - start < 0.5
+
+
+# -- a quantity's unit as students type it (parse_unit / read_unit) ------------------------------
+
+from grader.expressions.dimensions import parse_unit, read_unit  # noqa: E402
+
+
+@pytest.mark.parametrize("typed, canonical", [
+    # symbols written together, where only one reading exists
+    ("Nm", "N*m"), ("kNm", "kN*m"), ("kgm/s^2", "kg*m/s^2"), ("kgm^2/s^2", "kg*m^2/s^2"), ("N/kgm^2", "N/(kg*m^2)"),
+    ("Ns", "N*s"), ("rads^-1", "rad/s"), ("degs^-1", "deg/s"),
+    # an exponent right after its unit, a hyphen between units
+    ("m/s2", "m/s^2"), ("m s-2", "m/s^2"), ("kg m2 s-2", "J"), ("N m-1", "N/m"), ("N-m", "N*m"),
+    # units in words, any case, plural, with prefixes in words
+    ("newtons", "N"), ("Newton", "N"), ("newton-metres", "N*m"), ("metres", "m"), ("meters", "m"), ("Metre", "m"),
+    ("secs", "s"), ("sec", "s"), ("seconds", "s"), ("msec", "ms"), ("millisecond", "ms"), ("microseconds", "µs"),
+    ("kilometres", "km"), ("centimeters", "cm"), ("kilograms", "kg"), ("grams", "g"), ("joules", "J"),
+    ("radians", "rad"), ("rads", "rad"), ("degrees", "deg"), ("degs", "deg"), ("hertz", "Hz"), ("hrs", "h"),
+    ("hours", "h"), ("minutes", "min"), ("mins", "min"), ("km/hr", "km/h"), ("percent", "%"),
+    ("metres per second squared", "m/s^2"), ("N per m", "N/m"), ("per second", "1/s"), ("(dimensionless)", "1"),
+    ("unitless", "1"),
+    # a capital first letter where that is no other unit
+    ("Kg", "kg"), ("Km/h", "km/h"), ("Rad", "rad"), ("Deg", "deg"),
+    # look-alikes of the degree sign and the dot
+    ("º", "°"), ("˚", "°"), ("N⋅m", "N*m"), ("N∙m", "N*m"), ("kg×m/s²", "kg*m/s^2"),
+])
+def test_units_as_students_type_them(typed, canonical):
+    assert parse_unit(typed) == pytest.approx(parse_unit(canonical))
+
+
+@pytest.mark.parametrize("typed, size, dimension", [
+    ("ms", 1e-3, T), ("mN", 1e-3, M * L / T ** 2), ("Ms", 1e6, T), ("nm", 1e-9, L), ("mm", 1e-3, L),
+    ("MN", 1e6, M * L / T ** 2), ("min", 60.0, T), ("%", 0.01, Dimension()), ("kWh", 3.6e6, M * L ** 2 / T ** 2),
+])
+def test_a_unit_symbol_is_that_unit_before_any_other_reading(typed, size, dimension):
+    assert parse_unit(typed) == (pytest.approx(size), dimension)
+
+
+@pytest.mark.parametrize("typed, message", [
+    ("Nms", "'Nms' could be N*ms or N*m*s: write the units apart"),
+    ("kn", "case-sensitive: did you mean kN?"), ("M/S", "did you mean m?"), ("CM", "did you mean cm?"),
+    ("hz", "did you mean Hz?"), ("S", "did you mean s?"), ("j", "did you mean J?"),
+    ("N upward", "'upward' is not a unit: type only the number and its unit"),
+    ("furlong", "'furlong' is not a unit"), ("xyz", "unknown unit 'xyz'"), ("m s- 2", "cannot read unit"),
+])
+def test_ambiguous_and_wrong_case_units_are_refused_with_what_to_type(typed, message):
+    with pytest.raises(DimensionError, match=message.replace("*", r"\*").replace("?", r"\?")):
+        parse_unit(typed)
+
+
+@pytest.mark.parametrize("typed, symbols", [
+    ("kN*m", ("N", "m")), ("Nm", ("N", "m")), ("mJ", ("J",)), ("rad/s", ("rad", "s")), ("kHz", ("Hz",)),
+    ("newton metres", ("N", "m")), ("°/s", ("°", "s")), ("J/rad", ("J", "rad")),
+])
+def test_read_unit_names_the_units_it_is_made_of(typed, symbols):
+    assert read_unit(typed).symbols == symbols
+
+
+@pytest.mark.parametrize("typed, dimension", [("ms^-2", L / T ** 2), ("ms-1", L / T), ("mN", M * L ** 2 / T ** 2)])
+def test_milli_as_metre_is_the_other_reading_of_a_milli_prefixed_unit(typed, dimension):
+    reading = read_unit(typed, milli_as_metre=True)
+    assert reading.dimension == dimension and reading.split
+    assert read_unit(typed).dimension != dimension
+
+
+def test_scene_dimensions_keep_the_strict_grammar():
+    # parse_dimension (scene files) reads SI units only: no words, no percent, no juxtaposed exponents.
+    for text in ("newtons", "%", "m/s2", "Nm"):
+        with pytest.raises(DimensionError):
+            parse_dimension(text)
