@@ -50,3 +50,22 @@ def test_a_scene_that_cannot_be_simulated_says_why_instead_of_failing():
     motion = motion_of(parse_scene(FALL.replace(", %s }", " }")))  # g has no value
     assert motion["unavailable"].startswith("no simulation:") and "g" in motion["unavailable"]
     assert "plot" not in motion
+
+
+def test_the_page_names_the_first_six_events_and_counts_the_rest():
+    # A bouncing ball has 33 events in 3 s; the page's sentence listed every one.
+    import re
+    from pathlib import Path
+
+    import jinja2
+
+    from tests.simulate.test_trajectory import BALL
+
+    motion = motion_of(BALL)
+    assert len(motion["events"]) > 6
+    templates = Path(__file__).resolve().parents[2] / "grader" / "web" / "templates"
+    page = jinja2.Environment(loader=jinja2.FileSystemLoader(templates)).get_template("motion.html").render(
+        version=type("Version", (), {"derivation": {"motion": motion}})())
+    text = re.sub(r"\s+", " ", page)
+    assert text.count("bounce of floor at t =") == 6
+    assert f"and {len(motion['events']) - 6} more (marked in the plot)." in text
