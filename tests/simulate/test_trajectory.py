@@ -256,3 +256,36 @@ xdot = 20
     # (to 1e-10 s: a gap counts as closed 1e-13 of its scale below zero, here at grazing incidence)
     assert motion.events[0].t == pytest.approx((2 - math.sqrt(R ** 2 - (R - depth) ** 2)) / 20, abs=1e-10)
     assert np.all(np.hypot(motion.q[:, 0], motion.q[:, 1]) >= R - 1e-12)
+
+
+@pytest.mark.parametrize("beta", [0.3, 0.7, 1.1])
+def test_a_contact_force_at_rounding_level_is_not_a_release(beta):
+    # A block sliding along a wall parallel to gravity, in coordinates turned by β: the wall's
+    # force is ±1e-16 (rounding of m g (sin β cos β − cos β sin β)); at β = 1.1 it was −8.9e-16
+    # and the block released, touched and released again 16 times in 5 s.
+    scene = parse_scene(f'''
+id = "wall"
+[parameters]
+m = {{ dimension = "mass", domain = "positive", value = 1.0 }}
+g = {{ dimension = "acceleration", domain = "positive", value = 9.81 }}
+b = {{ dimension = "angle", domain = "real", value = {beta} }}
+h = {{ dimension = "length", domain = "positive", value = 1.0 }}
+[coordinates]
+u = {{ dimension = "length" }}
+v = {{ dimension = "length" }}
+[energy]
+kinetic = "m/2*(udot^2 + vdot^2)"
+potential = "m*g*(u*sin(b) + v*cos(b))"
+[[constraints]]
+name = "wall"
+f = "u*cos(b) - v*sin(b)"
+kind = "unilateral"
+[initial]
+u = 0
+v = 0
+udot = "0.3*sin(b)*sqrt(g*h)"
+vdot = "0.3*cos(b)*sqrt(g*h)"
+''', source="wall.toml")
+    motion = simulate_scene(scene, {}, t_end=5.0)
+    assert motion.events == []
+    assert motion.active.all()
