@@ -113,6 +113,12 @@ def _write_csv(trajectory) -> None:
         writer.writerow({key: (repr(value) if isinstance(value, float) else value) for key, value in row.items()})
 
 
+def _ordinal(k: int) -> str:
+    """2nd, 3rd, 11th, 20th, 21st, 22nd (the sample stride; it printed '2th', '21th')."""
+    suffix = "th" if 10 <= k % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(k % 10, "th")
+    return f"{k}{suffix}"
+
+
 def _write_text(trajectory) -> None:
     click.echo(f"{len(trajectory.events)} event(s)")
     for e in trajectory.events:
@@ -122,7 +128,8 @@ def _write_text(trajectory) -> None:
     if not rows:
         return
     columns = list(rows[0])
-    click.echo("samples (every {}th of {}):".format(max(1, len(rows) // 10), len(rows)))
+    step = max(1, len(rows) // 10)
+    click.echo(f"samples (all {len(rows)}):" if step == 1 else f"samples (every {_ordinal(step)} of {len(rows)}):")
     click.echo("  " + "  ".join(f"{c:>14}" for c in columns))
-    for row in rows[:: max(1, len(rows) // 10)]:
+    for row in rows[::step]:
         click.echo("  " + "  ".join(f"{row[c]:>14.6g}" for c in columns))

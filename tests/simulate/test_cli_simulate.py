@@ -149,3 +149,15 @@ x = -1
     result = run(str(scene), "--t-end", "1")
     assert result.exit_code == 2, result.output
     assert len(result.output.strip().splitlines()) == 1 and "not finite" in result.output
+
+
+@pytest.mark.parametrize("samples, header", [
+    ("3", "samples (all 3):"), ("25", "samples (every 2nd of 25):"), ("31", "samples (every 3rd of 31):"),
+    ("201", "samples (every 20th of 201):"), ("211", "samples (every 21st of 211):"),
+    ("111", "samples (every 11th of 111):"),
+])
+def test_the_text_output_names_the_sample_stride_in_english(samples, header):
+    # It printed 'every 1th of 3', 'every 2th of 25', 'every 21th of 211'.
+    result = run(SPHERE, "--t-end", "0.5", "--samples", samples)
+    assert result.exit_code == 0, result.output
+    assert header in result.output
