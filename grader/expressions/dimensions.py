@@ -448,7 +448,7 @@ class _UnitParser:
         elif splits:
             readings = {tuple(split): self._group_size(split) for split in splits}
             if len(set(readings.values())) > 1:
-                ways = " or ".join("*".join(split) for split in sorted(readings, key=len))
+                ways = " or ".join("*".join(split) for split in sorted(readings, key=len)[:2])
                 raise DimensionError(f"{name!r} could be {ways}: write the units apart, with spaces or '*'")
             symbols = min(readings, key=len)
             self.joined.append((name, " ".join(symbols)))
