@@ -492,6 +492,8 @@ class Simulation:
         ts = solution.t
         points = np.concatenate([(ts[:-1, None] + np.diff(ts)[:, None] * _SCAN).ravel(), ts[-1:]])
         states = solution.sol(points)
+        # Point by point, all functions: the release functions of one point share one KKT solve.
+        table = np.array([[-g.direction * g(tt, states[:, j]) for g in guarded] for j, tt in enumerate(points)])
         found = None
         for k, g in enumerate(guarded):
             away = -g.direction
@@ -499,7 +501,7 @@ class Simulation:
             def h(tt, g=g, away=away):
                 return away * g(tt, solution.sol(tt))
 
-            values = np.array([away * g(tt, states[:, j]) for j, tt in enumerate(points)])
+            values = table[:, k]
             for j in range(1, len(points)):
                 if found is not None and points[j - 1] >= found[0]:
                     break
