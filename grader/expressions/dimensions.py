@@ -186,7 +186,7 @@ _DIM_TOKEN = re.compile(r"\s*(?:(\d+(?:/\d+)?)|([A-Za-z_µμ°]+|%)|(\*\*|[*/^()
 _UNIT_WORDS: dict[str, str] = {
     "second": "s", "sec": "s", "metre": "m", "meter": "m", "gram": "g", "gramme": "g", "newton": "N",
     "joule": "J", "watt": "W", "pascal": "Pa", "radian": "rad", "rad": "rad", "degree": "deg", "deg": "deg",
-    "hertz": "Hz", "minute": "min", "min": "min", "hour": "h", "hr": "h", "percent": "%",
+    "hertz": "Hz", "minute": "min", "min": "min", "hour": "h", "hr": "h", "percent": "%", "kg": "kg", "kilo": "kg",
 }
 _PREFIX_WORDS: dict[str, str] = {"tera": "T", "giga": "G", "mega": "M", "kilo": "k", "hecto": "h", "deci": "d",
                                  "centi": "c", "milli": "m", "micro": "µ", "nano": "n", "pico": "p"}

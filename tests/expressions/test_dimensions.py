@@ -151,7 +151,7 @@ from grader.expressions.dimensions import parse_unit, read_unit  # noqa: E402
     ("radians", "rad"), ("rads", "rad"), ("degrees", "deg"), ("degs", "deg"), ("hertz", "Hz"), ("hrs", "h"),
     ("hours", "h"), ("minutes", "min"), ("mins", "min"), ("km/hr", "km/h"), ("percent", "%"),
     ("metres per second squared", "m/s^2"), ("N per m", "N/m"), ("per second", "1/s"), ("(dimensionless)", "1"),
-    ("unitless", "1"),
+    ("unitless", "1"), ("kgs", "kg"), ("kilos", "kg"), ("KG", "kg"), ("kgs^-1", "kg/s"), ("kgm2s-3", "W"),
     # a capital first letter where that is no other unit
     ("Kg", "kg"), ("Km/h", "km/h"), ("Rad", "rad"), ("Deg", "deg"),
     # look-alikes of the degree sign and the dot
