@@ -314,3 +314,21 @@ theta = 0.3
     assert (x1, y1, vx1) == pytest.approx((x0 + vx * fall, -R, vx), abs=1e-9)
     assert vy1 == pytest.approx(-e * (vy - G * fall), rel=1e-9)
     assert again.t == pytest.approx(land.t + 2 * vy1 / G, abs=1e-10)
+
+
+def test_a_bob_dropped_inside_its_slack_string_falls_freely_until_the_string_jerks_taut():
+    # From rest at (x0, 0) inside the circle: free fall to y = −√(l² − x0²), then the inelastic
+    # jerk keeps only the velocity's component along the tangent (−y, x0)/l.
+    l, x0 = 0.9, 0.5
+    motion = simulate_scene(whirl("unilateral", 1.0), {}, t_end=1.0,
+                            initial={"x": x0, "y": 0.0, "xdot": 0.0, "ydot": 0.0})
+    assert [(e.effect, e.constraint) for e in motion.events] == [("contact", "string")]
+    taut = motion.events[0]
+    y = -math.sqrt(l * l - x0 * x0)
+    fall = math.sqrt(-2 * y / G)
+    tangential = -G * fall * x0 / l
+    assert taut.t == pytest.approx(fall, abs=1e-12)
+    assert taut.state["xdot"] == pytest.approx(tangential * -y / l, rel=1e-10)
+    assert taut.state["ydot"] == pytest.approx(tangential * x0 / l, rel=1e-10)
+    after = motion.t > taut.t
+    np.testing.assert_allclose(np.hypot(motion.q[after, 0], motion.q[after, 1]), l, rtol=1e-10)
