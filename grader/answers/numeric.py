@@ -137,6 +137,8 @@ def parse_quantity(text: str) -> Quantity:
     label = _LABEL.match(text)
     if label:
         text = text[label.end():]  # "F = 14.7 N", "≈ 14.7 N"
+    if re.match(r"\s*[-+]?\d+(?:[.,]\d+)*(?:,\d+[.]|[.]\d+,)", text):  # 1,000.5 or 1.000,5
+        raise QuantityError("type one number with a decimal point and no thousands separators, such as 1000.5")
     thousands = _THOUSANDS.match(text)
     if thousands:
         whole, groups = thousands[1], thousands[2]

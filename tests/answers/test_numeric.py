@@ -42,6 +42,8 @@ def test_number_forms(text, number):
     ("14,7 N", "decimal point, not a comma: 14.7, not 14,7"),
     ("1,000 N", "without commas: 1000 .or 1.000 if the comma is a decimal point"),
     ("14,715 N", "without commas: 14715 .or 14.715 if the comma is a decimal point"),
+    ("1,000.5 N", "no thousands separators, such as 1000.5"), ("1.000,5 N", "no thousands separators"),
+    ("1,000,000.0 N", "no thousands separators"),
     ("", "type a number"),
     ("N", "type a number first"),
     ("abc", "type a number first"),
