@@ -28,8 +28,9 @@ after a tangential lift-off, the slip velocity just after slipping starts) does 
 scipy tests event functions only at the ends of its steps; each function is also tested at three
 points inside every step, and a minimum between them is followed down on the dense output, so a
 force that turns negative and back within one step (a bob whirled just below the critical speed)
-is a release (:meth:`Simulation._within_steps`). A gap or contact force fires only below −1e-13
-of its scale and never at exactly zero (:data:`_NOISE`): rounding is not an impact or a release.
+is a release (:meth:`Simulation._within_steps`). A gap fires only below −1e-13 of its scale, a
+contact force only below −1e-9 of its scale, never at exactly zero: rounding is not an impact or
+a release, and a tension that touches zero (a whirl at exactly the critical speed) holds.
 
 Examples
 --------
@@ -203,8 +204,11 @@ class Simulation:
                         y0: np.ndarray | None = None) -> list[tuple[Callable, str, int]]:
         """(g, effect, constraint index) per event the mode can meet; g has its direction set.
 
-        With the segment's start (t0, y0), the gap of an open contact and the force of a closed
-        one fire only below −1e-13 of their scale (:data:`_NOISE`), and never at exactly zero:
+        With the segment's start (t0, y0), the gap of an open contact fires only below −1e-13 of
+        its scale (:data:`_NOISE`), the force of a closed one only below what counts as zero at a
+        mode decision (:data:`_TOL`, 1e-9 relative: a tension that only touches zero at the top
+        of a whirl at the critical speed is not a release; the release is then put where λ = 0),
+        and neither at exactly zero:
         after a lift-off whose gap grows only like t³ (a string going slack where its tension
         barely turns negative) the gap stays at rounding level, ±1e-16, for many steps; counting
         that as an impact closed the contact, which released again at once, thousands of times.
@@ -214,11 +218,11 @@ class Simulation:
         gap_band = force_band = np.zeros(self.m)
         if y0 is not None:
             force_tol, gap_tol, _ = self._noise_scales(t0, y0, mode)
-            force_band = _NOISE / _TOL * force_tol + 1e-300
+            force_band = force_tol + 1e-300
             gap_band = _NOISE / _TOL * gap_tol + 1e-300
 
-        def add(g, direction, effect, index):
-            g.terminal, g.direction = True, direction
+        def add(g, direction, effect, index, band=0.0):
+            g.terminal, g.direction, g.band = True, direction, band
             functions.append((g, effect, index))
 
         for e in self.effects:
@@ -226,7 +230,7 @@ class Simulation:
             if e.kind == "unilateral":
                 if i in mode.active:
                     add(lambda t, y, i=i, o=float(force_band[i]): evaluator.at(t, y)[1][i] + o,
-                        -1.0, "release", i)
+                        -1.0, "release", i, float(force_band[i]))
                 else:
                     add(lambda t, y, i=i, o=float(gap_band[i]): self.compiled.gaps(t, y[:self.n])[0][i] + o,
                         -1.0, "contact", i)
@@ -463,7 +467,8 @@ class Simulation:
                 continue
             t_hit, k = min(hits)
             g, effect, i = functions[k]
-            t_hit, y_hit = self._refine(g, t_hit, solution.sol(t_hit), mode)
+            # A release counts once λ is below the band; it happens where λ = 0.
+            t_hit, y_hit = self._refine(lambda tt, yy, g=g: g(tt, yy) - g.band, t_hit, solution.sol(t_hit), mode)
             mode, y, switches = self.transition(t_hit, self.project(t_hit, y_hit, mode), mode, effect, i)
             events += self._records(t_hit, y, switches)
             done += 1

@@ -289,3 +289,13 @@ vdot = "0.3*cos(b)*sqrt(g*h)"
     motion = simulate_scene(scene, {}, t_end=5.0)
     assert motion.events == []
     assert motion.active.all()
+
+
+@pytest.mark.parametrize("eps", [1e-11, 0.0, -1e-11])
+def test_a_tension_that_only_touches_zero_at_the_critical_speed_holds(eps):
+    # At v0² = 5 g l the tension at the top is 0, a touch; the integration leaves it ±1e-10
+    # relative, which the in-step scan found below 1e-13 and released the string.
+    g, l = 9.81, 0.9
+    motion = simulate_scene(CIRCLE, {"v0": math.sqrt(5 * g * l) * (1 - eps)}, t_end=2.0)
+    assert motion.events == []
+    assert motion.active.all()
