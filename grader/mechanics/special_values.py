@@ -202,8 +202,13 @@ def _turned_back(evaluator, spec, condition, x, roots, chosen, key: str) -> dict
     index = roots.index(chosen)
     if index not in numeric:
         return None
+    return _turned_back_at(evaluator, u, start, condition, numeric[index], point, key)
+
+
+def _turned_back_at(evaluator, u, start: int, condition, root: float, point: dict, key: str) -> dict | None:
+    """{u: sign} when the motion reaches u = ``root`` moving against ``start``, else None."""
     try:
-        _, direction = _first_reached_on(evaluator, u, condition, {index: numeric[index]}, point, key)
+        _, direction = _first_reached_on(evaluator, u, condition, {0: root}, point, key)
     except SceneError:  # (chosen otherwise than by the motion: nothing to say about its direction)
         return None
     return {u.name: int(direction)} if direction * start < 0 else None
@@ -682,6 +687,25 @@ def _implicit(evaluator, spec, condition, x, target: set, key: str) -> sympy.Exp
     for point in _draws(scene):
         if _implicit_root(evaluator, spec, condition, x, value, variable, point, (lo, hi), key) != chosen:
             raise SceneError(scene.source, key, _depends_on_parameters(point))
+    if variable[0] == "coordinate" and _one_motion(evaluator, spec, variable[1]):
+        # Reached after the motion turns back: a velocity in the answer has the other sign there
+        # (the same on every draw, or the file is refused).
+        start = evaluator.motion_sign(variable[1], pushed=True)
+
+        def turned_at(point):
+            numbers = {s: sympy.Float(v, 30) for s, v in point.items()}
+            roots = real_roots(_numeric(condition.xreplace(numbers), x), lo, hi)
+            if start is None or chosen >= len(roots):
+                return None
+            return _turned_back_at(evaluator, variable[1], start, condition, roots[chosen], point, key)
+
+        turned = turned_at(base)
+        for point in _draws(scene):
+            if turned_at(point) != turned:
+                raise SceneError(scene.source, key, _depends_on_parameters(point))
+        if turned is not None:
+            value = evaluator.reduce(spec.expr, target | evaluator.parameters | {x}, f"answers ({spec.name}).expr",
+                                     readable=True, signs=turned)
     evaluator.implicit[spec.name] = {"condition": sympy.sstr(condition), "unknown": str(x),
                                      "interval": [lo, hi], "root": chosen}
     return value

@@ -225,6 +225,15 @@ TRAMMEL = "(m1*cos(theta)^2 + m2*sin(theta)^2)"
         ("puck_winding_on_post", "half_length_tension", "2*m*v0^2/L0"),
         ("puck_winding_on_post", "angle_in_time", "(L0 - sqrt(L0^2 - 2*R*v0*t))/R"),
         ("puck_winding_on_post", "time_to_half_length", "3*L0^2/(8*R*v0)"),
+        # Face pushed into the block at A: in the wedge's frame the block feels −m A x̂ backwards, i.e.
+        # m A cos α up the face and m A sin α into it: s̈ = A cos α − g sin α, N = m (g cos α + A sin α);
+        # at rest for A = g tan α; from rest s = (A cos α − g sin α) t²/2, ṡ² = 2 s (A cos α − g sin α)
+        # (the energy in the wedge's frame: L_r's t-dependence is a total derivative).
+        ("block_on_accelerated_incline", "equation_of_motion", "A*cos(alpha) - g*sin(alpha)"),
+        ("block_on_accelerated_incline", "normal_force", "m*(g*cos(alpha) + A*sin(alpha))"),
+        ("block_on_accelerated_incline", "least_acceleration", "g*tan(alpha)"),
+        ("block_on_accelerated_incline", "time_to_climb", "sqrt(2*L/(A*cos(alpha) - g*sin(alpha)))"),
+        ("block_on_accelerated_incline", "speed_up_the_face", "sqrt(2*L*(A*cos(alpha) - g*sin(alpha)))"),
     ],
 )
 def test_red_team_scenes(derived, scene, answer, expected):

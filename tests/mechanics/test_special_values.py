@@ -501,3 +501,18 @@ def test_the_largest_value_of_a_velocity_over_a_swing_is_on_the_way_back(expr, e
     for numbers in ({"g": 9.81, "l": 0.7, "m": 0.3, "theta0": 0.5}, {"g": 2.0, "l": 1.9, "m": 1.1, "theta0": 1.2}):
         point = {scene.namespace.symbol(n): v for n, v in numbers.items()}
         assert float(value.subs(point)) == pytest.approx(float(want.subs(point)), rel=1e-12)
+
+
+def test_a_numeric_answer_at_a_root_reached_after_the_motion_turns_back_has_that_sign():
+    """θ = 0.05 + 0.1 cos θ (no closed form, θ ≈ 0.1489) is passed coming down: θ̇ < 0 there."""
+    from scipy.optimize import brentq
+
+    from grader.answers.numeric import reference_value
+
+    text = PENDULUM_LAUNCHED_UP.replace('"theta = ANGLE"', '"theta = 0.05 + 0.1*cos(theta)"\nkind = "numeric"\nunit = "rad/s"')
+    reference = derive(parse_scene(text, "launched.toml")).references()[0]
+    root = brentq(lambda x: x - 0.05 - 0.1 * math.cos(x), 0.0, 1.0)
+    by_hand = -math.sqrt(0.25 + 2 * 9.81 * (math.cos(root) - math.cos(0.2)))
+    value = reference_value(reference["reference"], reference["variables"], {"m": 1.0, "g": 9.81, "l": 1.0},
+                            reference["implicit"])
+    assert value == pytest.approx(by_hand, rel=1e-9)

@@ -90,6 +90,7 @@ CONFIRMED_ELSEWHERE = {
     ("pendulum_accelerating_car", "small_oscillation_frequency"),
     ("trammel_spring", "small_oscillation_frequency"),
     ("yoyo_counterweight", "balancing_mass"),
+    ("block_on_accelerated_incline", "least_acceleration"),
 }
 
 

@@ -228,3 +228,23 @@ def test_a_yoyo_of_the_balancing_mass_leaves_its_counterweight_at_rest():
             assert abs(y2ddot) < 1e-9 * model.values["g"]
         else:
             assert y2ddot < 0  # a heavier yo-yo lifts the block
+
+
+def test_a_face_pushed_at_the_engines_least_acceleration_holds_the_block():
+    from tests.numerical.test_special_values_confirmed import scene_of
+    from grader.simulate.scene_numeric import SceneModel
+
+    model, answers = engine("block_on_accelerated_incline")
+    a = model.values["alpha"]
+    A = closed_form(model, answers, "least_acceleration")
+    line = 'A = { dimension = "acceleration", domain = "positive", value = 8.0 }'
+    for factor, sign in ((1.0, 0), (1.001, 1)):
+        pushed = SceneModel(scene_of("block_on_accelerated_incline", ((line, line.replace("8.0", repr(A * factor))),)))
+        start = pushed.initial_state()
+        s = snapshot(pushed.numeric, 0.0, start.q, start.qdot)
+        # Up the face relative to the wedge: (ẍ + A) cos α + ÿ sin α.
+        up = (s.qddot[0] + A * factor) * math.cos(a) + s.qddot[1] * math.sin(a)
+        if sign == 0:
+            assert abs(up) < 1e-9 * model.values["g"]
+        else:
+            assert up > 0  # pushed harder, the block climbs
