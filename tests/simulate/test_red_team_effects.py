@@ -332,3 +332,36 @@ def test_a_bob_dropped_inside_its_slack_string_falls_freely_until_the_string_jer
     assert taut.state["ydot"] == pytest.approx(tangential * x0 / l, rel=1e-10)
     after = motion.t > taut.t
     np.testing.assert_allclose(np.hypot(motion.q[after, 0], motion.q[after, 1]), l, rtol=1e-10)
+
+
+@pytest.mark.parametrize("alpha, k", [(0.5, 10.0), (1.0, 3.0), (0.2, 50.0)])
+def test_a_block_lifts_off_an_incline_whose_acceleration_grows_when_it_reaches_g_cot_alpha(alpha, k):
+    # The wedge moves by k t³/6 (acceleration A = k t); in its frame N = m g cos α − m A sin α,
+    # whatever the block's sliding: it leaves at t = g cot α / k.
+    scene = parse_scene(f'''
+id = "wedge"
+[parameters]
+m = {{ dimension = "mass", domain = "positive", value = 1.0 }}
+g = {{ dimension = "acceleration", domain = "positive", value = {G} }}
+alpha = {{ dimension = "angle", domain = "real", value = {alpha} }}
+k = {{ dimension = "length/time^3", domain = "positive", value = {k} }}
+h = {{ dimension = "length", domain = "positive", value = 1.0 }}
+[coordinates]
+x = {{ dimension = "length" }}
+y = {{ dimension = "length" }}
+[energy]
+kinetic = "m/2*(xdot^2 + ydot^2)"
+potential = "m*g*y"
+[[constraints]]
+name = "incline"
+f = "y*cos(alpha) - (x - k*t^3/6)*sin(alpha)"
+kind = "unilateral"
+[initial]
+x = "h"
+y = "h*tan(alpha)"
+xdot = 0
+ydot = 0
+''', source="wedge.toml")
+    motion = simulate_scene(scene, {}, t_end=3.0)
+    assert [(e.effect, e.constraint) for e in motion.events] == [("release", "incline")]
+    assert motion.events[0].t == pytest.approx(G / math.tan(alpha) / k, abs=1e-10)
