@@ -363,6 +363,24 @@ class Simulation:
         impulse = np.linalg.solve(JB @ MinvJT, change)
         return MinvJT @ impulse
 
+    def _impact(self, t, q, v, mode: Mode, struck: list[int], rates, v_tol):
+        """Newton's impact law on the contacts ``struck`` at once, the holding ones kept:
+        (q̇ after, [(index, bounced)]), or None when an impulse on a struck contact would pull."""
+        rows = sorted(mode.active | set(struck))
+        target = np.zeros(len(rows))
+        hits = []
+        for j in struck:
+            bounce = -self.effects[j].restitution * rates[j]
+            hits.append((j, bool(bounce > v_tol[j])))
+            if hits[-1][1]:
+                target[rows.index(j)] = bounce
+        M, _, J, _ = self.compiled.terms(t, q, v)
+        MinvJT = np.linalg.solve(M, J[rows].T)
+        impulse = np.linalg.solve(J[rows] @ MinvJT, target - rates[rows])
+        if len(struck) > 1 and any(impulse[rows.index(j)] < 0 for j in struck):
+            return None
+        return v + MinvJT @ impulse, hits
+
     def transition(self, t: float, y: np.ndarray, mode: Mode, effect: str, i: int
                    ) -> tuple[Mode, np.ndarray, list[tuple[str, int]]]:
         """Apply one event and settle into the next consistent mode."""
@@ -387,19 +405,21 @@ class Simulation:
                 switches.append(("stick", i, False))
             return trial, y, switches + later
         elif effect == "contact":
-            q, v = y[:self.n], y[self.n:].copy()
-            rate = self.compiled.rates(t, q, v)[i]
-            rows = sorted(mode.active | {i})
-            bounce = -self.effects[i].restitution * rate
-            _, _, _, v_tol, _ = self._scales(t, y)
-            target = np.zeros(len(rows))
-            if bounce > v_tol[i]:
-                target[rows.index(i)] = bounce
-                switches.append(("bounce", i, False))
-            else:
-                mode.active.add(i)
-                switches.append(("contact", i, False))
-            v += self._velocity_change(t, q, v, rows, target - self.compiled.rates(t, q, v)[rows])
+            q, v = y[:self.n], y[self.n:]
+            f, rates, f_tol, v_tol, _ = self._scales(t, y)
+            # Every open contact that touches and moves in at this instant is struck together
+            # with i (a rod falling flat lands on both ends at once), each by its own restitution;
+            # one after the other, a symmetric rod with 0 < e < 1 was set spinning. Only when
+            # the joint impulses are not all pushes is it one contact at a time.
+            struck = [i] + [e.index for e in self.effects
+                            if e.kind == "unilateral" and e.index != i and e.index not in mode.active
+                            and abs(f[e.index]) <= f_tol[e.index] and rates[e.index] < -v_tol[e.index]]
+            impact = self._impact(t, q, v, mode, struck, rates, v_tol) if len(struck) > 1 else None
+            v, hits = impact or self._impact(t, q, v, mode, [i], rates, v_tol)
+            for j, bounced in hits:
+                if not bounced:
+                    mode.active.add(j)
+                switches.append(("bounce" if bounced else "contact", j, False))
             y = np.concatenate([q, v])
         mode, later = self.settle(t, self.project(t, y, mode), mode)
         return mode, self.project(t, y, mode), switches + later

@@ -299,3 +299,50 @@ def test_a_tension_that_only_touches_zero_at_the_critical_speed_holds(eps):
     motion = simulate_scene(CIRCLE, {"v0": math.sqrt(5 * g * l) * (1 - eps)}, t_end=2.0)
     assert motion.events == []
     assert motion.active.all()
+
+
+ROD = '''
+id = "rod"
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 1.0 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+L = { dimension = "length", domain = "positive", value = 1.0 }
+h = { dimension = "length", domain = "positive", value = 1.0 }
+e = { dimension = "dimensionless", domain = [0, 1], value = 0.5 }
+[coordinates]
+x = { dimension = "length" }
+y = { dimension = "length" }
+theta = { dimension = "angle", domain = "real" }
+[energy]
+kinetic = "m/2*(xdot^2 + ydot^2) + m*L^2/24*thetadot^2"
+potential = "m*g*y"
+[[constraints]]
+name = "left"
+f = "y - L/2*sin(theta)"
+kind = "unilateral"
+restitution = "e"
+[[constraints]]
+name = "right"
+f = "y + L/2*sin(theta)"
+kind = "unilateral"
+restitution = "e"
+[initial]
+x = 0
+y = "h"
+theta = 0
+'''
+
+
+@pytest.mark.parametrize("e", [0.0, 0.5, 1.0])
+def test_a_rod_falling_flat_lands_on_both_ends_at_once_and_does_not_spin(e):
+    # Both ends strike at t = sqrt(2h/g); each contact gets Newton's law together with the other,
+    # so the rod rebounds at e v without rotation. One end after the other, e = 0.5 left it
+    # spinning at θ̇ = -0.62 rad/s with ẏ = 1.49 instead of 2.21.
+    motion = simulate_scene(parse_scene(ROD, source="rod.toml"), {"e": e}, t_end=0.5)
+    v = math.sqrt(2 * 9.81)
+    assert {x.constraint for x in motion.events} == {"left", "right"}
+    assert all(x.t == pytest.approx(math.sqrt(2 / 9.81), abs=1e-10) for x in motion.events)
+    after = motion.events[-1].state
+    assert after["ydot"] == pytest.approx(e * v, abs=1e-9)
+    assert after["thetadot"] == pytest.approx(0.0, abs=1e-9)
+    assert [x.effect for x in motion.events] == (["contact"] * 2 if e == 0 else ["bounce"] * 2)
