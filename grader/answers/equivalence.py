@@ -632,7 +632,8 @@ def compare_expressions(
     result = compare_numeric(ref, ans, sampler, options, deadline)
     if result.equivalent and options.method == "arb":
         return (_hidden_difference(diff, answer, reference, ref, ans, sampler, options)
-                or _at_landmarks(ref, ans, sampler, (reference, answer), options, deadline) or result)
+                or _at_landmarks(ref, ans, sampler, (reference, answer), options, deadline)
+                or _in_sign_regions(ref, ans, sampler, (reference, answer), options, deadline) or result)
     return result
 
 
@@ -718,6 +719,82 @@ def _at_landmarks(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, options
                                   "your answer is defined at a point of the domain where the correct one is not",
                                   evidence={"method": options.describe(), "points": 1},
                                   counterexample=example, values=values_)
+    return None
+
+
+# Points drawn beyond the compared ones to meet the other sign patterns of abs/sign arguments, and
+# the most arguments followed (the patterns of more would not be met by so few points anyway).
+SIGN_REGION_DRAWS = 200
+MAX_KINKS = 8
+MAX_PATTERNS = 16
+
+
+def _kink_arguments(exprs) -> list[sympy.Expr]:
+    """The arguments of abs and sign in ``exprs`` that depend on the variables, each once."""
+    found: list[sympy.Expr] = []
+    for expr in exprs:
+        for node in sympy.preorder_traversal(expr):
+            if isinstance(node, (sympy.Abs, sympy.sign)) and node.args[0].free_symbols and node.args[0] not in found:
+                found.append(node.args[0])
+    return found[:MAX_KINKS]
+
+
+def _sign_pattern(kinks: list[Compiled], point: dict) -> tuple | None:
+    """The signs of the compiled arguments at ``point`` (0 where a ball straddles zero), or None."""
+    signs = []
+    for kink in kinks:
+        try:
+            value, _ = kink.at(point, 64)
+        except (Undefined, Unresolved):
+            return None
+        v = _to_float(value)
+        if not math.isfinite(v):
+            return None
+        signs.append((v > 0) - (v < 0))
+    return tuple(signs)
+
+
+def _in_sign_regions(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, options: Options,
+                     deadline: float | None) -> Comparison | None:
+    """A counterexample in a sign region of an abs/sign argument the compared points missed, or None.
+
+    ``abs(abs(x) + y)`` and ``abs(x) + y`` agree wherever y > -|x|, three quarters of the plane: the
+    few points compared can all lie there. The sampler's points are drawn on, and the two are
+    compared at every point whose pattern of signs of the arguments (of both texts) is new.
+    """
+    arguments = _kink_arguments(exprs)
+    if not arguments:
+        return None
+    try:
+        kinks = [Compiled(argument, options.backend()) for argument in arguments]
+    except Unsupported:
+        return None
+    seen: set = set()
+    for i in range(options.points + SIGN_REGION_DRAWS):
+        point = sampler.point(i)
+        pattern = _sign_pattern(kinks, point)
+        if pattern is None or pattern in seen:
+            continue
+        seen.add(pattern)
+        if len(seen) > MAX_PATTERNS:
+            return None
+        result = compare_at(ref, ans, point, i, options, deadline)
+        if result.kind == "budget":
+            return None
+        if result.kind in ("answer_undefined", "answer_defined") and _isolated(ref, ans, sampler, point, options,
+                                                                               deadline):
+            continue
+        if result.kind in ("differ", "answer_undefined", "answer_defined"):
+            point, result = _rounder_witness(ref, ans, sampler, point, result, options, deadline)
+            differ = result.kind == "differ"
+            return Comparison(False, "proved",
+                              "your answer and the correct one differ at the point in the counterexample" if differ
+                              else "your answer is undefined at a point where the correct one is defined"
+                              if result.kind == "answer_undefined" else
+                              "your answer is defined at a point of the domain where the correct one is not",
+                              evidence={"method": options.describe(), "points": 1},
+                              counterexample=counterexample(point, result),
+                              values=(_to_float(result.answer), _to_float(result.reference)) if differ else None)
     return None
 
 

@@ -272,3 +272,24 @@ def test_a_difference_below_the_judges_digits_is_still_found_when_sympy_isolates
 def test_an_equal_answer_whose_difference_sympy_does_not_cancel_stays_equivalent(answer):
     s = sampler(m1="positive", m2="positive", g="positive", theta="real")
     assert compare_expressions(T, answer, s).equivalent is True
+
+
+XYZ_REAL = {n: {"dimension": "dimensionless", "domain": "real"} for n in ("x", "y", "z")}
+
+
+@pytest.mark.parametrize("shift", range(1, 41))
+@pytest.mark.parametrize("reference, answer, expected", [
+    # Each pair agrees wherever the argument of abs/sign is positive and differs only in a smaller
+    # region (y < -|x|: a quarter of the samples; x < -(|y| + |z|): fewer), which the handful of
+    # random points (seeded by the reference, so shifted by a constant to draw other points) can
+    # all miss: every sign pattern of the arguments that sampling meets must be compared.
+    ("abs(x) + y", "abs(abs(x) + y)", "not_equivalent"),
+    ("x + abs(y) + abs(z)", "abs(x + abs(y) + abs(z))", "not_equivalent"),
+    ("0", "sign(x + abs(y)) - 1", "not_equivalent"),
+    ("abs(abs(x) + y)", "||x|+y|", "equivalent"),
+    ("x/abs(x) + abs(y - z)", "sign(x) + |z - y|", "equivalent"),
+])
+def test_every_sign_pattern_of_an_abs_argument_met_is_compared(reference, answer, expected, shift):
+    from grader.answers import check
+
+    assert check(f"{reference} + {shift}", f"{answer} + {shift}", XYZ_REAL).verdict == expected
