@@ -54,6 +54,8 @@ MAX_RECURSION = 200
 
 _ADD, _MUL, _POW = 10, 20, 30
 _TIME = parse_dimension("time")
+# The exponent letter of a number in e-notation (2E+3, 1.5e-2), which may also be a declared variable.
+_EXPONENT_LETTER = re.compile(r"^[0-9.]+([eE])[+-]?[0-9]+$")
 # \pi2, \omega12, \pi2x: a LaTeX command with digits (and letters) after it, which the tokenizer reads
 # as one name (see latex_argument).
 _COMMAND_THEN_DIGITS = re.compile(r"^\\([A-Za-z]+)\d[A-Za-z0-9]*$")
@@ -332,6 +334,17 @@ class _Parser:
     def nud(self, token: Token, rbp: int = 0) -> sympy.Expr:
         kind = token.kind
         if kind == "number":
+            letter = _EXPONENT_LETTER.search(token.text)
+            if letter and letter.group(1) in self.ns.names:
+                # 2E+3 with a variable E (an energy, a Young's modulus): 2·10³ or 2E + 3.
+                e = letter.group(1)
+                mantissa, rest = token.text[:letter.start(1)], token.text[letter.end(1):]
+                raise ExpressionError(f"'{token.text}' could be {mantissa}×10^{rest.lstrip('+')} or "
+                                      f"{mantissa}·{e} {rest[0] if rest[0] in '+-' else '·'} {rest.lstrip('+-')}, "
+                                      f"and {e} is a variable here", token.pos, "ambiguous",
+                                      f"write {mantissa}*10^{rest.lstrip('+')} for the number, or "
+                                      f"{mantissa}*{e}{' ' + rest[0] + ' ' if rest[0] in '+-' else '*'}"
+                                      f"{rest.lstrip('+-')} for the variable")
             if token.decimal:
                 self.note(f"decimals are read as exact fractions ({token.text} = {token.value})")
             return token.value

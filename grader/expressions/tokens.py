@@ -34,7 +34,8 @@ import sympy
 from .errors import ExpressionError
 from .latex_input import classify_command, subscript_text
 from .magnitudes import MAX_DIGITS
-from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, GREEK_CHARS, MATH_LETTERS, OPERATOR_CHARS, PRIME_CHARS,
+from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, FULLWIDTH_SYMBOLS, GREEK_CHARS, MATH_LETTERS,
+                            OPERATOR_CHARS, PRIME_CHARS,
                             ROOT_CHARS, SUBSCRIPT_DIGITS, SUPERSCRIPT_CHARS, SUPERSCRIPT_OTHERS, VULGAR_FRACTIONS,
                             bad_character,
                             is_space)
@@ -119,7 +120,7 @@ def _sign(ch: str) -> str:
 
 class _Tokenizer:
     def __init__(self, text: str) -> None:
-        self.text = text
+        self.text = text.translate(FULLWIDTH_SYMBOLS)  # full-width ＋（２） is +(2), one for one
         self.n = len(text)
         self.i = 0
         self.tokens: list[Token] = []

@@ -14,8 +14,8 @@ from fractions import Fraction
 
 from .errors import ExpressionError
 
-__all__ = ["GREEK_CHARS", "MATH_LETTERS", "OPERATOR_CHARS", "SUPERSCRIPT_CHARS", "SUPERSCRIPT_OTHERS",
-           "SUBSCRIPT_DIGITS", "ROOT_CHARS",
+__all__ = ["GREEK_CHARS", "MATH_LETTERS", "OPERATOR_CHARS", "FULLWIDTH_SYMBOLS", "SUPERSCRIPT_CHARS",
+           "SUPERSCRIPT_OTHERS", "SUBSCRIPT_DIGITS", "ROOT_CHARS",
            "COMBINING_DOTS", "DOTTED_LETTERS", "PRIME_CHARS", "VULGAR_FRACTIONS", "is_space", "bad_character"]
 
 _GREEK_NAMES = ("alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi "
@@ -65,6 +65,11 @@ OPERATOR_CHARS = {"·": "*", "⋅": "*", "×": "*", "∗": "*", "•": "*", "∙
                   # every other dash a word processor or PDF makes of a typed minus
                   "—": "-", "‒": "-", "‐": "-", "‑": "-", "﹣": "-",
                   "÷": "/", "∕": "/", "⁄": "/"}
+
+#: Full-width digits, operators and brackets (what a CJK input method types: ｍ－（ｎ＋ｍ）) -> ASCII, one
+#: character for one, so positions stay. Full-width letters are not here: they stay refused, named
+#: (see `bad_character`), as every other letter that merely looks like a Latin one.
+FULLWIDTH_SYMBOLS = {ord(chr(c)): chr(c - 0xFEE0) for c in range(0xFF01, 0xFF5F) if not chr(c - 0xFEE0).isalpha()}
 
 #: Vulgar fractions (½x is x/2): the numerator and denominator, from Unicode's own numeric values.
 VULGAR_FRACTIONS: dict[str, tuple[int, int]] = {

@@ -247,6 +247,28 @@ def test_a_variable_named_e_wins_over_eulers_number():
     assert parsed.expr == 2 * ns.symbol("e") and parsed.notes == []
 
 
+@pytest.mark.parametrize("name", ["E", "e"])
+@pytest.mark.parametrize("text, readings", [
+    ("2{}+3", ["2×10^3", "2*E + 3"]),
+    ("2{}-3", ["2×10^-3", "2*E - 3"]),
+    ("1.5{}-2", ["1.5×10^-2", "1.5*E - 2"]),
+    ("2{}3", ["2×10^3", "2*E*3"]),
+])
+def test_e_notation_whose_letter_is_a_declared_variable_is_ambiguous(text, readings, name):
+    # 2E+3 with an energy or a Young's modulus E: 2·10³ or 2E + 3 (PrairieLearn reads the latter,
+    # WeBWorK the former). Refused, naming both readings and what to type for each.
+    ns = Namespace([Variable(name, "energy", "positive"), Variable("x", "dimensionless", "real")])
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text.format(name), ns)
+    assert err.value.code == "ambiguous" and err.value.position == 0
+    for reading in readings:
+        assert reading.replace("E", name) in str(err.value)
+    # with no variable of that name it stays a number, and spaced it is the variable
+    assert parse_expression(text.format(name), Namespace([])).expr.is_Rational
+    if "+" in text or "-" in text:
+        assert parse_expression(text.format(" " + name), ns).expr.free_symbols == {ns.symbol(name)}
+
+
 @pytest.mark.parametrize("text, note", [
     ("sin^-1(x/l)", "inverse function asin"),
     ("g/2 l", "read 'g/2 l' as (g/2)·l"),

@@ -77,3 +77,21 @@ def test_superscript_letters_know_the_letter_they_raise(ch, plain):
 
 def test_superscript_digits_and_ordinal_indicators_are_not_superscript_letters():
     assert not set(SUPERSCRIPT_OTHERS) & (set(SUPERSCRIPT_CHARS) | {"ª", "º"})
+
+
+@pytest.mark.parametrize("typed, plain", [
+    # What a CJK input method types for digits, operators and brackets reads as their ASCII (PrairieLearn
+    # accepts them too); full-width letters stay refused, named, like every other look-alike letter.
+    ("m - （n + m）", "m - (n + m)"),
+    ("m ＋ n", "m + n"),
+    ("m － n", "m - n"),
+    ("２m／n", "2m/n"),
+    ("m＊n＾２", "m*n^2"),
+    ("［m + n］＊３", "[m + n]*3"),
+    ("１.５m", "1.5m"),
+])
+def test_full_width_digits_operators_and_brackets_read_as_ascii(typed, plain):
+    from grader.expressions import Namespace, Variable, parse_expression
+
+    ns = Namespace([Variable(n, "dimensionless", "real") for n in "mn"])
+    assert parse_expression(typed, ns).expr == parse_expression(plain, ns).expr
