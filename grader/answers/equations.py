@@ -30,9 +30,12 @@ import sympy
 from grader.answers.evaluate import SCALE, ArbBackend, Undefined, Unresolved, Unsupported, _log2_mag, compile_expr
 from grader.answers.equivalence import (
     LOG2_10,
+    MAX_PATTERNS,
     Comparison,
     Compiled,
     Options,
+    _kink_arguments,
+    _sign_pattern,
     as_float,
 )
 from grader.answers.sampling import Sampler
@@ -165,8 +168,36 @@ def compare_equations(
     signs = {}  # the sign of det M at the agreeing parameter points -> one such point
     # each parameter point checks k + 2 states, so half as many parameter points as expression points
     needed = max(3, options.points // 2)
+
+    def differ(outcome) -> Comparison:
+        """The verdict where the answer is not the state-free multiple the other points found."""
+        if k == 1 and options.factors and outcome[1].startswith(_NOT_A_MULTIPLE):
+            # Not a constant multiple; it may still be the reference times a factor that depends
+            # on the state and is nonzero on the whole domain (r**2 with r > 0, 1 + x**2).
+            factor = state_dependent_factor(reference[0], answer[0], {**parameters.domains, **states.domains},
+                                            (parameters, states), deadline)
+            if factor is not None:
+                return factor
+        if k > 1 and options.factors and unknowns and outcome[1].startswith(_NOT_A_COMBINATION) \
+                and not answer_conditions:
+            # Not a state-free combination; it may still be A(state) times the reference with
+            # A invertible on the whole domain (the unsolved Euler-Lagrange equations).
+            mixed = state_dependent_mixing(reference, answer, unknowns, {**parameters.domains, **states.domains},
+                                           (parameters, states), options, deadline)
+            if mixed is not None:
+                return mixed
+        return Comparison(
+            False,
+            outcome[3] if len(outcome) > 3 else "proved",
+            outcome[1],
+            evidence={"method": "ball arithmetic", "points": agreed + 1},
+            counterexample=outcome[2],
+        )
+
+    examined = 0  # parameter points looked at
     for p in range(needed * 2):
         outcome = _one_parameter_point(refs, anss, parameters, states, p, target, options, deadline)
+        examined = p + 1
         kind = outcome[0]
         if kind == "agree":
             agreed += 1
@@ -178,30 +209,15 @@ def compare_equations(
             if agreed >= needed:
                 break
         elif kind == "differ":
-            if k == 1 and options.factors and outcome[1].startswith(_NOT_A_MULTIPLE):
-                # Not a constant multiple; it may still be the reference times a factor that depends
-                # on the state and is nonzero on the whole domain (r**2 with r > 0, 1 + x**2).
-                factor = state_dependent_factor(reference[0], answer[0], {**parameters.domains, **states.domains},
-                                                (parameters, states), deadline)
-                if factor is not None:
-                    return factor
-            if k > 1 and options.factors and unknowns and outcome[1].startswith(_NOT_A_COMBINATION) \
-                    and not answer_conditions:
-                # Not a state-free combination; it may still be A(state) times the reference with
-                # A invertible on the whole domain (the unsolved Euler-Lagrange equations).
-                mixed = state_dependent_mixing(reference, answer, unknowns, {**parameters.domains, **states.domains},
-                                               (parameters, states), options, deadline)
-                if mixed is not None:
-                    return mixed
-            return Comparison(
-                False,
-                outcome[3] if len(outcome) > 3 else "proved",
-                outcome[1],
-                evidence={"method": "ball arithmetic", "points": agreed + 1},
-                counterexample=outcome[2],
-            )
+            return differ(outcome)
         elif kind == "budget":
             return Comparison(None, "none", "the time budget ran out while comparing", budget_exceeded=True)
+    if agreed >= min(needed, 3):
+        # |x| + y = z and ||x| + y| = z agree wherever y > -|x|: the points may all lie there.
+        for p in _sign_region_points(reference + answer, parameters, states, examined, k + 2, backend):
+            outcome = _one_parameter_point(refs, anss, parameters, states, p, target, options, deadline)
+            if outcome[0] == "differ":
+                return differ(outcome)
     if agreed >= min(needed, 3) and unknowns:
         # Equations of motion, whose reference determines the accelerations for every parameter value:
         # a factor (a mixing) free of the state must then be nonzero (invertible) for every one too. An
@@ -234,6 +250,34 @@ def compare_equations(
         )
     return Comparison(None, "none", "could not decide: the equations could not be evaluated reliably")
 
+
+# Parameter points drawn beyond the compared ones, each with its states, to meet the other sign
+# patterns of the abs/sign arguments (see `grader.answers.equivalence._in_sign_regions`).
+SIGN_REGION_PARAMETER_POINTS = 60
+
+
+def _sign_region_points(exprs, parameters: Sampler, states: Sampler, start: int, n_states: int, backend):
+    """Parameter-point indices from ``start`` on whose states meet a sign pattern of an abs/sign argument
+    that no earlier point met (at most `MAX_PATTERNS` patterns)."""
+    arguments = _kink_arguments(exprs)
+    if not arguments:
+        return
+    try:
+        kinks = [Compiled(argument, backend) for argument in arguments]
+    except Unsupported:
+        return
+    seen: set = set()
+    for p in range(start + SIGN_REGION_PARAMETER_POINTS):
+        new = False
+        for j in range(n_states):
+            pattern = _sign_pattern(kinks, {**parameters.point(p), **states.point(p * n_states + j)})
+            if pattern is not None and pattern not in seen:
+                seen.add(pattern)
+                new = True
+        if len(seen) > MAX_PATTERNS:
+            return
+        if new and p >= start:
+            yield p
 
 # Further parameter points (ordinary and wide) at which a single equation's multiple is screened for
 # a sign change, one state each.

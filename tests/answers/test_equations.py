@@ -579,3 +579,20 @@ def test_an_equation_degenerate_for_some_parameters_itself_is_not_held_to_the_pa
     # at resonance k = m w^2 the reference has no solution and the answer is undefined: no solution either
     v = check(reference, answer, FORCED, kind="equation")
     assert v.verdict == "equivalent", v.reason
+
+
+XYZ_REAL = {n: {"dimension": "dimensionless", "domain": "real"} for n in ("x", "y", "z")}
+
+
+@pytest.mark.parametrize("shift", range(1, 41))
+@pytest.mark.parametrize("reference, answer, expected", [
+    # The two sides agree wherever y > -|x| (three quarters of the samples), which the few states
+    # compared (seeded by the reference, so shifted by a constant to draw others) can all miss:
+    # every sign pattern of an abs/sign argument that sampling meets must be compared.
+    ("z = abs(x) + y + {k}", "z = abs(abs(x) + y) + {k}", "not_equivalent"),
+    ("z*(abs(x) + y + {k}) = 1", "z*(abs(abs(x) + y) + {k}) = 1", "not_equivalent"),
+    ("z = abs(abs(x) + y) + {k}", "z - {k} = ||x| + y|", "equivalent"),
+])
+def test_every_sign_pattern_of_an_abs_argument_met_is_compared(reference, answer, expected, shift):
+    v = check(reference.format(k=shift), answer.format(k=shift), XYZ_REAL, kind="equation")
+    assert v.verdict == expected, v.reason
