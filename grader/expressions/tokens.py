@@ -228,6 +228,10 @@ class _Tokenizer:
                 word, "complex numbers are not part of these answers")
             self.emit("bad", ch, start, start + 1 + len(word),
                       error=ExpressionError(f"'%{word}' is Maxima's notation", start, "syntax", hint))
+        elif ch == "!" and self.peek(1) == "=":  # a programmer's "not equal", not a factorial
+            self.emit("bad", ch, start, start + 2,
+                      error=ExpressionError("'!=' (not equal) is not part of an answer", start, "syntax",
+                                            "give an expression, or an equation with ="))
         elif ch == ":" and self.peek(1) == "=":
             self.emit("bad", ch, start, start + 2,
                       error=ExpressionError("':=' (a definition) is not part of a formula", start, "syntax",

@@ -91,6 +91,14 @@ def test_a_sign_after_an_operator_is_still_read(text):
     assert not any(t.kind == "bad" for t in tokenize(text))
 
 
+
+# A programmer's "not equal" (PrairieLearn's tests type 5!=5) is named as such, not as a factorial.
+@pytest.mark.parametrize("text", ["5!=5", "x != y", "a!=b+1"])
+def test_not_equal_typed_in_ascii_is_named_not_read_as_a_factorial(text):
+    token = next(t for t in tokenize(text) if t.kind == "bad")
+    assert "'!=' (not equal)" in str(token.error) and "factorial" not in str(token.error)
+    assert "equation with =" in token.error.hint
+
 # Maxima's (STACK's) notation: the refusal names what was typed and what to type instead.
 @pytest.mark.parametrize("text, named, hint", [
     ("%pi/2", "'%pi'", "write pi"), ("2*%pi*r", "'%pi'", "write pi"), ("%e^x", "'%e'", "write e"),
