@@ -8,6 +8,10 @@ The numeric judge evaluates both expressions at sample points in ball arithmetic
 - the ball contains zero and its radius is below ``10**-digits`` times the scale of the
   computation (the largest term it added): the expressions agree there to ``digits`` digits.
 
+After agreement, the points are also drawn where the expressions' own constants say to look
+(``abs(x - 10)``) and in every sign pattern of an abs/sign argument that sampling meets
+(``abs(abs(x) + y)`` and ``abs(x) + y`` differ only where y < -|x|).
+
 Balls make float64's failure modes harmless: ``1 - cos(theta)`` at ``theta = 1e-8`` is computed
 with more bits until the answer is certain, instead of cancelling to zero. The ``float64`` and
 ``mpmath`` methods (fixed precision and a tolerance, no error bound) exist for the benchmark.
