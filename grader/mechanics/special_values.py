@@ -471,19 +471,33 @@ def solve_for(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> 
     >>> solve_for(3*sympy.cos(theta) - 2, theta, "f.toml", "k")
     [acos(2/3), -acos(2/3)]
     """
+    # Over one denominator, √(cos θ − cos θ₀) beside 1/√(cos θ − cos θ₀) (the slope of a speed) is
+    # the polynomial (3 cos θ − 2 cos θ₀) sin θ; solve spent seconds on the sum of square roots.
+    numerator, denominator = budget.attempt(lambda: sympy.fraction(sympy.together(condition)),
+                                            _SOLVE_BUDGET_S, fallback=lambda: (condition, sympy.Integer(1)))
+
     def factors_of():
         try:
-            return [f for f, _ in sympy.factor_list(condition)[1]]
-        except sympy.PolynomialError:  # e^{ωt} beside e^{−ωt}: factor_list refuses them
-            return [condition]
+            return [f for f, _ in sympy.factor_list(numerator)[1]]
+        except sympy.PolynomialError:
+            pass
+        factors = []
+        for product in sympy.Mul.make_args(sympy.factor_terms(numerator)):
+            try:
+                factors += [f for f, _ in sympy.factor_list(product)[1]]
+            except sympy.PolynomialError:  # e^{ωt} beside e^{−ωt}, √2 √g: factor_list refuses them
+                factors.append(product)
+        return factors
 
-    factors = budget.attempt(factors_of, _SOLVE_BUDGET_S, fallback=lambda: [condition])
+    factors = budget.attempt(factors_of, _SOLVE_BUDGET_S, fallback=lambda: [numerator])
     roots = []
     for factor in factors:
         if x not in factor.free_symbols:
             continue
         for root in _solve_factor(factor, x, source, key):
-            if root not in roots:
+            # a root of the numerator where the denominator vanishes is a pole, not a root
+            if root not in roots and not (x in denominator.free_symbols
+                                          and denominator.xreplace({x: root}).is_zero):
                 roots.append(root)
     return roots
 

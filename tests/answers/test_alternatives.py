@@ -77,7 +77,7 @@ def test_alternatives_go_from_the_scene_file_through_the_reference_contract_to_t
     (spec,) = scene.answers
     # The answer is already in closed form in the parameters: its derived value is its expression
     # (a stand-in for derive(), whose time budget is not what this test is about).
-    derivation = SimpleNamespace(scene=scene, answers={"equilibrium": spec.expr}, alternatives={})
+    derivation = SimpleNamespace(scene=scene, answers={"equilibrium": spec.expr}, alternatives={}, implicit={})
     (data,) = reference_answers(derivation)
     reference = ReferenceAnswer.from_json(data)
     assert reference.alternatives == ("-acos(g/(a*omega**2))",)
