@@ -176,6 +176,24 @@ def compare_equations(
             # on the state and is nonzero on the whole domain (r**2 with r > 0, 1 + x**2).
             factor = state_dependent_factor(reference[0], answer[0], {**parameters.domains, **states.domains},
                                             (parameters, states), deadline)
+            if factor is not None and factor.equivalent:
+                return factor
+            # exp(x) = exp(y), x^3 = y^3: the same solutions as x = y, but the ratio of the residuals is
+            # no factor that cancels; either equation may be the one written so (|x| = |y| against x^2 = y^2)
+            inner = None if answer_conditions else _injective_sides(answer[0])
+            inner_reference = _injective_sides(reference[0])
+            for ref_form, answer_form in ((reference[0], inner), (inner_reference, answer[0]),
+                                          (inner_reference, inner)):
+                if ref_form is None or answer_form is None or _past(deadline):
+                    continue
+                again = compare_equations([ref_form], [answer_form], parameters, states, options, deadline,
+                                          compiled_reference if ref_form is reference[0] else None,
+                                          answer_conditions if answer_form is answer[0] else (), unknowns)
+                if again.equivalent:
+                    again.reason = ("the same solutions as the reference: f(A) = f(B), with f taking each value "
+                                    "once (an odd power, exp, atan; an even power on |A|), holds exactly where "
+                                    f"A = B, and that equation is {again.reason}")
+                    return again
             if factor is not None:
                 return factor
         if k > 1 and options.factors and unknowns and outcome[1].startswith(_NOT_A_COMBINATION) \
@@ -1052,6 +1070,100 @@ def _nodes(expr: sympy.Expr, limit: int = FACTOR_MAX_NODES) -> int:
     return count
 
 
+# Functions that take each real value at most once on the whole real line (and are defined there):
+# f(P) = f(Q) holds exactly where P = Q. log is left out: log P = log Q is undefined where P = Q <= 0.
+_INJECTIVE = (sympy.exp, sympy.sinh, sympy.tanh, sympy.atan, sympy.asinh)
+
+
+def _injective_sides(residual: sympy.Expr) -> sympy.Expr | None:
+    """``A - B`` when ``residual = 0`` says ``f(A) = f(B)`` for a function ``f`` that takes each real
+    value once (an odd power, exp, sinh, tanh, atan, asinh; a number on one side read as ``f`` of its
+    preimage); ``|A| - |B|`` for an even power. None otherwise.
+
+    >>> x, y, r, w = sympy.symbols("x y r w", real=True)
+    >>> _injective_sides(x**3 - y**3)
+    x - y
+    >>> _injective_sides(2*sympy.exp(x) - 2*sympy.exp(y))  # one sign or the other: a residual
+    -x + y
+    >>> _injective_sides(x**2 - r**2*w**2)
+    Abs(x) - Abs(r*w)
+    >>> _injective_sides(x**2 + y**2) is None
+    True
+    """
+    terms = sympy.Add.make_args(residual)
+    if len(terms) != 2:
+        return None
+    left, right = terms[0], -terms[1]
+    powered = _same_power(left, right)
+    if powered is not None:
+        return powered
+    (c1, a), (c2, b) = left.as_coeff_Mul(), right.as_coeff_Mul()
+    if a.is_number or b.is_number:
+        # f(A) = number: the number's preimage, where f reaches it (2 e^x = 4: x = log 2)
+        (c, a), number = ((c1, a), right) if b.is_number else ((c2, b), left)
+        value = number / c
+        if isinstance(a, sympy.exp) and value.is_positive:
+            return a.args[0] - sympy.log(value)
+        if isinstance(a, _INJECTIVE):
+            return None  # tanh, atan: a number outside their range, or a preimage we do not print
+        return None
+    if c1 == c2 and type(a) is type(b) and isinstance(a, _INJECTIVE):
+        return a.args[0] - b.args[0]
+    return None
+
+
+def _same_power(left: sympy.Expr, right: sympy.Expr) -> sympy.Expr | None:
+    """``A - B`` when ``left = A**n`` and ``right = B**n`` for an odd n (``|A| - |B|`` for an even one),
+    each side a product of powers whose exponents n divides (8 x**3 = r**3 w**3: 2x = r w)."""
+    exponents = [int(e) for side in (left, right) for base, e in side.as_powers_dict().items()
+                 if not base.is_number and e.is_Integer]
+    n = math.gcd(*exponents) if exponents else 0
+    if n < 2:
+        return None
+    roots = []
+    for side in (left, right):
+        root = sympy.Integer(1)
+        for base, e in side.as_powers_dict().items():
+            if base.is_number and e.is_Integer and base.is_real:
+                # the numeric part of the side, rooted as a whole below
+                root *= sympy.real_root(base**e, n) if n % 2 == 1 or (base**e).is_nonnegative else sympy.nan
+            elif e.is_Integer and int(e) % n == 0:
+                root *= base ** (int(e) // n)
+            else:
+                return None
+        if root.has(sympy.nan):
+            return None
+        roots.append(root)
+    if n % 2 == 1:
+        return roots[0] - roots[1]
+    return sympy.Abs(roots[0]) - sympy.Abs(roots[1])
+
+
+def _positive_quadratic(expr: sympy.Expr) -> bool:
+    """Whether ``expr`` is a quadratic polynomial with numeric coefficients that is positive (or
+    negative) on the whole space: a definite Hessian and a minimum of that sign (``x**2 + x*y + y**2 + 1``,
+    the factor of ``x**3 + x = y**3 + y`` against ``x = y``, which no box over the real line bounds)."""
+    symbols = sorted(expr.free_symbols, key=lambda s: s.name)
+    if not symbols or _nodes(expr) > FACTOR_MAX_NODES:
+        return False
+    try:
+        poly = sympy.Poly(expr, *symbols)
+    except sympy.PolynomialError:
+        return False
+    if poly.total_degree() != 2 or poly.get_domain() not in (sympy.ZZ, sympy.QQ):
+        return False
+    for sign in (1, -1):
+        f = sign * poly.as_expr()
+        hessian = sympy.hessian(f, symbols)
+        if not all(hessian[:i, :i].det() > 0 for i in range(1, len(symbols) + 1)):
+            continue
+        gradient = sympy.Matrix([sympy.diff(f, s) for s in symbols])
+        at_zero = dict(zip(symbols, [0] * len(symbols)))
+        lowest = -hessian.LUsolve(gradient.subs(at_zero))
+        return f.subs(dict(zip(symbols, lowest))) > 0
+    return False
+
+
 def _nonzero_on(expr: sympy.Expr, domains: dict) -> bool | None:
     """True when ``expr`` is provably nonzero (and finite) on the whole declared domain, else None."""
     for factor in sympy.Mul.make_args(sympy.factor_terms(expr)):
@@ -1061,7 +1173,8 @@ def _nonzero_on(expr: sympy.Expr, domains: dict) -> bool | None:
             if factor.is_zero is False and factor.is_finite:
                 continue
             return None
-        if factor.is_positive or factor.is_negative or _signed_as_squares(factor) or _no_real_root(factor, domains):
+        if factor.is_positive or factor.is_negative or _signed_as_squares(factor) or _no_real_root(factor, domains) \
+                or _positive_quadratic(factor):
             continue
         if _nonzero_in_balls(factor, domains) is not True:
             return None

@@ -596,3 +596,34 @@ XYZ_REAL = {n: {"dimension": "dimensionless", "domain": "real"} for n in ("x", "
 def test_every_sign_pattern_of_an_abs_argument_met_is_compared(reference, answer, expected, shift):
     v = check(reference.format(k=shift), answer.format(k=shift), XYZ_REAL, kind="equation")
     assert v.verdict == expected, v.reason
+
+
+@pytest.mark.parametrize("reference, answer, expected", [
+    # one function that takes each value once, of both sides: the same solutions
+    ("x = y", "x^3 = y^3", "equivalent"),
+    ("x = y", "y^5 = x^5", "equivalent"),
+    ("x = y", "exp(x) = exp(y)", "equivalent"),
+    ("x = y", "atan(x) = atan(y)", "equivalent"),
+    ("x = y", "sinh(x^3) = sinh(y^3)", "equivalent"),            # peeled twice
+    ("x = log(2)", "2 exp(x) = 4", "equivalent"),                  # a number is f of its preimage
+    ("x = -2", "x^3 = -8", "equivalent"),
+    # an even power takes each value once on |A|
+    ("abs(x) = abs(y)", "x^2 = y^2", "equivalent"),
+    ("x^2 = y^2", "abs(x) = abs(y)", "equivalent"),
+    ("x^2 = y^2", "x^4 = y^4", "equivalent"),
+    # a factor positive on the whole plane: x^3 + x - y^3 - y = (x - y)(x^2 + x y + y^2 + 1)
+    ("x = y", "x^3 + x = y^3 + y", "equivalent"),
+    # and what must stay wrong
+    ("x = y", "x^2 = y^2", "not_equivalent"),                      # x = -y too
+    ("x = 2", "x^2 = 4", "not_equivalent"),
+    ("x = y", "x^3 = y^3 + 1", "not_equivalent"),
+    ("x = y", "exp(x) = exp(-y)", "not_equivalent"),
+    ("x = -y", "x^3 = y^3", "not_equivalent"),
+    ("x = y", "log(x) = log(y)", "not_equivalent"),                # undefined where x = y <= 0
+    ("x = y", "(x^2 + x y + y^2 - 1)(x - y) = 0", "not_equivalent"),
+    ("x = y", "sin(x) = sin(y)", "not_equivalent"),                # sin repeats its values
+])
+def test_equations_with_the_same_solutions_through_a_one_to_one_function_are_right(reference, answer, expected):
+    variables = {"x": {"domain": "real", "kind": "coordinate"}, "y": {"domain": "real", "kind": "coordinate"}}
+    v = check(reference, answer, variables, kind="equation")
+    assert v.verdict == expected, v.reason
