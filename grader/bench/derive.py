@@ -106,7 +106,8 @@ def bench_derive(paths: tuple[str, ...], repeat: int, out: str, baseline_timeout
     if not files:
         raise click.UsageError("no scene files given and none in problems/")
     rows = []
-    header = (f"{'scene':28} {'engine eom':>11} {'engine full':>12} {'full (CPU)':>11} {'LagrangesMethod':>16} "
+    w = max(28, *(len(p.stem) for p in files))  # the scene column fits the longest file name
+    header = (f"{'scene':{w}} {'engine eom':>11} {'engine full':>12} {'full (CPU)':>11} {'LagrangesMethod':>16} "
               f"{'ratio eom':>10}")
     click.echo(header)
     click.echo("-" * len(header))
@@ -116,7 +117,7 @@ def bench_derive(paths: tuple[str, ...], repeat: int, out: str, baseline_timeout
             eom = _best_of(lambda: equations_of_motion(scene), repeat)
             full, full_cpu = _best_of_both(lambda: derive(load_scene(path)), repeat)
         except Exception as exc:  # a scene this engine cannot derive is a row, not the end of the run
-            click.echo(f"{path.stem:28} {'error':>11}  {type(exc).__name__}: {str(exc)[:90]}")
+            click.echo(f"{path.stem:{w}} {'error':>11}  {type(exc).__name__}: {str(exc)[:90]}")
             rows.append({"scene": path.stem, "error": str(exc)})
             continue
         baseline = _baseline_time(path, repeat, baseline_timeout)
@@ -126,14 +127,14 @@ def bench_derive(paths: tuple[str, ...], repeat: int, out: str, baseline_timeout
             rows.append({"scene": scene.id, "engine_eom_s": eom, "engine_full_s": full,
                          "engine_full_cpu_s": full_cpu, "lagranges_method_s": None, "baseline_timed_out_after_s": baseline_timeout,
                          "ratio_eom": bound / eom, "ratio_full": bound / full, "ratio_is_lower_bound": True})
-            click.echo(f"{scene.id:28} {eom * 1e3:9.1f}ms {full * 1e3:10.1f}ms {full_cpu * 1e3:9.1f}ms "
+            click.echo(f"{scene.id:{w}} {eom * 1e3:9.1f}ms {full * 1e3:10.1f}ms {full_cpu * 1e3:9.1f}ms "
                        f"{'> ' + format(bound, '.0f') + ' s':>16} "
                        f"{'> ' + format(bound / eom, '.0f'):>9}x", nl=True)
         else:
             rows.append({"scene": scene.id, "engine_eom_s": eom, "engine_full_s": full,
                          "engine_full_cpu_s": full_cpu, "lagranges_method_s": baseline, "ratio_eom": baseline / eom,
                          "ratio_full": baseline / full})
-            click.echo(f"{scene.id:28} {eom * 1e3:9.1f}ms {full * 1e3:10.1f}ms {full_cpu * 1e3:9.1f}ms "
+            click.echo(f"{scene.id:{w}} {eom * 1e3:9.1f}ms {full * 1e3:10.1f}ms {full_cpu * 1e3:9.1f}ms "
                        f"{baseline * 1e3:14.1f}ms "
                        f"{baseline / eom:9.1f}x")
         sys.stdout.flush()
