@@ -196,6 +196,11 @@ def compare_equations(
                     return again
             if factor is not None:
                 return factor
+        if k > 1 and options.factors and outcome[1].startswith(_NOT_A_COMBINATION) and not answer_conditions \
+                and _same_polynomial_ideal(reference, answer, set(states.domains), with_parameters=not unknowns):
+            return Comparison(True, "proved", "the same solutions as the reference: your equations and the "
+                              "reference's generate the same polynomial equations (equal reduced Gröbner bases)",
+                              evidence={"method": "Gröbner basis"})
         if k > 1 and options.factors and unknowns and outcome[1].startswith(_NOT_A_COMBINATION) \
                 and not answer_conditions:
             # Not a state-free combination; it may still be A(state) times the reference with
@@ -1137,6 +1142,56 @@ def _same_power(left: sympy.Expr, right: sympy.Expr) -> sympy.Expr | None:
     if n % 2 == 1:
         return roots[0] - roots[1]
     return sympy.Abs(roots[0]) - sympy.Abs(roots[1])
+
+
+# Gröbner bases are taken only of small polynomial systems: their cost grows doubly exponentially.
+GROEBNER_MAX_UNKNOWNS = 4
+GROEBNER_MAX_DEGREE = 4
+GROEBNER_MAX_PARAMETERS = 3
+
+
+def _same_polynomial_ideal(reference: list[sympy.Expr], answer: list[sympy.Expr], state: set,
+                           with_parameters: bool = True) -> bool:
+    """Whether two systems of polynomial equations in the state generate the same ideal (equal reduced
+    Gröbner bases), after each equation ``f(A) = f(B)`` is read as ``A = B`` (`_injective_sides`): then
+    they have the same solutions. ``x y = 2, x + y = 3`` and ``x^2 - 3x + 2 = 0, y = 3 - x`` are no
+    combination of each other with constant coefficients, but one ideal. Coefficients may hold
+    parameters (``with_parameters``: a basis over their rational functions: the same ideal for all but special values);
+    equations of motion, which must hold for every parameter value, are compared with numbers only.
+
+    >>> x, y = sympy.symbols("x y", real=True)
+    >>> _same_polynomial_ideal([x*y - 2, x + y - 3], [x**2 - 3*x + 2, y - 3 + x], {x, y})
+    True
+    >>> _same_polynomial_ideal([x*y - 2, x + y - 3], [x**2 - 3*x + 2, y - x], {x, y})
+    False
+    """
+    systems = []
+    for system in (reference, answer):
+        peeled = []
+        for residual in system:
+            inner = _injective_sides(residual)
+            while inner is not None and not inner.has(sympy.Abs):
+                residual, inner = inner, _injective_sides(inner)
+            peeled.append(residual)
+        systems.append(peeled)
+    everything = [r for system in systems for r in system]
+    gens = sorted(set().union(*(r.free_symbols for r in everything)) & state, key=lambda s: s.name)
+    parameters = set().union(*(r.free_symbols for r in everything)) - set(gens)
+    most = GROEBNER_MAX_PARAMETERS if with_parameters else 0
+    if not gens or len(gens) > GROEBNER_MAX_UNKNOWNS or len(parameters) > most \
+            or any(_nodes(r) > FACTOR_MAX_NODES for r in everything):
+        return False
+    try:
+        polys = [[sympy.Poly(r, *gens) for r in system] for system in systems]
+        if any(p.total_degree() > GROEBNER_MAX_DEGREE or p.is_zero for system in polys for p in system):
+            return False
+        if any(not p.get_domain().is_Exact for system in polys for p in system):
+            return False  # a float coefficient: no exact basis
+        bases = [sympy.groebner([p.as_expr() for p in system], *gens, order="grevlex") for system in polys]
+    except (sympy.PolynomialError, sympy.polys.polyerrors.CoercionFailed, NotImplementedError, ValueError,
+            TypeError):
+        return False
+    return list(bases[0].exprs) == list(bases[1].exprs) and not bases[0].exprs == [1]
 
 
 def _positive_quadratic(expr: sympy.Expr) -> bool:
