@@ -181,6 +181,8 @@ def resolve_name(raw: str, ns: "Namespace", *, order: int = 0, typed: str | None
         return Resolved("function", name, [f"read '{typed}' as {_PRODUCT_FIRST[raw]}"])
     if raw in FUNCTIONS or raw.lower() in FUNCTIONS:
         return Resolved("function", FUNCTIONS[raw if raw in FUNCTIONS else raw.lower()].name)
+    if raw == "Pi" and typed == "Pi":  # Mathematica's and Maple's π; a declared variable Pi (capital Π) was found above
+        return Resolved("constant", CONSTANTS["pi"], [f"read '{typed}' as π"])
     if raw in CONSTANTS:
         notes = []
         if raw in ("e", "E"):
@@ -399,7 +401,7 @@ def _suggestion(name: str, ns: "Namespace", functions_only: bool = False) -> str
 # write each with the ones it has (an inverse cotangent's value for negative x differs between
 # conventions, so it is spelt out rather than guessed).
 _ACOT = "write pi/2 - atan(x) or atan(1/x), the one you mean (they differ for x < 0)"
-_WRITE_INSTEAD = {
+WRITE_INSTEAD = {
     "root": "write x^(1/n) for the n-th root of x, or sqrt(x)",
     "logbase": "write log(x, b) for the logarithm of x to base b",
     "acot": _ACOT,
@@ -412,13 +414,16 @@ _WRITE_INSTEAD = {
     "arccosec": "write asin(1/x) for the inverse cosecant",
     "binomial": "write the binomial coefficient out with products",
     "factorial": "write the product out, as in 2*3",
+    # SymPy's derivative object (diff(θ(t), t) itself is read as the time derivative)
+    "derivative": "write the time derivative as θ̇ (thetadot), or as diff(θ(t), t)",
+    "hypot": "write sqrt(x^2 + y^2)",
 }
 
 
 def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called: bool):
     if called:
         suggestion = _suggestion(raw, ns, functions_only=True)
-        instead = _WRITE_INSTEAD.get(raw.lower())
+        instead = WRITE_INSTEAD.get(raw.lower())
         if instead:
             suggestion = f"{instead}; or {suggestion}" if suggestion else instead
         raise ExpressionError(f"'{typed}' is not a function you can use here", position,

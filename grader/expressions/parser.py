@@ -61,6 +61,14 @@ _EXPONENT_LETTER = re.compile(r"^[0-9.]+([eE])[+-]?[0-9]+$")
 _COMMAND_THEN_DIGITS = re.compile(r"^\\([A-Za-z]+)\d[A-Za-z0-9]*$")
 _I = sympy.I
 _OPERATOR_POWER = {"+": _ADD, "-": _ADD, "*": _MUL, "/": _MUL, "^": _POW}
+# Calls that differentiate (Maple's, SymPy's and Maxima's diff, Mathematica's D), with their bracket.
+_DIFF_CALLS = {"diff": "(", "D": "["}
+_PAIRS_CLOSE = {"(": ")", "[": "]"}
+# What to type instead of a two-argument call in square brackets (see Parser.call_arguments).
+_BRACKET_PAIR_HINTS = {
+    "atan": "write atan2(y, x) for the angle of the point (x, y), or atan(y/x)",
+    "log": "write log(x, b) for the logarithm of x to base b",
+}
 _ATOM_STARTS = ("number", "name", "open", "root", "command", "derivative", "time_derivative")
 # Left binding power of the tokens that are not operators: a superscript is a power, an atom
 # starts an implicit product, a prime binds tightest (so the parser reaches it and complains).
@@ -392,6 +400,70 @@ class _Parser:
         self.note(f"read '{self.text[token.pos:self.tokens[self.i - 1].end]}' as {value}")
         return value
 
+    def diff_call(self, token: Token) -> sympy.Expr:
+        """``diff(θ(t), t)``, ``diff(x, t, t)``, ``diff(x, t, 2)`` (Maple, SymPy, Maxima) and Mathematica's
+        ``D[θ[t], t]``, ``D[x[t], {t, 2}]``: the time derivative of the first argument, which every one
+        of these systems means (differentiating by anything but the time t is refused by name)."""
+        opener = self.advance()
+        if self.peek().kind == "close":
+            raise ExpressionError(f"{token.text}() needs an expression and the time, as in {token.text}(θ(t), t)",
+                                  opener.pos, "syntax")
+        inner = self.expression(0)
+        order = 0
+        while self.peek().kind == "op" and self.peek().value == ",":
+            self.advance()
+            order += self.diff_order(token)
+        self.expect_close(opener)
+        shown = self.text[token.pos:self.tokens[self.i - 1].end]
+        if order == 0:
+            raise ExpressionError(f"'{shown}' does not say what to differentiate by", token.pos, "syntax",
+                                  f"write {token.text}{opener.value}θ(t), t{_PAIRS_CLOSE[opener.value]} for the "
+                                  "time derivative, or θ̇ (thetadot)")
+        if order > 4:
+            raise ExpressionError(f"'{shown}' is a derivative of order {order}", token.pos, "syntax",
+                                  "answers here need at most the second time derivative, as in θ̈")
+        if isinstance(inner, sympy.Symbol):
+            # θ's second derivative is the declared θ̈ even when θ̇ is not declared (as d²θ/dt² is)
+            try:
+                value = resolve_name(inner.name, self.ns, order=order, typed=shown, position=token.pos)
+            except ExpressionError:
+                value = None
+            if value is not None and value.kind == "symbol":
+                self.note(f"read '{shown}' as {dotted(value.value.name)}")
+                return value.value
+        value = checked(time_derivative(inner, order, self.ns, shown, token.pos), token.pos)
+        self.note(f"read '{shown}' as {value}")
+        return value
+
+    def diff_order(self, token: Token) -> int:
+        """How many times one more argument of `diff_call` differentiates: ``t`` once, ``t, 2`` (a
+        number after t) that often, Mathematica's ``{t, 2}`` likewise."""
+        start = self.peek()
+        braced = start.kind == "open" and start.value == "{"
+        if braced:
+            self.advance()
+        variable = self.advance()
+        if not (variable.kind == "name" and variable.value == "t" and not variable.order
+                and ("t" not in self.ns.names or self.ns["t"].kind == "time" or self.ns["t"].dimension == _TIME)):
+            raise ExpressionError(f"'{token.text}' differentiates by '{variable.text}' here; only time derivatives "
+                                  "(by t) are part of these answers", variable.pos, "syntax",
+                                  "write the time derivative as θ̇ (thetadot), or as diff(θ(t), t)")
+        count = 1
+        after = self.peek()
+        following = self.tokens[self.i + 1] if self.i + 1 < len(self.tokens) else after
+        if after.kind == "op" and after.value == "," and following.kind == "number":
+            self.advance()
+            number = self.advance()
+            if not (number.value.is_Integer and 1 <= number.value <= 4):
+                raise ExpressionError(f"'{number.text}' is not an order of derivative", number.pos, "syntax",
+                                      "give 1 or 2, as in diff(x(t), t, 2)")
+            count = int(number.value)
+        if braced:
+            closer = self.advance()
+            if not (closer.kind == "close" and closer.value == "}"):
+                raise ExpressionError("expected '}' after the order, as in D[x[t], {t, 2}]", closer.pos, "syntax")
+        return count
+
     # -- names and functions ------------------------------------------------
     def name(self, token: Token, rbp: int = 0) -> sympy.Expr:
         raw = token.value
@@ -401,11 +473,16 @@ class _Parser:
             return self.function(token.value, token)
         if raw in ("dot", "ddot") and raw not in self.ns and following.kind == "open":
             return self.derivative_call(token, 1 if raw == "dot" else 2)
+        if (raw in _DIFF_CALLS and not token.order and raw not in self.ns.names and following.kind == "open"
+                and following.value == _DIFF_CALLS[raw] and following.pos == token.end):
+            return self.diff_call(token)
         if (following.kind == "open" and following.value == "[" and following.pos == token.end and not token.order
                 and raw.lower() not in FUNCTIONS):  # sin[x] is a call, as Mathematica writes it
-            indexed = self.indexed_name(token)
+            indexed = None if self.time_bracket(raw) else self.indexed_name(token)
             if indexed is not None:
                 return indexed
+        if called and following.pos == token.end and not token.order and raw not in self.ns.names:
+            self.refuse_round_index(token)
         if not token.order and raw in self.ns.names:
             value = self.ns.symbol(raw)  # what resolve_name answers for a declared name (no notes)
         else:
@@ -420,7 +497,7 @@ class _Parser:
                 self.splice(token, resolved.value)
                 return self.nud(self.advance(), rbp)
             value = resolved.value
-        if called and self.time_argument(token, value):
+        if following.kind == "open" and following.value in "([" and self.time_argument(token, value):
             return value
         if called and not following.space_before and not token.order:
             self.note(f"read '{token.text}(…)' as {token.text}·(…): {token.text} is a variable, not a function")
@@ -447,22 +524,45 @@ class _Parser:
                               f"{token.value}_{index}", token.pos, "syntax",
                               f"write {token.value}_{index} for a subscript, or {token.value}*({index}) for a product")
 
+    def refuse_round_index(self, token: Token) -> None:
+        """``m(1)`` with no variable m but a declared m1 (or m_1): MATLAB's index in round brackets. In
+        mathematics it is a function m at 1, which does not exist here, so neither reading is taken:
+        the refusal names the variable to type."""
+        inner, closer = self.tokens[self.i + 1:self.i + 3]
+        if not (inner.kind == "number" and inner.text.isdigit() and closer.kind == "close" and closer.value == ")"):
+            return
+        for candidate in (f"{token.value}{inner.text}", f"{token.value}_{inner.text}"):
+            if candidate in self.ns.names:
+                typed = self.text[token.pos:closer.end]
+                raise ExpressionError(f"'{typed}' is an index in MATLAB, and there is no function {token.text} here",
+                                      token.pos, "syntax", f"write {candidate} for the variable {candidate}")
+
     def time_argument(self, token: Token, value: sympy.Expr) -> bool:
         """Skip a ``(t)`` typed right after a variable (``θ(t)``, ``θ̈(t)``, ``\\ddot{\\theta}(t)``) when no
         variable t is declared, or t is the declared time and the variable moves (a coordinate or one of
         its derivatives: the driven pendulum's ``l θ̈(t) = -g sin θ(t) + …``): the variable as a function
         of time, which it is. A parameter's ``l(t)`` with t declared stays the product. True when skipped."""
         opener = self.peek()
-        if not (isinstance(value, sympy.Symbol) and opener.kind == "open" and opener.value == "("
+        if not (isinstance(value, sympy.Symbol) and opener.kind == "open" and opener.value in "(["
                 and opener.pos == token.end and ("t" not in self.ns.names or self.moves_in_time(value.name))):
             return False
         inner, closer = self.tokens[self.i + 1:self.i + 3]
         if not (inner.kind == "name" and inner.value == "t" and inner.order == 0
-                and closer.kind == "close" and closer.value == ")"):
+                and closer.kind == "close" and closer.value == {"(": ")", "[": "]"}[opener.value]):
             return False
         self.i += 3
         self.note(f"read '{self.text[token.pos:closer.end]}' as {token.text}, a function of time")
         return True
+
+    def time_bracket(self, raw: str) -> bool:
+        """Whether a declared variable ``raw`` is followed by ``[t]`` that `time_argument` reads as
+        Mathematica's function of time (``θ[t]``), not as an index."""
+        if raw not in self.ns.names:
+            return False
+        inner, closer = self.tokens[self.i + 1:self.i + 3]
+        return (inner.kind == "name" and inner.value == "t" and not inner.order
+                and closer.kind == "close" and closer.value == "]"
+                and ("t" not in self.ns.names or self.moves_in_time(raw)))
 
     def moves_in_time(self, name: str) -> bool:
         """With a variable t declared as the time: whether ``name`` is a coordinate or a derivative of one
@@ -514,7 +614,9 @@ class _Parser:
                                       f"write ({name}(x))^n for a power of {name}")
         spec = FUNCTIONS[name]
         following = self.peek()
-        if following.kind == "open" and following.value in "({":
+        # Sin[x]^2 is Mathematica's call sin(x)^2, as sin(x)^2 is: read as grouping, the square went
+        # inside (sin(x²)) and a right sin²x was proved wrong.
+        if following.kind == "open" and following.value in "({[":
             args = self.call_arguments(token, spec)
         elif spec.min_args > 1:
             raise ExpressionError(f"{token.text} takes {spec.min_args} arguments in parentheses, "
@@ -542,6 +644,13 @@ class _Parser:
             raise ExpressionError(f"{token.text}() needs an argument", opener.pos, "syntax",
                                   f"write {spec.name}(x)")
         args = [self.expression(0)]
+        if opener.value == "[" and (spec.max_args > 1 or spec.name in _BRACKET_PAIR_HINTS) and self.peek().kind == "op" and self.peek().value == ",":
+            # Mathematica's ArcTan[x, y] is atan2(y, x) and its Log[b, x] is the logarithm of x to
+            # base b: the reverse of atan2(y, x) and log(x, b) here, so neither order is guessed.
+            raise ExpressionError(f"'{token.text}[…, …]' has its arguments in a different order in different "
+                                  f"systems (Mathematica's ArcTan[x, y] is atan2(y, x), its Log[b, x] is "
+                                  f"log(x, b))", self.peek().pos, "ambiguous",
+                                  _BRACKET_PAIR_HINTS.get(spec.name, f"write {spec.name}(…) with round brackets"))
         while self.peek().kind == "op" and self.peek().value == "," and opener.value == "(":
             self.advance()
             args.append(self.expression(0))

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import sympy
 
 from .errors import ExpressionError
+from .functions import FUNCTIONS
 from .latex_input import classify_command, subscript_text
 from .magnitudes import MAX_DIGITS
 from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, FULLWIDTH_SYMBOLS, GREEK_CHARS, MATH_LETTERS,
@@ -107,6 +108,10 @@ _TAG = re.compile(r"\*?\s*\{[^{}]*\}")
 _LAYOUT_ENVIRONMENTS = {"aligned", "align", "gather", "gathered", "split", "equation", "eqnarray", "multline",
                         "flalign"}
 
+
+# Python modules whose functions students paste with the prefix (np.sin, math.sqrt).
+_MODULES = frozenset({"np", "numpy", "math", "cmath", "sp", "sympy"})
+_ASCII_WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 # Maxima's constants, typed after a '%' (STACK's %pi, %e, %i).
 _MAXIMA_CONSTANT = re.compile(r"(pi|e|i)(?![A-Za-z0-9_])")
@@ -196,6 +201,11 @@ class _Tokenizer:
             self.number()
         elif _is_name_start(ch):
             self.identifier(start, "", start)
+        elif ch == "\u2061":  # FUNCTION APPLICATION, which Word's equations put in sin⁡θ: a space
+            self.space = True
+            self.i += 1
+        elif ch == "\u2062":  # INVISIBLE TIMES (MathML, Word): the product it stands for
+            self.emit("op", "*", start, start + 1)
         elif ch in DOTTED_LETTERS:
             letter, order = DOTTED_LETTERS[ch]
             suffix, end = self.subscript_after_accent(start + 1)
@@ -214,6 +224,13 @@ class _Tokenizer:
             self.degrees(start, start + 1)
         elif ch in PRIME_CHARS:
             self.emit("prime", PRIME_CHARS[ch], start, start + 1)
+        elif ch == "." and self.peek(1) in ("*", "/", "^") and self.tokens \
+                and self.tokens[-1].kind in ("name", "close", "number", "sup", "prime"):
+            # MATLAB's element-wise .* ./ .^ are *, / and ^ on numbers (2.*3 is 6 either way).
+            self.i += 1
+        elif ch == "." and self.tokens and self.tokens[-1].kind == "name" and self.tokens[-1].end == start \
+                and self.tokens[-1].text in _MODULES and _ASCII_WORD.match(self.text, start + 1):
+            self.module_attribute(start)
         elif ch == ".":
             previous = self.tokens[-1].kind if self.tokens else None
             message = ("'.' (attribute access) is not allowed" if previous in ("name", "close")
@@ -248,6 +265,27 @@ class _Tokenizer:
                                             "use letters, digits, + - * / ^ and brackets"))
         else:
             raise bad_character(ch, start)
+
+    def module_attribute(self, dot: int) -> None:
+        """``np.sin``, ``math.sqrt``, ``numpy.pi``: a function or π pasted from Python with its module
+        prefix, one name token spanning both (the prefix carries no meaning of its own). Anything
+        else after the prefix (``np.linspace``, ``math.e`` beside a variable e) is refused by name."""
+        module = self.tokens.pop()
+        word = _ASCII_WORD.match(self.text, dot + 1)
+        name = word.group()
+        self.space = module.space_before
+        if name in FUNCTIONS or name == "pi":
+            self.emit("name", name, module.pos, word.end())
+            return
+        from .names import WRITE_INSTEAD  # here: names imports the function registry this module needs
+
+        self.emit("bad", module.text, module.pos, word.end(),
+                  error=ExpressionError(f"'{module.text}.{name}' is not a function or constant of this grammar",
+                                        module.pos, "unsupported_function",
+                                        WRITE_INSTEAD.get(name.lower(),
+                                                          f"write the formula without the '{module.text}.' prefix, "
+                                                          "with functions such as sin, sqrt, exp, atan2 and the "
+                                                          "constants pi and e")))
 
     # -- numbers ------------------------------------------------------------
     def degrees(self, start: int, end: int) -> None:

@@ -164,6 +164,8 @@ _SYMBOL_HINTS = {
     "°": "angles are in radians: degrees only follow a number, as in 30°",
     "±": "give one sign (the answer with + or the one with -)",
     "∓": "give one sign (the answer with + or the one with -)",
+    # a phone's or word processor's quotation marks around a pasted answer (’ after a name is a prime)
+    **dict.fromkeys("“”„‟«»‘‚‛", "delete the quotation marks: the answer is the formula alone"),
 }
 
 

@@ -786,3 +786,74 @@ def test_an_index_in_square_brackets_without_such_a_variable_is_refused_not_mult
     with pytest.raises(ExpressionError) as error:
         parse(text, indexed_ns)
     assert "subscript" in str(error.value) and "_" in str(error.value)
+
+
+# -- pasted from other tools: Mathematica, Maple, MATLAB, Python, Word ------------------------------
+
+@pytest.mark.parametrize("student, canonical", [
+    # Mathematica's square brackets are a call, so a power after them is a power of the value
+    ("Sin[theta]^2", "sin(theta)^2"), ("Cos[theta]²", "cos(theta)^2"), ("Sqrt[1 - Sin[theta]^2]", "sqrt(1 - sin(theta)^2)"),
+    ("Sin[theta]^-1", "1/sin(theta)"), ("Sin[theta^2]", "sin(theta^2)"), ("Sec[theta]^2 Sin[theta]", "sec(theta)^2*sin(theta)"),
+    ("\\sin\\left[\\theta\\right]^2", "sin(theta)^2"), ("Cos[theta]Sin[theta]", "cos(theta)*sin(theta)"),
+    # Mathematica's and Maple's Pi
+    ("2 Pi Sqrt[l/g]", "2*pi*sqrt(l/g)"), ("2*Pi*r", "2*pi*r"),
+    # a coordinate as a function of time, Mathematica's way
+    ("theta[t]", "theta"), ("theta''[t]", "thetaddot"), ("theta'[t]^2", "thetadot^2"), ("Sin[theta[t]]", "sin(theta)"),
+    # derivatives by the time: Maple, SymPy, Maxima, Mathematica
+    ("diff(theta(t), t)", "thetadot"), ("diff(theta(t), t)^2", "thetadot^2"), ("diff(theta(t), t, t)", "thetaddot"),
+    ("diff(theta(t), t, 2)", "thetaddot"), ("D[theta[t], t]", "thetadot"), ("D[theta[t], {t, 2}]", "thetaddot"),
+    ("diff(m r^2 thetadot, t)", "2*m*r*rdot*thetadot + m*r^2*thetaddot"), ("diff(l, t)", "0"),
+    # Python modules and MATLAB's element-wise operators
+    ("np.sin(theta)", "sin(theta)"), ("math.sqrt(g/l)", "sqrt(g/l)"), ("2*numpy.pi*r", "2*pi*r"),
+    ("np.arctan2(y, x)", "atan2(y, x)"), ("m*(g*np.cos(theta) + l*thetadot**2)", "m*(g*cos(theta) + l*thetadot^2)"),
+    ("m.*g.*cos(theta)", "m*g*cos(theta)"), ("g./l", "g/l"), ("thetadot.^2", "thetadot^2"), ("cos(theta).^2", "cos(theta)^2"),
+    ("2.*l", "2*l"),
+    # Word's invisible operators: FUNCTION APPLICATION after a function, INVISIBLE TIMES
+    ("m g cos\u2061θ", "m*g*cos(theta)"), ("cos^2\u2061θ", "cos(theta)^2"), ("m\u2062g", "m*g"),
+])
+def test_answers_pasted_from_other_tools_mean_what_they_mean_there(student_ns, student, canonical):
+    assert parse(student, student_ns) == parse(canonical, student_ns)
+
+
+@pytest.mark.parametrize("text, code, named", [
+    # two arguments in square brackets: Mathematica's order is the reverse of ours
+    ("ArcTan[x, y]", "ambiguous", "ArcTan[x, y] is atan2(y, x)"),
+    ("Log[2, x]", "ambiguous", "Log[b, x] is log(x, b)"),
+    # a module function the grammar does not have, named with its prefix
+    ("np.linspace(x)", "unsupported_function", "'np.linspace'"),
+    ("np.e", "unsupported_function", "'np.e'"),
+    # differentiating by anything but the time, or by nothing
+    ("diff(theta(t), x)", "syntax", "only time derivatives"),
+    ("diff(theta)", "syntax", "does not say what to differentiate by"),
+    ("diff(theta(t), t, 7)", "syntax", "'7' is not an order"),
+    # what to type instead, named
+    ("np.hypot(x, y)", "unsupported_function", "sqrt(x^2 + y^2)"),
+    ("Derivative(x, t)", "unsupported_function", "diff(θ(t), t)"),
+    ("“x”", "bad_character", "delete the quotation marks"),
+])
+def test_notation_of_other_tools_that_is_refused_names_the_reading(ns, text, code, named):
+    with pytest.raises(ExpressionError) as err:
+        parse(text, ns)
+    assert err.value.code == code and named in str(err.value)
+
+
+@pytest.mark.parametrize("text", ["\\Pi", "Π"])
+def test_a_capital_greek_pi_is_not_the_number_pi(ns, text):
+    # Only the ASCII word Pi (Mathematica, Maple) is π; \Pi and Π are the capital letter.
+    with pytest.raises(ExpressionError) as err:
+        parse(text, ns)
+    assert err.value.code == "unknown_name"
+
+
+def test_a_declared_d_keeps_its_square_brackets():
+    # D[…] differentiates only when no variable D is declared: a diameter D stays D.
+    ns = Namespace([Variable("D", "length", "positive"), Variable("g", "acceleration", "positive")])
+    assert parse("D[2 g]", ns) == parse("2*D*g", ns)
+
+
+def test_a_matlab_index_in_round_brackets_names_the_variable():
+    # m(1) with m1 declared and no m: MATLAB's m₁, or a function m that does not exist; neither is guessed.
+    ns = Namespace([Variable("m1", "mass", "positive"), Variable("g", "acceleration", "positive")])
+    with pytest.raises(ExpressionError) as err:
+        parse("m(1) g", ns)
+    assert err.value.code == "syntax" and "write m1" in str(err.value)

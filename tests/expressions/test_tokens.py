@@ -305,3 +305,29 @@ def test_an_equation_number_after_a_wide_space_or_in_a_tag_is_no_factor(text, ex
 ])
 def test_a_bracketed_number_elsewhere_is_still_a_factor(text, expected):
     assert kinds(text) == expected
+
+
+@pytest.mark.parametrize("text, expected", [
+    # a Python module prefix is one name token, the function, spanning what was typed
+    ("np.sin(x)", [("name", "sin"), ("open", "("), ("name", "x"), ("close", ")")]),
+    ("2*math.pi", [("number", 2), ("op", "*"), ("name", "pi")]),
+    # MATLAB's element-wise operators are the operators
+    ("a.*b./c.^2", [("name", "a"), ("op", "*"), ("name", "b"), ("op", "/"), ("name", "c"), ("op", "^"), ("number", 2)]),
+    # Word's FUNCTION APPLICATION is a space, INVISIBLE TIMES a product
+    ("sin\u2061x", [("name", "sin"), ("name", "x")]),
+    ("m\u2062g", [("name", "m"), ("op", "*"), ("name", "g")]),
+])
+def test_operators_and_prefixes_of_other_tools(text, expected):
+    assert kinds(text) == expected
+
+
+def test_a_module_prefixed_name_points_at_what_was_typed():
+    token = tokenize("x + np.sqrt(x)")[2]
+    assert (token.value, token.text, token.pos) == ("sqrt", "np.sqrt", 4)
+
+
+@pytest.mark.parametrize("text", ["m.g", "x.y"])
+def test_a_dot_between_names_is_still_refused(text):
+    # Only .*, ./ and .^ are MATLAB's operators; a bare dot between names is no product.
+    bad = [t for t in tokenize(text) if t.kind == "bad"]
+    assert bad and "attribute access" in bad[0].error.message
