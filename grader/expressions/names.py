@@ -417,6 +417,7 @@ WRITE_INSTEAD = {
     # SymPy's derivative object (diff(θ(t), t) itself is read as the time derivative)
     "derivative": "write the time derivative as θ̇ (thetadot), or as diff(θ(t), t)",
     "hypot": "write sqrt(x^2 + y^2)",
+    "pi": "write pi (or π) without brackets",  # a spreadsheet's PI()
 }
 
 

@@ -206,6 +206,13 @@ class _Parser:
             return ExpressionError("'=' is only allowed once, between the two sides of an equation",
                                    token.pos, "syntax", "separate several equations with ';'")
         if token.kind == "op" and token.value == ",":
+            if before is not None and before.kind == "number" and before.end == token.pos \
+                    and self.text[token.end:token.end + 1].isdigit():
+                # 0,5: a decimal comma, as most of Europe writes it
+                digits = re.match(r"[0-9]+", self.text[token.end:]).group()
+                return ExpressionError(f"'{before.text},{digits}' has a decimal comma; a comma can only separate "
+                                       "function arguments here", token.pos, "syntax",
+                                       f"write a decimal point, as in {before.text}.{digits}")
             return ExpressionError("a comma can only separate function arguments, as in atan2(y, x)",
                                    token.pos, "syntax")
         if token.kind == "op" and token.value == ";":
@@ -612,6 +619,11 @@ class _Parser:
             else:
                 raise ExpressionError(f"cannot read '{token.text}^{exponent}'", following.pos, "syntax",
                                       f"write ({name}(x))^n for a power of {name}")
+        if token.text == "ATAN2":
+            # Excel's and Google Sheets' ATAN2(x, y) is atan2(y, x) here: the same letters, reversed
+            raise ExpressionError("'ATAN2' in capitals is the spreadsheet function, whose arguments are in the "
+                                  "reverse order (Excel's ATAN2(x, y) is atan2(y, x) here)", token.pos, "ambiguous",
+                                  "write atan2(y, x) in small letters for the angle of the point (x, y), or atan(y/x)")
         spec = FUNCTIONS[name]
         following = self.peek()
         # Sin[x]^2 is Mathematica's call sin(x)^2, as sin(x)^2 is: read as grouping, the square went

@@ -109,6 +109,10 @@ _LAYOUT_ENVIRONMENTS = {"aligned", "align", "gather", "gathered", "split", "equa
                         "flalign"}
 
 
+# After a middle dot between digits: 1·10⁻³, 2·10^3 is a mantissa times a power of ten, not 1.10.
+_POWER_OF_TEN = re.compile(r"10(?:\^|[⁰¹²³⁴⁵⁶⁷⁸⁹⁻])")
+_DIGIT_RUN = re.compile(r"[0-9]+")
+
 # Python modules whose functions students paste with the prefix (np.sin, math.sqrt).
 _MODULES = frozenset({"np", "numpy", "math", "cmath", "sp", "sympy"})
 _ASCII_WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
@@ -212,6 +216,16 @@ class _Tokenizer:
             self.finish_name(start, letter + suffix, end, order)
         elif ch == "\\":
             self.command()
+        elif ch == "·" and self.tokens and self.tokens[-1].kind == "number" and self.tokens[-1].end == start \
+                and _is_digit(self.peek(1)) and not _POWER_OF_TEN.match(self.text, start + 1):
+            # 2·5: the raised decimal point of British print (2.5), or a product (10)
+            number = _DIGIT_RUN.match(self.text, start + 1).group()
+            before = self.tokens[-1].text
+            self.emit("bad", ch, start, start + 1,
+                      error=ExpressionError(f"'{before}·{number}' reads as the decimal {before}.{number} or as the "
+                                            f"product {before}×{number}", start, "ambiguous",
+                                            f"write {before}.{number} for the decimal, or {before}*{number} "
+                                            "for the product"))
         elif ch in OPERATOR_CHARS:
             self.emit("op", OPERATOR_CHARS[ch], start, start + 1)
         elif ch in SUPERSCRIPT_CHARS or ch in SUPERSCRIPT_OTHERS:

@@ -808,6 +808,8 @@ def test_an_index_in_square_brackets_without_such_a_variable_is_refused_not_mult
     ("np.arctan2(y, x)", "atan2(y, x)"), ("m*(g*np.cos(theta) + l*thetadot**2)", "m*(g*cos(theta) + l*thetadot^2)"),
     ("m.*g.*cos(theta)", "m*g*cos(theta)"), ("g./l", "g/l"), ("thetadot.^2", "thetadot^2"), ("cos(theta).^2", "cos(theta)^2"),
     ("2.*l", "2*l"),
+    # a middle dot before a power of ten is scientific notation; spaced, a product
+    ("1·10⁻³ x", "x/1000"), ("2·10^3 x", "2000*x"), ("2 · 5 x", "10*x"),
     # Word's invisible operators: FUNCTION APPLICATION after a function, INVISIBLE TIMES
     ("m g cos\u2061θ", "m*g*cos(theta)"), ("cos^2\u2061θ", "cos(theta)^2"), ("m\u2062g", "m*g"),
 ])
@@ -830,6 +832,12 @@ def test_answers_pasted_from_other_tools_mean_what_they_mean_there(student_ns, s
     ("np.hypot(x, y)", "unsupported_function", "sqrt(x^2 + y^2)"),
     ("Derivative(x, t)", "unsupported_function", "diff(θ(t), t)"),
     ("“x”", "bad_character", "delete the quotation marks"),
+    # a spreadsheet's ATAN2(x, y) has our arguments reversed; its PI() has brackets
+    ("ATAN2(y, x)", "ambiguous", "Excel's ATAN2(x, y) is atan2(y, x)"),
+    ("2*PI()*r", "unsupported_function", "write pi (or π) without brackets"),
+    # a decimal comma, and a British raised decimal point between digits (2·5: 2.5 or 10?)
+    ("0,5*x", "syntax", "write a decimal point, as in 0.5"),
+    ("2·5 x", "ambiguous", "the decimal 2.5 or as the product 2×5"),
 ])
 def test_notation_of_other_tools_that_is_refused_names_the_reading(ns, text, code, named):
     with pytest.raises(ExpressionError) as err:
