@@ -87,7 +87,12 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
         # depends on where the motion starts; when in_terms_of leaves the start out, the condition
         # can only name an equilibrium (see _condition, which tries that reading before the motion's);
         # if the motion's reading was taken and failed, read it at rest.
-        if at_rest or not (_sets_an_acceleration_to_zero(evaluator, spec) and _start_left_out(evaluator, target)):
+        # With several degrees of freedom the motion's reading cannot remove every velocity (energy
+        # removes one: a bead in a hoop rolling down an incline keeps ṡ or θ̇), so an acceleration
+        # set to zero that it cannot read names an equilibrium too: read it at rest.
+        several = len(evaluator.reduction.independent) > 1
+        if at_rest or not (_sets_an_acceleration_to_zero(evaluator, spec)
+                           and (several or _start_left_out(evaluator, target))):
             raise
         try:
             return _where(evaluator, spec, target, key, at_rest=True)
@@ -558,6 +563,10 @@ def _homogeneous_in_sin_cos(condition: sympy.Expr, x: sympy.Symbol, source: str,
     [-atan(A/g), -atan(A/g) - pi]
     """
     s, c, T = sympy.Dummy("s"), sympy.Dummy("c"), sympy.Dummy("T")
+    # sin(θ + α), cos(θ + α) (a bead in a hoop rolling down an incline) are sums in sin θ, cos θ.
+    condition = condition.replace(
+        lambda e: isinstance(e, (sympy.sin, sympy.cos)) and x in e.free_symbols and e.args[0] != x,
+        sympy.expand_trig)
     replaced = sympy.expand(condition.xreplace({sympy.sin(x): s, sympy.cos(x): c}))
     if x in replaced.free_symbols or not replaced.has(s) or not replaced.has(c):
         return None
@@ -566,14 +575,28 @@ def _homogeneous_in_sin_cos(condition: sympy.Expr, x: sympy.Symbol, source: str,
     except sympy.PolynomialError:
         return None
     degrees = {sum(monomial) for monomial in poly.monoms()}
-    if len(degrees) != 1:
+    if len({d % 2 for d in degrees}) != 1:
         return None
-    (n,) = degrees
-    in_tan = sympy.expand(replaced.xreplace({s: T, c: 1}))
-    values = _budgeted_solve(in_tan, T)
-    if values is None:
-        raise SceneError(source, key, f"solving the condition for {x} ran out of its {_SOLVE_BUDGET_S:g} s "
-                                      "budget; write the condition in a simpler form")
+    # Degrees of one parity (sin θ beside sin θ sin²(θ + α)) become one degree n with
+    # sin² + cos² = 1: each term times (s² + c²)^((n − d)/2).
+    n = max(degrees)
+    poly = sympy.Poly(sum((coefficient * s ** i * c ** j * (s ** 2 + c ** 2) ** ((n - i - j) // 2)
+                           for (i, j), coefficient in poly.terms()), sympy.Integer(0)), s, c)
+    in_tan = sympy.expand(poly.as_expr().xreplace({s: T, c: 1}))
+
+    def real_factors():
+        # 1 + T² (from sin² + cos²) has no real root; the others are solved one by one.
+        factors = [f for f, _ in sympy.factor_list(in_tan)[1] if T in f.free_symbols]
+        return [f for f in factors if sympy.simplify(f / sympy.LC(f, T) - (T ** 2 + 1)) != 0]
+
+    factors = budget.attempt(real_factors, _SOLVE_BUDGET_S, fallback=lambda: [in_tan])
+    values = []
+    for factor in factors:
+        found = _budgeted_solve(factor, T)
+        if found is None:
+            raise SceneError(source, key, f"solving the condition for {x} ran out of its {_SOLVE_BUDGET_S:g} s "
+                                          "budget; write the condition in a simpler form")
+        values += [v for v in found if v not in values and not (v ** 2 + 1).is_zero]
     roots = []
     for v in values:
         roots += [r for r in (sympy.atan(v), sympy.atan(v) - sympy.pi) if r not in roots]
