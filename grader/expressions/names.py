@@ -418,6 +418,7 @@ WRITE_INSTEAD = {
     "derivative": "write the time derivative as θ̇ (thetadot), or as diff(θ(t), t)",
     "hypot": "write sqrt(x^2 + y^2)",
     "pi": "write pi (or π) without brackets",  # a spreadsheet's PI()
+    "eq": "write the equation with =, as in x = y",  # SymPy's Eq(x, y)
 }
 
 

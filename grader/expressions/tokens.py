@@ -109,6 +109,9 @@ _LAYOUT_ENVIRONMENTS = {"aligned", "align", "gather", "gathered", "split", "equa
                         "flalign"}
 
 
+# Primes as LaTeX writes them: ^\prime, ^{\prime}, ^{\prime\prime}
+_LATEX_PRIMES = re.compile(r"\^\s*(?:\{\s*(?:\\prime\s*)+(?P<power>[0-9]{1,3})?\s*\}|\\prime(?![A-Za-z]))")
+
 # After a middle dot between digits: 1·10⁻³, 2·10^3 is a mantissa times a power of ten, not 1.10.
 _POWER_OF_TEN = re.compile(r"10(?:\^|[⁰¹²³⁴⁵⁶⁷⁸⁹⁻])")
 _DIGIT_RUN = re.compile(r"[0-9]+")
@@ -178,6 +181,19 @@ class _Tokenizer:
             self.emit("op", "=", start, start + 2)
         elif ch == "|" or ch == "∣":  # ∣ (DIVIDES) is the bar some editors and PDFs give
             self.emit("bar", None, start, start + 1)
+        elif ch == "^" and self.tokens and self.tokens[-1].kind == "name" and self.tokens[-1].end == start \
+                and _LATEX_PRIMES.match(self.text, start):
+            # x^{\prime}, \theta^\prime, x^{\prime\prime}: LaTeX's own spelling of x', θ', x''; and
+            # \theta^{\prime 2}, θ' squared (the prime and the power share one superscript)
+            marks = _LATEX_PRIMES.match(self.text, start)
+            name = self.tokens[-1]
+            name.order += marks.group().count("\\prime")
+            name.end, self.i = marks.end(), marks.end()
+            name.text = self.text[name.pos:name.end]
+            if marks.group("power"):
+                name.end = marks.start("power")
+                name.text = self.text[name.pos:name.end]
+                self.emit("sup", int(marks.group("power")), name.end, marks.end())
         elif ch == "^" and _DEGREES.match(self.text, start):
             self.degrees(start, _DEGREES.match(self.text, start).end())
         elif _sign(ch) and (_sign(self.peek(1)) == "+-".replace(_sign(ch), "")

@@ -136,7 +136,9 @@ def _dotted_letters() -> dict[str, tuple[str, int]]:
 DOTTED_LETTERS = _dotted_letters()
 
 #: Prime marks after a name: theta' and theta'' are time derivatives.
-PRIME_CHARS = {"'": 1, "′": 1, "″": 2, "’": 1}
+# ʹ ʺ (modifier letter primes) and ´ (the acute accent that European keyboards give for ') are
+# primes too: after a variable they mean nothing else.
+PRIME_CHARS = {"'": 1, "′": 1, "″": 2, "’": 1, "ʹ": 1, "ʺ": 2, "´": 1}
 
 _INVISIBLE = {"\u200b", "\u200c", "\u200d", "\u2060", "\ufeff", "\u00ad", "\u200e", "\u200f"}
 

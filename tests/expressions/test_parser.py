@@ -808,6 +808,9 @@ def test_an_index_in_square_brackets_without_such_a_variable_is_refused_not_mult
     ("np.arctan2(y, x)", "atan2(y, x)"), ("m*(g*np.cos(theta) + l*thetadot**2)", "m*(g*cos(theta) + l*thetadot^2)"),
     ("m.*g.*cos(theta)", "m*g*cos(theta)"), ("g./l", "g/l"), ("thetadot.^2", "thetadot^2"), ("cos(theta).^2", "cos(theta)^2"),
     ("2.*l", "2*l"),
+    # primes as LaTeX, Unicode modifier letters and European keyboards write them
+    ("\\theta^{\\prime}", "thetadot"), ("\\theta^\\prime", "thetadot"), ("\\theta^{\\prime\\prime}", "thetaddot"),
+    ("l\\theta^{\\prime 2}", "l*thetadot^2"), ("θʹ", "thetadot"), ("θʺ", "thetaddot"), ("θ´", "thetadot"),
     # a middle dot before a power of ten is scientific notation; spaced, a product
     ("1·10⁻³ x", "x/1000"), ("2·10^3 x", "2000*x"), ("2 · 5 x", "10*x"),
     # Word's invisible operators: FUNCTION APPLICATION after a function, INVISIBLE TIMES
@@ -838,6 +841,7 @@ def test_answers_pasted_from_other_tools_mean_what_they_mean_there(student_ns, s
     # a decimal comma, and a British raised decimal point between digits (2·5: 2.5 or 10?)
     ("0,5*x", "syntax", "write a decimal point, as in 0.5"),
     ("2·5 x", "ambiguous", "the decimal 2.5 or as the product 2×5"),
+    ("Eq(x, y)", "unsupported_function", "write the equation with ="),
 ])
 def test_notation_of_other_tools_that_is_refused_names_the_reading(ns, text, code, named):
     with pytest.raises(ExpressionError) as err:
