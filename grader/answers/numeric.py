@@ -37,6 +37,7 @@ from grader.answers.verdict import Verdict
 from grader.expressions.implicit import Implicit, ImplicitError
 from grader.expressions import DimensionError, ExpressionError, Namespace, parse_dimension, parse_expression
 from grader.expressions.dimensions import parse_unit, read_unit
+from grader.expressions.unicode_input import misleading_character
 
 __all__ = ["DEFAULT_TOLERANCE", "NumericRequestError", "Quantity", "QuantityError", "check_numeric",
            "parse_quantity", "reference_value", "within_tolerance"]
@@ -151,6 +152,7 @@ def parse_quantity(text: str) -> Quantity:
         raise QuantityError("type one number with a decimal point (no commas)")
     match = _NUMBER.match(text)
     if not match:
+        _refuse_misleading(text)
         if "π" in text or re.search(r"(?<![A-Za-z])pi(?![A-Za-z])", text, re.IGNORECASE):
             raise QuantityError("type the value as a decimal number (such as 0.524), not in terms of π")
         raise QuantityError("type a number first, such as 14.7 or 1.47e1, then its unit")
@@ -170,6 +172,13 @@ def parse_quantity(text: str) -> Quantity:
     rest = text[match.end():].strip()
     if rest.endswith(".") and not rest.endswith(".."):
         rest = rest[:-1].rstrip()  # "14.7 N." at the end of a sentence
+    if re.match(r"·\d", rest) and "." not in mantissa:
+        # 14·7: the raised decimal point of British print, or 14 times 7
+        digits = re.match(r"·(\d+)", rest)[1]
+        raise QuantityError(f"'{mantissa}·{digits}' reads as the decimal {mantissa}.{digits} or as a product: "
+                            f"type {mantissa}.{digits}")
+    if rest[:1] == "[" and rest[-1:] == "]" and not re.search(r"[][]", rest[1:-1]):
+        rest = rest[1:-1].strip()  # "14.7 [N]": the unit in brackets, as tables and engineers write it
     if (rest[:1].isdigit() or rest[:1] == ".") and not re.match(r"1\s*/\s*[^\W\d]", rest):  # "5 1/s" is a unit
         raise QuantityError("type one number, without spaces inside it (1000, not 1 000)")
     if rest[:1] in "+-^" and rest or re.match(r"\(\s*[-+\d.]", rest):
@@ -181,10 +190,19 @@ def parse_quantity(text: str) -> Quantity:
     except DimensionError as error:
         if re.search(r"(?:^|[\s×*·(])\d*\.?\d+(?![\d/])", rest):
             raise QuantityError("type one number (such as 14.7), not a calculation") from None
+        _refuse_misleading(rest)
         raise QuantityError(f"the unit is not readable: {error}") from None
     digits = mantissa.replace(".", "").lstrip("0")
     return Quantity(number, rest, reading.size, reading.dimension, max(len(digits), 1), reading.symbols,
                     reading.joined)
+
+
+def _refuse_misleading(text: str) -> None:
+    """Raise for an invisible or look-alike character in a number's text, named (a Cyrillic Н or a
+    trailing zero-width space would otherwise be shown as the N it looks like)."""
+    bad = misleading_character(text)
+    if bad is not None:
+        raise QuantityError(f"{bad.message}; {bad.hint}")
 
 
 def within_tolerance(value: float, reference: float, tolerance: Mapping[str, Any], size: float = 1.0) -> bool:

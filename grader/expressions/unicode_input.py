@@ -155,6 +155,7 @@ _LOOKALIKES = {
 
 _SPACING_ACCENTS = {"\u02d9", "\u00a8"}
 _GENERIC_HINT = "use letters, digits, + - * / ^ and brackets (Greek letters and θ̇ are fine)"
+_QUOTES_HINT = "delete the quotation marks: the answer is the formula alone"
 # What to type instead of symbols people paste from their notes.
 _SYMBOL_HINTS = {
     "∂": "write a time derivative as a dotted variable (θ̇, theta_dot or theta')",
@@ -167,7 +168,7 @@ _SYMBOL_HINTS = {
     "±": "give one sign (the answer with + or the one with -)",
     "∓": "give one sign (the answer with + or the one with -)",
     # a phone's or word processor's quotation marks around a pasted answer (’ after a name is a prime)
-    **dict.fromkeys("“”„‟«»‘‚‛", "delete the quotation marks: the answer is the formula alone"),
+    **dict.fromkeys("“”„‟«»‘‚‛", _QUOTES_HINT),
 }
 
 
@@ -180,6 +181,26 @@ def is_space(ch: str) -> bool:
     (True, False)
     """
     return ch in " \t\r" or unicodedata.category(ch) == "Zs"
+
+
+def misleading_character(text: str) -> ExpressionError | None:
+    """The error for the first character of ``text`` that reads as something it is not (an invisible
+    character, a Cyrillic or Greek look-alike of a Latin letter, a full-width letter, a quotation
+    mark), or None. For texts read outside the tokenizer, such as a number's unit, whose own
+    message would show the character as the letter it imitates.
+
+    Examples
+    --------
+    >>> misleading_character("Н").message
+    "'Н' (CYRILLIC CAPITAL LETTER EN) looks like the Latin letter 'H' but is a different character"
+    >>> misleading_character("kg m/s^2") is None
+    True
+    """
+    for position, ch in enumerate(text):
+        if (ch in _LOOKALIKES or ch in _INVISIBLE or unicodedata.category(ch) == "Cf"
+                or 0xFF01 <= ord(ch) <= 0xFF5E or _SYMBOL_HINTS.get(ch) == _QUOTES_HINT):
+            return bad_character(ch, position)
+    return None
 
 
 def bad_character(ch: str, position: int) -> ExpressionError:

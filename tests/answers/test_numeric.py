@@ -63,6 +63,11 @@ def test_number_forms(text, number):
     ("14.7 xyz", "unknown unit 'xyz'"),
     ("14.7 N^", "unit is not readable"),
     ("1" * 300, "at most 200 characters"),
+    # a British raised decimal point, and characters that look like what they are not, named
+    ("14·7 N", "'14·7' reads as the decimal 14.7 or as a product: type 14.7"),
+    ("14.7 N\u200b", "ZERO WIDTH SPACE"), ("14.7 \u041d", "CYRILLIC CAPITAL LETTER EN"),
+    ("14.7 \u039d", "GREEK CAPITAL LETTER NU"), ("\u201c14.7 N\u201d", "delete the quotation marks"),
+    ("14.7 [N", "unit is not readable"),
 ])
 def test_unreadable_numbers_are_refused_with_what_to_type(text, message):
     with pytest.raises(QuantityError, match=message.replace("*", r"\*").replace("+", r"\+")):
@@ -77,6 +82,8 @@ def test_unreadable_numbers_are_refused_with_what_to_type(text, message):
     ("1 kN", 1000.0, "force"), ("1 kg*m/s^2", 1.0, "force"), ("1 kg m/s²", 1.0, "force"), ("1 kg·m·s⁻²", 1.0, "force"),
     ("1 N*m", 1.0, "torque"), ("1 mJ", 1e-3, "energy"), ("1 kW", 1000.0, "power"), ("1 kPa", 1000.0, "kg/(m*s^2)"),
     ("1 MHz", 1e6, "frequency"), ("1 /s", 1.0, "frequency"), ("1 rad/s", 1.0, "angular_velocity"),
+    ("1 [N]", 1.0, "force"), ("1 [kg m/s^2]", 1.0, "force"),  # a unit in brackets, as in a table's header
+    ("1·10³ m", 1000.0, "length"),
     ("180 deg", math.pi, "angle"), ("180°", math.pi, "angle"), ("1 mrad", 1e-3, "angle"), ("2", 2.0, "dimensionless"),
 ])
 def test_units_convert_to_si(text, si, dimension):
