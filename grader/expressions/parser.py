@@ -183,6 +183,15 @@ class _Parser:
                 return self.tokens[index - 1] if index else None
         return None
 
+    def bracket_depth(self, token: Token) -> int:
+        """How many brackets are open at ``token``."""
+        depth = 0
+        for candidate in self.tokens:
+            if candidate is token:
+                break
+            depth += {"open": 1, "close": -1}.get(candidate.kind, 0)
+        return depth
+
     def note(self, text: str) -> None:
         if text not in self.notes:
             self.notes.append(text)
@@ -203,6 +212,10 @@ class _Parser:
             if before is not None and before.kind == "open":
                 return ExpressionError("empty brackets", before.pos, "syntax", "put an expression inside, or delete them")
         if token.kind == "op" and token.value == "=":
+            if self.bracket_depth(token) > 0:
+                # {x = 2} from Maple's solve, [x = 2] from a list: the equation is inside brackets
+                return ExpressionError("an equation cannot be inside brackets", token.pos, "syntax",
+                                       "delete the brackets around the equation, as in x = 2")
             return ExpressionError("'=' is only allowed once, between the two sides of an equation",
                                    token.pos, "syntax", "separate several equations with ';'")
         if token.kind == "op" and token.value == ",":

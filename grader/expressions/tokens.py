@@ -109,6 +109,12 @@ _LAYOUT_ENVIRONMENTS = {"aligned", "align", "gather", "gathered", "split", "equa
                         "flalign"}
 
 
+# x -> 2 (Mathematica's rule, as Solve prints it) and x → 2: an arrow where an equation's = belongs.
+def _ARROW_ERROR(position: int, arrow: str) -> ExpressionError:
+    return ExpressionError(f"'{arrow}' is an arrow (a rule, or 'tends to'), not an equation", position, "syntax",
+                           "write = between the two sides of an equation, as in x = 2")
+
+
 # Primes as LaTeX writes them: ^\prime, ^{\prime}, ^{\prime\prime}
 _LATEX_PRIMES = re.compile(r"\^\s*(?:\{\s*(?:\\prime\s*)+(?P<power>[0-9]{1,3})?\s*\}|\\prime(?![A-Za-z]))")
 
@@ -206,6 +212,8 @@ class _Tokenizer:
                       error=ExpressionError(f"'{typed}' reads as {sign} ({words})", start, "syntax",
                                             "give one sign (the answer with + or the one with -); for a plus "
                                             "then a negative number, write + (-2)"))
+        elif ch == "-" and self.peek(1) == ">":
+            self.emit("bad", "->", start, start + 2, error=_ARROW_ERROR(start, "->"))
         elif ch in "+-*/^=,;":
             self.emit("op", ch, start, start + 1)
         elif ch in _PAIRS:
@@ -242,6 +250,8 @@ class _Tokenizer:
                                             f"product {before}×{number}", start, "ambiguous",
                                             f"write {before}.{number} for the decimal, or {before}*{number} "
                                             "for the product"))
+        elif ch in "→⇒⟶↦":
+            self.emit("bad", ch, start, start + 1, error=_ARROW_ERROR(start, ch))
         elif ch in OPERATOR_CHARS:
             self.emit("op", OPERATOR_CHARS[ch], start, start + 1)
         elif ch in SUPERSCRIPT_CHARS or ch in SUPERSCRIPT_OTHERS:

@@ -849,6 +849,24 @@ def test_notation_of_other_tools_that_is_refused_names_the_reading(ns, text, cod
     assert err.value.code == code and named in str(err.value)
 
 
+@pytest.mark.parametrize("text, named", [
+    # Mathematica's rule from Solve, and arrows: an equation's = is meant
+    ("thetaddot -> -g/l sin(theta)", "'->' is an arrow"), ("{{thetaddot -> -g/l sin(theta)}}", "'->' is an arrow"),
+    ("θ̈ → −(g/l) sin θ", "'→' is an arrow"), ("θ̈ ⇒ −(g/l) sin θ", "'⇒' is an arrow"),
+    # Maple's solve prints a set: the equation inside braces
+    ("{thetaddot = -g/l sin(theta)}", "an equation cannot be inside brackets"),
+    ("[thetaddot = -g/l sin(theta)]", "an equation cannot be inside brackets"),
+])
+def test_equations_pasted_from_solvers_are_refused_with_the_fix(ns, text, named):
+    with pytest.raises(ExpressionError) as err:
+        parse_equation(text, ns)
+    assert err.value.code == "syntax" and named in str(err.value)
+
+
+@pytest.mark.parametrize("text", ["(thetaddot) = -g/l sin(theta)", "thetaddot = (-g/l sin(theta))"])
+def test_brackets_around_one_side_of_an_equation_are_fine(ns, text):
+    equation = parse_equation(text, ns)
+    assert equation.lhs == sym(ns, "thetaddot")
 @pytest.mark.parametrize("text", ["\\Pi", "Π"])
 def test_a_capital_greek_pi_is_not_the_number_pi(ns, text):
     # Only the ASCII word Pi (Mathematica, Maple) is π; \Pi and Π are the capital letter.
