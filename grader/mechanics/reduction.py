@@ -231,11 +231,12 @@ class Reduction:
             - sympy.diff(L, u.dot, scene.time)) for u in us])
         uddot = _solve_small(Mr, Fr)
         self.accelerations = {u.ddot: uddot[i] for i, u in enumerate(us)}
-        if k:
+        if k and not M.is_diagonal():
+            lam = self._multipliers_from_rows(A[:n, n:], M, b[:n, :])
+        elif k:
             C, J = A[:n, n:], A[n:, :n]
             b1, b2 = b[:n, :], b[n:, :]
-            Minv = (sympy.diag(*[1 / M[i, i] for i in range(n)]) if M.is_diagonal()
-                    else M.inv(method="LU").applyfunc(sympy.cancel))
+            Minv = sympy.diag(*[1 / M[i, i] for i in range(n)])
             S = (J * Minv * C).applyfunc(lambda e: _tidy_entry(self.to_independent(sympy.cancel(e))))
             r = (J * Minv * b1 - b2).applyfunc(lambda e: _tidy_entry(self.to_independent(sympy.cancel(e))))
             lam = _solve_small(S, r)
@@ -243,6 +244,44 @@ class Reduction:
             lam = []
         self.multipliers = {c.name: lam[i] for i, c in enumerate(scene.constraints)}
         return True
+
+    def _multipliers_from_rows(self, C: sympy.Matrix, M: sympy.Matrix, b1: sympy.Matrix) -> list[sympy.Expr]:
+        """λ from k Euler–Lagrange rows C λ = b₁ − M q̈, with q̈ = Φ̈(u, u̇, ü) and ü already solved.
+
+        The rows are consistent (ü solves them all), so any k rows whose block of C is invertible
+        give λ; the simplest such block is taken (usually the coordinates the constraints were
+        solved for). This avoids inverting a full mass matrix with cross terms symbolically (a hoop
+        rolling down an incline with a bead inside: M⁻¹ of 4 × 4 trigonometric entries ran over a
+        minute; these rows take a fraction of a second).
+        """
+        import itertools
+
+        scene = self.scene
+        coordinates = list(scene.coordinates.values())
+        n, k = C.shape
+        qddot = []
+        for c in coordinates:
+            if c.symbol in self.phi and self.phi[c.symbol] != c.symbol:
+                value = self.time_derivative(self.phi_dot[c.symbol])
+            else:
+                value = c.ddot
+            qddot.append(value.xreplace(self.accelerations))
+        Ci = C.applyfunc(lambda e: _tidy_entry(self.to_independent(e)))
+        point = generic_point(Ci.free_symbols)
+        blocks = []
+        for rows in itertools.combinations(range(n), k):
+            block = Ci.extract(list(rows), list(range(k)))
+            if block.subs(point).det() != 0:
+                blocks.append((sum(sympy.count_ops(e) for e in block), rows, block))
+        if not blocks:
+            raise SceneError(scene.source, "constraints",
+                             "the constraint forces cannot be solved for: the constraints' gradients are dependent")
+        _, rows, block = min(blocks, key=lambda item: item[:2])
+        residual = sympy.Matrix([
+            _tidy_entry(sympy.cancel(self.to_independent(b1[i, 0] - sum(
+                (M[i, j] * qddot[j] for j in range(n) if M[i, j] != 0), sympy.Integer(0))).xreplace(self.accelerations)))
+            for i in rows])
+        return _solve_small(block, residual)
 
     def _solve_rows(self, eom, phi_ddot: dict) -> None:
         """Solve the scene's Euler–Lagrange rows with q̈ = Φ̈ for (ü, λ) together (any M)."""

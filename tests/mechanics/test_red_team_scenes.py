@@ -38,6 +38,16 @@ DISK = "(3*M + 8*m)"
 WEDGE = "(M + m*sin(alpha)^2)"
 WIRE = "(g*cos(alpha)/(omega^2*sin(alpha)^2))"
 TRAMMEL = "(m1*cos(theta)^2 + m2*sin(theta)^2)"
+# The third red team's (see their comments below).
+CART_F = "(3/2 - m*cos(theta)^2/(M + m))"
+CART_THETADDOT = f"(-(g*sin(theta)/(R - a) + m*sin(theta)*cos(theta)*thetadot^2/(M + m))/{CART_F})"
+CART_ACCELERATION = f"(-m*(R - a)*({CART_THETADDOT}*cos(theta) - thetadot^2*sin(theta))/(M + m))"
+WHEEL_J = "(2*M*R^2 + m*(R^2 + d^2 - 2*R*d*cos(phi)))"
+WHEEL_PHIDDOT = f"(-m*d*sin(phi)*(g + R*phidot^2)/{WHEEL_J})"
+HOOP_A = ("((M*g*sin(alpha) + m*sin(theta + alpha)*(R*thetadot^2 + g*cos(theta)))"
+          "/(2*M + m*sin(theta + alpha)^2))")
+ROD_DIFFERENCE = "m*g*sin(phi)*sin(beta)/(1 + 2*cos(beta)^2)"
+ROD_SUM = "m*(R*phidot^2 + g*cos(phi)/cos(beta))"
 
 
 @pytest.mark.parametrize(
@@ -234,6 +244,72 @@ TRAMMEL = "(m1*cos(theta)^2 + m2*sin(theta)^2)"
         ("block_on_accelerated_incline", "least_acceleration", "g*tan(alpha)"),
         ("block_on_accelerated_incline", "time_to_climb", "sqrt(2*L/(A*cos(alpha) - g*sin(alpha)))"),
         ("block_on_accelerated_incline", "speed_up_the_face", "sqrt(2*L*(A*cos(alpha) - g*sin(alpha)))"),
+        # -- the third red team (2026-11-27) --
+        # Hemisphere in Cartesian coordinates (Taylor): λ ∇f = 2λ (x, y) is the surface's force, so
+        # N = 2 R λ outwards; radially m (x ẍ + y ÿ) = 2 λ R² − m g y and f̈ = 0 gives
+        # x ẍ + y ÿ = −v², so N = m (g y − v²)/R, with y = √(R² − x²), v² = ẋ² R²/(R² − x²). From
+        # rest at the top v² = 2 g (R − y): N = m g (3y − 2R)/R, zero at y = 2R/3 (cos θ = 2/3,
+        # v² = 2 g R/3, x = √5 R/3); ẍ = 2 λ x/m.
+        ("hemisphere_cartesian", "normal_force_state", "m*(g*sqrt(R^2 - x^2)/R - R*xdot^2/(R^2 - x^2))"),
+        ("hemisphere_cartesian", "normal_force", "m*g*(3*sqrt(R^2 - x^2) - 2*R)/R"),
+        ("hemisphere_cartesian", "horizontal_acceleration", "g*x*(3*sqrt(R^2 - x^2) - 2*R)/R^2"),
+        ("hemisphere_cartesian", "leaving_height", "2*R/3"),
+        ("hemisphere_cartesian", "leaving_cos", "2/3"),
+        ("hemisphere_cartesian", "leaving_speed", "sqrt(2*g*R/3)"),
+        ("hemisphere_cartesian", "leaving_distance", "sqrt(5)*R/3"),
+        # Atwood with a spring in one strand: the string's tension is the spring's k e,
+        # e = y1 + y2 − L − l0; m1 ÿ1 = m1 g − T, m2 ÿ2 = m2 g − T, so m1 ÿ1 − m2 ÿ2 = (m1 − m2) g and
+        # ë = ÿ1 + ÿ2 = 0 at k e = 2 m1 m2 g/(m1 + m2) (the rigid Atwood's tension).
+        ("atwood_spring", "tension", "k*(y1 + y2 - L - l0)"),
+        ("atwood_spring", "left_equation", "g - k*(y1 + y2 - L - l0)/m1"),
+        ("atwood_spring", "right_equation", "g - k*(y1 + y2 - L - l0)/m2"),
+        ("atwood_spring", "weighted_acceleration", "(m1 - m2)*g"),
+        ("atwood_spring", "equilibrium_extension", "2*m1*m2*g/(k*(m1 + m2))"),
+        ("atwood_spring", "equilibrium_tension", "2*m1*m2*g/(m1 + m2)"),
+        # Cylinder rolling in a free cart's hollow (b = R − a; rolling b θ̇ + a ψ̇ = 0):
+        # T = (M + m) Ẋ²/2 + m b cos θ Ẋ θ̇ + 3 m b² θ̇²/4; the momentum (M + m) Ẋ + m b θ̇ cos θ = 0
+        # gives Ẋ, and L_red = m b² f θ̇²/2 + m g b cos θ, f = 3/2 − m cos²θ/(M + m): energy
+        # b f θ̇² = 2 g (cos θ − cos θ0), ω² = g/(b f(0)) = 2 g (M + m)/(b (3M + m)). In the cart's
+        # frame (acceleration A = Ẍ) along the radius N = m b θ̇² + m g cos θ − m A sin θ.
+        ("cart_cylinder", "cart_velocity", "-m*(R - a)*thetadot*cos(theta)/(M + m)"),
+        ("cart_cylinder", "angular_speed_squared", f"2*g*(cos(theta) - cos(theta0))/((R - a)*{CART_F})"),
+        ("cart_cylinder", "normal_force_state",
+         f"m*(R - a)*thetadot^2 + m*g*cos(theta) - m*{CART_ACCELERATION}*sin(theta)"),
+        ("cart_cylinder", "bottom_normal_force", "m*g*(1 + 4*(1 - cos(theta0))*(M + m)/(3*M + m))"),
+        ("cart_cylinder", "bottom_cart_speed", "2*m*sqrt(g*abs(R - a)*(1 - cos(theta0))/((M + m)*(3*M + m)))"),
+        ("cart_cylinder", "small_oscillation_frequency", "sqrt(2*g*(M + m)/((R - a)*(3*M + m)))"),
+        # Hoop with a mass m at d from its centre, rolling (x = R φ): the mass moves at
+        # φ̇ (R − d cos φ, d sin φ), so T = J φ̇²/2, J = 2 M R² + m (R² + d² − 2 R d cos φ),
+        # V = −m g d cos φ: J φ̈ + m R d sin φ φ̇² = −m g d sin φ. The floor: N − (M + m) g = m ÿ_P,
+        # F = M ẍ + m ẍ_P with x_P = R φ − d sin φ, y_P = R − d cos φ.
+        ("offcentre_wheel", "equation_of_motion", WHEEL_PHIDDOT),
+        ("offcentre_wheel", "normal_force", f"(M + m)*g + m*d*(phidot^2*cos(phi) + {WHEEL_PHIDDOT}*sin(phi))"),
+        ("offcentre_wheel", "friction_force",
+         f"(M + m)*R*{WHEEL_PHIDDOT} - m*d*(cos(phi)*{WHEEL_PHIDDOT} - sin(phi)*phidot^2)"),
+        ("offcentre_wheel", "bottom_angular_speed_squared", "2*m*g*d*(1 - cos(phi0))/(2*M*R^2 + m*(R - d)^2)"),
+        ("offcentre_wheel", "bottom_normal_force", "(M + m)*g + 2*m^2*g*d^2*(1 - cos(phi0))/(2*M*R^2 + m*(R - d)^2)"),
+        ("offcentre_wheel", "small_oscillation_frequency", "sqrt(m*g*d/(2*M*R^2 + m*(R - d)^2))"),
+        ("offcentre_wheel", "bottom_speed", "R*sqrt(2*m*g*d*(1 - cos(phi0))/(2*M*R^2 + m*(R - d)^2))"),
+        # Rod with both ends on a circle: its centre at h = R cos β, I_O = m (h² + R² sin²β/3); the
+        # normal forces pass through O, so I_O φ̈ = −m g h sin φ. The centre's radial and tangential
+        # equations: (N1 + N2) cos β = m (h φ̇² + g cos φ), (N1 − N2) sin β = m h φ̈ + m g sin φ.
+        ("rod_ends_on_circle", "equation_of_motion", "-3*g*cos(beta)*sin(phi)/(R*(1 + 2*cos(beta)^2))"),
+        ("rod_ends_on_circle", "trailing_end_force", f"({ROD_SUM} + {ROD_DIFFERENCE})/2"),
+        ("rod_ends_on_circle", "leading_end_force", f"({ROD_SUM} - {ROD_DIFFERENCE})/2"),
+        ("rod_ends_on_circle", "bottom_total_force",
+         "m*(g/cos(beta) + 6*g*cos(beta)*(1 - cos(phi0))/(1 + 2*cos(beta)^2))"),
+        ("rod_ends_on_circle", "small_oscillation_frequency", "sqrt(3*g*cos(beta)/(R*(1 + 2*cos(beta)^2)))"),
+        # Hoop rolling down an incline, bead inside: in the hoop's frame (acceleration A = s̈ down the
+        # slope) the bead feels g − A ê: R θ̈ = −g sin θ − A cos(θ + α), N = m R θ̇² + m g cos θ −
+        # m A sin(θ + α); the hoop: M A = M g sin α − F + N sin(θ + α), M R² φ̈ = F R, so F = M A and
+        # A = (M g sin α + m sin(θ + α)(R θ̇² + g cos θ))/(2M + m sin²(θ + α)). At rest relative to
+        # it the whole rolls as one body, A = (M + m) g sin α/(2M + m), the bead along g − A ê.
+        ("hoop_bead_incline", "hoop_acceleration", HOOP_A),
+        ("hoop_bead_incline", "bead_equation", f"-(g*sin(theta) + {HOOP_A}*cos(theta + alpha))/R"),
+        ("hoop_bead_incline", "bead_normal_force", f"m*R*thetadot^2 + m*g*cos(theta) - m*{HOOP_A}*sin(theta + alpha)"),
+        ("hoop_bead_incline", "friction_force", f"M*{HOOP_A}"),
+        ("hoop_bead_incline", "relative_equilibrium_tan", "-(M + m)*sin(alpha)*cos(alpha)/(M + (M + m)*cos(alpha)^2)"),
+        ("hoop_bead_incline", "relative_equilibrium_acceleration", "(M + m)*g*sin(alpha)/(2*M + m)"),
     ],
 )
 def test_red_team_scenes(derived, scene, answer, expected):

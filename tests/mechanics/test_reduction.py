@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import random
+
+import numpy
+import pytest
 import sympy
 
 from grader.mechanics.answers import AnswerEvaluator
@@ -69,3 +73,55 @@ def test_the_time_hidden_by_sin2_plus_cos2_is_removed_from_the_lagrangian():
     """A wire turned at ω in Cartesian coordinates: sin²ωt + cos²ωt in L_r, which is free of t."""
     scene = load_scene(SCENES / "bead_inclined_rotating_wire.toml")
     assert scene.time not in Reduction(scene).lagrangian.free_symbols
+
+
+CART_PENDULUM = '''
+id = "cart_pendulum"
+title = "Pendulum hung from a cart free on a smooth floor"
+statement = "A bob on a string of length l hangs from a cart of mass M free on a floor."
+[parameters]
+M = { dimension = "mass", domain = "positive", value = 2.0 }
+m = { dimension = "mass", domain = "positive", value = 0.5 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+l = { dimension = "length", domain = "positive", value = 0.7 }
+[coordinates]
+X = { dimension = "length" }
+r = { dimension = "length", domain = "positive" }
+theta = { dimension = "angle" }
+[energy]
+kinetic = "M/2*Xdot^2 + m/2*((Xdot + rdot*sin(theta) + r*thetadot*cos(theta))^2 + (r*thetadot*sin(theta) - rdot*cos(theta))^2)"
+potential = "-m*g*r*cos(theta)"
+[[constraints]]
+name = "string"
+f = "r - l"
+'''
+
+
+@pytest.mark.parametrize("source", ["cart_pendulum", "hoop_bead_incline", "cart_cylinder", "offcentre_wheel"])
+def test_multipliers_with_cross_terms_in_the_mass_matrix_solve_the_augmented_system(source):
+    """With a mass matrix that is not diagonal (a bob hung from a free cart, a bead in a rolling
+    hoop), λ comes from k Euler–Lagrange rows rather than from a symbolic M⁻¹ (which took over a
+    minute for the hoop); at random states it must equal λ of the full system [M Cᵀ; J 0] solved
+    numerically."""
+    from grader.mechanics.scene import parse_scene
+
+    scene = (parse_scene(CART_PENDULUM, source="cart.toml") if source == "cart_pendulum"
+             else load_scene(SCENES / f"{source}.toml"))
+    eom = equations_of_motion(scene)
+    reduction = AnswerEvaluator(scene, eom).reduction
+    A, b = eom.system
+    n = len(scene.coordinates)
+    assert not A[:n, :n].is_diagonal()
+    rng = random.Random(source)
+    for _ in range(3):
+        point = {p.symbol: sympy.Float(rng.uniform(0.3, 1.2), 30) for p in scene.parameters.values()}
+        for u in reduction.independent.values():
+            point[u.symbol], point[u.dot] = (sympy.Float(rng.uniform(-1.0, 1.0), 30) for _ in range(2))
+        def numeric(e):
+            return float(sympy.sympify(reduction.to_independent(e)).xreplace(point).evalf(30))
+
+        An = numpy.array(A.applyfunc(numeric).tolist(), dtype=float)
+        bn = numpy.array(b.applyfunc(numeric).tolist(), dtype=float).ravel()
+        lam = numpy.linalg.solve(An, bn)[n:]
+        for i, c in enumerate(scene.constraints):
+            assert float(reduction.multipliers[c.name].xreplace(point).evalf(30)) == pytest.approx(lam[i], rel=1e-9, abs=1e-9)

@@ -91,6 +91,12 @@ CONFIRMED_ELSEWHERE = {
     ("trammel_spring", "small_oscillation_frequency"),
     ("yoyo_counterweight", "balancing_mass"),
     ("block_on_accelerated_incline", "least_acceleration"),
+    # The third red team's: the same file.
+    ("cart_cylinder", "small_oscillation_frequency"),
+    ("offcentre_wheel", "small_oscillation_frequency"),
+    ("rod_ends_on_circle", "small_oscillation_frequency"),
+    ("hoop_bead_incline", "relative_equilibrium_tan"),
+    ("hoop_bead_incline", "relative_equilibrium_acceleration"),
 }
 
 

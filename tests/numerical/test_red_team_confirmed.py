@@ -248,3 +248,83 @@ def test_a_face_pushed_at_the_engines_least_acceleration_holds_the_block():
             assert abs(up) < 1e-9 * model.values["g"]
         else:
             assert up > 0  # pushed harder, the block climbs
+
+
+# -- the third red team (2026-11-27): frequencies, a relative equilibrium, and a release ---------------
+
+def test_cylinder_in_a_free_carts_hollow_oscillates_at_the_engines_rate():
+    model, answers = engine("cart_cylinder")
+    R, a = model.values["R"], model.values["a"]
+    b, theta = R - a, 1e-4
+    # At rest in the hollow, the cart at rest: (X, ρ, θ, ψ) with (R − a) θ + a ψ = 0.
+    q0 = [0.0, b, theta, -b * theta / a]
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, q0, [0.0] * 4, lambda s: s.q[2], 0.0, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_hoop_with_an_offcentre_mass_rocks_at_the_engines_rate():
+    model, answers = engine("offcentre_wheel")
+    R, phi = model.values["R"], 1e-4
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, [R * phi, R, phi], [0.0] * 3, lambda s: s.q[2], 0.0, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_rod_with_both_ends_on_a_circle_oscillates_at_the_engines_rate():
+    model, answers = engine("rod_ends_on_circle")
+    R, beta, phi = model.values["R"], model.values["beta"], 1e-4
+    q0 = [R * math.sin(phi - beta), -R * math.cos(phi - beta), R * math.sin(phi + beta), -R * math.cos(phi + beta)]
+
+    def midpoint_angle(s):
+        return math.atan2(s.q[0] + s.q[2], -(s.q[1] + s.q[3]))
+
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, q0, [0.0] * 4, midpoint_angle, 0.0, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_bead_at_the_engines_angle_stays_at_rest_in_a_hoop_rolling_down_an_incline():
+    model, answers = engine("hoop_bead_incline")
+    R = model.values["R"]
+    theta = math.atan(closed_form(model, answers, "relative_equilibrium_tan"))
+    # (s, φ, r, θ) at rest: the bead keeps its angle, the hoop accelerates at the engine's rate ...
+    s = snapshot(model.numeric, 0.0, [0.0, 0.0, R, theta], [0.0] * 4)
+    acceleration = closed_form(model, answers, "relative_equilibrium_acceleration")
+    assert abs(s.qddot[3]) < 1e-9
+    assert abs(s.qddot[0] - acceleration) < 1e-9 * acceleration
+    # ... and the bead stays at that angle while the hoop rolls on.
+    motion = simulate(model.numeric, [0.0, 0.0, R, theta], [0.0] * 4, 1.0, sample_times=np.linspace(0, 1, 6))
+    assert max(abs(m.q[3] - theta) for m in motion.samples) < 1e-8
+    # A little off it, the bead swings (θ̈ pulls it back towards the angle).
+    for offset in (1e-3, -1e-3):
+        s = snapshot(model.numeric, 0.0, [0.0, 0.0, R, theta + offset], [0.0] * 4)
+        assert s.qddot[3] * offset < 0
+
+
+def test_particle_leaves_a_hemisphere_where_the_engine_says_by_scipy_alone():
+    """Independently of both the engine and grader.simulate: ẍ = 2λx/m, ÿ = −g + 2λy/m with λ from
+    f̈ = 0 (2 λ R² = m (g y − v²)), integrated by solve_ivp from a nudge at the top until λ = 0."""
+    from scipy.integrate import solve_ivp
+
+    model, answers = engine("hemisphere_cartesian")
+    g, R = model.values["g"], model.values["R"]
+
+    def force(state):  # 2λ/m
+        x, y, vx, vy = state
+        return (g * y - vx * vx - vy * vy) / R ** 2
+
+    def rhs(t, state):
+        x, y, vx, vy = state
+        k = force(state)
+        return [vx, vy, k * x, -g + k * y]
+
+    release = lambda t, state: force(state)  # noqa: E731
+    release.terminal = True
+    start = 1e-6
+    x0, y0 = R * math.sin(start), R * math.cos(start)
+    run = solve_ivp(rhs, (0.0, 20.0), [x0, y0, 0.0, 0.0], events=release, rtol=1e-12, atol=1e-14)
+    x, y, vx, vy = run.y_events[0][0]
+    assert abs(y - closed_form(model, answers, "leaving_height")) < 1e-7 * R
+    assert abs(x - closed_form(model, answers, "leaving_distance")) < 1e-7 * R
+    assert abs(math.hypot(vx, vy) - closed_form(model, answers, "leaving_speed")) < 1e-6 * math.sqrt(g * R)
