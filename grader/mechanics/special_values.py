@@ -134,7 +134,7 @@ def _where(evaluator, spec, target: set, key: str, at_rest: bool) -> sympy.Expr:
         if spec.kind == "small_oscillation":
             value = _stiffness(evaluator, spec, key)
             chosen, *others = _choose_root(evaluator, spec, condition, unknown, roots, value, key, at_rest)
-            result = human_form(value.xreplace({unknown: chosen}))
+            result = human_form(_at_root(value, unknown, chosen))
         else:
             # The answer in the unknown is only evaluated, at the roots, and tidied where it is
             # substituted: as solved first (tidying it in the unknown, which nobody reads, is most
@@ -149,7 +149,7 @@ def _where(evaluator, spec, target: set, key: str, at_rest: bool) -> sympy.Expr:
         if others:
             # Several admissible roots, none singled out: every one is a right answer.
             evaluator.alternatives[spec.name] = [
-                _no_leftover(scene, spec, human_form(value.xreplace({unknown: r})), target) for r in others]
+                _no_leftover(scene, spec, human_form(_at_root(value, unknown, r)), target) for r in others]
         if spec.kind == "small_oscillation":
             _check_stable(scene, spec, result)
             # √(2g/(3(R − r))) as written, rather than sympy's √6·√g·√(1/(R − r))/3.
@@ -184,12 +184,72 @@ def _at_roots(evaluator, spec, condition, unknown, roots, target: set, key: str,
         # Reached after the motion has turned back: u̇ there has the other sign than at the start
         # (θ̇ < 0 where a bob launched upwards comes back down through θ = 0.1).
         value = evaluator.reduce(spec.expr, allowed, f"answers ({spec.name}).expr", readable=readable, signs=turned)
-    result = human_form(value.xreplace({unknown: chosen}))
+    result = human_form(_at_root(value, unknown, chosen))
     if not readable:
         if result.has(sympy.nan, sympy.zoo, sympy.oo, -sympy.oo):
             raise SceneError(evaluator.scene.source, key, "undefined at the root as solved")
         _no_leftover(evaluator.scene, spec, result, target)
     return value, chosen, others, result
+
+
+def _at_root(value: sympy.Expr, x: sympy.Symbol, root: sympy.Expr) -> sympy.Expr:
+    """``value`` at x = root; at a root atan(v) (or atan(v) − π) through tan x = v.
+
+    sin(α + atan v) and cos(α + atan v) do not simplify (sympy spent seconds and left nested roots
+    in the acceleration of a hoop whose bead rests at tan θ = v); with sin x = ±v/√(1 + v²),
+    cos x = ±1/√(1 + v²) after expanding sin(x + α), the even powers that physics leaves are rational.
+
+    >>> th, a, v = sympy.symbols("theta alpha v", positive=True)
+    >>> _at_root(sympy.sin(th + a) * sympy.cos(th), th, sympy.atan(v))
+    (v*cos(alpha) + sin(alpha))/(v**2 + 1)
+    """
+    if isinstance(root, sympy.atan):
+        v, sign = root.args[0], 1
+    elif (isinstance(root, sympy.Add) and len(root.args) == 2 and -sympy.pi in root.args
+          and any(isinstance(a, sympy.atan) for a in root.args)):
+        v, sign = next(a for a in root.args if isinstance(a, sympy.atan)).args[0], -1
+    else:
+        substituted = value.xreplace({x: root})
+        if not substituted.has(sympy.atan):
+            return substituted
+        # cos(2 atan(A/g)) (the far end of a swing about a tilt): sympy writes cos(atan v) as
+        # 1/√(1 + v²) once the multiple angle is expanded.
+        expanded = substituted.replace(
+            lambda e: isinstance(e, (sympy.sin, sympy.cos, sympy.tan)) and e.has(sympy.atan), sympy.expand_trig)
+        return substituted if expanded.has(sympy.atan) else _in_single_angles(expanded)
+    expanded = value.replace(
+        lambda e: isinstance(e, (sympy.sin, sympy.cos)) and x in e.free_symbols and e.args[0] != x,
+        sympy.expand_trig)
+    norm = sympy.sqrt(1 + v ** 2)
+    replaced = expanded.xreplace({sympy.sin(x): sign * v / norm, sympy.cos(x): sign / norm, sympy.tan(x): v})
+    if x in replaced.free_symbols:
+        return value.xreplace({x: root})
+    return _in_single_angles(replaced)
+
+
+def _in_single_angles(replaced: sympy.Expr) -> sympy.Expr:
+    """One cancelled fraction in sin and cos of one angle (with sin² = 1 − cos²), factored.
+
+    sin 2α beside sin α (a root as the engine writes it, the answer as the scene does) hide a
+    common factor, which cancels in sin α, cos α.
+    """
+    single = sympy.expand_trig(replaced)
+    angles = {a.args[0] for a in single.atoms(sympy.sin, sympy.cos)}
+    if len(angles) != 1:
+        return sympy.factor(sympy.cancel(single))
+    (angle,) = angles
+    S, C = sympy.Dummy("S"), sympy.Dummy("C")
+    numerator, denominator = sympy.fraction(sympy.cancel(
+        single.xreplace({sympy.sin(angle): S, sympy.cos(angle): C})))
+
+    def reduced(p):  # S² = 1 − C², so at most linear in S
+        try:
+            return sympy.Poly(p, S).rem(sympy.Poly(S ** 2 + C ** 2 - 1, S)).as_expr()
+        except sympy.PolynomialError:
+            return p
+
+    ratio = sympy.cancel(reduced(numerator) / reduced(denominator))
+    return sympy.factor(ratio.xreplace({S: sympy.sin(angle), C: sympy.cos(angle)}))
 
 
 def _turned_back(evaluator, spec, condition, x, roots, chosen, key: str) -> dict | None:
@@ -551,6 +611,13 @@ _TRANSCENDENTAL = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.
                    sympy.atan, sympy.acot, sympy.asinh, sympy.acosh, sympy.atanh)
 
 
+def _is_one_plus_square(poly: sympy.Poly) -> bool:
+    """Whether a polynomial in T is c (1 + T²) (no real root; a cheap test, where simplify took seconds)."""
+    T = poly.gens[0]
+    return (poly.degree() == 2 and poly.coeff_monomial(T) == 0
+            and sympy.expand(poly.coeff_monomial(T ** 2) - poly.coeff_monomial(1)) == 0)
+
+
 def _homogeneous_in_sin_cos(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> list[sympy.Expr] | None:
     """Roots of a condition that is a homogeneous polynomial in sin x and cos x (each term of the
     same degree n, A cos θ + g sin θ: a pendulum in an accelerating car): cosⁿx times a polynomial
@@ -587,7 +654,7 @@ def _homogeneous_in_sin_cos(condition: sympy.Expr, x: sympy.Symbol, source: str,
     def real_factors():
         # 1 + T² (from sin² + cos²) has no real root; the others are solved one by one.
         factors = [f for f, _ in sympy.factor_list(in_tan)[1] if T in f.free_symbols]
-        return [f for f in factors if sympy.simplify(f / sympy.LC(f, T) - (T ** 2 + 1)) != 0]
+        return [f for f in factors if not _is_one_plus_square(sympy.Poly(f, T))]
 
     factors = budget.attempt(real_factors, _SOLVE_BUDGET_S, fallback=lambda: [in_tan])
     values = []

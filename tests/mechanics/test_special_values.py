@@ -591,3 +591,19 @@ def test_a_numeric_answer_at_a_root_reached_after_the_motion_turns_back_has_that
     value = reference_value(reference["reference"], reference["variables"], {"m": 1.0, "g": 9.81, "l": 1.0},
                             reference["implicit"])
     assert value == pytest.approx(by_hand, rel=1e-9)
+
+
+@pytest.mark.parametrize("scene, answer, expected", [
+    # θ* = atan(−(M + m) sin α cos α/(M + (M + m) cos²α)): the hoop's acceleration there was a page of
+    # sin(α + atan(…)) and nested roots; through tan θ* it is the rigid body's.
+    ("hoop_bead_incline", "relative_equilibrium_acceleration", "(M + m)*g*sin(alpha)/(2*M + m)"),
+    ("pendulum_accelerating_car", "equilibrium_tension", "m*(3*sqrt(g^2 + A^2) - 2*g)"),
+    ("pendulum_accelerating_car", "far_end_cos", "(g^2 - A^2)/(g^2 + A^2)"),
+])
+def test_an_answer_at_a_root_through_tan_is_written_without_atan(derived, scene, answer, expected):
+    """At θ = atan(v) (or atan(v) − π) sin θ = ±v/√(1 + v²), cos θ = ±1/√(1 + v²): the answer is
+    written in the parameters, not in sin(α + atan v)."""
+    d = derived(scene)
+    value = d.answers[answer]
+    assert not value.has(sympy.atan)
+    assert sympy.simplify(value - parse_expression(expected, d.scene.namespace).expr) == 0
