@@ -1030,7 +1030,11 @@ def _one_motion(evaluator, spec, u) -> bool:
         return False
     used = set().union(*(e.free_symbols for e in initial.values()))
     allowed = evaluator.target(spec, default_state=False) if spec.in_terms_of is not None else set()
-    return not (used & allowed)
+    # Another coordinate kept free in the answer (the block y1 beside y2 of an Atwood machine with
+    # a spring) makes the root a formula over the states of several degrees of freedom, not a point
+    # that the motion along u alone must reach.
+    others = {v.symbol for v in evaluator.reduction.independent.values() if v.symbol != u.symbol}
+    return not (used & allowed) and not (others & allowed)
 
 
 def _with_state(evaluator, point: dict, symbols: set) -> dict:

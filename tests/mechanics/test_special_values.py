@@ -607,3 +607,27 @@ def test_an_answer_at_a_root_through_tan_is_written_without_atan(derived, scene,
     value = d.answers[answer]
     assert not value.has(sympy.atan)
     assert sympy.simplify(value - parse_expression(expected, d.scene.namespace).expr) == 0
+
+
+@pytest.mark.parametrize("where, expr, expected", [
+    # Equal accelerations: g − T/m1 = g − T/m2, so the string is slack, T = k e = 0 (at the start,
+    # where the motion from [initial] stood on the root: it was 'runs away before it reaches y2 = 1.2').
+    ("y1ddot = y2ddot", "y2 + y1 - L - l0", "0"),
+    # The lower block's weight carried: k e = m2 g.
+    ("tension = m2*g", "y2", "L + l0 - y1 + m2*g/k"),
+    ("y2ddot = 0", "y2", "L + l0 - y1 + m2*g/k"),
+])
+def test_a_root_in_terms_of_another_free_coordinate_is_a_formula_not_a_moment(where, expr, expected):
+    """With y1 kept in the answer, the root for y2 is a formula over the states of two degrees of
+    freedom; the motion along y2 alone (y1 held) is no motion of the system, so it is not followed."""
+    text = scene_text("atwood_spring") + f'''
+[[answers]]
+name = "probe"
+expr = "{expr}"
+where = "{where}"
+in_terms_of = ["m1", "m2", "g", "k", "L", "l0", "y1"]
+dimension = "length"
+'''
+    scene = parse_scene(text, "atwood.toml")
+    value = derive(scene).answers["probe"]
+    assert sympy.simplify(value - parse_expression(expected, scene.namespace).expr) == 0
