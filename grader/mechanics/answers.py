@@ -118,6 +118,8 @@ class AnswerEvaluator:
         and why the motion has no closed form.
         """
         target = self.target(spec)
+        if target & set(self._dependent_positions()):
+            return self._in_dependent_positions(spec, target, key)
         try:
             return self.reduce(spec.expr, target, key)
         except SceneError as first:
@@ -134,6 +136,60 @@ class AnswerEvaluator:
             value = self.reduce(spec.expr, target | self.state_symbols() | self.parameters, key)
             return self.reduce(human_form(value.xreplace(motion)), target, key)
 
+    def _dependent_positions(self) -> dict[sympy.Symbol, sympy.Expr]:
+        """{coordinate: its map Φ(u, t)} for the scene coordinates that are not independent variables."""
+        phi = self.reduction.phi
+        return {c.symbol: phi[c.symbol] for c in self.scene.coordinates.values()
+                if c.symbol in phi and phi[c.symbol] != c.symbol}
+
+    def _in_dependent_positions(self, spec: AnswerSpec, target: set[sympy.Symbol], key: str) -> sympy.Expr:
+        """The answer in a coordinate c the constraints made dependent, for an independent u it leaves out.
+
+        The answer is written in u first, then c = Φ(u) is read back: where Φ(u) itself appears
+        (N = m g (3√(R² − x²) − 2R)/R on a sphere, y = √(R² − x²)) it becomes c, and u left over is
+        replaced by every solution of Φ(u) = c, which must all give one value (an even function,
+        x = ±√(R² − y²)); otherwise the answer is refused, naming the coordinates to ask it in.
+        """
+        dependent = self._dependent_positions()
+        named = [c for c in dependent if c in target]
+        swaps = {}
+        for c in named:
+            coordinates = dependent[c].free_symbols & self.state_symbols(velocities=False)
+            free = [u for u in coordinates if u not in target and u not in swaps.values()]
+            if not free and coordinates <= target:
+                continue  # x named beside y: the answer in x needs no y
+            if len(free) != 1:
+                break
+            swaps[c] = free[0]
+        refusal = SceneError(self.scene.source, f"answers ({spec.name}).in_terms_of",
+                             f"cannot be written in {', '.join(str(c) for c in named)}: answers are "
+                             f"expressed in {', '.join(self.reduction.independent)} (and their dots)")
+        unswapped = [c for c in named if c not in swaps
+                     and not (dependent[c].free_symbols & self.state_symbols(velocities=False)) <= target]
+        if unswapped:
+            raise refusal
+        inner = (target - set(named)) | set(swaps.values())
+        value = self.reduce(spec.expr, inner, key)
+        for c, u in swaps.items():
+            value = value.subs(dependent[c], c)
+            if u not in value.free_symbols:
+                continue
+            try:
+                solutions = sympy.solve(dependent[c] - c, u)
+            except (NotImplementedError, ValueError):
+                raise refusal from None
+            candidates = [value.xreplace({u: r}) for r in solutions]
+            if not candidates or not _one_value(candidates):
+                raise refusal
+            value = candidates[0]
+            # On the branch the scene is on, c = ±√(…) has that sign: |y| is y above a sphere's centre.
+            sign = 1 if _is_root(dependent[c]) else -1 if _is_root(-dependent[c]) else 0
+            if sign:
+                value = value.replace(lambda e: isinstance(e, sympy.Abs) and e.args[0] == c, lambda e: sign * c)
+        if value.free_symbols - target:
+            raise refusal
+        return human_form(value)
+
     def target(self, spec: AnswerSpec, default_state: bool = True) -> set[sympy.Symbol]:
         """The symbols an answer may keep: its ``in_terms_of``, else parameters, t and the state."""
         if spec.in_terms_of is None:
@@ -142,6 +198,10 @@ class AnswerEvaluator:
         target = set()
         allowed = self.parameters | self.state_symbols() | {self.scene.time} | {
             u.ddot for u in self.reduction.independent.values()}
+        if spec.where is None and spec.kind in ("expression", "equation"):
+            # A coordinate the constraints made dependent (the height y on a sphere whose answers
+            # are otherwise in x) is read back through its map (see reduce_in_time).
+            allowed = allowed | set(self._dependent_positions())
         for name in spec.in_terms_of:
             symbol = self.scene.namespace.symbol(name)
             if symbol not in allowed:
@@ -343,3 +403,19 @@ class AnswerEvaluator:
                              "eliminated")
         a, c = poly.coeff_monomial(u.dot ** 2), poly.coeff_monomial(1)
         return (h0 - c) / a
+
+
+def _one_value(candidates: list[sympy.Expr]) -> bool:
+    """Whether expressions agree at a few generic points (branches of one answer giving one value)."""
+    symbols = sorted(set().union(*(c.free_symbols for c in candidates)), key=str)
+    for shift in (0.0, 0.23):
+        point = {s: sympy.Float(0.31 + 0.17 * i + shift, 30) for i, s in enumerate(symbols)}
+        values = [complex(c.evalf(30, subs=point)) for c in candidates]
+        if any(abs(v - values[0]) > 1e-20 * max(1.0, abs(values[0])) for v in values):
+            return False
+    return True
+
+
+def _is_root(expr: sympy.Expr) -> bool:
+    """Whether an expression is a square root (nonnegative wherever it is real)."""
+    return isinstance(expr, sympy.Pow) and expr.exp == sympy.S.Half

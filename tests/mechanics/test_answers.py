@@ -3,12 +3,13 @@ and values along the motion in time."""
 
 from __future__ import annotations
 
+import pytest
 import sympy
 
 from grader.expressions import parse_expression
 from grader.mechanics.lagrange import derive
-from grader.mechanics.scene import load_scene
-from tests.mechanics.conftest import SCENES
+from grader.mechanics.scene import SceneError, load_scene, parse_scene
+from tests.mechanics.conftest import ROOT, SCENES
 
 
 def _expected(scene, text: str) -> sympy.Expr:
@@ -30,3 +31,39 @@ def test_a_value_in_time_may_pass_through_a_parameter_that_cancels_along_the_mot
     scene = load_scene(SCENES / "yoyo_counterweight.toml")
     value = derive(scene).answers["block_height_in_time"]
     assert sympy.simplify(value - _expected(scene, "g*(M - 3*m)*t^2/(2*(M + 3*m))")) == 0
+
+
+def _with_answer_in(path, name: str, in_terms_of: str) -> str:
+    """The scene's text with the answer ``name`` asked in other variables."""
+    text = path.read_text(encoding="utf-8")
+    start = text.index(f'name = "{name}"')
+    line = text.index("in_terms_of = ", start)
+    end = text.index("\n", line)
+    return text[:line] + f"in_terms_of = {in_terms_of}" + text[end:]
+
+
+@pytest.mark.parametrize("path, name, in_terms_of, expected", [
+    # Hemisphere in Cartesian coordinates, the answers in x: N = m g (3√(R² − x²) − 2R)/R is, with
+    # the height y = √(R² − x²), m g (3y − 2R)/R (it was "'y' is not an independent variable").
+    (SCENES / "hemisphere_cartesian.toml", "normal_force", '["m", "g", "R", "y"]', "m*g*(3*y - 2*R)/R"),
+    (SCENES / "hemisphere_cartesian.toml", "normal_force", '["m", "g", "R", "x"]', "m*g*(3*sqrt(R^2 - x^2) - 2*R)/R"),
+    # Pendulum parametrized by θ: T = m g (3 cos θ − 2 cos θ0), and y = −l cos θ below the pivot.
+    (ROOT / "problems" / "pendulum.toml", "tension", '["m", "g", "l", "y", "theta0"]',
+     "-m*g*(3*y/l + 2*cos(theta0))"),
+])
+def test_an_answer_may_be_asked_in_a_coordinate_the_constraints_made_dependent(path, name, in_terms_of, expected):
+    """The answer is written in the independent coordinate, then the dependent one read back through
+    its map: every solution of Φ(u) = c gives one value (x = ±√(R² − y²) in an even function)."""
+    text = _with_answer_in(path, name, in_terms_of)
+    scene = parse_scene(text, source=path.name)
+    value = derive(scene).answers[name]
+    assert sympy.simplify(value - _expected(scene, expected)) == 0
+
+
+def test_an_answer_in_a_dependent_coordinate_with_branches_of_different_value_is_refused():
+    """ẍ = g x (3√(R² − x²) − 2R)/R² in y alone is ±g √(R² − y²)(3y − 2R)/R²: which sign depends on
+    the side, so it is refused, naming the variables answers are expressed in."""
+    path = SCENES / "hemisphere_cartesian.toml"
+    scene = parse_scene(_with_answer_in(path, "horizontal_acceleration", '["g", "R", "y"]'), source=path.name)
+    with pytest.raises(SceneError, match="expressed in x"):
+        derive(scene)

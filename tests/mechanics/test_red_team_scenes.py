@@ -251,7 +251,7 @@ ROD_SUM = "m*(R*phidot^2 + g*cos(phi)/cos(beta))"
         # rest at the top v² = 2 g (R − y): N = m g (3y − 2R)/R, zero at y = 2R/3 (cos θ = 2/3,
         # v² = 2 g R/3, x = √5 R/3); ẍ = 2 λ x/m.
         ("hemisphere_cartesian", "normal_force_state", "m*(g*sqrt(R^2 - x^2)/R - R*xdot^2/(R^2 - x^2))"),
-        ("hemisphere_cartesian", "normal_force", "m*g*(3*sqrt(R^2 - x^2) - 2*R)/R"),
+        ("hemisphere_cartesian", "normal_force", "m*g*(3*y - 2*R)/R"),
         ("hemisphere_cartesian", "horizontal_acceleration", "g*x*(3*sqrt(R^2 - x^2) - 2*R)/R^2"),
         ("hemisphere_cartesian", "leaving_height", "2*R/3"),
         ("hemisphere_cartesian", "leaving_cos", "2/3"),
