@@ -310,6 +310,21 @@ ROD_SUM = "m*(R*phidot^2 + g*cos(phi)/cos(beta))"
         ("hoop_bead_incline", "friction_force", f"M*{HOOP_A}"),
         ("hoop_bead_incline", "relative_equilibrium_tan", "-(M + m)*sin(alpha)*cos(alpha)/(M + (M + m)*cos(alpha)^2)"),
         ("hoop_bead_incline", "relative_equilibrium_acceleration", "(M + m)*g*sin(alpha)/(2*M + m)"),
+        # Two masses on a light rod inside a circle, at φ ∓ β: I = (m1 + m2) R², V = −g R (m1 cos(φ − β) +
+        # m2 cos(φ + β)), so tan φ* = (m1 − m2) tan β/(m1 + m2) and ω² = g Q/((m1 + m2) R),
+        # Q = √((m1 + m2)² cos²β + (m1 − m2)² sin²β). Mass 1 tangentially: m1 R φ̈ = −m1 g sin(φ − β) −
+        # C cos β, so the compression C = 2 m1 m2 g tan β cos φ/(m1 + m2); radially (the rod pushes it
+        # outwards with C sin β) N1 = m1 R φ̇² + m1 g cos(φ − β) + C sin β.
+        ("dumbbell_in_circle", "equation_of_motion", "-g*(m1*sin(phi - beta) + m2*sin(phi + beta))/((m1 + m2)*R)"),
+        ("dumbbell_in_circle", "rod_compression", "2*m1*m2*g*tan(beta)*cos(phi)/(m1 + m2)"),
+        ("dumbbell_in_circle", "track_force_1",
+         "m1*R*phidot^2 + m1*g*cos(phi - beta) + 2*m1*m2*g*tan(beta)*cos(phi)*sin(beta)/(m1 + m2)"),
+        ("dumbbell_in_circle", "equilibrium_tan", "(m1 - m2)*tan(beta)/(m1 + m2)"),
+        ("dumbbell_in_circle", "equilibrium_compression",
+         "2*m1*m2*g*tan(beta)/sqrt((m1 + m2)^2 + (m1 - m2)^2*tan(beta)^2)"),
+        ("dumbbell_in_circle", "small_oscillation_frequency",
+         "sqrt(g*sqrt((m1 + m2)^2*cos(beta)^2 + (m1 - m2)^2*sin(beta)^2)/((m1 + m2)*R))"),
+        ("dumbbell_in_circle", "equilibrium_angle", "atan((m1 - m2)*tan(beta)/(m1 + m2))"),
     ],
 )
 def test_red_team_scenes(derived, scene, answer, expected):

@@ -97,6 +97,7 @@ CONFIRMED_ELSEWHERE = {
     ("rod_ends_on_circle", "small_oscillation_frequency"),
     ("hoop_bead_incline", "relative_equilibrium_tan"),
     ("hoop_bead_incline", "relative_equilibrium_acceleration"),
+    ("dumbbell_in_circle", "small_oscillation_frequency"),
 }
 
 

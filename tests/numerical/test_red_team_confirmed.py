@@ -328,3 +328,23 @@ def test_particle_leaves_a_hemisphere_where_the_engine_says_by_scipy_alone():
     assert abs(y - closed_form(model, answers, "leaving_height")) < 1e-7 * R
     assert abs(x - closed_form(model, answers, "leaving_distance")) < 1e-7 * R
     assert abs(math.hypot(vx, vy) - closed_form(model, answers, "leaving_speed")) < 1e-6 * math.sqrt(g * R)
+
+
+def test_two_masses_on_a_rod_in_a_circle_oscillate_about_their_tilt_at_the_engines_rate():
+    model, answers = engine("dumbbell_in_circle")
+    R, beta = model.values["R"], model.values["beta"]
+    tilt = closed_form(model, answers, "equilibrium_angle")
+
+    def state(phi):
+        return [R * math.sin(phi - beta), -R * math.cos(phi - beta),
+                R * math.sin(phi + beta), -R * math.cos(phi + beta)], [0.0] * 4
+
+    def midpoint_angle(s):
+        return math.atan2(s.q[0] + s.q[2], -(s.q[1] + s.q[3]))
+
+    # At the tilt, at rest, nothing moves; the rod's compression there is the engine's.
+    s = snapshot(model.numeric, 0.0, *state(tilt))
+    assert np.allclose(s.qddot, 0.0, atol=1e-9)
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, *state(tilt + 1e-4), midpoint_angle, tilt, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
