@@ -61,6 +61,14 @@ _EXPONENT_LETTER = re.compile(r"^[0-9.]+([eE])[+-]?[0-9]+$")
 _COMMAND_THEN_DIGITS = re.compile(r"^\\([A-Za-z]+)\d[A-Za-z0-9]*$")
 _I = sympy.I
 _OPERATOR_POWER = {"+": _ADD, "-": _ADD, "*": _MUL, "/": _MUL, "^": _POW}
+# Spreadsheet functions in capitals whose meaning differs from the same word here: (message, hint).
+_SPREADSHEET_CAPITALS = {
+    "ATAN2": ("'ATAN2' in capitals is the spreadsheet function, whose arguments are in the reverse order "
+              "(Excel's ATAN2(x, y) is atan2(y, x) here)",
+              "write atan2(y, x) in small letters for the angle of the point (x, y), or atan(y/x)"),
+    "LOG": ("'LOG' in capitals is the spreadsheet's (and a calculator's) logarithm to base 10, but log here "
+            "is the natural logarithm ln", "write ln(x) for the natural logarithm, or log10(x) for base 10"),
+}
 # Calls that differentiate (Maple's, SymPy's and Maxima's diff, Mathematica's D), with their bracket.
 _DIFF_CALLS = {"diff": "(", "D": "["}
 _PAIRS_CLOSE = {"(": ")", "[": "]"}
@@ -632,11 +640,11 @@ class _Parser:
             else:
                 raise ExpressionError(f"cannot read '{token.text}^{exponent}'", following.pos, "syntax",
                                       f"write ({name}(x))^n for a power of {name}")
-        if token.text == "ATAN2":
-            # Excel's and Google Sheets' ATAN2(x, y) is atan2(y, x) here: the same letters, reversed
-            raise ExpressionError("'ATAN2' in capitals is the spreadsheet function, whose arguments are in the "
-                                  "reverse order (Excel's ATAN2(x, y) is atan2(y, x) here)", token.pos, "ambiguous",
-                                  "write atan2(y, x) in small letters for the angle of the point (x, y), or atan(y/x)")
+        if token.text in _SPREADSHEET_CAPITALS:
+            # Excel's and Google Sheets' ATAN2(x, y) is atan2(y, x) here, and their LOG is to base 10:
+            # the same letters, another meaning
+            message, hint = _SPREADSHEET_CAPITALS[token.text]
+            raise ExpressionError(message, token.pos, "ambiguous", hint)
         spec = FUNCTIONS[name]
         following = self.peek()
         # Sin[x]^2 is Mathematica's call sin(x)^2, as sin(x)^2 is: read as grouping, the square went

@@ -229,6 +229,18 @@ class _Tokenizer:
             self.number()
         elif _is_name_start(ch):
             self.identifier(start, "", start)
+        elif ch == "〖":
+            # Word's linear format groups with 〖…〗, which it never shows: 〖cos〗^2⁡θ is cos²θ (a function
+            # name alone inside), 〖θ + φ〗 and 〖(m g)〗^2 are a bracket
+            close = self.text.find("〗", start + 1)
+            word = self.text[start + 1:close] if close > 0 else ""
+            if word in FUNCTIONS or word.lower() in FUNCTIONS:
+                self.emit("name", word, start + 1, close)
+                self.i = close + 1
+            else:
+                self.emit("open", "(", start, start + 1)
+        elif ch == "〗":
+            self.emit("close", ")", start, start + 1)
         elif ch == "\u2061":  # FUNCTION APPLICATION, which Word's equations put in sin⁡θ: a space
             self.space = True
             self.i += 1

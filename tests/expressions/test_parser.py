@@ -814,7 +814,9 @@ def test_an_index_in_square_brackets_without_such_a_variable_is_refused_not_mult
     # a middle dot before a power of ten is scientific notation; spaced, a product
     ("1·10⁻³ x", "x/1000"), ("2·10^3 x", "2000*x"), ("2 · 5 x", "10*x"),
     # Word's invisible operators: FUNCTION APPLICATION after a function, INVISIBLE TIMES
-    ("m g cos\u2061θ", "m*g*cos(theta)"), ("cos^2\u2061θ", "cos(theta)^2"), ("m\u2062g", "m*g"),
+    ("m g cos\u2061θ", "m*g*cos(theta)"),
+    # Word's linear format: 〖…〗 groups invisibly (a function name alone inside stays the function)
+    ("m g 〖cos〗^2\u2061θ", "m*g*cos(theta)^2"), ("cos\u2061〖θ + x/l〗", "cos(theta + x/l)"), ("〖(m g)〗^2", "(m*g)^2"), ("cos^2\u2061θ", "cos(theta)^2"), ("m\u2062g", "m*g"),
 ])
 def test_answers_pasted_from_other_tools_mean_what_they_mean_there(student_ns, student, canonical):
     assert parse(student, student_ns) == parse(canonical, student_ns)
@@ -838,6 +840,7 @@ def test_answers_pasted_from_other_tools_mean_what_they_mean_there(student_ns, s
     # a spreadsheet's ATAN2(x, y) has our arguments reversed; its PI() has brackets
     ("ATAN2(y, x)", "ambiguous", "Excel's ATAN2(x, y) is atan2(y, x)"),
     ("2*PI()*r", "unsupported_function", "write pi (or π) without brackets"),
+    ("LOG(x/l)", "ambiguous", "logarithm to base 10, but log here is the natural logarithm"),
     # a decimal comma, and a British raised decimal point between digits (2·5: 2.5 or 10?)
     ("0,5*x", "syntax", "write a decimal point, as in 0.5"),
     ("2·5 x", "ambiguous", "the decimal 2.5 or as the product 2×5"),
