@@ -227,10 +227,10 @@ class _Parser:
             return ExpressionError("'=' is only allowed once, between the two sides of an equation",
                                    token.pos, "syntax", "separate several equations with ';'")
         if token.kind == "op" and token.value == ",":
-            if before is not None and before.kind == "number" and before.end == token.pos \
-                    and self.text[token.end:token.end + 1].isdigit():
+            decimals = re.match(r"[0-9]+", self.text[token.end:])
+            if before is not None and before.kind == "number" and before.end == token.pos and decimals:
                 # 0,5: a decimal comma, as most of Europe writes it
-                digits = re.match(r"[0-9]+", self.text[token.end:]).group()
+                digits = decimals.group()
                 return ExpressionError(f"'{before.text},{digits}' has a decimal comma; a comma can only separate "
                                        "function arguments here", token.pos, "syntax",
                                        f"write a decimal point, as in {before.text}.{digits}")

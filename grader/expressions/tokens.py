@@ -35,6 +35,7 @@ from .errors import ExpressionError
 from .functions import FUNCTIONS
 from .latex_input import classify_command, subscript_text
 from .magnitudes import MAX_DIGITS
+from .names import WRITE_INSTEAD
 from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, FULLWIDTH_SYMBOLS, GREEK_CHARS, MATH_LETTERS,
                             OPERATOR_CHARS, PRIME_CHARS,
                             ROOT_CHARS, SUBSCRIPT_DIGITS, SUPERSCRIPT_CHARS, SUPERSCRIPT_OTHERS, VULGAR_FRACTIONS,
@@ -110,7 +111,7 @@ _LAYOUT_ENVIRONMENTS = {"aligned", "align", "gather", "gathered", "split", "equa
 
 
 # x -> 2 (Mathematica's rule, as Solve prints it) and x → 2: an arrow where an equation's = belongs.
-def _ARROW_ERROR(position: int, arrow: str) -> ExpressionError:
+def _arrow_error(position: int, arrow: str) -> ExpressionError:
     return ExpressionError(f"'{arrow}' is an arrow (a rule, or 'tends to'), not an equation", position, "syntax",
                            "write = between the two sides of an equation, as in x = 2")
 
@@ -213,7 +214,7 @@ class _Tokenizer:
                                             "give one sign (the answer with + or the one with -); for a plus "
                                             "then a negative number, write + (-2)"))
         elif ch == "-" and self.peek(1) == ">":
-            self.emit("bad", "->", start, start + 2, error=_ARROW_ERROR(start, "->"))
+            self.emit("bad", "->", start, start + 2, error=_arrow_error(start, "->"))
         elif ch in "+-*/^=,;":
             self.emit("op", ch, start, start + 1)
         elif ch in _PAIRS:
@@ -253,8 +254,9 @@ class _Tokenizer:
         elif ch == "\\":
             self.command()
         elif ch == "·" and self.tokens and self.tokens[-1].kind == "number" and self.tokens[-1].end == start \
-                and _is_digit(self.peek(1)) and not _POWER_OF_TEN.match(self.text, start + 1):
-            # 2·5: the raised decimal point of British print (2.5), or a product (10)
+                and self.tokens[-1].text.isdigit() and _is_digit(self.peek(1)) \
+                and not _POWER_OF_TEN.match(self.text, start + 1):
+            # 2·5: the raised decimal point of British print (2.5), or a product (10); after 1.2 it is a product
             number = _DIGIT_RUN.match(self.text, start + 1).group()
             before = self.tokens[-1].text
             self.emit("bad", ch, start, start + 1,
@@ -263,7 +265,7 @@ class _Tokenizer:
                                             f"write {before}.{number} for the decimal, or {before}*{number} "
                                             "for the product"))
         elif ch in "→⇒⟶↦":
-            self.emit("bad", ch, start, start + 1, error=_ARROW_ERROR(start, ch))
+            self.emit("bad", ch, start, start + 1, error=_arrow_error(start, ch))
         elif ch in OPERATOR_CHARS:
             self.emit("op", OPERATOR_CHARS[ch], start, start + 1)
         elif ch in SUPERSCRIPT_CHARS or ch in SUPERSCRIPT_OTHERS:
@@ -329,8 +331,6 @@ class _Tokenizer:
         if name in FUNCTIONS or name == "pi":
             self.emit("name", name, module.pos, word.end())
             return
-        from .names import WRITE_INSTEAD  # here: names imports the function registry this module needs
-
         self.emit("bad", module.text, module.pos, word.end(),
                   error=ExpressionError(f"'{module.text}.{name}' is not a function or constant of this grammar",
                                         module.pos, "unsupported_function",

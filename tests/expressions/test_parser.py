@@ -812,7 +812,7 @@ def test_an_index_in_square_brackets_without_such_a_variable_is_refused_not_mult
     ("\\theta^{\\prime}", "thetadot"), ("\\theta^\\prime", "thetadot"), ("\\theta^{\\prime\\prime}", "thetaddot"),
     ("l\\theta^{\\prime 2}", "l*thetadot^2"), ("θʹ", "thetadot"), ("θʺ", "thetaddot"), ("θ´", "thetadot"),
     # a middle dot before a power of ten is scientific notation; spaced, a product
-    ("1·10⁻³ x", "x/1000"), ("2·10^3 x", "2000*x"), ("2 · 5 x", "10*x"),
+    ("1·10⁻³ x", "x/1000"), ("2·10^3 x", "2000*x"), ("2 · 5 x", "10*x"), ("1.2·5 x", "6*x"),
     # Word's invisible operators: FUNCTION APPLICATION after a function, INVISIBLE TIMES
     ("m g cos\u2061θ", "m*g*cos(theta)"),
     # Word's linear format: 〖…〗 groups invisibly (a function name alone inside stays the function)
