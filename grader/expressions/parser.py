@@ -237,6 +237,9 @@ class _Parser:
             return ExpressionError("a comma can only separate function arguments, as in atan2(y, x)",
                                    token.pos, "syntax")
         if token.kind == "op" and token.value == ";":
+            if not self.text[token.end:].strip():  # m*g/3; as MATLAB's statements end
+                return ExpressionError("a ';' at the end is not part of a formula", token.pos, "syntax",
+                                       "delete the ';'")
             return ExpressionError("';' cannot be used in a single expression", token.pos,
                                    "unsupported_function", "write one expression")
         if token.kind == "prime":

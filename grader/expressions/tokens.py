@@ -117,11 +117,15 @@ def _arrow_error(position: int, arrow: str) -> ExpressionError:
 
 
 # Primes as LaTeX writes them: ^\prime, ^{\prime}, ^{\prime\prime}
-_LATEX_PRIMES = re.compile(r"\^\s*(?:\{\s*(?:\\prime\s*)+(?P<power>[0-9]{1,3})?\s*\}|\\prime(?![A-Za-z]))")
+# (and ^′, as Wolfram|Alpha prints θ′ in a superscript)
+_LATEX_PRIMES = re.compile(r"\^\s*(?:\{\s*(?:\\prime\s*)+(?P<power>[0-9]{1,3})?\s*\}|\\prime(?![A-Za-z])|[′″]+)")
 
 # After a middle dot between digits: 1·10⁻³, 2·10^3 is a mantissa times a power of ten, not 1.10.
 _POWER_OF_TEN = re.compile(r"10(?:\^|[⁰¹²³⁴⁵⁶⁷⁸⁹⁻])")
 _DIGIT_RUN = re.compile(r"[0-9]+")
+
+# What a console prints before a formula: Mathematica's In[1]:= and Out[1]=, MATLAB's >>, Maxima's (%o1)
+_CONSOLE_PROMPT = re.compile(r"\s*(?:(?:In|Out)\[\d+\]\s*:?=|>>|\(%[io]\d+\))")
 
 # Python modules whose functions students paste with the prefix (np.sin, math.sqrt).
 _MODULES = frozenset({"np", "numpy", "math", "cmath", "sp", "sympy"})
@@ -167,6 +171,12 @@ class _Tokenizer:
 
     def step(self) -> None:
         ch, start = self.text[self.i], self.i
+        if not self.tokens and _CONSOLE_PROMPT.match(self.text, start):
+            prompt = _CONSOLE_PROMPT.match(self.text, start).group().strip()
+            self.emit("bad", prompt, start, _CONSOLE_PROMPT.match(self.text, start).end(),
+                      error=ExpressionError(f"'{prompt}' is a console prompt or output label, not part of the "
+                                            "answer", start, "syntax", "delete it and keep the formula after it"))
+            return
         # Letters, digits, spaces, ASCII operators and brackets first. Each class matches only one
         # branch of the chain, so the order only decides how soon it is found: before the Unicode
         # lookup of is_space.
@@ -194,7 +204,7 @@ class _Tokenizer:
             # \theta^{\prime 2}, θ' squared (the prime and the power share one superscript)
             marks = _LATEX_PRIMES.match(self.text, start)
             name = self.tokens[-1]
-            name.order += marks.group().count("\\prime")
+            name.order += marks.group().count("\\prime") + marks.group().count("′") + 2 * marks.group().count("″")
             name.end, self.i = marks.end(), marks.end()
             name.text = self.text[name.pos:name.end]
             if marks.group("power"):

@@ -810,7 +810,7 @@ def test_an_index_in_square_brackets_without_such_a_variable_is_refused_not_mult
     ("2.*l", "2*l"),
     # primes as LaTeX, Unicode modifier letters and European keyboards write them
     ("\\theta^{\\prime}", "thetadot"), ("\\theta^\\prime", "thetadot"), ("\\theta^{\\prime\\prime}", "thetaddot"),
-    ("l\\theta^{\\prime 2}", "l*thetadot^2"), ("θʹ", "thetadot"), ("θʺ", "thetaddot"), ("θ´", "thetadot"),
+    ("l\\theta^{\\prime 2}", "l*thetadot^2"), ("θ^′", "thetadot"), ("θ^″", "thetaddot"), ("θʹ", "thetadot"), ("θʺ", "thetaddot"), ("θ´", "thetadot"),
     # a middle dot before a power of ten is scientific notation; spaced, a product
     ("1·10⁻³ x", "x/1000"), ("2·10^3 x", "2000*x"), ("2 · 5 x", "10*x"), ("1.2·5 x", "6*x"),
     # Word's invisible operators: FUNCTION APPLICATION after a function, INVISIBLE TIMES
@@ -841,6 +841,10 @@ def test_answers_pasted_from_other_tools_mean_what_they_mean_there(student_ns, s
     ("ATAN2(y, x)", "ambiguous", "Excel's ATAN2(x, y) is atan2(y, x)"),
     ("2*PI()*r", "unsupported_function", "write pi (or π) without brackets"),
     ("LOG(x/l)", "ambiguous", "logarithm to base 10, but log here is the natural logarithm"),
+    # a console's prompt or output label pasted with the formula, and MATLAB's closing ';'
+    ("Out[3]= x/l", "syntax", "'Out[3]=' is a console prompt"), ("In[1]:= x/l", "syntax", "'In[1]:=' is a console prompt"),
+    (">> x/l", "syntax", "'>>' is a console prompt"), ("(%o1) x/l", "syntax", "'(%o1)' is a console prompt"),
+    ("x/l;", "syntax", "a ';' at the end is not part of a formula"),
     # a decimal comma, and a British raised decimal point between digits (2·5: 2.5 or 10?)
     ("0,5*x", "syntax", "write a decimal point, as in 0.5"),
     ("2·5 x", "ambiguous", "the decimal 2.5 or as the product 2×5"),
