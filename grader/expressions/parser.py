@@ -21,6 +21,11 @@ asin(x).  Names resolve only through the :class:`~.variables.Namespace`
 Leibniz notation (``dθ/dt``, ``\\frac{d^2x}{dt^2}``, ``d/dt(θ)``) become one token
 each before parsing (:mod:`.leibniz`) and read as ``θ̇``, ``ẍ`` do; ``d/dt(m r² φ̇)`` is the bracket
 differentiated by the chain rule.
+
+What other tools print reads as it means there: Mathematica's ``Sin[θ]^2`` (a call, squared),
+``θ''[t]``, ``D[θ[t], t]`` and ``Pi``; ``diff(θ(t), t)`` of Maple, SymPy and Maxima; Python's
+``np.sin``; MATLAB's ``.*``. Where the same text means different things in different tools
+(``ArcTan[x, y]``, capital ``ATAN2`` and ``LOG``, ``2·5``), the refusal names both readings.
 """
 
 from __future__ import annotations
@@ -698,6 +703,8 @@ class _Parser:
             hint = f"write it as {example}"
             if spec.name in ("log10", "log2") and len(args) == 2:  # STACK's lg(x, b): a base given
                 hint = "write log(x, b) for the logarithm of x to base b"
+            if spec.name == "atan" and len(args) == 2:  # Maple's arctan(y, x), MATLAB's habit
+                hint = "write atan2(y, x) for the angle of the point (x, y), or atan(y/x)"
             raise ExpressionError(f"{token.text} takes {wanted} argument{'s' if spec.max_args > 1 else ''}, "
                                   f"got {len(args)}", token.pos, "syntax", hint)
         return args

@@ -845,6 +845,7 @@ def test_answers_pasted_from_other_tools_mean_what_they_mean_there(student_ns, s
     ("Out[3]= x/l", "syntax", "'Out[3]=' is a console prompt"), ("In[1]:= x/l", "syntax", "'In[1]:=' is a console prompt"),
     (">> x/l", "syntax", "'>>' is a console prompt"), ("(%o1) x/l", "syntax", "'(%o1)' is a console prompt"),
     ("x/l;", "syntax", "a ';' at the end is not part of a formula"),
+    ("arctan(y, x)", "syntax", "write atan2(y, x)"),  # Maple's two-argument arctan
     # a decimal comma, and a British raised decimal point between digits (2·5: 2.5 or 10?)
     ("0,5*x", "syntax", "write a decimal point, as in 0.5"),
     ("2·5 x", "ambiguous", "the decimal 2.5 or as the product 2×5"),
