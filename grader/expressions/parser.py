@@ -45,7 +45,7 @@ from .errors import ExpressionError
 from .functions import FUNCTIONS, INVERSES
 from .leibniz import dotted, read_leibniz, time_derivative
 from .magnitudes import checked, guarded_pow, not_real
-from .names import derivative_name, resolve_name
+from .names import WRITE_INSTEAD, derivative_name, resolve_name
 from .tokens import Token, check_brackets, tokenize
 from .variables import Namespace
 
@@ -556,6 +556,9 @@ class _Parser:
                 self.i += 3
                 self.note(f"read '{typed}' as {candidate}")
                 return self.ns.symbol(candidate)
+        if token.value.lower() in WRITE_INSTEAD:  # Mathematica's Derivative[1][θ][t]: a function we lack
+            raise ExpressionError(f"'{token.text}' is not a function you can use here", token.pos,
+                                  "unsupported_function", WRITE_INSTEAD[token.value.lower()])
         raise ExpressionError(f"'{typed}' reads as a subscript in some systems, and there is no variable "
                               f"{token.value}_{index}", token.pos, "syntax",
                               f"write {token.value}_{index} for a subscript, or {token.value}*({index}) for a product")

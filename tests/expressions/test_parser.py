@@ -836,6 +836,7 @@ def test_answers_pasted_from_other_tools_mean_what_they_mean_there(student_ns, s
     # what to type instead, named
     ("np.hypot(x, y)", "unsupported_function", "sqrt(x^2 + y^2)"),
     ("Derivative(x, t)", "unsupported_function", "diff(θ(t), t)"),
+    ("Derivative[1][theta][t]", "unsupported_function", "diff(θ(t), t)"),  # Mathematica's form
     ("“x”", "bad_character", "delete the quotation marks"),
     # a spreadsheet's ATAN2(x, y) has our arguments reversed; its PI() has brackets
     ("ATAN2(y, x)", "ambiguous", "Excel's ATAN2(x, y) is atan2(y, x)"),
