@@ -231,15 +231,27 @@ class Reduction:
             - sympy.diff(L, u.dot, scene.time)) for u in us])
         uddot = _solve_small(Mr, Fr)
         self.accelerations = {u.ddot: uddot[i] for i, u in enumerate(us)}
-        if k and not M.is_diagonal():
-            lam = self._multipliers_from_rows(A[:n, n:], M, b[:n, :])
-        elif k:
+        if k:
             C, J = A[:n, n:], A[n:, :n]
             b1, b2 = b[:n, :], b[n:, :]
-            Minv = sympy.diag(*[1 / M[i, i] for i in range(n)])
-            S = (J * Minv * C).applyfunc(lambda e: _tidy_entry(self.to_independent(sympy.cancel(e))))
-            r = (J * Minv * b1 - b2).applyfunc(lambda e: _tidy_entry(self.to_independent(sympy.cancel(e))))
+            if M.is_diagonal():
+                Minv = sympy.diag(*[1 / M[i, i] for i in range(n)])
+                MinvC, Minvb1 = Minv * C, Minv * b1
+            else:
+                # M⁻¹C and M⁻¹b₁ by fraction-free solves over sin and cos as generators; a symbolic
+                # M.inv() of a hoop with a bead inside (4 × 4, trigonometric) ran over a minute.
+                columns = [sympy.Matrix(solve_augmented(M, C[:, j])) for j in range(k)]
+                MinvC = sympy.Matrix.hstack(*columns)
+                Minvb1 = sympy.Matrix(solve_augmented(M, b1))
+            S = (J * MinvC).applyfunc(lambda e: _tidy_entry(self.to_independent(sympy.cancel(e))))
+            r = (J * Minvb1 - b2).applyfunc(lambda e: _tidy_entry(self.to_independent(sympy.cancel(e))))
             lam = _solve_small(S, r)
+            if not M.is_diagonal():
+                # The same λ from k Euler–Lagrange rows is shorter for some scenes (the bead's
+                # 2M + m sin²(θ + α), where the Schur complement spreads it over sin α, sin θ) and
+                # longer for others (a rod with both ends on a circle): the shorter of each is kept.
+                rows = self._multipliers_from_rows(C, M, b1)
+                lam = [min((a, b), key=sympy.count_ops) for a, b in zip(lam, rows)]
         else:
             lam = []
         self.multipliers = {c.name: lam[i] for i, c in enumerate(scene.constraints)}

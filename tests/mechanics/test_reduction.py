@@ -125,3 +125,23 @@ def test_multipliers_with_cross_terms_in_the_mass_matrix_solve_the_augmented_sys
         lam = numpy.linalg.solve(An, bn)[n:]
         for i, c in enumerate(scene.constraints):
             assert float(reduction.multipliers[c.name].xreplace(point).evalf(30)) == pytest.approx(lam[i], rel=1e-9, abs=1e-9)
+
+
+@pytest.mark.parametrize("scene, answer, denominator", [
+    # The rows' λ keeps the bead's 2M + m sin²(θ + α); the Schur complement spread it over sin α, sin θ.
+    ("hoop_bead_incline", "bead_normal_force", "2*M + m*sin(alpha + theta)^2"),
+    ("hoop_bead_incline", "friction_force", "2*M + m*sin(alpha + theta)^2"),
+    # The Schur complement's λ is free of φ below the line; the rows' had sin(β − φ) cos(β + φ) +
+    # sin(β + φ) cos(β − φ) (= sin 2β) there.
+    ("rod_ends_on_circle", "trailing_end_force", "4*(cos(2*beta) + 1)*(cos(2*beta) + 2)"),
+    ("rod_ends_on_circle", "leading_end_force", "4*(cos(2*beta) + 1)*(cos(2*beta) + 2)"),
+])
+def test_constraint_forces_with_cross_terms_keep_the_shorter_denominator(derived, scene, answer, denominator):
+    """With a mass matrix that has cross terms, λ is found both ways (Schur complement, Euler–Lagrange
+    rows) and the shorter kept: each answer's denominator is the one people write."""
+    d = derived(scene)
+    _, below = sympy.fraction(sympy.together(d.answers[answer]))
+    from grader.expressions import parse_expression
+
+    expected = parse_expression(denominator, d.scene.namespace).expr
+    assert sympy.simplify(below / expected).is_number
