@@ -39,6 +39,7 @@ from grader.answers.equivalence import (
     as_float,
 )
 from grader.answers.sampling import Sampler
+from grader.mechanics import budget
 
 __all__ = ["compare_equations", "state_dependent_mixing", "state_symbols", "unknown_symbols"]
 
@@ -1148,6 +1149,7 @@ def _same_power(left: sympy.Expr, right: sympy.Expr) -> sympy.Expr | None:
 GROEBNER_MAX_UNKNOWNS = 4
 GROEBNER_MAX_DEGREE = 4
 GROEBNER_MAX_PARAMETERS = 3
+GROEBNER_BUDGET_S = 0.25
 
 
 def _same_polynomial_ideal(reference: list[sympy.Expr], answer: list[sympy.Expr], state: set,
@@ -1187,11 +1189,15 @@ def _same_polynomial_ideal(reference: list[sympy.Expr], answer: list[sympy.Expr]
             return False
         if any(not p.get_domain().is_Exact for system in polys for p in system):
             return False  # a float coefficient: no exact basis
-        bases = [sympy.groebner([p.as_expr() for p in system], *gens, order="grevlex") for system in polys]
+        # A basis can take seconds even at these sizes (degree 3 with one parameter: 13 s), and a
+        # wrong system comes here too: the work is cut off in CPU time, the verdict then stays.
+        bases = budget.attempt(
+            lambda: [sympy.groebner([p.as_expr() for p in system], *gens, order="grevlex") for system in polys],
+            GROEBNER_BUDGET_S, fallback=lambda: None)
     except (sympy.PolynomialError, sympy.polys.polyerrors.CoercionFailed, NotImplementedError, ValueError,
             TypeError):
         return False
-    return list(bases[0].exprs) == list(bases[1].exprs) and not bases[0].exprs == [1]
+    return bases is not None and list(bases[0].exprs) == list(bases[1].exprs) and not bases[0].exprs == [1]
 
 
 def _positive_quadratic(expr: sympy.Expr) -> bool:

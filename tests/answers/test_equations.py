@@ -659,3 +659,31 @@ def test_equations_of_motion_with_parameters_are_not_compared_by_their_ideal():
     same = ([x*y - a, x + y - 3], [x**2 - 3*x + a, y - 3 + x])
     assert _same_polynomial_ideal(*same, {x, y}) is True
     assert _same_polynomial_ideal(*same, {x, y}, with_parameters=False) is False
+
+
+def test_a_groebner_basis_that_runs_long_is_given_up_and_the_verdict_stands(monkeypatch):
+    """A basis of four cubics in four unknowns with a parameter takes seconds (13 s on the 2-core
+    machine); a wrong system reaches that comparison too, so it is cut off in CPU time and the
+    combination verdict stands (no equivalence claimed)."""
+    import random
+
+    import sympy
+
+    from grader.answers import equations
+
+    x, y, z, w, a = sympy.symbols("x y z w a", real=True)
+    rng = random.Random(2)
+
+    def cubic():
+        total = 0
+        for _ in range(6):
+            term = 1
+            for _ in range(rng.randint(1, 3)):
+                term *= rng.choice([x, y, z, w])
+            total += rng.choice([a, 1, 2, 3, -1]) * term
+        return total + rng.choice([a, 1])
+
+    reference = [cubic() for _ in range(4)]
+    answer = [reference[0] + reference[1], reference[1], reference[2] + 2 * reference[3], reference[3]]
+    monkeypatch.setattr(equations, "GROEBNER_BUDGET_S", 0.05)
+    assert equations._same_polynomial_ideal(reference, answer, {x, y, z, w}) is False
