@@ -198,9 +198,11 @@ def compare_equations(
             if factor is not None:
                 return factor
         if k > 1 and options.factors and outcome[1].startswith(_NOT_A_COMBINATION) and not answer_conditions \
-                and _same_polynomial_ideal(reference, answer, set(states.domains), with_parameters=not unknowns):
-            return Comparison(True, "proved", "the same solutions as the reference: your equations and the "
-                              "reference's generate the same polynomial equations (equal reduced Gröbner bases)",
+                and _same_polynomial_ideal(reference, answer, set(states.domains), with_parameters=not unknowns,
+                                           domains={**parameters.domains, **states.domains}):
+            return Comparison(True, "proved", "the same solutions as the reference: with repeated factors and "
+                              "factors that cannot vanish set aside, your equations and the reference's generate "
+                              "the same polynomial equations (equal reduced Gröbner bases)",
                               evidence={"method": "Gröbner basis"})
         if k > 1 and options.factors and unknowns and outcome[1].startswith(_NOT_A_COMBINATION) \
                 and not answer_conditions:
@@ -1153,11 +1155,13 @@ GROEBNER_BUDGET_S = 0.25
 
 
 def _same_polynomial_ideal(reference: list[sympy.Expr], answer: list[sympy.Expr], state: set,
-                           with_parameters: bool = True) -> bool:
+                           with_parameters: bool = True, domains: dict | None = None) -> bool:
     """Whether two systems of polynomial equations in the state generate the same ideal (equal reduced
     Gröbner bases), after each equation ``f(A) = f(B)`` is read as ``A = B`` (`_injective_sides`): then
     they have the same solutions. ``x y = 2, x + y = 3`` and ``x^2 - 3x + 2 = 0, y = 3 - x`` are no
-    combination of each other with constant coefficients, but one ideal. Coefficients may hold
+    combination of each other with constant coefficients, but one ideal. Each equation keeps only what
+    decides its real zeros (`_real_zeros_only`: (x - y)**2 is x - y, (x**2 + 1)(x - y) is x - y).
+    Coefficients may hold
     parameters (``with_parameters``: a basis over their rational functions: the same ideal for all but special values);
     equations of motion, which must hold for every parameter value, are compared with numbers only.
 
@@ -1174,7 +1178,7 @@ def _same_polynomial_ideal(reference: list[sympy.Expr], answer: list[sympy.Expr]
             inner = _injective_sides(residual)
             while inner is not None and not inner.has(sympy.Abs):
                 residual, inner = inner, _injective_sides(inner)
-            peeled.append(residual)
+            peeled.append(_real_zeros_only(residual, domains or {}))
         systems.append(peeled)
     everything = [r for system in systems for r in system]
     gens = sorted(set().union(*(r.free_symbols for r in everything)) & state, key=lambda s: s.name)
@@ -1198,6 +1202,26 @@ def _same_polynomial_ideal(reference: list[sympy.Expr], answer: list[sympy.Expr]
             TypeError):
         return False
     return bases is not None and list(bases[0].exprs) == list(bases[1].exprs) and not bases[0].exprs == [1]
+
+
+def _real_zeros_only(residual: sympy.Expr, domains: dict) -> sympy.Expr:
+    """``residual`` with the same real zeros on the declared domain, without repeated factors and
+    without factors that are nonzero there (`_nonzero_on`), when it is a polynomial that factors; else
+    ``residual`` itself.
+
+    >>> x, y = sympy.symbols("x y", real=True)
+    >>> _real_zeros_only(x**2 + y**2 - 2*x*y, {})
+    x - y
+    """
+    if _nodes(residual) > FACTOR_MAX_NODES:
+        return residual
+    try:
+        _, factors = sympy.factor_list(residual)
+    except (sympy.PolynomialError, NotImplementedError, ValueError, TypeError):
+        return residual
+    kept = [f for f, _ in factors if not (f.free_symbols and _nonzero_on(f, domains) is True)]
+    kept = [f for f in kept if f.free_symbols]
+    return sympy.Mul(*kept) if kept else residual
 
 
 def _positive_quadratic(expr: sympy.Expr) -> bool:

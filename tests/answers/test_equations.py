@@ -639,6 +639,12 @@ def test_equations_with_the_same_solutions_through_a_one_to_one_function_are_rig
     ("x^2 + y^2 = 1; x = y", "x = y; x^2 = 1", "not_equivalent"),
     ("x y = 2; x + y = 3", "x^2 - 3x + 2 = 0; y = x", "not_equivalent"),
     ("x = y; y = 1", "x^2 = 1; y = 1", "not_equivalent"),                 # x = -1 too
+    # the same real zeros: a factor without one, and a repeated factor, are set aside
+    ("x = y; y = 1", "(x^2 + 1)(x - y) = 0; y = 1", "equivalent"),
+    ("x = y; y = 1", "x^2 + y^2 = 2 x y; y = 1", "equivalent"),          # (x - y)^2 = 0
+    ("x = y; y = 2", "(x^2 + 1)(x - y)^3 = 0; y^3 = 8", "equivalent"),
+    ("x = y; y = 1", "(x^2 - 1)(x - y) = 0; y = 1", "not_equivalent"),   # x^2 - 1 has real zeros
+    ("x = y; y = 1", "x (x - y) = 0; y = 1", "not_equivalent"),
 ])
 def test_polynomial_systems_with_the_same_solutions_are_right(reference, answer, expected):
     variables = {"x": {"domain": "real", "kind": "coordinate"}, "y": {"domain": "real", "kind": "coordinate"},
