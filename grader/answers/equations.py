@@ -1112,9 +1112,7 @@ def _injective_sides(residual: sympy.Expr) -> sympy.Expr | None:
         value = number / c
         if isinstance(a, sympy.exp) and value.is_positive:
             return a.args[0] - sympy.log(value)
-        if isinstance(a, _INJECTIVE):
-            return None  # tanh, atan: a number outside their range, or a preimage we do not print
-        return None
+        return None  # tanh, atan: a number outside their range, or a preimage we do not print
     if c1 == c2 and type(a) is type(b) and isinstance(a, _INJECTIVE):
         return a.args[0] - b.args[0]
     return None
@@ -1161,9 +1159,9 @@ def _same_polynomial_ideal(reference: list[sympy.Expr], answer: list[sympy.Expr]
     they have the same solutions. ``x y = 2, x + y = 3`` and ``x^2 - 3x + 2 = 0, y = 3 - x`` are no
     combination of each other with constant coefficients, but one ideal. Each equation keeps only what
     decides its real zeros (`_real_zeros_only`: (x - y)**2 is x - y, (x**2 + 1)(x - y) is x - y).
-    Coefficients may hold
-    parameters (``with_parameters``: a basis over their rational functions: the same ideal for all but special values);
-    equations of motion, which must hold for every parameter value, are compared with numbers only.
+    Coefficients may hold parameters (``with_parameters``: a basis over their rational functions, the
+    same ideal for all but special values); equations of motion, which must hold for every parameter
+    value, are compared with numbers only.
 
     >>> x, y = sympy.symbols("x y", real=True)
     >>> _same_polynomial_ideal([x*y - 2, x + y - 3], [x**2 - 3*x + 2, y - 3 + x], {x, y})
@@ -1245,7 +1243,7 @@ def _positive_quadratic(expr: sympy.Expr) -> bool:
         gradient = sympy.Matrix([sympy.diff(f, s) for s in symbols])
         at_zero = dict(zip(symbols, [0] * len(symbols)))
         lowest = -hessian.LUsolve(gradient.subs(at_zero))
-        return f.subs(dict(zip(symbols, lowest))) > 0
+        return bool(f.subs(dict(zip(symbols, lowest))) > 0)
     return False
 
 

@@ -21,6 +21,8 @@ g*m*(3*cos(theta) - 2)
 
 from __future__ import annotations
 
+import cmath
+
 import sympy
 
 from grader.mechanics import budget
@@ -410,9 +412,13 @@ def _one_value(candidates: list[sympy.Expr]) -> bool:
     symbols = sorted(set().union(*(c.free_symbols for c in candidates)), key=str)
     for shift in (0.0, 0.23):
         point = {s: sympy.Float(0.31 + 0.17 * i + shift, 30) for i, s in enumerate(symbols)}
-        values = [complex(c.evalf(30, subs=point)) for c in candidates]
-        if any(abs(v - values[0]) > 1e-20 * max(1.0, abs(values[0])) for v in values):
+        try:
+            values = [complex(c.evalf(30, subs=point)) for c in candidates]
+        except (TypeError, ValueError):  # zoo, or a value evalf leaves symbolic: not shown to agree
             return False
+        if not all(cmath.isfinite(v) for v in values) \
+                or any(abs(v - values[0]) > 1e-20 * max(1.0, abs(values[0])) for v in values):
+            return False  # a nan compares as agreeing with everything: it shows nothing
     return True
 
 

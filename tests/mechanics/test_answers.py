@@ -67,3 +67,18 @@ def test_an_answer_in_a_dependent_coordinate_with_branches_of_different_value_is
     scene = parse_scene(_with_answer_in(path, "horizontal_acceleration", '["g", "R", "y"]'), source=path.name)
     with pytest.raises(SceneError, match="expressed in x"):
         derive(scene)
+
+
+_X = sympy.Symbol("x", real=True)
+
+
+@pytest.mark.parametrize("candidates, expected", [
+    ([_X**2, (-_X)**2], True),                   # the two branches x = ±√(…) of an even answer
+    ([_X, -_X], False),                          # an odd one: refused
+    ([_X, sympy.nan], False),                    # a nan compares as agreeing with everything
+    ([sympy.zoo * _X, sympy.zoo * _X], False),   # zoo: nothing is shown
+])
+def test_branches_of_a_dependent_coordinate_agree_only_on_finite_values(candidates, expected):
+    from grader.mechanics.answers import _one_value
+
+    assert _one_value(candidates) is expected
