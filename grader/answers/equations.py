@@ -1176,8 +1176,16 @@ def _same_polynomial_ideal(reference: list[sympy.Expr], answer: list[sympy.Expr]
             inner = _injective_sides(residual)
             while inner is not None and not inner.has(sympy.Abs):
                 residual, inner = inner, _injective_sides(inner)
-            peeled.append(_real_zeros_only(residual, domains or {}))
+            peeled.append(residual)
         systems.append(peeled)
+    # Cheap refusals first: factoring a page of trigonometric equations of motion only to find that
+    # they are no polynomials took a tenth of a second per check.
+    unknowns_here = set().union(*(r.free_symbols for system in systems for r in system)) & state
+    if not unknowns_here or len(unknowns_here) > GROEBNER_MAX_UNKNOWNS \
+            or any(_nodes(r) > FACTOR_MAX_NODES or not r.is_polynomial(*unknowns_here)
+                   for system in systems for r in system):
+        return False
+    systems = [[_real_zeros_only(r, domains or {}) for r in system] for system in systems]
     everything = [r for system in systems for r in system]
     gens = sorted(set().union(*(r.free_symbols for r in everything)) & state, key=lambda s: s.name)
     parameters = set().union(*(r.free_symbols for r in everything)) - set(gens)

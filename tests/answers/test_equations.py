@@ -693,3 +693,32 @@ def test_a_groebner_basis_that_runs_long_is_given_up_and_the_verdict_stands(monk
     answer = [reference[0] + reference[1], reference[1], reference[2] + 2 * reference[3], reference[3]]
     monkeypatch.setattr(equations, "GROEBNER_BUDGET_S", 0.05)
     assert equations._same_polynomial_ideal(reference, answer, {x, y, z, w}) is False
+
+
+@pytest.mark.parametrize("system", [
+    "trigonometric",   # the double pendulum's rows: sin and cos of the state
+    "five_unknowns",   # the central-force system: more unknowns than a basis is taken for
+])
+def test_systems_no_basis_is_taken_for_are_refused_before_any_factoring(monkeypatch, system):
+    """Factoring is the costly step (a tenth of a second on the double pendulum's rows), so what
+    rules a system out of the Gröbner comparison (not polynomial in its unknowns, too many unknowns)
+    is decided first."""
+    import sympy
+
+    from grader.answers import equations
+
+    def no_factoring(*args, **kwargs):
+        raise AssertionError("factored a system that cannot be compared by its ideal")
+
+    monkeypatch.setattr(equations, "_real_zeros_only", no_factoring)
+    if system == "trigonometric":
+        a, b, a2, b2 = sympy.symbols("a b a2 b2", real=True)
+        state = {a, b, a2, b2}
+        reference = [a2 + sympy.sin(a - b) * b2, b2 - sympy.cos(a - b) * a2 + sympy.sin(b)]
+        answer = [2 * reference[0], reference[0] + reference[1]]
+    else:
+        r, rd, pd, rdd, pdd = sympy.symbols("r rd pd rdd pdd", real=True)
+        state = {r, rd, pd, rdd, pdd}
+        reference = [rdd - r * pd**2 + 1, r * pdd + 2 * rd * pd]
+        answer = [reference[0] * 3, reference[1] * r]
+    assert equations._same_polynomial_ideal(reference, answer, state) is False
