@@ -202,7 +202,8 @@ def _op(name):
 
 _HALF_PI = "an odd multiple of pi/2"
 _TABLE = [
-    Function("sin", sympy.sin, sympy_func=sympy.sin, latex=r"\sin", commands=("sin",),
+    # sen: sine in Spanish and Portuguese (Mathpix writes \operatorname{sen}, babel-spanish has \sen)
+    Function("sin", sympy.sin, aliases=("sen",), sympy_func=sympy.sin, latex=r"\sin", commands=("sin", "sen"),
              arb=lambda x: x.sin(), real=lambda lib, x: lib.sin(x)),
     Function("cos", sympy.cos, sympy_func=sympy.cos, latex=r"\cos", commands=("cos",),
              arb=lambda x: x.cos(), real=lambda lib, x: lib.cos(x)),
@@ -219,7 +220,7 @@ _TABLE = [
     Function("csc", sympy.csc, aliases=("cosec",), sympy_func=sympy.csc, latex=r"\csc", commands=("csc",),
              arb=lambda x: _inverse(x.sin(), "csc at a multiple of pi"),
              real=lambda lib, x: _real_inverse(lib.sin(x), "csc at a multiple of pi")),
-    Function("asin", sympy.asin, aliases=("arcsin",), sympy_func=sympy.asin, latex=_op("asin"),
+    Function("asin", sympy.asin, aliases=("arcsin", "arcsen"), sympy_func=sympy.asin, latex=_op("asin"),
              commands=("arcsin",), arb=lambda x: _arb_unit(x, "asin").asin(),
              real=lambda lib, x: lib.asin(_real_unit(x, "asin"))),
     Function("acos", sympy.acos, aliases=("arccos",), sympy_func=sympy.acos, latex=_op("acos"),
@@ -229,7 +230,7 @@ _TABLE = [
              commands=("arctan", "arctg"), arb=lambda x: x.atan(), real=lambda lib, x: lib.atan(x)),
     Function("atan2", sympy.atan2, 2, 2, aliases=("arctan2",), sympy_func=sympy.atan2,
              latex=r"\operatorname{atan_{2}}", dimension="same_args", arb=_arb_atan2, real=_real_atan2),
-    Function("sinh", sympy.sinh, sympy_func=sympy.sinh, latex=r"\sinh", commands=("sinh",),
+    Function("sinh", sympy.sinh, aliases=("senh",), sympy_func=sympy.sinh, latex=r"\sinh", commands=("sinh",),
              arb=lambda x: x.sinh(), real=lambda lib, x: lib.sinh(x)),
     Function("cosh", sympy.cosh, sympy_func=sympy.cosh, latex=r"\cosh", commands=("cosh",),
              arb=lambda x: x.cosh(), real=lambda lib, x: lib.cosh(x)),

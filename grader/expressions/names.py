@@ -431,9 +431,13 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
         raise ExpressionError(f"'{typed}' is not a function you can use here", position,
                               "unsupported_function",
                               suggestion or "allowed functions: " + ", ".join(function_names()))
-    if raw in _UNIT_WORDS:
+    if raw in _UNIT_WORDS or (raw in _UPRIGHT_UNITS and typed.startswith("\\")):  # \mathrm{s}: upright, as units are
         raise ExpressionError(f"unknown name '{typed}': units are not part of the answer", position, "unknown_name",
                               f"write the answer in the problem's symbols and delete '{typed}'")
+    if raw in ("dot", "ddot"):  # Typst's "theta dot", or "dot theta" without brackets: which name is dotted?
+        marked = "θ̇, thetadot" if raw == "dot" else "θ̈, thetaddot"
+        raise ExpressionError(f"'{typed}' alone is not a variable", position, "unknown_name",
+                              f"write the time derivative as {marked} or {raw}(theta)")
     euler = _before_euler(raw, ns, typed, position)
     if euler is not None:  # ye alone (no ^ after it): y·e, or a misspelt name? Say both.
         product = "*".join(euler)
@@ -454,6 +458,14 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
 # A LaTeX command with digits typed after it (\pi2): the name the tokenizer made of both.
 _LATEX_DIGITS = re.compile(r"^(\\[A-Za-z]+)(\d+)$")
 
+
+#: Unit symbols and words: a wrapper holding only these (\mathrm{~m}, \text{ m/s^2}) is a unit.
+UNIT_SYMBOLS = frozenset("N kN mN m cm mm km s ms kg g J kJ W kW Pa kPa Hz rad deg K mol A V min h "
+                         "newton newtons meter meters metre metres second seconds sec joule joules watt watts "
+                         "radian radians".split())
+
+# Unit symbols that are seldom a variable's name: an unknown upright \mathrm{s} is named as a unit.
+_UPRIGHT_UNITS = frozenset("s m N kg J W Pa Hz rad ms cm mm km kN".split())
 
 # Units students append to an answer (m g N, 2.5 newtons): undeclared, they are named as units.
 _UNIT_WORDS = frozenset("N newton newtons kg J joule joules W watt watts Pa Nm rad radians sec seconds meters "
