@@ -242,10 +242,11 @@ class _Parser:
             return ExpressionError("a comma can only separate function arguments, as in atan2(y, x)",
                                    token.pos, "syntax")
         if token.kind == "op" and token.value == ";":
+            typed = token.text.strip()  # ';', or the \text{ and } that joins two equations as ';' does
             if not self.text[token.end:].strip():  # m*g/3; as MATLAB's statements end
-                return ExpressionError("a ';' at the end is not part of a formula", token.pos, "syntax",
-                                       "delete the ';'")
-            return ExpressionError("';' cannot be used in a single expression", token.pos,
+                return ExpressionError(f"a '{typed}' at the end is not part of a formula", token.pos, "syntax",
+                                       f"delete the '{typed}'")
+            return ExpressionError(f"'{typed}' cannot be used in a single expression", token.pos,
                                    "unsupported_function", "write one expression")
         if token.kind == "prime":
             return ExpressionError("a prime (') can only follow a variable name, as in theta'",
@@ -964,12 +965,16 @@ def _answer_only(tokens: list[Token], text: str) -> tuple[list[Token], list[str]
 
     ``T = m g (3 cos θ - 2)`` and ``N(θ) = …`` name what the answer is, as on paper: the label is a
     single name (with, at most, its arguments in brackets) that the right side does not use, so
-    ``x = 2x - 1``, an equation, is still refused. A full stop at the very end ends a sentence.
+    ``x = 2x - 1``, an equation, is still refused. A full stop (or a comma) at the very end ends a sentence.
     """
     notes = []
     if len(tokens) > 2 and tokens[-2].kind == "bad" and tokens[-2].text == ".":
         tokens = tokens[:-2] + tokens[-1:]
         notes.append("ignored the full stop at the end")
+    elif len(tokens) > 2 and tokens[-2].kind == "op" and tokens[-2].value == ",":
+        # a formula set inside a sentence ends with its comma (Mathpix: "… \text {, }"), as with a full stop
+        tokens = tokens[:-2] + tokens[-1:]
+        notes.append("ignored the comma at the end")
     equals = [n for n, t in enumerate(tokens) if t.kind == "op" and t.value == "="]
     if len(equals) != 1 or tokens[0].kind != "name" or tokens[equals[0] + 1].kind == "end":
         return tokens, notes

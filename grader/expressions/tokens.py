@@ -33,7 +33,7 @@ import sympy
 
 from .errors import ExpressionError
 from .functions import FUNCTIONS
-from .latex_input import classify_command, subscript_text
+from .latex_input import classify_command, subscript_text, wrapped_text
 from .magnitudes import MAX_DIGITS
 from .names import WRITE_INSTEAD
 from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, FULLWIDTH_SYMBOLS, GREEK_CHARS, MATH_LETTERS,
@@ -95,6 +95,10 @@ _PUNCTUATION = {
     "<": ("inequalities are not supported", "syntax", "give an expression, or an equation with ="),
     ">": ("inequalities are not supported", "syntax", "give an expression, or an equation with ="),
     '"': ("quotes are not part of a formula", "syntax", "delete the quotes"),
+    "&": ("'&' (a LaTeX alignment mark) is not part of a formula", "syntax",
+          "delete it, and give the equations one per line or separated by ';'"),
+    "~": ("'~' reads as 'approximately' or as a LaTeX space", "syntax",
+          "write = for an equation, or delete it"),
     "`": ("backquotes are not part of a formula", "syntax", "delete the backquotes"),
 }
 
@@ -104,10 +108,13 @@ _LABEL_AFTER_SPACE = re.compile(r"\s*\(\s*\d+[a-z]?\s*\)(?=\s*(?:$|\\\\|;|,|\n|\
 _TAG = re.compile(r"\*?\s*\{[^{}]*\}")
 
 
-# LaTeX environments that only lay equations out (\begin{aligned} ... \end{aligned}).
-# (Not alignat, whose column count {2} would read as a factor.)
+# LaTeX environments that only lay equations out (\begin{aligned} ... \end{aligned}), where any '&' aligns.
 _LAYOUT_ENVIRONMENTS = {"aligned", "align", "gather", "gathered", "split", "equation", "eqnarray", "multline",
-                        "flalign"}
+                        "flalign", "alignat", "alignedat"}
+# The argument after \begin{alignat} (its column count, {2}): layout, not a factor.
+_ENVIRONMENT_ARGUMENT = {"alignat", "alignedat"}
+_BEGIN = re.compile(r"\s*\\begin\s*\{")
+_LETTERS = re.compile("[A-Za-z]+")
 
 
 # x -> 2 (Mathematica's rule, as Solve prints it) and x → 2: an arrow where an equation's = belongs.
@@ -118,7 +125,9 @@ def _arrow_error(position: int, arrow: str) -> ExpressionError:
 
 # Primes as LaTeX writes them: ^\prime, ^{\prime}, ^{\prime\prime}
 # (and ^′, as Wolfram|Alpha prints θ′ in a superscript)
-_LATEX_PRIMES = re.compile(r"\^\s*(?:\{\s*(?:\\prime\s*)+(?P<power>[0-9]{1,3})?\s*\}|\\prime(?![A-Za-z])|[′″]+)")
+# (MathLive writes two primes as ^{\doubleprime})
+_LATEX_PRIMES = re.compile(r"\^\s*(?:\{\s*(?:\\(?:prime|doubleprime|dprime)\s*)+(?P<power>[0-9]{1,3})?\s*\}"
+                           r"|\\(?:prime|doubleprime|dprime)(?![A-Za-z])|[′″]+)")
 
 # After a middle dot between digits: 1·10⁻³, 2·10^3 is a mantissa times a power of ten, not 1.10.
 _POWER_OF_TEN = re.compile(r"10(?:\^|[⁰¹²³⁴⁵⁶⁷⁸⁹⁻])")
@@ -148,7 +157,8 @@ class _Tokenizer:
         self.i = 0
         self.tokens: list[Token] = []
         self.space = False
-        self.aligned = 0  # depth of \begin{aligned} and the like, where '&' only aligns
+        self.environments: list[str] = []  # the \begin{…} environments open here, innermost last
+        self.system_braces = 0  # \left\{ before a \begin{aligned}, closed by \right.
 
     def emit(self, kind: str, value, start: int, end: int, **extra) -> Token:
         token = Token(kind, value, start, end, self.text[start:end], self.space, **extra)
@@ -204,7 +214,9 @@ class _Tokenizer:
             # \theta^{\prime 2}, θ' squared (the prime and the power share one superscript)
             marks = _LATEX_PRIMES.match(self.text, start)
             name = self.tokens[-1]
-            name.order += marks.group().count("\\prime") + marks.group().count("′") + 2 * marks.group().count("″")
+            typed = marks.group()
+            name.order += (typed.count("\\prime") + typed.count("′")
+                           + 2 * (typed.count("″") + typed.count("\\doubleprime") + typed.count("\\dprime")))
             name.end, self.i = marks.end(), marks.end()
             name.text = self.text[name.pos:name.end]
             if marks.group("power"):
@@ -274,7 +286,9 @@ class _Tokenizer:
                                             f"product {before}×{number}", start, "ambiguous",
                                             f"write {before}.{number} for the decimal, or {before}*{number} "
                                             "for the product"))
-        elif ch in "→⇒⟶↦":
+        elif ch in "⇒⟹∴⇔⟺":
+            self.implication(start, start + 1, ch)
+        elif ch in "→⟶↦":
             self.emit("bad", ch, start, start + 1, error=_arrow_error(start, ch))
         elif ch in OPERATOR_CHARS:
             self.emit("op", OPERATOR_CHARS[ch], start, start + 1)
@@ -317,7 +331,11 @@ class _Tokenizer:
             self.emit("bad", ch, start, start + 2,
                       error=ExpressionError("':=' (a definition) is not part of a formula", start, "syntax",
                                             "write an equation with ="))
-        elif ch == "&" and self.aligned:  # an alignment point of \begin{aligned}: nothing to a grader
+        elif ch == "&" and (self.environments or self.beside_equals(start)):
+            # an alignment point (of \begin{aligned}, or '&=' of a line copied out of one): nothing to a grader
+            self.space = True
+            self.i += 1
+        elif ch == "~" and "\\" in self.text:  # LaTeX's non-breaking space (Mathpix: g~\sin\theta, \mathrm{~N})
             self.space = True
             self.i += 1
         elif ch in _PUNCTUATION:
@@ -515,12 +533,15 @@ class _Tokenizer:
             self.environment(start, j, text[start + 1:j])
             return
         label = _LABEL_AFTER_SPACE.match(text, j) if text[start + 1:j] in ("quad", "qquad") else None
-        if text[start + 1:j] == "tag":
+        if text[start + 1:j] in ("tag", "label"):  # \label{eq:1} names the equation, as \tag{1} numbers it
             label = _TAG.match(text, j)
         if label is not None:
             # \quad (2), \tag{2}: an equation's number, never a factor 2 of it
             self.space = True
             self.i = label.end()
+            return
+        if text[start + 1:j] in ("overset", "stackrel"):
+            self.overset(start, j)
             return
         kind, value = classify_command(text[start + 1:j], start)
         if kind == "function" and value == "log" and j < self.n and text[j] == "_":
@@ -535,13 +556,14 @@ class _Tokenizer:
             self.space = True
             self.i = j
         elif kind == "wrapper":
-            k = j
-            while k < self.n and is_space(text[k]):
-                k += 1
-            if k >= self.n or text[k] != "{":
-                raise ExpressionError(f"\\{value} needs braces, as in \\{value}{{x}}", start, "syntax")
-            close = self.matching_brace(k)
-            self.identifier(start, subscript_text(text[k + 1:close], k + 1), close + 1)
+            self.wrapper(start, j, value)
+        elif kind == "letter":  # \exponentialE, \differentialD: e and d, as typed
+            self.identifier(start, value, j)
+        elif kind == "implication":
+            self.implication(start, j, text[start:j])
+        elif value in ("lbrace", "lbrack", "rbrace", "rbrack"):
+            bracket = {"lbrace": "{", "lbrack": "[", "rbrace": "}", "rbrack": "]"}[value]
+            self.emit("open" if value[0] == "l" else "close", bracket, start, j)
         elif value in ("left", "right"):
             self.delimiter(start, j, value)
         elif value in ("bigl", "bigr"):  # \bigl( \Bigr]: a sized bracket, which side as \left \right say
@@ -550,6 +572,80 @@ class _Tokenizer:
             self.emit("bar", {"lvert": "open", "rvert": "close"}.get(value), start, j)
         else:
             self.emit("command", value, start, j)
+
+    def wrapper(self, start: int, j: int, command: str) -> None:
+        r"""``\mathrm{m}``, ``\text{cos}``, ``\boldsymbol{\theta}``: a name in another font. What else a
+        student's editor puts in one is read by `wrapped_text`: spacing (``\text{ }``), a full stop or
+        comma, ``\text{and}`` between two equations; a unit or words are refused by name."""
+        text, k = self.text, j
+        while k < self.n and is_space(text[k]):
+            k += 1
+        if k >= self.n or text[k] != "{":
+            raise ExpressionError(f"\\{command} needs braces, as in \\{command}{{x}}", start, "syntax")
+        close = self.matching_brace(k)
+        kind, value = wrapped_text(text[start:close + 1], text[k + 1:close], k + 1)
+        if kind == "space":
+            self.space = True
+            self.i = close + 1
+        elif kind == "number":  # \mathrm{2}: the number
+            self.i = k + 1 + text[k + 1:close].index(value)
+            self.number()
+            self.i = close + 1
+        elif kind == "punctuation":  # \text{.}, \text{,}: read as the mark itself
+            self.i = k + 1 + text[k + 1:close].index(value)
+            self.step()
+            self.i = close + 1
+        elif kind == "and":  # eq1 \text{ and } eq2: two equations, as with ';'
+            self.emit("op", ";", start, close + 1)
+        else:
+            self.identifier(start, value, close + 1)
+
+    def overset(self, start: int, j: int) -> None:
+        r"""``\overset{\cdot}{\theta}``, ``\overset{..}{x}``, ``\stackrel{.}{x}``: the dots Word's and some
+        OCR's LaTeX put over a letter, read as ``\dot`` and ``\ddot``; anything else over a letter is refused."""
+        text, k = self.text, j
+        while k < self.n and is_space(text[k]):
+            k += 1
+        if k >= self.n or text[k] != "{":
+            raise ExpressionError(f"{text[start:j]} needs braces, as in \\overset{{\\cdot}}{{x}}", start, "syntax")
+        close = self.matching_brace(k)
+        mark = _DOT_MARKS.sub(".", text[k + 1:close]).replace("¨", "..")
+        mark = "".join(c for c in mark if not is_space(c))
+        if mark not in (".", ".."):
+            raise ExpressionError(f"{text[start:close + 1]}{{…}} (a mark over a letter) is not supported", start,
+                                  "unsupported_function", "write \\dot{x} or \\ddot{x} for a time derivative")
+        self.emit("command", "dot" if mark == "." else "ddot", start, close + 1)
+
+    def implication(self, start: int, end: int, shown: str) -> None:
+        r"""``⇒``, ``\Rightarrow``, ``\implies``, ``∴``: at the very start of the answer (the last line of a
+        derivation, copied) it only says "so"; after anything else the answer is a derivation, whose
+        steps are not graded (is the line before it part of the answer?), and it is refused, naming the
+        arrow. Where no '=' comes before it on its line, it stands for the '=' (a solver's rule)."""
+        if all(token.kind == "newline" for token in self.tokens):
+            self.space = True
+            self.i = end
+            return
+        line = []  # the tokens of this line so far
+        for token in reversed(self.tokens):
+            if token.kind == "newline" or (token.kind == "op" and token.value in ",;"):
+                break
+            line.append(token)
+        if line and not any(token.kind == "op" and token.value == "=" for token in line):
+            # θ̈ ⇒ −(g/l) sin θ: the arrow stands where the equation's = belongs (a solver's rule)
+            self.emit("bad", shown, start, end, error=_arrow_error(start, shown))
+            return
+        self.emit("bad", shown, start, end,
+                  error=ExpressionError(f"'{shown}' joins two steps of a derivation", start, "syntax",
+                                        f"give only the final result: delete '{shown}' and what comes before it"))
+
+    def beside_equals(self, at: int) -> bool:
+        """Whether the character at ``at`` (an '&') has '=' just before or after it, spaces apart."""
+        before, after = at - 1, at + 1
+        while before >= 0 and is_space(self.text[before]):
+            before -= 1
+        while after < self.n and is_space(self.text[after]):
+            after += 1
+        return (before >= 0 and self.text[before] == "=") or (after < self.n and self.text[after] == "=")
 
     def environment(self, start: int, j: int, which: str) -> None:
         r"""``\begin{aligned}`` … ``\end{aligned}`` (and align, gather, split, equation, eqnarray) around
@@ -561,13 +657,23 @@ class _Tokenizer:
         close = self.matching_brace(k) if k < self.n and self.text[k] == "{" else -1
         name = self.text[k + 1:close].strip() if close > k else ""
         shown = self.text[start:close + 1] if close > k else self.text[start:j]
-        if name.rstrip("*") not in _LAYOUT_ENVIRONMENTS:
+        name = name.rstrip("*")
+        if name not in _LAYOUT_ENVIRONMENTS:
             raise ExpressionError(f"the LaTeX environment {shown} is not supported", start, "unsupported_function",
                                   "type the equations one per line, or separated by ';', without \\begin and "
                                   "\\end (\\begin{aligned} … \\end{aligned} is read)")
-        self.aligned = max(0, self.aligned + (1 if which == "begin" else -1))
+        end = close + 1
+        if which == "begin":
+            self.environments.append(name)
+            k = end
+            while k < self.n and is_space(self.text[k]):
+                k += 1
+            if name in _ENVIRONMENT_ARGUMENT and k < self.n and self.text[k] == "{":
+                end = self.matching_brace(k) + 1  # alignat's {2}: the layout, not a factor
+        elif self.environments:
+            self.environments.pop()
         self.space = True
-        self.i = close + 1
+        self.i = end
 
     def logarithm_base(self, start: int, j: int) -> None:
         r"""``\log_{10}``, ``\log_2``: a name ``log_10`` that `resolve_name` reads as a logarithm to a base."""
@@ -591,6 +697,9 @@ class _Tokenizer:
             self.emit("open" if ch == "{" else "close", ch, start, start + 2)
         elif ch == "\\":
             self.emit("newline", "\n", start, start + 2)
+        elif ch == "|":  # \|x\|: a norm
+            raise ExpressionError("'‖…‖' (a norm) is not supported", start, "unsupported_function",
+                                  "write |x| for the absolute value of a number")
         else:
             raise ExpressionError("'\\' must start a LaTeX command such as \\frac", start, "syntax",
                                   "delete the backslash, or write a command such as \\frac{a}{b}")
@@ -601,6 +710,24 @@ class _Tokenizer:
         ch = self.text[j] if j < self.n else ""
         if ch == "\\" and j + 1 < self.n and self.text[j + 1] in "{}":
             ch, j = self.text[j + 1], j + 1
+        elif ch == "\\":  # \left\lvert, \right\rbrace: the bracket a command names
+            word = _LETTERS.match(self.text, j + 1)
+            if word is not None and word.group() in _BRACKET_COMMANDS:
+                ch, j = _BRACKET_COMMANDS[word.group()], word.end() - 1
+            elif self.text[j + 1:j + 2] == "|" or (word is not None and word.group() in ("Vert", "lVert", "rVert")):
+                raise ExpressionError("'‖…‖' (a norm) is not supported", start, "unsupported_function",
+                                      "write |x| for the absolute value of a number")
+        if which == "left" and ch == "{" and _BEGIN.match(self.text, j + 1):
+            # \left\{ \begin{aligned} … \end{aligned} \right.: the brace that groups a system, nothing to read
+            self.system_braces += 1
+            self.space = True
+            self.i = j + 1
+            return
+        if which == "right" and ch == "." and self.system_braces and not self.environments:
+            self.system_braces -= 1
+            self.space = True
+            self.i = j + 1
+            return
         if ch in "([{" and ch and which == "left":
             self.emit("open", ch, start, j + 1)
         elif ch in ")]}" and ch and which == "right":
@@ -669,6 +796,13 @@ class _Tokenizer:
         raise ExpressionError(f"cannot read the superscript '{run}': {names} {'are' if many else 'is'} not read "
                               "as a power", start, "bad_character",
                               f"write the power with ^ and ordinary letters, as in {base}^{power}")
+
+
+# \left\lvert x \right\rvert, \left\lbrace: the bracket character each command stands for.
+_BRACKET_COMMANDS = {"lvert": "|", "rvert": "|", "vert": "|", "lbrace": "{", "rbrace": "}", "lbrack": "[",
+                     "rbrack": "]"}
+# Dots set over a letter (\overset{\cdot}{x}): each is one dot.
+_DOT_MARKS = re.compile(r"\\(?:cdot|bullet|ldotp|centerdot)(?![A-Za-z])|[˙·•∙⋅]")
 
 
 # After these a bar opens an absolute value (an operand is expected); after anything else it closes one.

@@ -46,3 +46,104 @@ def test_subscripts_must_be_names(content):
 ])
 def test_bracket_sizes_and_bars(command, expected):
     assert classify_command(command, 0) == expected
+
+
+# -- answers from math input editors and OCR (MathQuill, MathLive, Mathpix, Word's LaTeX) ---------------
+
+from grader.expressions import parse_equation, parse_expression, parse_system  # noqa: E402
+
+
+@pytest.mark.parametrize("latex, plain", [
+    # MathLive's own spellings: \mleft( \mright), \exponentialE, \differentialD, ^{\doubleprime}
+    (r"m\cdot g\cdot\cos\mleft(\theta\mright)", "m g cos(theta)"),
+    (r"\exponentialE^{-\frac{t}{\sqrt{l/g}}}", "exp(-t sqrt(g/l))"),
+    (r"l\left(\frac{\differentialD\theta}{\differentialD t}\right)^{2}", "l thetadot^2"),
+    (r"\frac{\differentialD^{2}\theta}{\differentialD t^{2}}", "thetaddot"),
+    (r"\theta^{\doubleprime}", "thetaddot"), (r"\theta^\doubleprime", "thetaddot"),
+    # Mathpix's \cfrac; \bullet for a product; \lbrace \rbrace and \lbrack \rbrack as brackets
+    (r"\cfrac{g}{l}", "g/l"), (r"m \bullet g", "m g"),
+    (r"m\lbrace g+l \rbrace", "m (g + l)"), (r"m\lbrack g+l \rbrack", "m (g + l)"),
+    # a name in another font is the name: bold, sans-serif, upright Greek
+    (r"\boldsymbol{m}\,\boldsymbol{g}\cos\boldsymbol{\theta}", "m g cos(theta)"),
+    (r"\bm{m}\mathsf{g}\,\textit{l}\,\textbf{r}", "m g l r"), (r"\ddot{\boldsymbol{\theta}}", "thetaddot"),
+    (r"2\uppi\sqrt{\frac{l}{g}}", "2 pi sqrt(l/g)"), (r"\uptheta", "theta"),
+    # \left\lvert … \right\rvert is |…|
+    (r"\left\lvert x\right\rvert", "abs(x)"), (r"\left\vert x\right\vert", "abs(x)"),
+    # dots set over a letter, as Word's and some OCR's LaTeX write them
+    (r"\overset{\cdot}{\theta}", "thetadot"), (r"\overset{.}{\theta}", "thetadot"),
+    (r"\overset{\cdot\cdot}{\theta}", "thetaddot"), (r"\overset{..}{\theta}", "thetaddot"),
+    (r"\stackrel{.}{r}", "rdot"),
+    # LaTeX's ~ (a non-breaking space) and \mathrm{2} (digits set upright)
+    (r"m~g~\cos\theta", "m g cos(theta)"), (r"\mathrm{m}\mathrm{g}\left(3\mathrm{cos}\theta-\mathrm{2}\right)",
+                                            "m g (3 cos(theta) - 2)"),
+    # spacing alone in a wrapper, a full stop or a comma closing the sentence the formula was set in
+    (r"m g\text{ }l", "m g l"), (r"m g \text {. }", "m g"), (r"m g \text{,}", "m g"), ("m g,", "m g"),
+    # Spanish and Portuguese sine (Mathpix writes \operatorname{sen}; babel-spanish has \sen)
+    (r"\operatorname{sen}\theta", "sin(theta)"), (r"\mathrm{sen}\,\theta", "sin(theta)"), (r"\sen\theta", "sin(theta)"),
+    ("sen(theta)", "sin(theta)"), (r"\operatorname{senh}\theta", "sinh(theta)"),
+    # an implication before the only line: "so"
+    (r"\Rightarrow T = m g", "m g"), (r"\therefore T = m g", "m g"), ("∴ T = m g", "m g"), ("⇒ T = m g", "m g"),
+])
+def test_editor_and_ocr_latex_reads_as_the_plain_text(ns, latex, plain):
+    assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
+
+
+@pytest.mark.parametrize("latex, plain", [
+    (r"\implies \ddot{\theta}+\frac{g}{l}\sin\theta=0", "thetaddot + g/l sin(theta) = 0"),
+    (r"\Longrightarrow \ddot{\theta}=-\frac{g}{l}\sin\theta", "thetaddot = -g/l sin(theta)"),
+    (r"\ddot{\theta}&=-\frac{g}{l}\sin\theta", "thetaddot = -g/l sin(theta)"),   # a line copied out of align
+    (r"\ddot{\theta}=-\frac{g}{l}\sin\theta \label{eq:1}", "thetaddot = -g/l sin(theta)"),
+    (r"\ddot{\theta}=-\frac{g}{l}\sin\theta \nonumber", "thetaddot = -g/l sin(theta)"),
+])
+def test_editor_equations_read_as_the_plain_equation(ns, latex, plain):
+    got, expected = parse_equation(latex, ns), parse_equation(plain, ns)
+    assert (got.lhs, got.rhs) == (expected.lhs, expected.rhs)
+
+
+@pytest.mark.parametrize("latex", [
+    r"\left\{\begin{aligned} x &= l \\ y &= 2 l \end{aligned}\right.",
+    r"\begin{alignat}{2} x &= l \\ y &= 2 l \end{alignat}",
+    r"x = l \text{ and } y = 2 l", r"x = l \quad\text{and}\quad y = 2 l",
+])
+def test_a_system_in_a_brace_or_joined_by_and_is_its_equations(ns, latex):
+    assert [(eq.lhs, eq.rhs) for eq in parse_system(latex, ns)] == \
+        [(eq.lhs, eq.rhs) for eq in parse_system("x = l; y = 2 l", ns)]
+
+
+@pytest.mark.parametrize("latex, named", [
+    # MathLive's empty box, and an empty subscript box
+    (r"m g^{\placeholder{}}", r"empty box (\placeholder)"), (r"\frac{\placeholder{}}{l}", r"empty box (\placeholder)"),
+    (r"m_{\placeholder{}}", r"empty box (\placeholder)"), (r"\dot{\theta}_{}", "the subscript is empty"),
+    # units after the answer, as Mathpix and Word set them: named as units, never read as variables
+    (r"m g \mathrm{~N}", r"'\mathrm{~N}' reads as a unit"), (r"l \mathrm{~m}", r"'\mathrm{~m}' reads as a unit"),
+    (r"l\text{ m}", r"'\text{ m}' reads as a unit"), (r"g\;\mathrm{m/s^2}", r"'\mathrm{m/s^2}' reads as a unit"),
+    (r"g\,\frac{\mathrm{m}}{\mathrm{s}^2}", r"'\mathrm{s}': units are not part of the answer"),
+    (r"m g \text{ newtons}", "reads as a unit"),
+    # words; "and" joins two equations, not two expressions
+    (r"x \text{ and } l", r"'\text{ and }' cannot be used in a single expression"),
+    (r"m g\qquad\text{(tension)}", r"'\text{(tension)}' is text"), (r"\mathrm{m g \cos\theta}", "is text"),
+    # relations that are not an equation
+    (r"T \approx m g", r"'\approx' (approximately equal) is not an equation"),
+    (r"T \simeq m g", r"'\simeq'"), (r"T \equiv m g", r"'\equiv'"), (r"T \propto m", r"'\propto'"),
+    (r"T \neq m g", r"'\neq' (not equal)"), (r"T \leq m g", r"'\leq' is an inequality"),
+    (r"T \to m g", r"'\to' is an arrow"),
+    # a derivation: the steps before the arrow are not the answer
+    (r"x - l = 0 \Rightarrow x = l", r"'\Rightarrow' joins two steps of a derivation"),
+    ("x = l ⟹ x - l = 0", "'⟹' joins two steps of a derivation"),
+    (r"\theta = 0 \\ \Rightarrow T = m g", r"'\Rightarrow' joins two steps of a derivation"),
+    (r"x \Rightarrow l", r"'\Rightarrow' is an arrow"),   # where the '=' belongs
+    # norms, vectors, TeX's \over, complex numbers, a mark over a letter that is no dot
+    (r"\left\| x \right\|", "(a norm)"), (r"\|x\|", "(a norm)"), (r"\Vert x\Vert", "(a norm)"),
+    (r"\vec{T} = m g", "(a vector)"), (r"{m \over g}", r"'\over'"), (r"x \imaginaryI", "complex numbers"),
+    (r"\overset{\rightarrow}{x}", "(a mark over a letter)"),
+    # ~ in plain text: 'approximately', or a space?
+    ("x ~ l", "'~' reads as 'approximately' or as a LaTeX space"),
+    # & that is no alignment point
+    (r"\ddot{\theta}&-g", "'&' (a LaTeX alignment mark)"),
+    # Typst's and speech's "theta dot": which name is dotted?
+    ("l theta dot^2", "'dot' alone is not a variable"), ("l (dot theta)^2", "'dot' alone is not a variable"),
+])
+def test_editor_notation_that_cannot_be_read_is_refused_naming_it(ns, latex, named):
+    with pytest.raises(ExpressionError) as err:
+        parse_system(latex, ns) if "=" in latex or "\\\\" in latex else parse_expression(latex, ns)
+    assert named in str(err.value) and err.value.hint
