@@ -90,6 +90,8 @@ _REFUSED = {
        for name in ("to", "rightarrow", "longrightarrow", "mapsto", "longmapsto")},
     # MathLive's empty box, left where the student did not type the exponent, numerator, ...
     "placeholder": ("an empty box (\\placeholder) is left in the answer", "fill the box in, or delete it"),
+    **{name: (f"'\\{name}' (an ellipsis) is not part of a formula", "write the whole formula, without '…'")
+       for name in ("cdots", "ldots", "dots", "dotsb", "dotsm", "dotsc")},
     "over": ("'\\over' (TeX's fraction) is not supported", "write \\frac{a}{b}, or a/b"),
     "imaginaryI": ("complex numbers are not part of these answers", "write the answer with real quantities"),
     **{name: ("'‖…‖' (a norm) is not supported", "write |x| for the absolute value of a number")
@@ -199,7 +201,8 @@ def wrapped_text(shown: str, content: str, position: int) -> tuple[str, str]:
     if plain.lower() == "and":
         return "and", ""
     words = re.findall(r"[A-Za-z]+", _COMMAND.sub(" ", plain))
-    unit = bool(words) and all(word in UNIT_SYMBOLS for word in words) and not re.search(r"[^A-Za-z0-9/^{}\-.\s]", plain)
+    bare = plain.strip("()[] ")  # \text{ (N) }: a unit in brackets
+    unit = bool(words) and all(word in UNIT_SYMBOLS for word in words) and not re.search(r"[^A-Za-z0-9/^{}\-.\s]", bare)
     # \mathrm{~m}, \text{ kg}: the space a unit is set off with (Mathpix), so never the variable m
     spaced_unit = unit and spaced[:1].isspace()
     if (_SUBSCRIPT.match(plain) or plain.startswith("\\")) and not spaced_unit:

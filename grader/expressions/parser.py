@@ -728,13 +728,18 @@ class _Parser:
 
     def glued_factors(self, arg: sympy.Expr, start: int, name: str) -> sympy.Expr:
         """``arg`` times the factors typed glued to it: the rest of a split name (``ωt``), a name right
-        after a number (``2x``), or a name after the space that ends a LaTeX command (``\\omega t``,
-        which LaTeX reads as ωt). A function's argument without brackets, an exponential's exponent."""
+        after a number (``2x``; in LaTeX, where spaces mean nothing, also ``\\sin 2 \\theta``), or a name
+        after the space that ends a LaTeX command (``\\omega t``, which LaTeX reads as ωt). A function's
+        argument without brackets, an exponential's exponent."""
         glued = False  # glued by us (2 then x), not by a split name, which has its own note
+        latex_function = self.text[start:start + 1] == "\\"
         while True:
             following, last = self.peek(), self.tokens[self.i - 1]
             split_part = following.glued
-            typed_glued = last.kind == "number" and following.pos == last.end and not following.space_before
+            # LaTeX ignores spaces: \sin 2 \theta (as Mathpix writes every product) prints sin 2θ, as \sin 2\theta
+            typed_glued = last.kind == "number" and (
+                (following.pos == last.end and not following.space_before)
+                or ((latex_function or following.text[:1] == "\\") and not self.text[last.end:following.pos].strip()))
             latex_word = (last.kind == "name" and last.text[:1] == "\\" and last.text[-1:].isalpha()
                           and not self.text[last.end:following.pos].strip())
             if not (following.kind == "name" and (split_part or typed_glued or latex_word)

@@ -147,3 +147,37 @@ def test_editor_notation_that_cannot_be_read_is_refused_naming_it(ns, latex, nam
     with pytest.raises(ExpressionError) as err:
         parse_system(latex, ns) if "=" in latex or "\\\\" in latex else parse_expression(latex, ns)
     assert named in str(err.value) and err.value.hint
+
+
+@pytest.mark.parametrize("latex, plain", [
+    # LaTeX ignores spaces, and OCR (Mathpix) puts one between every two factors: \sin 2 \theta prints
+    # sin 2θ, as \sin 2\theta does, so it is sin(2θ), never sin(2)·θ
+    (r"\sin 2 \theta", "sin(2 theta)"), (r"\frac{1}{2} m g \sin 2 \theta", "m g sin(2 theta)/2"),
+    (r"\cos 2 \omega t", "cos(2 omega t)"), (r"\sin 3 \theta \cos \theta", "sin(3 theta) cos(theta)"),
+    (r"\sin 2 x", "sin(2 x)"), (r"\operatorname{sen} 2 \theta", "sin(2 theta)"),
+])
+def test_latex_spaces_do_not_cut_a_function_argument(latex, plain):
+    from grader.expressions import Namespace, Variable
+    ns = Namespace([Variable("m", "mass", "positive"), Variable("g", "acceleration", "positive"),
+                    Variable("theta", "angle", "real"), Variable("x", "dimensionless", "real"),
+                    Variable("omega", "angular_velocity", "real"), Variable("t", "time", "real")])
+    assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
+
+
+@pytest.mark.parametrize("text", ["sin 2 θ", "sin 2 x"])
+def test_a_typed_space_still_ends_a_plain_function_argument(text):
+    # plain text is not LaTeX: there the space after the number is what the student typed (read with a note)
+    from grader.expressions import Namespace, Variable
+    ns = Namespace([Variable("theta", "angle", "real"), Variable("x", "dimensionless", "real")])
+    parsed = parse_expression(text, ns)
+    assert any("sin(2)·" in note for note in parsed.notes)
+
+
+@pytest.mark.parametrize("latex, named", [
+    (r"m g \cdots", r"'\cdots' (an ellipsis)"), (r"m g+\ldots", r"'\ldots' (an ellipsis)"),
+    (r"m g \text { (N) }", "reads as a unit"), (r"m g\,\text{[N]}", "reads as a unit"),
+])
+def test_ellipses_and_bracketed_units_are_refused_naming_them(ns, latex, named):
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(latex, ns)
+    assert named in str(err.value) and err.value.hint
