@@ -197,6 +197,8 @@ class _Tokenizer:
                 self.emit("name", run.group(), start, end)  # what identifier() makes of it, directly
             else:
                 self.identifier(start, "", start)
+                if ch == "_":
+                    self.attach_subscript()
         elif ch in _DIGITS:
             self.number()
         elif ch == " ":
@@ -434,16 +436,20 @@ class _Tokenizer:
                 after_subscript_digit = False
                 continue
             subscript_digit = False
-            if c == "_" and i + 1 < self.n and text[i + 1] == "{":
-                close = self.matching_brace(i + 1)
-                parts.append("_" + subscript_text(text[i + 2:close], i + 2))
+            after = self.after_spaces(i + 1) if c == "_" else i  # m_ {1}, m _ { 1 }: LaTeX ignores the spaces
+            if c == "_" and after < self.n and text[after] == "{":
+                close = self.matching_brace(after)
+                parts.append("_" + subscript_text(text[after + 1:close], after + 1))
                 i = close + 1
-            elif c == "_" and i + 1 < self.n and text[i + 1] == "\\":
-                j = i + 2
+            elif c == "_" and after < self.n and text[after] == "\\":
+                j = after + 1
                 while j < self.n and text[j].isascii() and text[j].isalpha():
                     j += 1
-                parts.append("_" + subscript_text(text[i + 1:j], i + 1))
+                parts.append("_" + subscript_text(text[after:j], after))
                 i = j
+            elif c == "_" and after > i + 1 and after < self.n and text[after] in _ASCII_ALNUM:
+                parts.append("_" + text[after])  # m _ 1: one character, as LaTeX takes a bare subscript
+                i = after + 1
             elif c.isascii() and (c.isalnum() or c == "_"):
                 parts.append(c)
                 i += 1
@@ -470,6 +476,56 @@ class _Tokenizer:
                 break
             after_subscript_digit = subscript_digit
         self.finish_name(start, "".join(parts), i, order)
+
+    def after_spaces(self, i: int) -> int:
+        """The index of the first character at or after ``i`` that is not a space."""
+        while i < self.n and is_space(self.text[i]):
+            i += 1
+        return i
+
+    def attach_subscript(self) -> None:
+        r"""A subscript token (``_1``) just emitted, set apart from its name as LaTeX allows: ``m _ { 1 }``
+        (OCR's spacing), ``{m}_{1}``, ``{\theta}_1``, ``{\dot{\theta}}_{1}`` (Word's grouping), ``\dot{\theta} _1``.
+        The subscript joins the name before it (inside the group), as LaTeX prints it."""
+        sub = self.tokens[-1]
+        if len(self.tokens) < 2 or sub.order or len(sub.value) < 2 or self.text[self.tokens[-2].end:sub.pos].strip():
+            return
+        before = self.tokens[-2]
+        if before.kind == "name" and not before.order and not before.forced_function and not before.value.startswith("_"):
+            self.tokens[-2:] = [Token("name", before.value + sub.value, before.pos, sub.end,
+                                      self.text[before.pos:sub.end], before.space_before)]
+            return
+        if not (before.kind == "close" and before.value == "}"):
+            return
+        k = self.group_start(len(self.tokens) - 2)
+        group = self.tokens[k + 1:-2]
+        ahead = self.tokens[k - 1] if k > 0 else None
+        if ahead is not None and ahead.kind == "close" and ahead.value == "}":
+            # {m_1}{m}_2 is a product; \frac{a}{m}_1 is the fraction's second argument
+            first = self.group_start(k - 1)
+            ahead = self.tokens[first - 1] if first > 0 else None
+        if k < 0 or (ahead is not None and ahead.kind == "command" and ahead.value not in ("dot", "ddot")):
+            return  # \frac{a}{m}_1, \sqrt{m}_1: not a name's subscript
+        if len(group) == 1 and group[0].kind == "name" and not group[0].order:
+            target = group[0]
+        elif len(group) == 4 and group[0].kind == "command" and group[0].value in ("dot", "ddot") \
+                and group[1].kind == "open" and group[2].kind == "name" and not group[2].order \
+                and group[3].kind == "close":
+            target = group[2]
+        else:
+            return
+        target.value += sub.value
+        self.tokens.pop()
+
+    def group_start(self, close: int) -> int:
+        """The index of the token that opens the group the token at ``close`` closes (-1 if none)."""
+        depth, k = 0, close
+        while k >= 0:
+            depth += {"close": 1, "open": -1}.get(self.tokens[k].kind, 0)
+            if depth == 0:
+                return k
+            k -= 1
+        return -1
 
     def subscript_after_accent(self, i: int) -> tuple[str, int]:
         """A subscript typed after a derivative mark (``θ̇₁``, ``ẍ_2``, ``ẍ_{2}``, ``ẋ2``): its name text.

@@ -181,3 +181,26 @@ def test_ellipses_and_bracketed_units_are_refused_naming_them(ns, latex, named):
     with pytest.raises(ExpressionError) as err:
         parse_expression(latex, ns)
     assert named in str(err.value) and err.value.hint
+
+
+@pytest.mark.parametrize("latex, plain", [
+    # a subscript set apart from its name, as LaTeX allows and OCR (m _ { 1 }) and Word ({m}_{1}) write it
+    (r"m _ { 1 }", "m1"), (r"m_ {1}", "m1"), (r"m _1", "m1"), (r"m _ 1", "m1"), (r"{m}_{1}", "m1"),
+    (r"{\theta}_1", "theta_1"), (r"\theta _ { 1 }", "theta_1"), (r"{\dot{\theta}}_{1}", "theta1dot"),
+    (r"{\dot{\theta}}_1^2", "theta1dot^2"), (r"\dot { \theta } _ { 1 } ^ { 2 }", "theta1dot^2"),
+    (r"\dot{\theta} _1", "theta1dot"), (r"{m_{1}}{m}_{1}", "m1^2"),
+])
+def test_a_subscript_set_apart_from_its_name_is_the_names(latex, plain):
+    from grader.expressions import Namespace, Variable
+    ns = Namespace([Variable("m1", "mass", "positive"), Variable("theta1", "angle", "real", "coordinate"),
+                    Variable("theta1dot", "angular_velocity", "real", "velocity")])
+    assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
+
+
+@pytest.mark.parametrize("latex", [r"\frac{g}{m}_1", r"\sqrt{m}_1"])
+def test_a_subscript_after_a_fraction_or_root_is_not_moved_inside(latex):
+    # LaTeX sets it on the whole fraction or root, which is no name: refused, never read as m1
+    from grader.expressions import Namespace, Variable
+    ns = Namespace([Variable("m1", "mass", "positive"), Variable("g", "acceleration", "positive")])
+    with pytest.raises(ExpressionError):
+        parse_expression(latex, ns)
