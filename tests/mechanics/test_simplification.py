@@ -229,6 +229,38 @@ def test_half_angle_roots(expr, bounds, printed):
     _assert_same_value_on(expr, rewritten, bounds)
 
 
+@pytest.mark.parametrize("base, found", [
+    (3 * (1 - cos(theta0)), (3, "sin")),
+    (l * m * (1 + cos(theta0)), (l * m, "cos")),
+    # A long p: the same recognition, whatever its length.
+    ((M + m * sin(theta) ** 2) * (g + l * w ** 2) * (1 - cos(theta0)), ((M + m * sin(theta) ** 2) * (g + l * w ** 2), "sin")),
+    # Neither: p + q cos x with q ≠ ±p, and a sum with no zero at cos x = ±1.
+    (2 - 3 * cos(theta0), None),
+    (M + m * cos(theta0) ** 2, None),
+    (g * l + m * cos(theta0), None),
+])
+def test_half_angle_squares_are_recognised_and_others_refused(base, found):
+    """p(1 − cos x) and p(1 + cos x) vanish at cos x = 1 and −1: a base that is nonzero at both
+    (by its value at a point) is refused before any expanding, and the recognised ones are still found."""
+    result = simplification._half_angle_square(base)
+    if found is None:
+        assert result is None
+    else:
+        p, half = result
+        assert sympy.simplify(p - found[0]) == 0 and half.func.__name__ == found[1]
+
+
+def test_forgetting_forms_empties_every_memory_of_them():
+    """A benchmark derives a scene again as a fresh worker would: nothing of the first derivation's
+    readable forms is left."""
+    human_form(m * g * cos(theta) ** 2 + m * g * sin(theta) ** 2 + l * m * w ** 2)
+    assert simplification._remembered_form.cache_info().currsize > 0
+    simplification.forget_forms()
+    for remembered in (simplification._remembered_form, simplification._simplified_forms,
+                       simplification._tidy_root):
+        assert remembered.cache_info().currsize == 0
+
+
 @pytest.mark.parametrize("expr, printed", [
     # bead_on_cycloid's normal force, −λx sin(φ/2) + λy cos(φ/2).
     (-_lambda_x * sin(phi / 2) + _lambda_y * cos(phi / 2), "m*(a*phidot**2 + g)*cos(phi/2)"),
