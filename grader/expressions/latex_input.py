@@ -49,6 +49,7 @@ _OPERATORS = {"cdot": "*", "times": "*", "ast": "*", "bullet": "*", "div": "/"}
 _SIZES = {f"{size}{side}": "space" if side in ("", "m") else f"big{side}"
           for size in ("big", "Big", "bigg", "Bigg") for side in ("", "l", "r", "m")}
 _SPACING = {"quad", "qquad", "displaystyle", "textstyle", "scriptstyle", "limits", "nonumber", "notag",
+            "enspace", "thinspace", "medspace", "thickspace", "negthinspace", "negmedspace", "negthickspace",
             *(name for name, value in _SIZES.items() if value == "space")}
 # \cfrac (Mathpix's continued-fraction form) is a fraction; MathLive writes \mleft( \mright) for \left( \right).
 _STRUCTURE = {"frac": "frac", "dfrac": "frac", "tfrac": "frac", "cfrac": "frac", "sqrt": "sqrt",
@@ -92,6 +93,7 @@ _REFUSED = {
     "placeholder": ("an empty box (\\placeholder) is left in the answer", "fill the box in, or delete it"),
     **{name: (f"'\\{name}' (an ellipsis) is not part of a formula", "write the whole formula, without '…'")
        for name in ("cdots", "ldots", "dots", "dotsb", "dotsm", "dotsc")},
+    "prime": ("'\\prime' can only follow a variable name", "write \\theta^{\\prime}, or \\ddot{\\theta} for θ̈"),
     "over": ("'\\over' (TeX's fraction) is not supported", "write \\frac{a}{b}, or a/b"),
     "imaginaryI": ("complex numbers are not part of these answers", "write the answer with real quantities"),
     **{name: ("'‖…‖' (a norm) is not supported", "write |x| for the absolute value of a number")

@@ -159,6 +159,7 @@ class _Tokenizer:
         self.space = False
         self.environments: list[str] = []  # the \begin{…} environments open here, innermost last
         self.system_braces = 0  # \left\{ before a \begin{aligned}, closed by \right.
+        self.transparent_closes: dict[int, bool] = {}  # where the '}' of a \boxed{…} is: a bracket's or none
 
     def emit(self, kind: str, value, start: int, end: int, **extra) -> Token:
         token = Token(kind, value, start, end, self.text[start:end], self.space, **extra)
@@ -210,8 +211,9 @@ class _Tokenizer:
             self.emit("op", "=", start, start + 2)
         elif ch == "|" or ch == "∣":  # ∣ (DIVIDES) is the bar some editors and PDFs give
             self.emit("bar", None, start, start + 1)
-        elif ch == "^" and self.tokens and self.tokens[-1].kind == "name" and self.tokens[-1].end == start \
-                and _LATEX_PRIMES.match(self.text, start):
+        elif ch == "^" and self.tokens and self.tokens[-1].kind == "name" \
+                and not self.text[self.tokens[-1].end:start].strip() and _LATEX_PRIMES.match(self.text, start):
+            # (\theta ^{\prime}: LaTeX ignores the space)
             # x^{\prime}, \theta^\prime, x^{\prime\prime}: LaTeX's own spelling of x', θ', x''; and
             # \theta^{\prime 2}, θ' squared (the prime and the power share one superscript)
             marks = _LATEX_PRIMES.match(self.text, start)
@@ -243,6 +245,12 @@ class _Tokenizer:
             self.emit("op", ch, start, start + 1)
         elif ch in _PAIRS:
             self.emit("open", ch, start, start + 1)
+        elif ch == "}" and start in self.transparent_closes:  # the end of \boxed{…}
+            if self.transparent_closes[start]:
+                self.emit("close", ")", start, start + 1)
+            else:
+                self.space = True
+                self.i += 1
         elif ch in _OPENERS:
             self.emit("close", ch, start, start + 1)
         elif ch == "\n":
@@ -506,11 +514,11 @@ class _Tokenizer:
             ahead = self.tokens[first - 1] if first > 0 else None
         if k < 0 or (ahead is not None and ahead.kind == "command" and ahead.value not in ("dot", "ddot")):
             return  # \frac{a}{m}_1, \sqrt{m}_1: not a name's subscript
-        if len(group) == 1 and group[0].kind == "name" and not group[0].order:
+        if len(group) == 1 and group[0].kind == "name" and not group[0].order and not group[0].forced_function:
             target = group[0]
         elif len(group) == 4 and group[0].kind == "command" and group[0].value in ("dot", "ddot") \
                 and group[1].kind == "open" and group[2].kind == "name" and not group[2].order \
-                and group[3].kind == "close":
+                and not group[2].forced_function and group[3].kind == "close":
             target = group[2]
         else:
             return
@@ -599,6 +607,9 @@ class _Tokenizer:
         if text[start + 1:j] in ("overset", "stackrel"):
             self.overset(start, j)
             return
+        if text[start + 1:j] in _TRANSPARENT or text[start + 1:j] in _SKIPPED:
+            self.transparent(start, j, text[start + 1:j])
+            return
         kind, value = classify_command(text[start + 1:j], start)
         if kind == "function" and value == "log" and j < self.n and text[j] == "_":
             self.logarithm_base(start, j)
@@ -655,6 +666,36 @@ class _Tokenizer:
             self.emit("op", ";", start, close + 1)
         else:
             self.identifier(start, value, close + 1)
+
+    def transparent(self, start: int, j: int, name: str) -> None:
+        r"""``\boxed{…}`` (a final answer in a box), ``\displaylines{… \\ …}``, ``\textcolor{red}{…}``: only
+        how the formula inside looks, read as if typed alone; ``\color{red}``, ``\hspace{1cm}``, ``\phantom{x}``
+        show nothing of the answer and are skipped."""
+        k = self.after_spaces(j)
+        if k >= self.n or self.text[k] != "{":
+            raise ExpressionError(f"\\{name} needs braces, as in \\{name}{{…}}", start, "syntax")
+        close = self.matching_brace(k)
+        if name in ("textcolor", "colorbox"):  # the colour, then what is coloured
+            k = self.after_spaces(close + 1)
+            if k >= self.n or self.text[k] != "{":
+                raise ExpressionError("\\textcolor needs the text to colour, as in \\textcolor{red}{x}", start,
+                                      "syntax")
+            close = self.matching_brace(k)
+        elif name in _SKIPPED:
+            self.space = True
+            self.i = close + 1
+            return
+        # Around the whole answer, or a whole side of it, the box is no bracket (\boxed{T = m g} is an
+        # equation); around a part, it groups that part, as its braces do (m \boxed{g + a} is m (g + a)).
+        last = self.tokens[-1] if self.tokens else None
+        whole = (last is None or last.kind == "newline" or (last.kind == "op" and last.value in "=,;")) \
+            and _SIDE_ENDS.match(self.text, close + 1) is not None
+        self.transparent_closes[close] = not whole
+        if whole:
+            self.space = True
+            self.i = k + 1
+        else:
+            self.emit("open", "(", start, k + 1)
 
     def overset(self, start: int, j: int) -> None:
         r"""``\overset{\cdot}{\theta}``, ``\overset{..}{x}``, ``\stackrel{.}{x}``: the dots Word's and some
@@ -853,6 +894,13 @@ class _Tokenizer:
                               "as a power", start, "bad_character",
                               f"write the power with ^ and ordinary letters, as in {base}^{power}")
 
+
+# Commands around the formula that only change its look (\boxed{…}, a student's final answer), and commands
+# with an argument that shows nothing of the answer (\color{red}, \hspace{1cm}, \phantom{x}).
+_TRANSPARENT = {"boxed", "fbox", "displaylines", "textcolor", "colorbox", "underline"}
+_SKIPPED = {"color", "hspace", "vspace", "phantom", "hphantom", "vphantom"}
+# What may follow a box around a whole side: the end, '=', the next line, punctuation, closing math.
+_SIDE_ENDS = re.compile(r"\s*(?:$|=|\n|\\\\|[.,;$}]|\\(?:end|\]|\)|quad|qquad|tag|label|text)(?![A-Za-z]))")
 
 # \left\lvert x \right\rvert, \left\lbrace: the bracket character each command stands for.
 _BRACKET_COMMANDS = {"lvert": "|", "rvert": "|", "vert": "|", "lbrace": "{", "rbrace": "}", "lbrack": "[",

@@ -204,3 +204,36 @@ def test_a_subscript_after_a_fraction_or_root_is_not_moved_inside(latex):
     ns = Namespace([Variable("m1", "mass", "positive"), Variable("g", "acceleration", "positive")])
     with pytest.raises(ExpressionError):
         parse_expression(latex, ns)
+
+
+@pytest.mark.parametrize("latex, plain", [
+    # a final answer in a box, coloured or underlined: the box around the whole answer or a whole side is
+    # no bracket (\boxed{T = m g} is an equation), around a part it groups that part, as its braces do
+    (r"\boxed{m g}", "m g"), (r"T = \boxed{m g}", "m g"), (r"\boxed{T = m g}", "m g"),
+    (r"m \boxed{g + l}", "m (g + l)"), (r"\boxed{g + l}^2", "(g + l)^2"), (r"$\boxed{m g}$", "m g"),
+    (r"\textcolor{red}{m g}", "m g"), (r"{\color{blue} m g}", "m g"), (r"\colorbox{yellow}{$m g$}", "m g"),
+    (r"\underline{\underline{m g}}", "m g"), (r"\phantom{-}m g", "m g"), (r"m g\hspace{1em}", "m g"),
+    (r"m g\enspace", "m g"),
+    # a prime after a space: LaTeX ignores it
+    (r"\theta ^{\prime}", "thetadot"), (r"\theta ^ { \prime \prime }", "thetaddot"),
+])
+def test_looks_around_an_answer_are_read_through(ns, latex, plain):
+    assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
+
+
+@pytest.mark.parametrize("latex", [r"\boxed{\ddot{\theta} = -\frac{g}{l}\sin\theta}",
+                                   r"\ddot{\theta} = \boxed{-\frac{g}{l}\sin\theta}",
+                                   r"\displaylines{\ddot{\theta} = -\frac{g}{l}\sin\theta}"])
+def test_a_boxed_equation_is_the_equation(ns, latex):
+    got, expected = parse_equation(latex, ns), parse_equation("thetaddot = -g/l sin(theta)", ns)
+    assert (got.lhs, got.rhs) == (expected.lhs, expected.rhs)
+
+
+@pytest.mark.parametrize("latex, named", [
+    (r"\boxed m g", r"\boxed needs braces"), (r"\textcolor{red} m", r"\textcolor needs the text to colour"),
+    (r"\dot{\theta}^{\prime}", r"'\prime' can only follow a variable name"),
+])
+def test_malformed_looks_are_refused_naming_them(ns, latex, named):
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(latex, ns)
+    assert named in str(err.value)
