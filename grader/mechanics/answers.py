@@ -120,7 +120,7 @@ class AnswerEvaluator:
         and why the motion has no closed form.
         """
         target = self.target(spec)
-        if target & set(self._dependent_positions()):
+        if target & (set(self._dependent_positions()) | set(self._dependent_velocities())):
             return self._in_dependent_positions(spec, target, key)
         try:
             return self.reduce(spec.expr, target, key)
@@ -144,6 +144,11 @@ class AnswerEvaluator:
         return {c.symbol: phi[c.symbol] for c in self.scene.coordinates.values()
                 if c.symbol in phi and phi[c.symbol] != c.symbol}
 
+    def _dependent_velocities(self) -> dict[sympy.Symbol, sympy.Symbol]:
+        """{ċ: c} for the scene coordinates c that are not independent variables."""
+        dependent = self._dependent_positions()
+        return {c.dot: c.symbol for c in self.scene.coordinates.values() if c.symbol in dependent}
+
     def _in_dependent_positions(self, spec: AnswerSpec, target: set[sympy.Symbol], key: str) -> sympy.Expr:
         """The answer in a coordinate c the constraints made dependent, for an independent u it leaves out.
 
@@ -151,11 +156,27 @@ class AnswerEvaluator:
         (N = m g (3√(R² − x²) − 2R)/R on a sphere, y = √(R² − x²)) it becomes c, and u left over is
         replaced by every solution of Φ(u) = c, which must all give one value (an even function,
         x = ±√(R² − y²)); otherwise the answer is refused, naming the coordinates to ask it in.
+
+        A velocity ċ of such a coordinate stands for the one u̇ it leaves out: ċ = Σ ∂Φ/∂w ẇ + ∂Φ/∂t
+        solved for u̇ (on the sphere ẋ = −y ẏ/x), before the positions are read back.
         """
         dependent = self._dependent_positions()
-        named = [c for c in dependent if c in target]
+        velocities = {c: d for d, c in self._dependent_velocities().items() if d in target}
+        named = [c for c in dependent if c in target] + [d for d in velocities.values()]
+        dot_of = {u.symbol: u.dot for u in self.reduction.independent.values()}
+        velocity_swaps = {}
+        for c, d in velocities.items():
+            coordinates = dependent[c].free_symbols & set(dot_of)
+            free = [u for u in coordinates if dot_of[u] not in target and u not in velocity_swaps.values()]
+            if not free and all(dot_of[u] in target for u in coordinates):
+                continue  # ẋ named beside ẏ: the answer in ẋ needs no ẏ
+            if len(free) != 1:
+                velocity_swaps = None
+                break
+            velocity_swaps[c] = free[0]
+        named_positions = [c for c in dependent if c in target]
         swaps = {}
-        for c in named:
+        for c in named_positions:
             coordinates = dependent[c].free_symbols & self.state_symbols(velocities=False)
             free = [u for u in coordinates if u not in target and u not in swaps.values()]
             if not free and coordinates <= target:
@@ -166,12 +187,22 @@ class AnswerEvaluator:
         refusal = SceneError(self.scene.source, f"answers ({spec.name}).in_terms_of",
                              f"cannot be written in {', '.join(str(c) for c in named)}: answers are "
                              f"expressed in {', '.join(self.reduction.independent)} (and their dots)")
-        unswapped = [c for c in named if c not in swaps
+        unswapped = [c for c in named_positions if c not in swaps
                      and not (dependent[c].free_symbols & self.state_symbols(velocities=False)) <= target]
-        if unswapped:
+        if unswapped or velocity_swaps is None:
             raise refusal
-        inner = (target - set(named)) | set(swaps.values())
+        inner = (target - set(named)) | set(swaps.values()) | set(velocity_swaps.values()) | {
+            dot_of[u] for u in velocity_swaps.values()}
         value = self.reduce(spec.expr, inner, key)
+        t = self.scene.time
+        for c, u in velocity_swaps.items():
+            phi = dependent[c]
+            others = sum((sympy.diff(phi, w) * dot_of[w] for w in phi.free_symbols & set(dot_of) if w != u),
+                         sympy.Integer(0))
+            slope = sympy.diff(phi, u)
+            if slope == 0:
+                raise refusal
+            value = value.xreplace({dot_of[u]: (velocities[c] - others - sympy.diff(phi, t)) / slope})
         for c, u in swaps.items():
             value = value.subs(dependent[c], c)
             if u not in value.free_symbols:
@@ -202,8 +233,8 @@ class AnswerEvaluator:
             u.ddot for u in self.reduction.independent.values()}
         if spec.where is None and spec.kind in ("expression", "equation"):
             # A coordinate the constraints made dependent (the height y on a sphere whose answers
-            # are otherwise in x) is read back through its map (see reduce_in_time).
-            allowed = allowed | set(self._dependent_positions())
+            # are otherwise in x) is read back through its map (see reduce_in_time), its velocity too.
+            allowed = allowed | set(self._dependent_positions()) | set(self._dependent_velocities())
         for name in spec.in_terms_of:
             symbol = self.scene.namespace.symbol(name)
             if symbol not in allowed:

@@ -60,6 +60,36 @@ def test_an_answer_may_be_asked_in_a_coordinate_the_constraints_made_dependent(p
     assert sympy.simplify(value - _expected(scene, expected)) == 0
 
 
+@pytest.mark.parametrize("name, in_terms_of, expected", [
+    # On the circle x² + y² = R², v² = ẋ² + ẏ² = R² ẋ²/y² = R² ẏ²/x², and N = m g y/R − m v²/R
+    # (outwards); ẍ = g x y/R² − x v²/R². Each written by hand in the variables asked.
+    ("normal_force_state", '["m", "g", "R", "y", "ydot"]', "m*g*y/R - m*R*ydot^2/(R^2 - y^2)"),
+    ("normal_force_state", '["m", "g", "R", "x", "ydot"]', "m*g*sqrt(R^2 - x^2)/R - m*R*ydot^2/x^2"),
+    ("normal_force_state", '["m", "g", "R", "y", "xdot"]', "m*g*y/R - m*R*xdot^2/y^2"),
+    ("horizontal_acceleration", '["g", "R", "x", "ydot"]', "g*x*sqrt(R^2 - x^2)/R^2 - ydot^2/x"),
+    # ẏ named beside ẋ: the answer in ẋ needs none of it.
+    ("horizontal_acceleration", '["g", "R", "x", "xdot", "ydot"]', "g*x*sqrt(R^2 - x^2)/R^2 - x*xdot^2/(R^2 - x^2)"),
+])
+def test_an_answer_may_be_asked_in_the_velocity_of_a_dependent_coordinate(name, in_terms_of, expected):
+    """ẏ stands for the ẋ it leaves out: ẏ = −x ẋ/y on the hemisphere, solved for ẋ, then the
+    position read back as for a dependent coordinate (it was "'ydot' is not an independent variable")."""
+    path = SCENES / "hemisphere_cartesian.toml"
+    scene = parse_scene(_with_answer_in(path, name, in_terms_of), source=path.name)
+    value = derive(scene).answers[name]
+    assert sympy.simplify(value - _expected(scene, expected)) == 0
+
+
+@pytest.mark.parametrize("in_terms_of", [
+    '["g", "R", "ydot"]',       # no position at all: x is left over
+    '["g", "R", "y", "ydot"]',  # ẍ is odd in x: x = ±√(R² − y²) gives two values
+])
+def test_a_dependent_velocity_that_leaves_a_variable_or_two_values_is_refused(in_terms_of):
+    path = SCENES / "hemisphere_cartesian.toml"
+    scene = parse_scene(_with_answer_in(path, "horizontal_acceleration", in_terms_of), source=path.name)
+    with pytest.raises(SceneError, match="expressed in x"):
+        derive(scene)
+
+
 def test_an_answer_in_a_dependent_coordinate_with_branches_of_different_value_is_refused():
     """ẍ = g x (3√(R² − x²) − 2R)/R² in y alone is ±g √(R² − y²)(3y − 2R)/R²: which sign depends on
     the side, so it is refused, naming the variables answers are expressed in."""
