@@ -56,6 +56,7 @@ _STRUCTURE = {"frac": "frac", "dfrac": "frac", "tfrac": "frac", "cfrac": "frac",
               "dot": "dot", "ddot": "ddot", "left": "left", "right": "right", "mleft": "left", "mright": "right",
               "lvert": "lvert", "rvert": "rvert", "vert": "vert", "mid": "vert",
               "lbrace": "lbrace", "rbrace": "rbrace", "lbrack": "lbrack", "rbrack": "rbrack",
+              "lparen": "lparen", "rparen": "rparen",  # MathLive's \lparen \rparen
               **{name: value for name, value in _SIZES.items() if value != "space"}}
 # Commands whose braced text is a name in another font: \boldsymbol{\theta} is θ, as \mathbf{m} is m.
 _WRAPPERS = {"mathrm", "text", "mathit", "operatorname", "rm", "mathbf", "textrm", "boldsymbol", "bm",
@@ -161,7 +162,8 @@ def subscript_text(content: str, position: int) -> str:
         raise ExpressionError("the subscript is empty", position, "syntax",
                               "type the subscript inside the braces, as in m_{1}, or delete the '_{}'")
     text = _WRAPPED.sub(r"\1", content)
-    text = _COMMAND.sub(lambda m: GREEK_COMMANDS.get(m.group(1), m.group(0)), text)
+    # \theta -> theta, and \mathrm{\cos} (Word) -> cos
+    text = _COMMAND.sub(lambda m: GREEK_COMMANDS.get(m.group(1), FUNCTION_COMMANDS.get(m.group(1), m.group(0))), text)
     text = re.sub(r"\s*,\s*", "_", text.strip())
     if not _SUBSCRIPT.match(text):
         raise ExpressionError(f"cannot read the subscript '{content}'", position, "syntax",
@@ -203,8 +205,9 @@ def wrapped_text(shown: str, content: str, position: int) -> tuple[str, str]:
     if plain.lower() == "and":
         return "and", ""
     words = re.findall(r"[A-Za-z]+", _COMMAND.sub(" ", plain))
-    bare = plain.strip("()[] ")  # \text{ (N) }: a unit in brackets
-    unit = bool(words) and all(word in UNIT_SYMBOLS for word in words) and not re.search(r"[^A-Za-z0-9/^{}\-.\s]", bare)
+    bare = _COMMAND.sub(" ", plain).strip("()[] ")  # \text{ (N) }: a unit in brackets; kg\cdot m
+    unit = bool(words) and all(word in UNIT_SYMBOLS for word in words) and not re.search(r"[^A-Za-z0-9/^{}\-.\s]", bare) \
+        and set(_COMMAND.findall(plain)) <= {"cdot", "times", "mathrm", "text"}
     # \mathrm{~m}, \text{ kg}: the space a unit is set off with (Mathpix), so never the variable m
     spaced_unit = unit and spaced[:1].isspace()
     if (_SUBSCRIPT.match(plain) or plain.startswith("\\")) and not spaced_unit:

@@ -419,6 +419,7 @@ WRITE_INSTEAD = {
     "hypot": "write sqrt(x^2 + y^2)",
     "pi": "write pi (or π) without brackets",  # a spreadsheet's PI()
     "eq": "write the equation with =, as in x = y",  # SymPy's Eq(x, y)
+    "frac": "write a/b for a fraction (or \\frac{a}{b})",  # Typst's frac(a, b)
 }
 
 
@@ -436,8 +437,9 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
                               f"write the answer in the problem's symbols and delete '{typed}'")
     if raw in ("dot", "ddot"):  # Typst's "theta dot", or "dot theta" without brackets: which name is dotted?
         marked = "θ̇, thetadot" if raw == "dot" else "θ̈, thetaddot"
+        product = "; for a product (Typst's m dot g) write m*g" if raw == "dot" else ""
         raise ExpressionError(f"'{typed}' alone is not a variable", position, "unknown_name",
-                              f"write the time derivative as {marked} or {raw}(theta)")
+                              f"write the time derivative as {marked} or {raw}(theta){product}")
     euler = _before_euler(raw, ns, typed, position)
     if euler is not None:  # ye alone (no ^ after it): y·e, or a misspelt name? Say both.
         product = "*".join(euler)

@@ -402,11 +402,13 @@ class _Tokenizer:
         while j < self.n and _is_digit(text[j]):
             j += 1
         int_part, frac_part, exponent, decimal = text[start:j], "", 0, False
-        if j < self.n and text[j] == "." and j + 1 < self.n and _is_digit(text[j + 1]):
-            k = j + 1
+        # 0{,}5: the decimal comma as LaTeX must write it (a bare comma would be followed by a space)
+        point = 1 if j < self.n and text[j] == "." else 3 if text.startswith("{,}", j) else 0
+        if point and j + point < self.n and _is_digit(text[j + point]):
+            k = j + point
             while k < self.n and _is_digit(text[k]):
                 k += 1
-            frac_part, j, decimal = text[j + 1:k], k, True
+            frac_part, j, decimal = text[j + point:k], k, True
         if j < self.n and text[j] in "eE":
             k = j + 1
             if k < self.n and text[k] in "+-":
@@ -628,9 +630,8 @@ class _Tokenizer:
             self.identifier(start, value, j)
         elif kind == "implication":
             self.implication(start, j, text[start:j])
-        elif value in ("lbrace", "lbrack", "rbrace", "rbrack"):
-            bracket = {"lbrace": "{", "lbrack": "[", "rbrace": "}", "rbrack": "]"}[value]
-            self.emit("open" if value[0] == "l" else "close", bracket, start, j)
+        elif value in ("lbrace", "lbrack", "lparen", "rbrace", "rbrack", "rparen"):
+            self.emit("open" if value[0] == "l" else "close", _BRACKET_COMMANDS[value], start, j)
         elif value in ("left", "right"):
             self.delimiter(start, j, value)
         elif value in ("bigl", "bigr"):  # \bigl( \Bigr]: a sized bracket, which side as \left \right say
@@ -904,7 +905,7 @@ _SIDE_ENDS = re.compile(r"\s*(?:$|=|\n|\\\\|[.,;$}]|\\(?:end|\]|\)|quad|qquad|ta
 
 # \left\lvert x \right\rvert, \left\lbrace: the bracket character each command stands for.
 _BRACKET_COMMANDS = {"lvert": "|", "rvert": "|", "vert": "|", "lbrace": "{", "rbrace": "}", "lbrack": "[",
-                     "rbrack": "]"}
+                     "rbrack": "]", "lparen": "(", "rparen": ")"}
 # Dots set over a letter (\overset{\cdot}{x}): each is one dot.
 _DOT_MARKS = re.compile(r"\\(?:cdot|bullet|ldotp|centerdot)(?![A-Za-z])|[˙·•∙⋅]")
 

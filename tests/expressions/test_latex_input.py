@@ -237,3 +237,26 @@ def test_malformed_looks_are_refused_naming_them(ns, latex, named):
     with pytest.raises(ExpressionError) as err:
         parse_expression(latex, ns)
     assert named in str(err.value)
+
+
+@pytest.mark.parametrize("latex, plain", [
+    # the decimal comma as LaTeX writes it ({,} keeps the comma from spacing), MathLive's \lparen \rparen,
+    # and a function name set upright by Word (\mathrm{\cos})
+    (r"0{,}5\,m g", "0.5 m g"), (r"m g\times1{,}25", "1.25 m g"),
+    (r"\cos\lparen\theta\rparen", "cos(theta)"), (r"\cos\mleft\lparen\theta\mright\rparen", "cos(theta)"),
+    (r"\mathrm{\cos}\theta", "cos(theta)"),
+])
+def test_decimal_commas_parentheses_and_upright_functions_in_latex(ns, latex, plain):
+    assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
+
+
+@pytest.mark.parametrize("text, named", [
+    ("0,5 m", "decimal point"),   # a bare comma stays refused: a decimal, or a list?
+    (r"m g\,\mathrm{kg\cdot m\cdot s^{-2}}", "reads as a unit"),
+    ("frac(m, 2)", "write a/b for a fraction"),   # Typst
+    ("m dot g", "for a product (Typst's m dot g) write m*g"),
+])
+def test_what_other_editors_write_is_refused_with_the_fix(ns, text, named):
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text, ns)
+    assert named in str(err.value)
