@@ -728,6 +728,11 @@ class _Tokenizer:
             if token.kind == "newline" or (token.kind == "op" and token.value in ",;"):
                 break
             line.append(token)
+        if not re.sub(r"\s|\$|\\[\])]", "", self.text[end:]):  # T = m g ⇒ (nothing follows)
+            self.emit("bad", shown, start, end,
+                      error=ExpressionError(f"'{shown}' at the end leads to nothing", start, "syntax",
+                                            f"delete the '{shown}'"))
+            return
         if line and not any(token.kind == "op" and token.value == "=" for token in line):
             # θ̈ ⇒ −(g/l) sin θ: the arrow stands where the equation's = belongs (a solver's rule)
             self.emit("bad", shown, start, end, error=_arrow_error(start, shown))
