@@ -323,10 +323,19 @@ def _resolve_derivative(raw: str, ns: "Namespace", order: int, typed: str, posit
     name = derivative_name(base, order)
     symbol = _lookup(name, ns)
     if symbol is None:
+        hint = _suggestion(name, ns)
+        flattened = _DOT_THEN_DIGITS.search(typed)
+        if flattened is not None:
+            # θ˙2 copied out of a web page's MathML: its θ̇² or θ̇₂ lost the raise or drop
+            hint = (f"digits after a dot read as a subscript; write a power with ^, as in "
+                    f"{typed[:flattened.start(1)]}^2" + (f"; or {hint}" if hint else ""))
         raise ExpressionError(f"'{typed}' means {name}, the time derivative of {base}, "
-                              f"but this problem has no variable {name}", position, "unknown_name",
-                              _suggestion(name, ns))
+                              f"but this problem has no variable {name}", position, "unknown_name", hint)
     return Resolved("symbol", symbol)
+
+
+# A dot accent (combining or spacing) then digits at the end of a name: ẋ2, θ˙2.
+_DOT_THEN_DIGITS = re.compile("[\u0307\u0308\u02d9\u00a8]([0-9]+)$")
 
 
 @lru_cache(maxsize=64)

@@ -261,3 +261,11 @@ def test_what_other_editors_write_is_refused_with_the_fix(ns, text, named):
     with pytest.raises(ExpressionError) as err:
         parse_expression(text, ns)
     assert named in str(err.value)
+
+
+@pytest.mark.parametrize("text", ["m l θ˙2", "ml θ̇2"])
+def test_digits_after_a_dot_that_name_nothing_say_how_to_write_a_power(ns, text):
+    # θ˙2 copied out of a web page's MathML (θ̇² that lost its raise): the refusal says to write ^
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text, ns)
+    assert "write a power with ^" in err.value.hint
