@@ -164,7 +164,11 @@ def resolve_name(raw: str, ns: "Namespace", *, order: int = 0, typed: str | None
             # mθ̇ is m·θ̇: a glued name whose last part carries the accent.
             parts = _split(raw, ns, typed, position)
             if not parts or parts[-1] in FUNCTIONS or parts[-1].isdigit():
-                raise
+                # m₁x'' (Word, Google Docs) is m₁·x'' when only x'' is declared, not x
+                parts = _split_before_derivative(raw, ns, order, typed, position)
+                if not parts:
+                    raise
+                return Resolved("split", parts, [f"read '{typed}' as {_reading(parts)}"])
             parts[-1] = _resolve_derivative(parts[-1], ns, order, typed, position).value.name
             return Resolved("split", parts, [f"read '{typed}' as {_reading(parts)}"])
     symbol = _lookup(raw, ns)
@@ -332,6 +336,27 @@ def _resolve_derivative(raw: str, ns: "Namespace", order: int, typed: str, posit
         raise ExpressionError(f"'{typed}' means {name}, the time derivative of {base}, "
                               f"but this problem has no variable {name}", position, "unknown_name", hint)
     return Resolved("symbol", symbol)
+
+
+def _split_before_derivative(raw: str, ns: "Namespace", order: int, typed: str, position: int) -> list[str] | None:
+    """``m1x`` with two primes: declared names, then the one whose derivative is declared (m1, xddot).
+
+    The primes or dots belong to the last letters typed, as they are written after them; every cut
+    that reads is tried, and two readings are no reading (None), as in `_split`.
+    """
+    found = []
+    for cut in range(1, len(raw)):
+        head, tail = raw[:cut].rstrip("_"), raw[cut:]
+        if not head or tail.startswith("_"):
+            continue
+        try:
+            derivative = _resolve_derivative(tail, ns, order, typed, position).value.name
+            head_parts = [_lookup(head, ns).name] if _lookup(head, ns) is not None else _split(head, ns, typed, position)
+        except ExpressionError:
+            continue
+        if head_parts and not any(part in FUNCTIONS or part.isdigit() for part in head_parts):
+            found.append([*head_parts, derivative])
+    return found[0] if len(found) == 1 else None
 
 
 # A dot accent (combining or spacing) then digits at the end of a name: ẋ2, θ˙2.

@@ -451,12 +451,14 @@ class _Tokenizer:
                 close = self.matching_brace(after)
                 parts.append("_" + subscript_text(text[after + 1:close], after + 1))
                 i = close + 1
+                break  # LaTeX's subscript closes the symbol: m_{1}x'' is m₁·x'', not (m₁x)''
             elif c == "_" and after < self.n and text[after] == "\\":
                 j = after + 1
                 while j < self.n and text[j].isascii() and text[j].isalpha():
                     j += 1
                 parts.append("_" + subscript_text(text[after:j], after))
                 i = j
+                break
             elif c == "_" and after > i + 1 and after < self.n and text[after] in _ASCII_ALNUM:
                 parts.append("_" + text[after])  # m _ 1: one character, as LaTeX takes a bare subscript
                 i = after + 1

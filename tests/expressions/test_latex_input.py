@@ -269,3 +269,15 @@ def test_digits_after_a_dot_that_name_nothing_say_how_to_write_a_power(ns, text)
     with pytest.raises(ExpressionError) as err:
         parse_expression(text, ns)
     assert "write a power with ^" in err.value.hint
+
+
+@pytest.mark.parametrize("text, plain", [
+    # a LaTeX subscript closes its symbol, and primes or dots belong to the letters they are written
+    # after: m₁x'' is m₁·x'' when only x'' (not x) is a variable
+    (r"m_{1}x^{\prime\prime}", "m1 xddot"), ("m₁x''", "m1 xddot"), ("m1x''", "m1 xddot"), ("m_1x''", "m1 xddot"),
+    (r"m_{1}\ddot{x}", "m1 xddot"),
+])
+def test_primes_after_a_subscripted_name_belong_to_the_next_letter(text, plain):
+    from grader.expressions import Namespace, Variable
+    ns = Namespace([Variable("m1", "mass", "positive"), Variable("xddot", "acceleration", "real", "acceleration")])
+    assert parse_expression(text, ns).expr == parse_expression(plain, ns).expr
