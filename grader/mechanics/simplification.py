@@ -73,6 +73,7 @@ def _multiple_angles(expr: sympy.Expr) -> tuple[int, int]:
     return sines, others
 
 
+@functools.lru_cache(maxsize=4096)  # candidates meet again across rewritings; printing them is the cost
 def _weight(expr: sympy.Expr, allowed_multiples: tuple[int, int], sine_cost: int = 4) -> tuple[int, int]:
     """What a reader pays: operations, multiple angles the input did not have, negative exponents.
 
@@ -95,7 +96,7 @@ def forget_forms() -> None:
 
     A benchmark that derives a scene again must not find the first derivation's forms remembered.
     """
-    for remembered in (_remembered_form, _simplified_forms, _tidy_root):
+    for remembered in (_remembered_form, _simplified_forms, _tidy_root, _weight):
         remembered.cache_clear()
 
 

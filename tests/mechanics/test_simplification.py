@@ -257,7 +257,7 @@ def test_forgetting_forms_empties_every_memory_of_them():
     assert simplification._remembered_form.cache_info().currsize > 0
     simplification.forget_forms()
     for remembered in (simplification._remembered_form, simplification._simplified_forms,
-                       simplification._tidy_root):
+                       simplification._tidy_root, simplification._weight):
         assert remembered.cache_info().currsize == 0
 
 
