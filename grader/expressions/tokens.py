@@ -104,7 +104,8 @@ _PUNCTUATION = {
 
 
 # An equation's number after a wide space, \quad (2), as the last thing of the equation; \tag{2}.
-_LABEL_AFTER_SPACE = re.compile(r"\s*\(\s*\d+[a-z]?\s*\)(?=\s*(?:$|\\\\|;|,|\n|\\end\b))")
+# (and before the next equation set beside it: x = 1 \quad (1) \qquad y = 2 \quad (2))
+_LABEL_AFTER_SPACE = re.compile(r"\s*\(\s*\d+[a-z]?\s*\)(?=\s*(?:$|\\\\|;|,|\n|\\end\b|\\q?quad\b))")
 _TAG = re.compile(r"\*?\s*\{[^{}]*\}")
 
 
@@ -623,6 +624,14 @@ class _Tokenizer:
             self.finish_name(start, value, j, 0, forced_function=True)
         elif kind == "op":
             self.emit("op", value, start, j)
+        elif kind == "space" and text[start + 1:j] in ("quad", "qquad") and self.numbered_line():
+            # (1) \quad x = 1: the equation's number before it, never a factor
+            del self.tokens[-3:]
+            self.space = True
+            self.i = j
+        elif kind == "space" and text[start + 1:j] in ("quad", "qquad") and self.between_equations(j):
+            # x = 1 \qquad y = 2: two equations set side by side, as on separate lines
+            self.emit("newline", "\n", start, j)
         elif kind == "space":
             self.space = True
             self.i = j
@@ -742,6 +751,28 @@ class _Tokenizer:
         self.emit("bad", shown, start, end,
                   error=ExpressionError(f"'{shown}' joins two steps of a derivation", start, "syntax",
                                         f"give only the final result: delete '{shown}' and what comes before it"))
+
+    def numbered_line(self) -> bool:
+        """Whether this line so far is only an equation's number in brackets, as ``(1)``."""
+        line = []
+        for token in reversed(self.tokens):
+            if token.kind == "newline" or (token.kind == "op" and token.value == ";"):
+                break
+            line.append(token)
+        return len(line) == 3 and line[2].kind == "open" and line[2].value == "(" and line[1].kind == "number" \
+            and line[1].text.isdigit() and line[0].kind == "close" and line[0].value == ")"
+
+    def between_equations(self, at: int) -> bool:
+        """Whether a wide space ending at ``at`` stands between two equations: this line so far holds a
+        whole one (an '=' outside brackets) and the rest of the line another '='."""
+        depth, equals = 0, False
+        for token in reversed(self.tokens):
+            if token.kind == "newline" or (token.kind == "op" and token.value == ";"):
+                break
+            depth += {"open": -1, "close": 1}.get(token.kind, 0)
+            equals = equals or (token.kind == "op" and token.value == "=" and depth == 0)
+        rest = re.split(r"\\\\|\n|;", self.text[at:], maxsplit=1)[0]
+        return equals and depth == 0 and "=" in rest
 
     def beside_equals(self, at: int) -> bool:
         """Whether the character at ``at`` (an '&') has '=' just before or after it, spaces apart."""

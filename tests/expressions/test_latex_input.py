@@ -104,6 +104,10 @@ def test_editor_equations_read_as_the_plain_equation(ns, latex, plain):
     r"\left\{\begin{aligned} x &= l \\ y &= 2 l \end{aligned}\right.",
     r"\begin{alignat}{2} x &= l \\ y &= 2 l \end{alignat}",
     r"x = l \text{ and } y = 2 l", r"x = l \quad\text{and}\quad y = 2 l",
+    # a wide space between two whole equations sets them side by side (Mathpix)
+    r"x = l \qquad y = 2 l", r"x = l \quad (1) \qquad y = 2 l \quad (2)",
+    # and an equation's number before it, (1) \quad x = l, is no factor
+    r"(1)\quad x = l \\ (2)\quad y = 2 l", r"(1)\quad x = l \qquad (2)\quad y = 2 l",
 ])
 def test_a_system_in_a_brace_or_joined_by_and_is_its_equations(ns, latex):
     assert [(eq.lhs, eq.rhs) for eq in parse_system(latex, ns)] == \
@@ -281,3 +285,10 @@ def test_primes_after_a_subscripted_name_belong_to_the_next_letter(text, plain):
     from grader.expressions import Namespace, Variable
     ns = Namespace([Variable("m1", "mass", "positive"), Variable("xddot", "acceleration", "real", "acceleration")])
     assert parse_expression(text, ns).expr == parse_expression(plain, ns).expr
+
+
+@pytest.mark.parametrize("latex, plain", [(r"x = l \quad y", "x = l y"), (r"x = (l \quad y)", "x = l y"),
+                                          (r"x \quad = l", "x = l")])
+def test_a_wide_space_inside_one_equation_is_a_space(ns, latex, plain):
+    [got], [expected] = parse_system(latex, ns), parse_system(plain, ns)
+    assert (got.lhs, got.rhs) == (expected.lhs, expected.rhs)
