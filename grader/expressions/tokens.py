@@ -179,6 +179,8 @@ class _Tokenizer:
         self.tokens.append(Token("end", None, self.n, self.n, "", self.space))
         if any(t.kind == "bar" for t in self.tokens):
             self.tokens = _absolute_values(self.tokens)
+        if any(t.kind == "open" and t.value == "(" for t in self.tokens):
+            _equation_numbers(self.tokens)
         return self.tokens
 
     def step(self) -> None:
@@ -946,6 +948,47 @@ _BRACKET_COMMANDS = {"lvert": "|", "rvert": "|", "vert": "|", "lbrace": "{", "rb
                      "rbrack": "]", "lparen": "(", "rparen": ")"}
 # Dots set over a letter (\overset{\cdot}{x}): each is one dot.
 _DOT_MARKS = re.compile(r"\\(?:cdot|bullet|ldotp|centerdot)(?![A-Za-z])|[˙·•∙⋅]")
+
+
+def _lone_number(tokens: list[Token], k: int) -> bool:
+    """Whether tokens k, k+1, k+2 are '(', a whole number, ')' (as an equation's number is written)."""
+    return k >= 0 and k + 2 < len(tokens) and tokens[k].kind == "open" and tokens[k].value == "(" \
+        and tokens[k + 1].kind == "number" and tokens[k + 1].text.isdigit() \
+        and tokens[k + 2].kind == "close" and tokens[k + 2].value == ")"
+
+
+def _equation_numbers(tokens: list[Token]) -> None:  # changes tokens in place
+    r"""``(2) y = l`` and ``x + y = l (2)``: a whole number in brackets set apart by a space at the start or
+    the end of a line reads as the equation's number or as a factor 2; it is refused, naming both (read
+    as a factor it would silently change the equation). ``\quad (2)`` and ``\tag{2}`` are numbers, read
+    as such by the tokenizer; ``2(x + y)`` and ``(2)(3)`` are products."""
+    breaks, depth = [], 0  # where lines and equations end: new lines, and ';' or ',' outside brackets
+    for n, t in enumerate(tokens):
+        depth += {"open": 1, "close": -1}.get(t.kind, 0)
+        if t.kind in ("newline", "end") or (t.kind == "op" and t.value in ";," and depth == 0):
+            breaks.append(n)
+    starts, ends = [0] + [n + 1 for n in breaks], breaks
+    found = None
+    for k in starts:  # (2) y = l
+        if _lone_number(tokens, k) and k + 3 < len(tokens) and tokens[k + 3].space_before \
+                and tokens[k + 3].kind in ("name", "number", "open", "command", "root", "derivative"):
+            found = k
+            break
+    if found is None:
+        for end in ends:  # x + y = l (2)
+            k = end - 3
+            if _lone_number(tokens, k) and tokens[k].space_before and k > 0 \
+                    and tokens[k - 1].kind in ("name", "number", "close") and not tokens[k - 1].kind == "newline":
+                found = k
+                break
+    if found is not None:
+        opener, number, closer = tokens[found:found + 3]
+        shown = f"({number.text})"
+        tokens[found:found + 3] = [Token("bad", shown, opener.pos, closer.end, shown, opener.space_before,
+                                         error=ExpressionError(f"'{shown}' reads as the equation's number or as a "
+                                                               f"factor {number.text}", opener.pos, "ambiguous",
+                                                               f"delete the equation's number, or write "
+                                                               f"{number.text}* for the factor"))]
 
 
 # After these a bar opens an absolute value (an operand is expected); after anything else it closes one.

@@ -324,10 +324,23 @@ def test_an_equation_number_after_a_wide_space_or_in_a_tag_is_no_factor(text, ex
 
 @pytest.mark.parametrize("text, expected", [
     (r"x \quad (2) y", [("name", "x"), ("open", "("), ("number", 2), ("close", ")"), ("name", "y")]),
-    ("x (2)", [("name", "x"), ("open", "("), ("number", 2), ("close", ")")]),
+    ("x(2)", [("name", "x"), ("open", "("), ("number", 2), ("close", ")")]),
+    ("(2)(3) x", [("open", "("), ("number", 2), ("close", ")"), ("open", "("), ("number", 3), ("close", ")"),
+                  ("name", "x")]),
+    ("(2)^2 x", [("open", "("), ("number", 2), ("close", ")"), ("op", "^"), ("number", 2), ("name", "x")]),
 ])
 def test_a_bracketed_number_elsewhere_is_still_a_factor(text, expected):
     assert kinds(text) == expected
+
+
+@pytest.mark.parametrize("text", ["x (2)", "(2) y = l", "x = l\n(2) y = l", "x + y = l (2)", "x = l (1); y = l",
+                                  "x = l (2), y = l",
+                                  r"x + y = l \;\;(2)"])
+def test_a_bracketed_number_set_apart_at_a_line_end_is_ambiguous(text):
+    # an equation's number (Word numbers them so) or a factor: read as a factor it would silently change
+    # the equation, so it is refused naming both readings
+    bad = [t for t in tokenize(text) if t.kind == "bad"]
+    assert bad and bad[0].error.code == "ambiguous" and "equation's number or as a factor" in bad[0].error.message
 
 
 @pytest.mark.parametrize("text, expected", [
