@@ -348,7 +348,8 @@ class _Tokenizer:
             # an alignment point (of \begin{aligned}, or '&=' of a line copied out of one): nothing to a grader
             self.space = True
             self.i += 1
-        elif ch == "~" and "\\" in self.text:  # LaTeX's non-breaking space (Mathpix: g~\sin\theta, \mathrm{~N})
+        elif ch == "~" and "\\" in self.text and not (start > 0 and self.text[start - 1] == " " and self.peek(1) == " "):
+            # LaTeX's non-breaking space (Mathpix: g~\sin\theta); set apart, x ~ \frac{l}{2} means 'about' 
             self.space = True
             self.i += 1
         elif ch in _PUNCTUATION:

@@ -143,6 +143,7 @@ def test_a_system_in_a_brace_or_joined_by_and_is_its_equations(ns, latex):
     (r"\overset{\rightarrow}{x}", "(a mark over a letter)"),
     # ~ in plain text: 'approximately', or a space?
     ("x ~ l", "'~' reads as 'approximately' or as a LaTeX space"),
+    (r"x ~ \frac{l}{2}", "'~' reads as 'approximately' or as a LaTeX space"),   # set apart: 'about
     # & that is no alignment point
     (r"\ddot{\theta}&-g", "'&' (a LaTeX alignment mark)"),
     # Typst's and speech's "theta dot": which name is dotted?
