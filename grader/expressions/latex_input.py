@@ -156,8 +156,9 @@ def subscript_text(content: str, position: int) -> str:
     >>> subscript_text(r"\mathrm{roll},s", 0), subscript_text(r"\theta", 0)
     ('roll_s', 'theta')
     """
-    if "\\placeholder" in content:
-        raise ExpressionError(*_REFUSED["placeholder"][:1], position, "syntax", _REFUSED["placeholder"][1])
+    if "\\placeholder" in content:  # m_{\placeholder{}}: MathLive's empty box
+        message, hint = _REFUSED["placeholder"]
+        raise ExpressionError(message, position, "syntax", hint)
     if not content.strip():  # MathQuill leaves _{} where a subscript box was opened and not filled
         raise ExpressionError("the subscript is empty", position, "syntax",
                               "type the subscript inside the braces, as in m_{1}, or delete the '_{}'")
@@ -175,15 +176,24 @@ def subscript_text(content: str, position: int) -> str:
 _WRAPPED_SPACE = re.compile(r"~|\\[,;:! ]|\\q?quad(?![A-Za-z])")
 
 
+def _is_unit(text: str) -> bool:
+    """Whether a wrapper's text is only unit symbols, with / ^ - . digits, brackets and products between
+    them: ``N``, ``m/s^2``, ``(N)``, ``kg\\cdot m\\cdot s^{-2}``."""
+    if not set(_COMMAND.findall(text)) <= {"cdot", "times", "mathrm", "text"}:
+        return False
+    plain = _COMMAND.sub(" ", text).strip("()[] ")
+    words = re.findall(r"[A-Za-z]+", plain)
+    return bool(words) and all(word in UNIT_SYMBOLS for word in words) and not re.search(r"[^A-Za-z0-9/^{}\-.\s]", plain)
+
+
 def wrapped_text(shown: str, content: str, position: int) -> tuple[str, str]:
     r"""What a wrapper's braced text is: ``(kind, value)``.
 
     ``("name", text)`` for a name (``\mathrm{m}``, ``\text{cos}``, ``\boldsymbol{\theta}``, what
     `subscript_text` reads); ``("space", "")`` for nothing but spacing (``\text{ }``);
     ``("punctuation", ".")`` for a full stop, comma or semicolon alone (``\text{.}``); ``("number", "2")``
-    for digits (``\mathrm{2}``); ``("and", "")``
-    for the word and between two equations. A unit (``\mathrm{rad/s^2}``) or words
-    (``\text{(equation of motion)}``) are refused, naming them.
+    for digits (``\mathrm{2}``); ``("and", "")`` for the word and between two equations. A unit
+    (``\mathrm{rad/s^2}``, ``\mathrm{~m}``) or words (``\text{(equation of motion)}``) are refused, naming them.
 
     Examples
     --------
@@ -204,10 +214,7 @@ def wrapped_text(shown: str, content: str, position: int) -> tuple[str, str]:
         return "number", plain
     if plain.lower() == "and":
         return "and", ""
-    words = re.findall(r"[A-Za-z]+", _COMMAND.sub(" ", plain))
-    bare = _COMMAND.sub(" ", plain).strip("()[] ")  # \text{ (N) }: a unit in brackets; kg\cdot m
-    unit = bool(words) and all(word in UNIT_SYMBOLS for word in words) and not re.search(r"[^A-Za-z0-9/^{}\-.\s]", bare) \
-        and set(_COMMAND.findall(plain)) <= {"cdot", "times", "mathrm", "text"}
+    unit = _is_unit(plain)
     # \mathrm{~m}, \text{ kg}: the space a unit is set off with (Mathpix), so never the variable m
     spaced_unit = unit and spaced[:1].isspace()
     if (_SUBSCRIPT.match(plain) or plain.startswith("\\")) and not spaced_unit:
