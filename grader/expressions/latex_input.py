@@ -183,7 +183,8 @@ def _is_unit(text: str) -> bool:
         return False
     plain = _COMMAND.sub(" ", text).strip("()[] ")
     words = re.findall(r"[A-Za-z]+", plain)
-    return bool(words) and all(word in UNIT_SYMBOLS for word in words) and not re.search(r"[^A-Za-z0-9/^{}\-.\s]", plain)
+    return bool(words) and all(word in UNIT_SYMBOLS for word in words) \
+        and not re.search(r"[^A-Za-z0-9/^{}\-.\s]", plain)
 
 
 def wrapped_text(shown: str, content: str, position: int) -> tuple[str, str]:

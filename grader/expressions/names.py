@@ -351,7 +351,8 @@ def _split_before_derivative(raw: str, ns: "Namespace", order: int, typed: str, 
             continue
         try:
             derivative = _resolve_derivative(tail, ns, order, typed, position).value.name
-            head_parts = [_lookup(head, ns).name] if _lookup(head, ns) is not None else _split(head, ns, typed, position)
+            declared = _lookup(head, ns)
+            head_parts = [declared.name] if declared is not None else _split(head, ns, typed, position)
         except ExpressionError:
             continue
         if head_parts and not any(part in FUNCTIONS or part.isdigit() for part in head_parts):

@@ -348,7 +348,8 @@ class _Tokenizer:
             # an alignment point (of \begin{aligned}, or '&=' of a line copied out of one): nothing to a grader
             self.space = True
             self.i += 1
-        elif ch == "~" and "\\" in self.text and not (start > 0 and self.text[start - 1] == " " and self.peek(1) == " "):
+        elif ch == "~" and "\\" in self.text \
+                and not (start > 0 and self.text[start - 1] == " " and self.peek(1) == " "):
             # LaTeX's non-breaking space (Mathpix: g~\sin\theta); set apart, x ~ \frac{l}{2} means 'about' 
             self.space = True
             self.i += 1
@@ -507,7 +508,8 @@ class _Tokenizer:
         if len(self.tokens) < 2 or sub.order or len(sub.value) < 2 or self.text[self.tokens[-2].end:sub.pos].strip():
             return
         before = self.tokens[-2]
-        if before.kind == "name" and not before.order and not before.forced_function and not before.value.startswith("_"):
+        if before.kind == "name" and not before.order and not before.forced_function \
+                and not before.value.startswith("_"):
             self.tokens[-2:] = [Token("name", before.value + sub.value, before.pos, sub.end,
                                       self.text[before.pos:sub.end], before.space_before)]
             return

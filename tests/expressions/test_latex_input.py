@@ -136,7 +136,8 @@ def test_a_system_in_a_brace_or_joined_by_and_is_its_equations(ns, latex):
     ("x = l ⟹ x - l = 0", "'⟹' joins two steps of a derivation"),
     (r"\theta = 0 \\ \Rightarrow T = m g", r"'\Rightarrow' joins two steps of a derivation"),
     (r"x \Rightarrow l", r"'\Rightarrow' is an arrow"),   # where the '=' belongs
-    (r"x = l \implies", r"'\implies' at the end leads to nothing"), ("x = l ⇒ $", "'⇒' at the end leads to nothing"),
+    (r"x = l \implies", r"'\implies' at the end leads to nothing"),
+    ("x = l ⇒ $", "'⇒' at the end leads to nothing"),
     # norms, vectors, TeX's \over, complex numbers, a mark over a letter that is no dot
     (r"\left\| x \right\|", "(a norm)"), (r"\|x\|", "(a norm)"), (r"\Vert x\Vert", "(a norm)"),
     (r"\vec{T} = m g", "(a vector)"), (r"{m \over g}", r"'\over'"), (r"x \imaginaryI", "complex numbers"),
