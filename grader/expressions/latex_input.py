@@ -50,6 +50,7 @@ _SIZES = {f"{size}{side}": "space" if side in ("", "m") else f"big{side}"
           for size in ("big", "Big", "bigg", "Bigg") for side in ("", "l", "r", "m")}
 _SPACING = {"quad", "qquad", "displaystyle", "textstyle", "scriptstyle", "limits", "nonumber", "notag",
             "enspace", "thinspace", "medspace", "thickspace", "negthinspace", "negmedspace", "negthickspace",
+            "strut", "mathstrut", "nolimits", "allowbreak", "nobreak",
             *(name for name, value in _SIZES.items() if value == "space")}
 # \cfrac (Mathpix's continued-fraction form) is a fraction; MathLive writes \mleft( \mright) for \left( \right).
 _STRUCTURE = {"frac": "frac", "dfrac": "frac", "tfrac": "frac", "cfrac": "frac", "sqrt": "sqrt",

@@ -220,7 +220,7 @@ def test_a_subscript_after_a_fraction_or_root_is_not_moved_inside(latex):
     (r"m \boxed{g + l}", "m (g + l)"), (r"\boxed{g + l}^2", "(g + l)^2"), (r"$\boxed{m g}$", "m g"),
     (r"\textcolor{red}{m g}", "m g"), (r"{\color{blue} m g}", "m g"), (r"\colorbox{yellow}{$m g$}", "m g"),
     (r"\underline{\underline{m g}}", "m g"), (r"\phantom{-}m g", "m g"), (r"m g\hspace{1em}", "m g"),
-    (r"m g\enspace", "m g"),
+    (r"m g\enspace", "m g"), (r"\mathstrut m g\strut", "m g"), (r"m\allowbreak g", "m g"),
     # a prime after a space: LaTeX ignores it
     (r"\theta ^{\prime}", "thetadot"), (r"\theta ^ { \prime \prime }", "thetaddot"),
 ])
