@@ -807,7 +807,8 @@ class _Parser:
         if token.kind in ("number", "name") and plain and len(token.text) > 1:
             first, rest = token.text[0], token.text[1:]
             if not (token.text.isdigit() or token.text.isalpha()):
-                raise ExpressionError(f"{command.text} needs braces, as in \\frac{{a}}{{b}}", token.pos, "syntax")
+                raise ExpressionError(f"{command.text} needs braces, as in {_BRACED_EXAMPLE.get(command.value, '')}",
+                                      token.pos, "syntax")
             pieces = [replace(token, value=sympy.Integer(int(part)) if part.isdigit() else part, text=part,
                               pos=token.pos + k, end=token.pos + k + len(part),
                               space_before=token.space_before if k == 0 else False)
@@ -817,7 +818,8 @@ class _Parser:
         single = plain and len(token.text) == 1
         latex_name = token.kind == "name" and token.text[:1] == "\\" and not token.forced_function
         if not ((token.kind in ("number", "name") and single) or latex_name):
-            raise ExpressionError(f"{command.text} needs braces, as in \\frac{{a}}{{b}}", token.pos, "syntax")
+            raise ExpressionError(f"{command.text} needs braces, as in {_BRACED_EXAMPLE.get(command.value, '')}",
+                                      token.pos, "syntax")
         self.advance()
         return self.nud(token, _POW)
 
@@ -837,8 +839,22 @@ class _Parser:
                     raise ExpressionError("the root index must be a whole number from 2 up, as in \\sqrt[3]{x}",
                                           opener.pos, "syntax")
             following = self.peek()
-            arg = self.braced(token) if following.kind == "open" and following.value == "{" \
-                else self.function_argument(token, "sqrt")
+            if following.kind == "open" and following.value == "{":
+                arg = self.braced(token)
+            elif following.kind in ("open", "command", "root") or following.forced_function:
+                # \sqrt(x), \sqrt\left(x\right), \sqrt\frac{g}{l}, \sqrt|x|, \sqrt\sin x
+                arg = self.function_argument(token, "sqrt")
+            else:
+                # TeX takes one character or command: \sqrt2 g and \sqrt g l print √2 g and √g l. Two glued
+                # (\sqrt12, \sqrt gl print √1 2 and √g l) are refused: what was meant under the root?
+                glued = following.text if following.kind in ("number", "name") and not following.order \
+                    and following.text.isascii() and following.text.isalnum() and len(following.text) > 1 else ""
+                if glued:
+                    raise ExpressionError(f"'{token.text}{self.text[token.end:following.pos]}{glued}' puts only "
+                                          f"'{glued[0]}' under the root, as LaTeX prints it", following.pos,
+                                          "ambiguous", f"write {token.text}{{{glued}}} for the root of {glued}, or "
+                                          f"{token.text}{{{glued[0]}}}\\,{glued[1:]}")
+                arg = self.latex_argument(token)
             return self.root(arg, int(index), token.pos)
         # \dot{x}, \ddot{x}, \dot x
         order = 1 if token.value == "dot" else 2
@@ -861,6 +877,10 @@ class _Parser:
 
 
 # -- entry points -------------------------------------------------------------
+
+# How each LaTeX structure's argument is braced, for the message when it is not.
+_BRACED_EXAMPLE = {"frac": "\\frac{a}{b}", "sqrt": "\\sqrt{x}"}
+
 
 def _namespace(namespace) -> Namespace:
     if isinstance(namespace, Namespace):

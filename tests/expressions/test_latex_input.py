@@ -294,3 +294,26 @@ def test_primes_after_a_subscripted_name_belong_to_the_next_letter(text, plain):
 def test_a_wide_space_inside_one_equation_is_a_space(ns, latex, plain):
     [got], [expected] = parse_system(latex, ns), parse_system(plain, ns)
     assert (got.lhs, got.rhs) == (expected.lhs, expected.rhs)
+
+
+@pytest.mark.parametrize("latex, plain", [
+    # \sqrt without braces takes one character or command, as LaTeX prints it: \sqrt2 g is √2·g, never √(2g)
+    (r"\sqrt2 g", "sqrt(2) g"), (r"\sqrt2g", "sqrt(2) g"), (r"\sqrt g l", "sqrt(g) l"), (r"\sqrt\pi", "sqrt(pi)"),
+    (r"\sqrt 3+1", "sqrt(3) + 1"), (r"\sqrt g/\sqrt l", "sqrt(g/l)"),
+    # a bracket, a structure or a function after it is the whole argument
+    (r"\sqrt(g l)", "sqrt(g l)"), (r"\sqrt\left(g l\right)", "sqrt(g l)"), (r"\sqrt\frac{g}{l}", "sqrt(g/l)"),
+    (r"\sqrt\left|x\right|", "sqrt(abs(x))"), (r"\sqrt\cos\theta", "sqrt(cos(theta))"),
+])
+def test_an_unbraced_root_takes_what_latex_puts_under_it(ns, latex, plain):
+    assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
+
+
+@pytest.mark.parametrize("latex, named", [
+    (r"\sqrt12", r"'\sqrt12' puts only '1' under the root"), (r"\sqrt gl", r"'\sqrt gl' puts only 'g' under the root"),
+    (r"\sqrt -g", r"\sqrt needs braces, as in \sqrt{x}"),
+])
+def test_an_unbraced_root_over_glued_characters_is_refused(ns, latex, named):
+    # LaTeX prints √1 2 and √g l: was the root of 12, or of gl, meant?
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(latex, ns)
+    assert named in str(err.value)
