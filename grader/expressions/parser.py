@@ -45,7 +45,7 @@ from .errors import ExpressionError
 from .functions import FUNCTIONS, INVERSES
 from .leibniz import dotted, read_leibniz, time_derivative
 from .magnitudes import checked, guarded_pow, not_real
-from .names import WRITE_INSTEAD, derivative_name, resolve_name
+from .names import GREEK_LETTERS, WRITE_INSTEAD, derivative_name, resolve_name
 from .tokens import Token, check_brackets, tokenize
 from .variables import Namespace
 
@@ -869,6 +869,14 @@ class _Parser:
                                       f"write {token.text}{{x}} with a variable x")
             self.expect_close(opener)
             return self.derivative_of(inner, order)
+        inner = self.peek()
+        if inner.kind == "name" and not inner.order and inner.text.isascii() and inner.text.isalpha() \
+                and len(inner.text) > 1 and inner.value not in self.ns.names and inner.value not in GREEK_LETTERS:
+            # \dot xy: TeX dots one character, so it prints ẋy (x·ẏ, the glued name's reading, it is not)
+            first, rest = inner.text[0], inner.text[1:]
+            self.tokens[self.i:self.i + 1] = [replace(inner, value=first, text=first, end=inner.pos + 1),
+                                              replace(inner, value=rest, text=rest, pos=inner.pos + 1,
+                                                      space_before=False)]
         inner = self.advance()
         if inner.kind != "name":
             raise ExpressionError(f"{token.text} takes a variable name, as in {token.text}{{\\theta}}",

@@ -317,3 +317,17 @@ def test_an_unbraced_root_over_glued_characters_is_refused(ns, latex, named):
     with pytest.raises(ExpressionError) as err:
         parse_expression(latex, ns)
     assert named in str(err.value)
+
+
+@pytest.mark.parametrize("latex, plain", [
+    # \dot without braces dots one character, as TeX prints it: \dot xy is ẋ·y (the glued name xy with a
+    # dot would read x·ẏ); a declared or Greek name stays whole (\dot theta, as \dot\theta)
+    (r"\dot xy", "xdot y"), (r"\dot yx", "x ydot"), (r"\dot theta", "thetadot"), (r"\dot x l", "xdot l"),
+])
+def test_an_unbraced_dot_marks_one_character(latex, plain):
+    from grader.expressions import Namespace, Variable
+    ns = Namespace([Variable("x", "length", "real", "coordinate"), Variable("xdot", "velocity", "real", "velocity"),
+                    Variable("y", "length", "real", "coordinate"), Variable("ydot", "velocity", "real", "velocity"),
+                    Variable("l", "length", "positive"), Variable("theta", "angle", "real", "coordinate"),
+                    Variable("thetadot", "angular_velocity", "real", "velocity")])
+    assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
