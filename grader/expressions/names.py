@@ -209,7 +209,8 @@ def resolve_name(raw: str, ns: "Namespace", *, order: int = 0, typed: str | None
 
 #: Spellings of other traditions (tg for tan, lg for log₁₀) that are also products of one-letter
 #: variables common in mechanics (t·g, l·g): a function only when the letters are not all declared.
-_PRODUCT_FIRST = {"tg": "tan", "ctg": "cot", "cotg": "cot", "arctg": "arctan", "lg": "the logarithm to base 10"}
+_PRODUCT_FIRST = {"tg": "tan", "ctg": "cot", "cotg": "cot", "arctg": "arctan", "lg": "the logarithm to base 10",
+                  "sen": "sin", "senh": "sinh"}  # sen: Spanish and Portuguese sine
 
 _LOG_BASE = re.compile(r"^log_(\w+)$")
 

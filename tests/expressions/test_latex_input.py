@@ -331,3 +331,11 @@ def test_an_unbraced_dot_marks_one_character(latex, plain):
                     Variable("l", "length", "positive"), Variable("theta", "angle", "real", "coordinate"),
                     Variable("thetadot", "angular_velocity", "real", "velocity")])
     assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
+
+
+def test_sen_is_a_product_when_s_e_and_n_are_all_declared():
+    # as tg and lg: the Spanish sine only when the letters are not all variables
+    from grader.expressions import Namespace, Variable
+    ns = Namespace([Variable("s", "length", "real"), Variable("e", "dimensionless", "positive"),
+                    Variable("n", "dimensionless", "positive")])
+    assert parse_expression("sen", ns).expr == parse_expression("s*e*n", ns).expr
