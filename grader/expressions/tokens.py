@@ -246,6 +246,11 @@ class _Tokenizer:
             self.emit("bad", "->", start, start + 2, error=_arrow_error(start, "->"))
         elif ch in "+-*/^=,;":
             self.emit("op", ch, start, start + 1)
+        elif ch == "{" and _STYLE_GROUP.match(self.text, start) and self.whole_group(start):
+            # {\displaystyle T = m g …}: the LaTeX Wikipedia's formulas copy as, around the whole answer
+            self.transparent_closes[self.matching_brace(start)] = False
+            self.space = True
+            self.i += 1
         elif ch in _PAIRS:
             self.emit("open", ch, start, start + 1)
         elif ch == "}" and start in self.transparent_closes:  # the end of \boxed{…}
@@ -704,15 +709,20 @@ class _Tokenizer:
             return
         # Around the whole answer, or a whole side of it, the box is no bracket (\boxed{T = m g} is an
         # equation); around a part, it groups that part, as its braces do (m \boxed{g + a} is m (g + a)).
-        last = self.tokens[-1] if self.tokens else None
-        whole = (last is None or last.kind == "newline" or (last.kind == "op" and last.value in "=,;")) \
-            and _SIDE_ENDS.match(self.text, close + 1) is not None
+        whole = self.whole_group(k)
         self.transparent_closes[close] = not whole
         if whole:
             self.space = True
             self.i = k + 1
         else:
             self.emit("open", "(", start, k + 1)
+
+    def whole_group(self, brace: int) -> bool:
+        """Whether the group opened at ``brace`` is a whole answer, line or side of an equation: nothing of
+        the formula before it on its line but '=', and nothing after it but the end, '=' or punctuation."""
+        last = self.tokens[-1] if self.tokens else None
+        return (last is None or last.kind == "newline" or (last.kind == "op" and last.value in "=,;")) \
+            and _SIDE_ENDS.match(self.text, self.matching_brace(brace) + 1) is not None
 
     def overset(self, start: int, j: int) -> None:
         r"""``\overset{\cdot}{\theta}``, ``\overset{..}{x}``, ``\stackrel{.}{x}``: the dots Word's and some
@@ -943,6 +953,8 @@ class _Tokenizer:
 # with an argument that shows nothing of the answer (\color{red}, \hspace{1cm}, \phantom{x}).
 _TRANSPARENT = {"boxed", "fbox", "displaylines", "textcolor", "colorbox", "underline"}
 _SKIPPED = {"color", "hspace", "vspace", "phantom", "hphantom", "vphantom"}
+# {\displaystyle …}, {\begin{aligned} … \end{aligned}}: a group that only sets the style of what is in it.
+_STYLE_GROUP = re.compile(r"\{\s*(?:\\(?:displaystyle|textstyle)(?![A-Za-z])|\\begin\s*\{)")
 # What may follow a box around a whole side: the end, '=', the next line, punctuation, closing math.
 _SIDE_ENDS = re.compile(r"\s*(?:$|=|\n|\\\\|[.,;$}]|\\(?:end|\]|\)|quad|qquad|tag|label|text)(?![A-Za-z]))")
 

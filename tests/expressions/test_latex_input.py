@@ -339,3 +339,14 @@ def test_sen_is_a_product_when_s_e_and_n_are_all_declared():
     ns = Namespace([Variable("s", "length", "real"), Variable("e", "dimensionless", "positive"),
                     Variable("n", "dimensionless", "positive")])
     assert parse_expression("sen", ns).expr == parse_expression("s*e*n", ns).expr
+
+
+@pytest.mark.parametrize("latex, plain", [
+    # what a formula copied from Wikipedia gives: its LaTeX in a {\displaystyle …} group
+    (r"{\displaystyle T=mg\cos \theta +ml{\dot {\theta }}^{2}}", "m g cos(theta) + m l thetadot^2"),
+    (r"{\textstyle mg\cos \theta ,}", "m g cos(theta)"),
+    (r"{\displaystyle {\begin{aligned}T&=mg\cos \theta \end{aligned}}}", "m g cos(theta)"),
+    (r"m{\displaystyle g+l}", "m (g + l)"),   # a part: still a group
+])
+def test_a_wikipedia_style_group_around_the_answer_is_read_through(ns, latex, plain):
+    assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
