@@ -48,6 +48,17 @@ _OPEN_OPERAND = {"(": ")", "[": "]", "{": "}"}
 _ATOMS = ("number", "name", "open", "root", "command", "derivative", "time_derivative")
 # ``\mathrm{d}x``, ``\operatorname{d}x``: the wrapper the tokenizer read into the name ``dx``.
 _WRAPPED_D = re.compile(r"^\\[A-Za-z]+\s*\{d\}")
+# The d of Word's equations, a mathematical italic 𝑑 (read as the letter d), typed first.
+_ITALIC_D = "\U0001d451"
+
+
+def _typed_d(text: str) -> str | None:
+    """What follows the typed d of a name (``dθ`` -> ``θ``, ``𝑑𝜃`` -> ``𝜃``, ``\\mathrm{d}x`` -> ``x``), or
+    None when its d is not typed as one (``\\delta``)."""
+    if text[:1] in ("d", _ITALIC_D):
+        return text[1:]
+    wrapped = _WRAPPED_D.match(text)
+    return text[wrapped.end():] if wrapped else None
 _GREEK_CHAR = {"alpha": "α", "beta": "β", "gamma": "γ", "delta": "δ", "epsilon": "ε", "zeta": "ζ",
                "eta": "η", "theta": "θ", "iota": "ι", "kappa": "κ", "lambda": "λ", "mu": "μ", "nu": "ν",
                "xi": "ξ", "pi": "π", "rho": "ρ", "sigma": "σ", "tau": "τ", "upsilon": "υ", "phi": "φ",
@@ -139,13 +150,9 @@ def _numerator(tokens: list[Token], i: int) -> _Numerator | None:
         return _Numerator(order, [token], None, None, None, j)
     value, text = token.value, token.text
     if len(value) > 1 and value[0] == "d" and value[1] != "_":
-        if text.startswith("d"):
-            typed = text[1:]
-        else:
-            wrapped = _WRAPPED_D.match(text)
-            if wrapped is None:  # \delta: a Greek letter, not d
-                return None
-            typed = text[wrapped.end():]
+        typed = _typed_d(text)
+        if typed is None:  # \delta: a Greek letter, not d
+            return None
         return _Numerator(1, [token], token, value[1:], typed, i + 1)
     return None
 
@@ -155,7 +162,7 @@ def _denominator(tokens: list[Token], i: int) -> tuple[int, list[Token], Token, 
     token = _at(tokens, i)
     if not _plain_name(token) or token.order:
         return None
-    if token.value == "dt" and (token.text.startswith("d") or _WRAPPED_D.match(token.text)):
+    if token.value == "dt" and _typed_d(token.text) is not None:
         words, time, j = [token], token, i + 1
     elif token.value == "d":
         time = _at(tokens, i + 1)
@@ -304,6 +311,16 @@ def _match(tokens: list[Token], i: int, ns, text: str, memo: dict) -> tuple[Toke
         if below is None or not _is(_at(tokens, below[3]), "close", "}"):
             return None
         k = below[3] + 1
+    elif start.kind == "open":  # (d²θ)/(dt²) and (d²θ)/dt²: Word's linear form of the fraction
+        top = _numerator(tokens, i + 1)
+        if top is None or top.coordinate is None or not _is(_at(tokens, top.end), "close", ")") \
+                or not _is(_at(tokens, top.end + 1), "op", "/"):
+            return None
+        bracketed = _is(_at(tokens, top.end + 2), "open", "(")
+        below = _denominator(tokens, top.end + (3 if bracketed else 2))
+        if below is None or (bracketed and not _is(_at(tokens, below[3]), "close", ")")):
+            return None
+        k = below[3] + (1 if bracketed else 0)
     else:  # d…/dt…
         top = _numerator(tokens, i)
         if top is None or not _is(_at(tokens, top.end), "op", "/"):
@@ -391,7 +408,7 @@ def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
     >>> [t.kind for t in read_leibniz(tokenize(text), ns, text)]
     ['name', 'name', 'op', 'name', 'name', 'end']
     """
-    if "d" not in text:  # most answers: nothing to look at
+    if "d" not in text and _ITALIC_D not in text:  # most answers: nothing to look at
         return tokens
     out: list[Token] | None = None
     memo: dict = {}
@@ -399,7 +416,9 @@ def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
     while i < n:
         token = tokens[i]
         found = None
-        if (token.kind == "name" and token.value[:1] == "d") or (token.kind == "command" and token.value == "frac"):
+        if (token.kind == "name" and token.value[:1] == "d") or (token.kind == "command" and token.value == "frac") \
+                or (token.kind == "open" and token.value == "(" and i + 1 < n and tokens[i + 1].kind == "name"
+                    and tokens[i + 1].value[:1] == "d"):
             found = _match(tokens, i, ns, text, memo)
         if found is None:
             if out is not None:

@@ -350,3 +350,19 @@ def test_sen_is_a_product_when_s_e_and_n_are_all_declared():
 ])
 def test_a_wikipedia_style_group_around_the_answer_is_read_through(ns, latex, plain):
     assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
+
+
+@pytest.mark.parametrize("text, plain", [
+    # Word's linear format writes a fraction's parts in brackets, and its d as a mathematical italic 𝑑
+    ("(d^2 θ)/(dt^2)", "thetaddot"), ("(𝑑^2 𝜃)/(𝑑𝑡^2 )", "thetaddot"), ("𝑑²𝜃/𝑑𝑡²", "thetaddot"),
+    ("(dθ)/dt", "thetadot"), ("(d θ)/(d t)", "thetadot"),
+])
+def test_word_linear_leibniz_derivatives(ns, text, plain):
+    assert parse_expression(text, ns).expr == parse_expression(plain, ns).expr
+
+
+def test_a_bracketed_leibniz_quotient_keeps_a_declared_d_as_a_variable():
+    from grader.expressions import Namespace, Variable
+    ns = Namespace([Variable("x", "length", "real", "coordinate"), Variable("xdot", "velocity", "real", "velocity"),
+                    Variable("d", "length", "positive"), Variable("t", "time", "positive")])
+    assert parse_expression("(dx)/(dt)", ns).expr == parse_expression("x/t", ns).expr
