@@ -672,6 +672,11 @@ class _Tokenizer:
         if k >= self.n or text[k] != "{":
             raise ExpressionError(f"\\{command} needs braces, as in \\{command}{{x}}", start, "syntax")
         close = self.matching_brace(k)
+        if text[k + 1:close].strip().endswith(":") and all(token.kind == "newline" for token in self.tokens):
+            # \text{Answer: } before the whole answer: a caption, as a label T = is
+            self.space = True
+            self.i = close + 1
+            return
         kind, value = wrapped_text(text[start:close + 1], text[k + 1:close], k + 1)
         if kind == "space":
             self.space = True

@@ -366,3 +366,14 @@ def test_a_bracketed_leibniz_quotient_keeps_a_declared_d_as_a_variable():
     ns = Namespace([Variable("x", "length", "real", "coordinate"), Variable("xdot", "velocity", "real", "velocity"),
                     Variable("d", "length", "positive"), Variable("t", "time", "positive")])
     assert parse_expression("(dx)/(dt)", ns).expr == parse_expression("x/t", ns).expr
+
+
+@pytest.mark.parametrize("latex, plain", [(r"\text{Answer: } m g", "m g"), (r"\text{EOM:}\; T = m g", "m g")])
+def test_a_caption_before_the_whole_answer_is_no_part_of_it(ns, latex, plain):
+    assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
+
+
+def test_a_caption_after_the_start_is_still_text(ns):
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(r"m g \text{ so: }", ns)
+    assert "is text" in str(err.value)
