@@ -115,13 +115,19 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
     expr = sympy.sympify(expr, strict=True)  # an expression or a number, never text
     if expr.is_Atom:
         return expr
-    return _remembered_form(expr, seconds, _bounds_of(expr.free_symbols))
+    bounds = _bounds_of(expr.free_symbols)
+    form = _remembered_form(expr, seconds, bounds)
+    # Again at the end: a rewriting may bring a factor of known sign into the bars (|√(1 − cos φ₀)|
+    # as √2 |sin(φ₀/2)|).
+    return signed_abs(form, bounds) if form.has(sympy.Abs) else form
 
 
 @functools.lru_cache(maxsize=512)
 def _remembered_form(expr: sympy.Expr, seconds: float, bounds: tuple = ()) -> sympy.Expr:
     from grader.mechanics.budget import attempt
 
+    if expr.has(sympy.Abs):
+        expr = signed_abs(expr, bounds)
     allowed = _multiple_angles(expr)
     cancelled = sympy.cancel(expr)
     if cancelled == 0 or identically_zero(expr, bounds, seconds):
@@ -640,6 +646,77 @@ def _maybe_zero(expr: sympy.Expr) -> bool:
     except (TypeError, ValueError, ZeroDivisionError):
         return True
     return not (cmath.isfinite(value) and abs(value) > 1e-30)
+
+
+def signed_abs(expr: sympy.Expr, bounds: tuple = ()) -> sympy.Expr:
+    """Each |a b …| with the factors whose sign the declared domains (``bounds``, as for
+    :func:`half_angles`) and the symbols' signs fix taken out with that sign: |a b| = |a| |b| and
+    |a| = ±a where a has one sign.
+
+    A spring along a cone's generator has length ρ/|sin α|; with α declared in [0.05, 1.5] it is
+    ρ/sin α.
+
+    >>> rho, a = sympy.symbols("rho alpha", positive=True)
+    >>> signed_abs(rho / sympy.Abs(sympy.sin(a)), ((a, 0.05, 1.5),))
+    rho/sin(alpha)
+    >>> signed_abs(rho / sympy.Abs(sympy.sin(a)))  # α not bounded: its sine may have either sign
+    rho/Abs(sin(alpha))
+    """
+    def rewrite(absolute):
+        known, unknown = sympy.Integer(1), []
+        for factor in sympy.Mul.make_args(absolute.args[0]):
+            sign = _factor_sign(factor, bounds)
+            if sign is None:
+                unknown.append(factor)
+            else:
+                known *= sign * factor
+        return known * sympy.Abs(sympy.Mul(*unknown)) if unknown else known
+
+    return expr.replace(lambda e: isinstance(e, sympy.Abs), rewrite)
+
+
+def _factor_sign(f: sympy.Expr, bounds: tuple) -> int | None:
+    """+1 where ``f`` ≥ 0 and −1 where ``f`` ≤ 0 on the declared domains; None where that is not shown."""
+    if f.is_nonnegative:
+        return 1
+    if f.is_nonpositive:
+        return -1
+    if isinstance(f, (sympy.sin, sympy.cos)):
+        return _sign(f, bounds)
+    if f.is_Pow and f.exp.is_Rational:
+        base = _factor_sign(f.base, bounds)
+        if f.exp.is_Integer:
+            return None if base is None else base ** int(f.exp % 2 + 2)  # an even power: +1
+        return 1 if base == 1 else None  # a root of what is ≥ 0
+    if f.is_Symbol or f.is_Add:
+        interval = _interval(f, {s: (lo, hi) for s, lo, hi in bounds})
+        if interval is not None and interval[0] >= 0:
+            return 1
+        if interval is not None and interval[1] <= 0:
+            return -1
+    if f.is_Add:
+        return _definite_quadratic(f)
+    return None
+
+
+def _definite_quadratic(f: sympy.Expr) -> int | None:
+    """±1 where ``f`` is a quadratic a s² + b s + c in one of its symbols with a of that sign and
+    b² − 4ac ≤ 0 (by the symbols' signs), so that f has a's sign or is 0: a hoop's moment of inertia
+    about its contact point, R²(2M + m) − 2Rdm + d²m, has discriminant −8Md²m in R."""
+    for s in sorted(f.free_symbols, key=str):
+        try:
+            poly = sympy.Poly(f, s)
+        except sympy.PolynomialError:
+            continue
+        if poly.degree() != 2:
+            continue
+        a, b, c = poly.all_coeffs()
+        if sympy.expand(b ** 2 - 4 * a * c).is_nonpositive:  # ≥ 0 (or ≤ 0) is all the bars need
+            if a.is_positive:
+                return 1
+            if a.is_negative:
+                return -1
+    return None
 
 
 def _sign(f: sympy.Expr, bounds: tuple) -> int | None:

@@ -19,7 +19,7 @@ g, m, M, a, l, R, r, r0, t, v0, w, W, A, alpha, theta, theta0, thetadot = sympy.
     "g m M a l R r r0 t v0 omega Omega A alpha theta theta0 thetadot", positive=True)
 m1, m2, l1, l2, theta1, theta2, theta1dot, theta2dot = sympy.symbols(
     "m1 m2 l1 l2 theta1 theta2 theta1dot theta2dot", positive=True)
-sin, cos, sinh, cosh, sqrt = sympy.sin, sympy.cos, sympy.sinh, sympy.cosh, sympy.sqrt
+sin, cos, sinh, cosh, sqrt, Abs = sympy.sin, sympy.cos, sympy.sinh, sympy.cosh, sympy.sqrt, sympy.Abs
 
 
 def _ladder_largest_wall_force():
@@ -248,6 +248,31 @@ def test_half_angle_squares_are_recognised_and_others_refused(base, found):
     else:
         p, half = result
         assert sympy.simplify(p - found[0]) == 0 and half.func.__name__ == found[1]
+
+
+_d = sympy.Symbol("d", positive=True)
+_x = sympy.Symbol("x", real=True)
+alpha_in = ((alpha, 0.05, 1.5),)
+
+
+@pytest.mark.parametrize("expr, bounds, printed", [
+    # A spring along a cone's generator: ρ/|sin α| with α in [0.05, 1.5].
+    (r / Abs(sin(alpha)), alpha_in, "r/sin(alpha)"),
+    (Abs(-3 * cos(alpha) ** 3), alpha_in, "3*cos(alpha)**3"),
+    # Only the factors of known sign leave the bars.
+    (Abs(_x * sin(alpha)), alpha_in, "sin(alpha)*Abs(x)"),
+    (Abs(sqrt(_x) * sin(theta0 / 2)), theta_in, "sin(theta0/2)*Abs(sqrt(x))"),
+    # A definite quadratic: 2MR² + m(R − d)², written R²(2M + m) − 2Rdm + d²m.
+    (Abs(sqrt(1 / (R ** 2 * (2 * M + m) - 2 * R * _d * m + _d ** 2 * m))),
+     (), "sqrt(1/(R**2*(2*M + m) - 2*R*d*m + d**2*m))"),
+    # Without a declared domain the sign of sin α is not known, nor that of R − d.
+    (r / Abs(sin(alpha)), (), "r/Abs(sin(alpha))"),
+    (Abs(R - _d), (), "Abs(R - d)"),
+])
+def test_bars_around_factors_of_known_sign_are_removed(expr, bounds, printed):
+    rewritten = simplification.signed_abs(expr, bounds)
+    assert sympy.sstr(rewritten) == printed
+    _assert_same_value_on(expr, rewritten, bounds)
 
 
 def test_forgetting_forms_empties_every_memory_of_them():
