@@ -722,3 +722,29 @@ def test_systems_no_basis_is_taken_for_are_refused_before_any_factoring(monkeypa
         reference = [rdd - r * pd**2 + 1, r * pdd + 2 * rd * pd]
         answer = [reference[0] * 3, reference[1] * r]
     assert equations._same_polynomial_ideal(reference, answer, state) is False
+
+
+def _circle_identity_cases():
+    import sympy
+
+    a, b, g, l = sympy.symbols("a b g l", real=True)
+    sa, ca, sb, cb = sympy.symbols("sa ca sb cb", real=True)
+    circles = [sa**2 + ca**2 - 1, sb**2 + cb**2 - 1]
+    gens = [sa, ca, sb, cb]
+    return [
+        # sin(a − b)² + cos(a − b)² − 1 expanded: zero on the circles.
+        ((sa * cb - ca * sb) ** 2 + (ca * cb + sa * sb) ** 2 - 1, gens, circles, True),
+        # g/l times it, over a denominator: still zero.
+        (g * ((sa * cb - ca * sb) ** 2 + (ca * cb + sa * sb) ** 2 - 1) / (l * (g + l)), gens, circles, True),
+        # sin(a + b) against sin(a − b): not zero.
+        (sa * cb + ca * sb - (sa * cb - ca * sb), gens, circles, False),
+        # √g is no rational function of the symbols: left to the expression route.
+        (sympy.sqrt(g) * (sa**2 + ca**2 - 1), gens, circles, None),
+    ]
+
+
+@pytest.mark.parametrize("expr, generators, circles, expected", _circle_identity_cases())
+def test_identities_on_circles_are_decided_in_a_polynomial_ring(expr, generators, circles, expected):
+    from grader.answers.equations import _zero_in_ring
+
+    assert _zero_in_ring(expr, generators, circles) is expected
