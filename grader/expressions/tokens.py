@@ -112,8 +112,11 @@ _TAG = re.compile(r"\*?\s*\{[^{}]*\}")
 # LaTeX environments that only lay equations out (\begin{aligned} ... \end{aligned}), where any '&' aligns.
 _LAYOUT_ENVIRONMENTS = {"aligned", "align", "gather", "gathered", "split", "equation", "eqnarray", "multline",
                         "flalign", "alignat", "alignedat"}
-# The argument after \begin{alignat} (its column count, {2}): layout, not a factor.
-_ENVIRONMENT_ARGUMENT = {"alignat", "alignedat"}
+# A system in a brace (Mathpix, Word): cases, or \left\{ \begin{array}{l} … \end{array} \right. There an '&'
+# also starts a condition (cases) or a column (array): only an '&' beside '=' is read, as alignment.
+_SYSTEM_ENVIRONMENTS = {"cases", "dcases", "rcases", "array"}
+# The argument after \begin{array} (column layout, {l}) and \begin{alignat} (column count, {2}): not a factor.
+_ENVIRONMENT_ARGUMENT = {"array", "alignat", "alignedat"}
 _BEGIN = re.compile(r"\s*\\begin\s*\{")
 _LETTERS = re.compile("[A-Za-z]+")
 
@@ -349,7 +352,8 @@ class _Tokenizer:
             self.emit("bad", ch, start, start + 2,
                       error=ExpressionError("':=' (a definition) is not part of a formula", start, "syntax",
                                             "write an equation with ="))
-        elif ch == "&" and (self.environments or self.beside_equals(start)):
+        elif ch == "&" and ((self.environments and self.environments[-1] in _LAYOUT_ENVIRONMENTS)
+                            or self.beside_equals(start)):
             # an alignment point (of \begin{aligned}, or '&=' of a line copied out of one): nothing to a grader
             self.space = True
             self.i += 1
@@ -814,7 +818,7 @@ class _Tokenizer:
         name = self.text[k + 1:close].strip() if close > k else ""
         shown = self.text[start:close + 1] if close > k else self.text[start:j]
         name = name.rstrip("*")
-        if name not in _LAYOUT_ENVIRONMENTS:
+        if name not in _LAYOUT_ENVIRONMENTS and name not in _SYSTEM_ENVIRONMENTS:
             raise ExpressionError(f"the LaTeX environment {shown} is not supported", start, "unsupported_function",
                                   "type the equations one per line, or separated by ';', without \\begin and "
                                   "\\end (\\begin{aligned} … \\end{aligned} is read)")

@@ -257,10 +257,6 @@ def test_a_layout_environment_around_pasted_equations_is_only_layout(text, expec
 
 
 @pytest.mark.parametrize("text, named", [
-    # cases and array: an '&' there starts a condition or a column (see the corpus item
-    # equations_redteam/orbit/0027, labelled invalid)
-    (r"\begin{cases} x = 1 \end{cases}", r"\begin{cases}"),
-    (r"\left\{\begin{array}{l} x = 1 \end{array}\right.", r"\begin{array}"),
     (r"\begin{pmatrix} 1 & 2 \end{pmatrix}", r"\begin{pmatrix}"),
     (r"\begin{matrix} x \end{matrix}", r"\begin{matrix}"),
     (r"\begin{tabular}{ll} x \end{tabular}", r"\begin{tabular}"),
@@ -278,6 +274,12 @@ def test_other_environments_are_refused_by_name(text, named):
     (r"\left\lbrace\begin{aligned} x &= 1 \end{aligned}\right.", [("name", "x"), ("op", "="), ("number", 1)]),
     (r"\begin{alignat}{2} x &= 1 \end{alignat}", [("name", "x"), ("op", "="), ("number", 1)]),
     (r"\begin{alignedat}{3} x &= 1 \end{alignedat}", [("name", "x"), ("op", "="), ("number", 1)]),
+    # cases and array, as Mathpix and Word write a system: its equations (the column layout {l} too
+    # is layout); an '&' there is read only beside '=' (elsewhere it starts a condition or a column)
+    (r"\begin{cases} x = 1 \\ y = 2 \end{cases}",
+     [("name", "x"), ("op", "="), ("number", 1), ("newline", "\n"), ("name", "y"), ("op", "="), ("number", 2)]),
+    (r"\left\{\begin{array}{l} x = 1 \end{array}\right.", [("name", "x"), ("op", "="), ("number", 1)]),
+    (r"\left\{\begin{array}{rcl} x &=& 1 \end{array}\right.", [("name", "x"), ("op", "="), ("number", 1)]),
 ])
 def test_a_system_in_a_brace_is_read_as_its_equations(text, expected):
     assert kinds(text) == expected
@@ -289,7 +291,7 @@ def test_an_ampersand_beside_equals_is_an_alignment_point_anywhere(text):
     assert kinds(text) == [("name", "x"), ("op", "="), ("number", 1)]
 
 
-@pytest.mark.parametrize("text", ["a & b", "x = 1 & y"])
+@pytest.mark.parametrize("text", ["a & b", "x = 1 & y", r"\begin{cases} x & y > 0 \end{cases}"])
 def test_an_ampersand_that_is_not_alignment_is_refused_by_name(text):
     tokens = tokenize(text)
     bad = [t for t in tokens if t.kind == "bad" and t.text == "&"]
