@@ -98,6 +98,41 @@ def unknown_symbols(variables: dict[str, dict], symbols: dict[str, sympy.Symbol]
     return tuple(sorted(chosen & states, key=lambda s: s.name))
 
 
+def _without_repeats(residuals: list[sympy.Expr]) -> list[sympy.Expr]:
+    """``residuals`` without those that another one implies: X = f Y with f finite everywhere
+    (a number, a parameter, sin θ, θ̇): wherever Y = 0, X = 0 too, so X adds no condition, whether or
+    not f can vanish.
+
+    >>> x, y = sympy.symbols("x y", real=True)
+    >>> _without_repeats([x - y, 2*y - 2*x, x*(x - y), x + y])
+    [x - y, x + y]
+    >>> _without_repeats([x*(x - y), x - y])  # the second implies the first
+    [x - y]
+    """
+    kept: list[sympy.Expr] = []
+    for residual in residuals:
+        if any(_implied_by(residual, other) for other in kept):
+            continue
+        kept = [other for other in kept if not _implied_by(other, residual)] + [residual]
+    return kept
+
+
+def _implied_by(a: sympy.Expr, b: sympy.Expr) -> bool:
+    """Whether ``a`` is ``b`` times a factor finite on the whole domain (decided exactly by sympy's
+    assumptions, for residuals of moderate size)."""
+    if a == 0 or b == 0:
+        return False  # 0 = 0 is no equation of the system (θ̇ = θ̇ beside the answer): not dropped
+    if a == b or a == -b:
+        return True
+    if _nodes(a) > FACTOR_MAX_NODES or _nodes(b) > FACTOR_MAX_NODES:
+        return False
+    try:
+        factor = sympy.cancel(sympy.together(a / b))
+    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+        return False
+    return factor.is_finite is True
+
+
 def _residuals_equal_symbolically(ref: list[sympy.Expr], ans: list[sympy.Expr]) -> bool:
     if len(ref) != 1 or len(ans) != 1:
         return False
@@ -149,6 +184,16 @@ def compare_equations(
     'proved'
     """
     k = len(reference)
+    if len(answer) > k:
+        distinct = _without_repeats(answer)
+        if len(distinct) < len(answer):
+            # An equation that another implies (the same one pasted twice, or it times a factor)
+            # adds no condition: the system is the one without it.
+            result = compare_equations(reference, distinct, parameters, states, options, deadline,
+                                       compiled_reference, answer_conditions, unknowns)
+            if result.equivalent:
+                result.reason = f"{result.reason} (an equation that another one implies, such as the same equation again, adds nothing)"
+            return result
     if len(answer) != k:
         return Comparison(
             False,

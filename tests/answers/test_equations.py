@@ -748,3 +748,23 @@ def test_identities_on_circles_are_decided_in_a_polynomial_ring(expr, generators
     from grader.answers.equations import _zero_in_ring
 
     assert _zero_in_ring(expr, generators, circles) is expected
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # the same equation pasted twice (a LaTeX system), or again times a number or a parameter
+    (r"\ddot\theta=-\frac{g}{l}\sin\theta \\ \ddot\theta=-\frac{g}{l}\sin\theta", "equivalent"),
+    ("thetaddot = -g/l sin(theta); l thetaddot = -g sin(theta)", "equivalent"),
+    # implied even by a factor that can vanish: where θ̈ = −g/l sin θ holds, θ̇ times it is 0 too
+    ("thetadot (thetaddot + g/l sin(theta)) = 0; thetaddot = -g/l sin(theta)", "equivalent"),
+    # but alone, or twice, the vanishing factor admits θ̇ = 0
+    ("thetadot (thetaddot + g/l sin(theta)) = 0; thetadot (thetaddot + g/l sin(theta)) = 0", "not_equivalent"),
+    # two different equations say more than one
+    ("thetaddot = -g/l sin(theta); thetaddot = g/l sin(theta)", "not_equivalent"),
+    # a wrong equation repeated stays wrong
+    ("thetaddot = g/l sin(theta); thetaddot = g/l sin(theta)", "not_equivalent"),
+])
+def test_an_equation_another_one_implies_adds_nothing(pendulum, answer, expected):
+    verdict = check("thetaddot = -g/l*sin(theta)", answer, pendulum, kind="equation")
+    assert verdict.verdict == expected, verdict.reason
+    if expected == "equivalent":
+        assert "implies" in verdict.reason
