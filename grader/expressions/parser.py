@@ -40,12 +40,12 @@ import sympy
 
 from .printing import to_latex, to_text
 
-from .dimensions import parse_dimension
-from .errors import ExpressionError
+from .dimensions import dimension_of, parse_dimension
+from .errors import DimensionError, ExpressionError
 from .functions import FUNCTIONS, INVERSES
 from .leibniz import dotted, read_leibniz, time_derivative
 from .magnitudes import checked, guarded_pow, not_real
-from .names import GREEK_LETTERS, WRITE_INSTEAD, derivative_name, resolve_name
+from .names import GREEK_LETTERS, INVERSE_INSTEAD, WRITE_INSTEAD, derivative_name, resolve_name
 from .tokens import Token, check_brackets, tokenize
 from .variables import Namespace
 
@@ -58,6 +58,10 @@ MAX_LENGTH = 2000
 MAX_RECURSION = 200
 
 _ADD, _MUL, _POW = 10, 20, 30
+# Functions whose argument may have a dimension (√(g l), |v|); every other one needs a dimensionless one.
+_ANY_DIMENSION = {"√", "sqrt", "cbrt", "abs", "sign", "sgn", "Abs"}
+# cos ω t: at most this many factors after an argument with a dimension are taken into it.
+_MOST_FACTORS_TAKEN = 2
 _TIME = parse_dimension("time")
 # The exponent letter of a number in e-notation (2E+3, 1.5e-2), which may also be a declared variable.
 _EXPONENT_LETTER = re.compile(r"^[0-9.]+([eE])[+-]?[0-9]+$")
@@ -346,11 +350,14 @@ class _Parser:
         if token.kind == "op" and token.value == "^":
             base = self.tokens[self.i - 1]
             self.advance()
+            bracketed = self.peek().kind == "open"
             exponent = self.expression(_POW - 1)
             if left is sympy.E and base.kind == "name":
                 # e^-kt, e^2x: the factors typed glued to the exponent stay in it, as nobody means
                 # e^(-k)·t (x^2y stays x²·y: only the exponential's exponent is read so).
                 exponent = self.glued_factors(exponent, base.pos, "e^")
+                if not bracketed:  # e^(-k) t: the student closed the exponent
+                    exponent = self.dimensionless_argument(exponent, base.pos, "e^")
             return self.power(left, exponent, token.pos), "^"
         if token.kind == "sup":
             self.advance()
@@ -649,6 +656,13 @@ class _Parser:
                 name = INVERSES[name]
             elif exponent.is_Integer and 0 < exponent <= 1000:
                 power = exponent
+            elif exponent == -1:
+                # sec^-1 x is the inverse secant in most books and 1/sec x in some: the grammar has no
+                # asec, so both readings are spelt out instead of a hint about powers
+                inverse = INVERSE_INSTEAD.get(name) or WRITE_INSTEAD.get("a" + name)
+                raise ExpressionError(f"cannot read '{token.text}^-1': the inverse function of {name} or 1/{name}?",
+                                      following.pos, "ambiguous",
+                                      (f"{inverse}; " if inverse else "") + f"write 1/{name}(x) for the reciprocal")
             else:
                 raise ExpressionError(f"cannot read '{token.text}^{exponent}'", following.pos, "syntax",
                                       f"write ({name}(x))^n for a power of {name}")
@@ -716,14 +730,48 @@ class _Parser:
     def function_argument(self, token: Token, name: str) -> sympy.Expr:
         """The argument of a function written without parentheses: one factor and its power.
 
-        Factors typed glued together stay together: ``sin 2x`` is sin(2x) and
+        Factors typed glued together stay together: ``sin 2x`` (and ``sin 2 x``) is sin(2x) and
         ``cos ωt`` is cos(ω·t), because nobody means sin(2)·x.
         """
         arg = self.glued_factors(self.expression(_MUL), token.pos, name)
+        if name not in _ANY_DIMENSION:
+            arg = self.dimensionless_argument(arg, token.pos, name)
         following = self.peek()
         if following.kind == "name" and following.value.lower() not in FUNCTIONS \
                 and not following.forced_function:
             self.note(f"read '{self.text[token.pos:following.end]}' as {name}({arg})·{following.text}")
+        return arg
+
+    def dimensionless_argument(self, arg: sympy.Expr, start: int, name: str) -> sympy.Expr:
+        """``arg`` times the factors that follow it while it has a dimension and they make it dimensionless:
+        ``cos ω t`` is cos(ω·t) and ``e^-k t`` is e^(−k·t), since the cosine of an angular velocity
+        times a time means nothing. Said in a note; left as it is when no such factors follow (the
+        dimension check then names the slip) or the variables have no dimensions.
+        """
+        dims = self.ns.dimensions()
+        try:
+            if dimension_of(arg, dims).is_dimensionless:
+                return arg
+        except DimensionError:
+            return arg
+        saved = (self.i, list(self.notes), len(self.domain_nodes), self.last_product)
+        candidate = arg
+        for _ in range(_MOST_FACTORS_TAKEN):
+            following = self.peek()
+            if not (following.kind == "name" and following.value.lower() not in FUNCTIONS
+                    and not following.forced_function):
+                break
+            candidate = checked(sympy.Mul(candidate, self.expression(_MUL)), following.pos)
+            try:
+                if dimension_of(candidate, dims).is_dimensionless:
+                    shown = f"e^({candidate})" if name == "e^" else f"{name}({candidate})"
+                    self.note(f"read '{self.text[start:self.tokens[self.i - 1].end]}' as {shown}: the argument "
+                              "must be dimensionless")
+                    return candidate
+            except DimensionError:
+                break
+        self.i, self.notes, self.last_product = saved[0], saved[1], saved[3]
+        del self.domain_nodes[saved[2]:]
         return arg
 
     def glued_factors(self, arg: sympy.Expr, start: int, name: str) -> sympy.Expr:
@@ -736,10 +784,13 @@ class _Parser:
         while True:
             following, last = self.peek(), self.tokens[self.i - 1]
             split_part = following.glued
-            # LaTeX ignores spaces: \sin 2 \theta (as Mathpix writes every product) prints sin 2θ, as \sin 2\theta
+            # A number then a name is a function's argument, spaced or not: sin 2 θ is sin(2θ) as sin 2θ is
+            # (and as LaTeX, which ignores spaces, prints \sin 2 \theta); nobody means sin(2)·θ. An exponent
+            # ends at a typed space (e^2 x is e²·x), except in LaTeX.
+            spaced = name != "e^" or latex_function or following.text[:1] == "\\"
             typed_glued = last.kind == "number" and (
                 (following.pos == last.end and not following.space_before)
-                or ((latex_function or following.text[:1] == "\\") and not self.text[last.end:following.pos].strip()))
+                or (spaced and not self.text[last.end:following.pos].strip()))
             latex_word = (last.kind == "name" and last.text[:1] == "\\" and last.text[-1:].isalpha()
                           and not self.text[last.end:following.pos].strip())
             if not (following.kind == "name" and (split_part or typed_glued or latex_word)

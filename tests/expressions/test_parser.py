@@ -698,11 +698,28 @@ def test_an_even_radical_stays_a_fractional_power(wave_ns, text):
 @pytest.mark.parametrize("text, plain", [
     ("e^-kt", "exp(-k*t)"), ("e^kt", "exp(k*t)"), ("e^-2x", "exp(-2*x)"), ("e^2x", "exp(2*x)"),
     ("e^-ab", "exp(-a*b)"), ("e^-ωt", "exp(-omega*t)"), ("e^-kt cos ωt", "exp(-k*t)*cos(omega*t)"),
-    ("e^{-k}t", "exp(-k)*t"), ("e^(-k)t", "exp(-k)*t"), ("e^-k t", "exp(-k)*t"),  # brackets and spaces end it
+    ("e^{-k}t", "exp(-k)*t"), ("e^(-k)t", "exp(-k)*t"), ("e^-a b", "exp(-a)*b"),  # brackets and spaces end it
     ("e^xsin x", "exp(x)*sin(x)"), ("x^2a", "x^2*a"), ("a^-2b", "b/a^2"),  # a function, or another base
 ])
 def test_the_factors_glued_to_an_exponential_exponent_stay_in_it(wave_ns, text, plain):
     assert parse(text, wave_ns) == parse(plain, wave_ns)
+
+
+@pytest.mark.parametrize("text, plain", [
+    # the cosine of an angular velocity, times a time, means nothing: the argument takes the time
+    ("cos ω t", "cos(omega*t)"), ("sin k t", "sin(k*t)"), ("e^-k t", "exp(-k*t)"), ("cos 2 ω t", "cos(2*omega*t)"),
+    ("sin ω t cos ω t", "sin(omega*t)*cos(omega*t)"), ("cos √(g/l) t", "cos(sqrt(g/l)*t)"),
+    # already dimensionless, or nothing after it makes it so: left to the dimension check
+    ("cos ω", "cos(omega)"), ("cos ω l", "cos(omega)*l"), ("cos a b", "cos(a)*b"),
+    # an exponent the student closed stays closed
+    ("e^(-k) t", "exp(-k)*t"),
+])
+def test_an_argument_with_a_dimension_takes_the_factors_that_make_it_dimensionless(wave_ns, text, plain):
+    assert parse(text, wave_ns) == parse(plain, wave_ns)
+
+
+def test_the_dimensionless_reading_is_noted(wave_ns):
+    assert "read 'cos ω t' as cos(omega*t): the argument must be dimensionless" in parse_expression("cos ω t", wave_ns).notes
 
 
 def test_a_glued_exponent_is_noted(wave_ns):
@@ -712,7 +729,8 @@ def test_a_glued_exponent_is_noted(wave_ns):
 @pytest.mark.parametrize("latex, plain", [
     ("\\cos\\omega t", "cos(omega*t)"), ("\\sin \\omega t", "sin(omega*t)"), ("\\cos\\omega t\\sin\\omega t",
                                                                              "cos(omega*t)*sin(omega*t)"),
-    ("e^{-k t}\\cos\\omega t", "exp(-k*t)*cos(omega*t)"), ("\\cos\\omega\\, t", "cos(omega)*t"),
+    # (\, t: a thin space, but the cosine of an angular velocity means nothing: see the dimensionless reading)
+    ("e^{-k t}\\cos\\omega t", "exp(-k*t)*cos(omega*t)"), ("\\cos\\omega\\, t", "cos(omega*t)"),
     ("\\cos\\omega\\cdot t", "cos(omega)*t"), ("\\cos(\\omega) t", "cos(omega)*t"),
 ])
 def test_the_space_that_ends_a_latex_command_does_not_end_a_function_argument(wave_ns, latex, plain):
