@@ -448,6 +448,16 @@ WRITE_INSTEAD = {
     "acsc": "write asin(1/x) for the inverse cosecant",
     "arccsc": "write asin(1/x) for the inverse cosecant",
     "arccosec": "write asin(1/x) for the inverse cosecant",
+    # the reciprocal hyperbolic functions' inverses (math-expressions and Maxima know them)
+    "asech": "write acosh(1/x) for the inverse hyperbolic secant",
+    "arsech": "write acosh(1/x) for the inverse hyperbolic secant",
+    "arcsech": "write acosh(1/x) for the inverse hyperbolic secant",
+    "acsch": "write asinh(1/x) for the inverse hyperbolic cosecant",
+    "arcsch": "write asinh(1/x) for the inverse hyperbolic cosecant",
+    "arccsch": "write asinh(1/x) for the inverse hyperbolic cosecant",
+    "acoth": "write atanh(1/x) for the inverse hyperbolic cotangent",
+    "arcoth": "write atanh(1/x) for the inverse hyperbolic cotangent",
+    "arccoth": "write atanh(1/x) for the inverse hyperbolic cotangent",
     "binomial": "write the binomial coefficient out with products",
     "factorial": "write the product out, as in 2*3",
     # SymPy's derivative object (diff(θ(t), t) itself is read as the time derivative)
@@ -458,9 +468,19 @@ WRITE_INSTEAD = {
     "frac": "write a/b for a fraction (or \\frac{a}{b})",  # Typst's frac(a, b)
 }
 
+#: How to write the inverse of a function that has no inverse in the grammar, for ``f^-1``
+#: (the reciprocal functions' inverses are under their names in WRITE_INSTEAD).
+INVERSE_INSTEAD = {
+    "log": "write exp(x) for the inverse function of log",
+    "exp": "write log(x) for the inverse function of exp",
+    "sqrt": "write x^2 (for x >= 0) for the inverse function of sqrt",
+}
+
 
 def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called: bool):
-    if called:
+    # arcsec x, arccot x: a function other systems know, typed without brackets, is still that
+    # function (not a misspelt variable), and its refusal says how to write it here
+    if called or raw.lower() in WRITE_INSTEAD:
         suggestion = _suggestion(raw, ns, functions_only=True)
         instead = WRITE_INSTEAD.get(raw.lower())
         if instead:
