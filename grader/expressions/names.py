@@ -479,8 +479,9 @@ INVERSE_INSTEAD = {
 
 def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called: bool):
     # arcsec x, arccot x: a function other systems know, typed without brackets, is still that
-    # function (not a misspelt variable), and its refusal says how to write it here
-    if called or raw.lower() in WRITE_INSTEAD:
+    # function (not a misspelt variable), and its refusal says how to write it here; exact spelling
+    # only, as the capital letter Π (raw "Pi") is a name, not the spreadsheet's PI()
+    if called or (raw in WRITE_INSTEAD and raw != "pi"):
         suggestion = _suggestion(raw, ns, functions_only=True)
         instead = WRITE_INSTEAD.get(raw.lower())
         if instead:
