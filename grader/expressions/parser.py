@@ -58,6 +58,8 @@ MAX_LENGTH = 2000
 MAX_RECURSION = 200
 
 _ADD, _MUL, _POW = 10, 20, 30
+#: Largest index of a root typed as sqrt[n]{x}.
+MAX_ROOT_INDEX = 1000
 # Functions whose argument may have a dimension (√(g l), |v|); every other one needs a dimensionless one.
 _ANY_DIMENSION = {"√", "sqrt", "cbrt", "abs", "sign", "sgn", "Abs"}
 # cos ω t: at most this many factors after an argument with a dimension are taken into it.
@@ -648,6 +650,12 @@ class _Parser:
     def function(self, name: str, token: Token) -> sympy.Expr:
         power = None
         following = self.peek()
+        if (token.text.lstrip("\\").startswith("log_") and following.kind == "number"
+                and following.pos == token.end and following.text.startswith(".")):
+            # log_2.5x: KAS's logarithm to base 2.5, not log₂(0.5x) as the tokens alone would say
+            base = token.text.split("_", 1)[1].strip("{}") + following.text
+            raise ExpressionError(f"cannot read '{token.text}{following.text}': a logarithm to base {base}?",
+                                  token.pos, "ambiguous", f"write log(x, {base}) for the logarithm of x to base {base}")
         if following.kind == "sup" or (following.kind == "op" and following.value == "^"):
             self.advance()
             exponent = sympy.Integer(following.value) if following.kind == "sup" else self.expression(_POW - 1)
@@ -660,8 +668,8 @@ class _Parser:
                 # sec^-1 x is the inverse secant in most books and 1/sec x in some: the grammar has no
                 # asec, so both readings are spelt out instead of a hint about powers
                 inverse = INVERSE_INSTEAD.get(name) or WRITE_INSTEAD.get("a" + name)
-                raise ExpressionError(f"cannot read '{token.text}^-1': the inverse function of {name} or 1/{name}?",
-                                      following.pos, "ambiguous",
+                question = f": the inverse function of {name} or 1/{name}?" if inverse else ""
+                raise ExpressionError(f"cannot read '{token.text}^-1'{question}", following.pos, "ambiguous",
                                       (f"{inverse}; " if inverse else "") + f"write 1/{name}(x) for the reciprocal")
             else:
                 raise ExpressionError(f"cannot read '{token.text}^{exponent}'", following.pos, "syntax",
@@ -677,6 +685,10 @@ class _Parser:
         # inside (sin(x²)) and a right sin²x was proved wrong.
         if following.kind == "open" and following.value in "({[":
             args = self.call_arguments(token, spec)
+            if name == "sqrt" and following.value == "[":
+                index_root = self.bracket_index_root(token, args[0])
+                if index_root is not None:
+                    return index_root
         elif spec.min_args > 1:
             raise ExpressionError(f"{token.text} takes {spec.min_args} arguments in parentheses, "
                                   f"as in {name}(y, x)", token.pos, "syntax")
@@ -696,6 +708,33 @@ class _Parser:
         if token.text.lower() in ("log", "\\log"):
             self.note("log is the natural logarithm (ln)")
         return guarded_pow(value, power, token.pos) if power is not None else value
+
+    def bracket_index_root(self, token: Token, index: sympy.Expr) -> sympy.Expr | None:
+        """``sqrt[3]{x}``: LaTeX's n-th root typed without the backslash (as KAS and MathQuill's
+        plain text write it) is that root, not √3·x; ``sqrt[3](x)`` and ``sqrt[3] x`` could be either
+        (Mathematica's ``Sqrt[3] x`` is √3·x), so they are refused with both readings. None when
+        nothing follows the brackets that could be a radicand (``sqrt[2] + 1`` is √2 + 1)."""
+        following = self.peek()
+        braced = following.kind == "open" and following.value == "{"
+        capital = token.text[:1] == "S"  # Mathematica's Sqrt[3] x: a product, as there
+        if not braced and (capital or following.kind not in _ATOM_STARTS):
+            return None
+        typed = self.text[token.pos:following.end]
+        if not braced:
+            root = {2: "sqrt(x)", 3: "cbrt(x)"}.get(index, f"x^(1/{index})")
+            raise ExpressionError(f"'{typed}…' could be the root of index {index} or sqrt({index}) times what follows",
+                                  token.pos, "ambiguous",
+                                  f"write {root} for the root, or sqrt({index})*x for the product")
+        if not (index.is_Integer and 2 <= index <= MAX_ROOT_INDEX):
+            raise ExpressionError(f"cannot read the root of index {index} in '{typed}'", token.pos, "syntax",
+                                  "the index of a root is a whole number from 2 on; write x^(1/n) for a power")
+        opener = self.advance()
+        if self.peek().kind == "close":
+            raise ExpressionError("empty brackets", opener.pos, "syntax", "put the radicand inside, as in sqrt[3]{x}")
+        radicand = self.expression(0)
+        self.expect_close(opener)
+        self.note(f"read 'sqrt[{index}]{{…}}' as the root of index {index}, as LaTeX's \\sqrt[{index}]{{…}}")
+        return self.root(radicand, int(index), token.pos)
 
     def call_arguments(self, token: Token, spec) -> list[sympy.Expr]:
         opener = self.advance()
@@ -876,8 +915,19 @@ class _Parser:
 
     def latex_command(self, token: Token) -> sympy.Expr:
         if token.value == "frac":
+            before = self.tokens[self.i - 2] if self.i >= 2 else None
+            if self.i >= 3 and self.tokens[self.i - 3].kind == "op" and self.tokens[self.i - 3].value == "^":
+                before = None  # x^2\frac{1}{2}: the 2 is an exponent
             numerator = self.braced(token)
             denominator = self.braced(token)
+            if (before is not None and before.kind == "number" and not before.decimal and before.value.is_Integer
+                    and numerator.is_Integer and denominator.is_Integer):
+                # 2\frac{1}{2} prints 2½: the mixed number 5/2 at school, 2·½ to KAS; refused as ½ after a
+                # number is (tokens.vulgar_fraction), never guessed
+                shown = self.text[before.pos:self.tokens[self.i - 1].end]
+                raise ExpressionError(f"'{shown}' mixes a number and a fraction", before.pos, "ambiguous",
+                                      f"write {before.value} + {numerator}/{denominator} for the mixed number, or "
+                                      f"{before.value}*{numerator}/{denominator} for the product")
             return checked(sympy.Mul(numerator, guarded_pow(denominator, sympy.Integer(-1), token.pos)),
                            token.pos)
         if token.value == "sqrt":
