@@ -68,8 +68,12 @@ def guarded_pow(base: sympy.Expr, exponent: sympy.Expr, position: int | None) ->
     """
     if exponent.is_Rational:
         # |p/q| > MAX_EXPONENT in integers (q > 0): sympy's own comparison sympifies and is slower.
-        if abs(exponent.p) > MAX_EXPONENT * exponent.q or exponent.q > MAX_EXPONENT_DENOMINATOR:
+        if abs(exponent.p) > MAX_EXPONENT * exponent.q:
             raise _too_large(position, "exponent too large")
+        if exponent.q > MAX_EXPONENT_DENOMINATOR:
+            # x^0.666666666666667 pasted from a calculator: small, but too many digits to be exact
+            raise ExpressionError("exponent with too many digits", position, "too_large",
+                                  "write it as a fraction, as in x^(2/3), or with at most 6 decimals")
         # In floats: float * Rational would make a sympy Float, rounded the same way but slower.
         if not base.free_symbols and _size(base) * (abs(exponent.p) / exponent.q) > MAX_DIGITS:
             raise _too_large(position)

@@ -41,3 +41,17 @@ def test_undefined_imaginary_or_huge_results_are_refused(expr):
 
 def test_digits_counts_numerator_or_denominator():
     assert digits(sympy.Rational(1, 10 ** 50)) == 50
+
+
+@pytest.mark.parametrize("exponent", ["0.666666666666667", "0.1234567", "1.23456789012345678", "0.333333333333333"])
+def test_a_decimal_exponent_with_too_many_digits_is_refused_for_its_digits_not_its_size(exponent):
+    # x^0.666666666666667 (a calculator's 2/3) is small: the message must not say "too large"
+    with pytest.raises(ExpressionError) as err:
+        guarded_pow(x, sympy.Rational(exponent), 0)
+    assert err.value.code == "too_large" and "too many digits" in err.value.message
+    assert "as a fraction" in err.value.hint
+
+
+@pytest.mark.parametrize("exponent", ["0.123456", "1.6", "0.5"])
+def test_a_decimal_exponent_with_six_decimals_is_built(exponent):
+    assert guarded_pow(x, sympy.Rational(exponent), 0) == x ** sympy.Rational(exponent)
