@@ -88,6 +88,9 @@ def _is_digit(ch: str) -> bool:
     return "0" <= ch <= "9"
 
 
+# Spellings of "not equal" in other languages and graders ('!=' has its own branch, '≠' and \ne theirs).
+_NOT_EQUAL = re.compile(r"=/=|/=|<>|=\\=")
+
 # Printable ASCII the grammar does not use, and what to tell the student.
 _PUNCTUATION = {
     "!": ("factorial (!) is not supported", "unsupported_function", "write the product out, as in 2*3"),
@@ -247,6 +250,13 @@ class _Tokenizer:
                                             "then a negative number, write + (-2)"))
         elif ch == "-" and self.peek(1) == ">":
             self.emit("bad", "->", start, start + 2, error=_arrow_error(start, "->"))
+        elif _NOT_EQUAL.match(self.text, start):
+            # =/= (KAS), /= (Fortran, Haskell), <> (BASIC, SQL), =\= (Prolog): "not equal", named as such
+            # rather than as a stray '/', a second '=' or an inequality
+            typed = _NOT_EQUAL.match(self.text, start).group()
+            self.emit("bad", typed, start, start + len(typed),
+                      error=ExpressionError(f"'{typed}' (not equal) is not part of an answer", start, "syntax",
+                                            "give an expression, or an equation with ="))
         elif ch in "+-*/^=,;":
             self.emit("op", ch, start, start + 1)
         elif ch == "{" and _STYLE_GROUP.match(self.text, start) and self.whole_group(start):

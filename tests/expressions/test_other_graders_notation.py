@@ -136,3 +136,23 @@ def test_a_whole_number_before_a_numeric_latex_fraction_is_refused_as_a_mixed_nu
 ])
 def test_other_products_with_a_latex_fraction_are_read(ns, text, expected):
     assert str(parse_expression(text, ns).expr) == expected
+
+
+@pytest.mark.parametrize("text, typed", [("y =/= x", "=/="), ("y<>x", "<>"), ("y /= x", "/="), ("y =\\= x", "=\\="),
+                                         ("y != x", "!=")])
+def test_not_equal_in_other_languages_is_named_as_not_equal(ns, text, typed):
+    # KAS's =/=, Fortran's /=, BASIC's <>, Prolog's =\=: not a stray '/', a second '=' or an inequality
+    ns = Namespace([Variable("x", "dimensionless", "real"), Variable("y", "dimensionless", "real")])
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text, ns)
+    assert f"'{typed}' (not equal)" in err.value.message and "equation with =" in err.value.hint
+
+
+@pytest.mark.parametrize("text, expected", [("x/2", "x/2"), ("x / -2", "-x/2"), ("2 < 3", None)])
+def test_division_and_inequalities_are_unchanged(ns, text, expected):
+    if expected is None:
+        with pytest.raises(ExpressionError) as err:
+            parse_expression(text, ns)
+        assert "inequalities" in err.value.message
+    else:
+        assert str(parse_expression(text, ns).expr) == expected
