@@ -41,6 +41,10 @@ def halfway(state_function: str) -> str:
     return re.sub(r"\btheta\b", "(theta0/2)", state_function.replace("thetadot^2", speed_squared))
 
 
+# Spool on an incline, thread from the axle's top over a pulley: k = (R + r)/R, the block rises k s.
+SPOOL_K = "((R + r)/R)"
+SPOOL_A = f"(g*(M*sin(alpha) - m*{SPOOL_K})/(3*M/2 + m*{SPOOL_K}^2))"
+SPOOL_T = f"(m*(g + {SPOOL_K}*{SPOOL_A}))"
 # Pendulum from a ring on Y = X²/(2c): s = c sin θ − X cos θ.
 RING_S = "(c*sin(theta) - X*cos(theta))"
 RING_XDDOT = (f"((m*{RING_S}*(c*g*cos(theta) + c*l*thetadot^2 + Xdot^2*cos(theta)) - M*X*(c*g + Xdot^2))"
@@ -112,6 +116,16 @@ RING_TENSION = f"(m*(g*cos(theta) + l*thetadot^2 + Xdot^2*cos(theta)/c) - m*{RIN
         ("cylinder_on_oscillating_plank", "velocity_in_time", "A*Omega*(cos(Omega*t) - 1)/3"),
         ("cylinder_on_oscillating_plank", "spin_in_time", "A*Omega*(2*cos(Omega*t) + 1)/(3*R)"),
         ("cylinder_on_oscillating_plank", "first_coast", "pi/Omega"),
+        # Spool (I = M R²/2) rolling down (s = R φ), thread from the axle's top (it moves at
+        # ṡ + r φ̇ = k ṡ) up over a pulley to the block, which rises k s: energy gives
+        # (3M/2 + m k²) s̈ = g (M sin α − m k); the block m k s̈ = T − m g; the spool M s̈ =
+        # M g sin α − T − F and (M R²/2) φ̈ = F R − T r, so F = M s̈/2 + T r/R (up the incline).
+        # From rest, after the block rose h (s = h/k): |ẏ| = k ṡ = √(2 k h s̈), t = √(2 h/(k s̈)).
+        ("spool_incline_pulley", "spool_acceleration", SPOOL_A),
+        ("spool_incline_pulley", "tension", SPOOL_T),
+        ("spool_incline_pulley", "friction_force", f"M*{SPOOL_A}/2 + {SPOOL_T}*r/R"),
+        ("spool_incline_pulley", "block_speed", f"abs(sqrt(2*{SPOOL_K}*h*{SPOOL_A}))"),
+        ("spool_incline_pulley", "time_to_rise", f"sqrt(2*h/({SPOOL_K}*{SPOOL_A}))"),
         # Ring on Y = X²/(2c) (Ÿ = (X Ẍ + Ẋ²)/c), bob at l ê, ê = (sin θ, −cos θ): along ê
         # m (a_R·ê − l θ̇²) = −T + m g cos θ, across it m (a_R·ê_θ + l θ̈) = −m g sin θ; the ring along
         # its tangent (c, X): M (Ẍ (c² + X²) + Ẋ² X)/c = T s − M g X, and along the normal (−X, c):
@@ -131,7 +145,7 @@ def test_red_team_scenes_4(derived, scene, answer, expected):
         assert equation.lhs == d.scene.answer(answer).expr
         assert equation.rhs == d.answers[answer]
     agree(d, answer, expected)
-    # Exactly too (|sin α| of the cone, α in [0.05, 1.5], must be sin α by then).
+    # Exactly too.
     got = d.answers[answer]
     want = parse_expression(expected, d.scene.namespace).expr
     # A square root may be written with another radicand: equal squares and, from agree, equal signs.
@@ -141,7 +155,9 @@ def test_red_team_scenes_4(derived, scene, answer, expected):
 def exactly_zero(expr: sympy.Expr) -> bool:
     """Whether expr is identically zero, as a rational function of tan(x/2) for every angle x
     (sympy.simplify proves the same but takes minutes on the rod's and the ring's forces). An angle
-    that also appears halved (θ0 and θ0/2) is written as a multiple of one variable first."""
+    that also appears halved (θ0 and θ0/2) is written as a multiple of one variable first; |…| is
+    compared by its argument (agree compares the values themselves)."""
+    expr = expr.replace(sympy.Abs, lambda argument: argument)
     arguments = [f.args[0] for f in expr.atoms(sympy.sin, sympy.cos)]
     for s in set().union(*(a.free_symbols for a in arguments)):
         denominators = [sympy.fraction(sympy.nsimplify(a.coeff(s)))[1] for a in arguments]
@@ -221,6 +237,15 @@ where = "y2ddot = 0"
 in_terms_of = ["m1", "alpha"]
 dimension = "mass"
 ''', "balancing_mass", "m1*sin(alpha)"),
+        # The spool can stay at rest when M sin α = m k: m = M R sin α/(R + r).
+        ("spool_incline_pulley", "", '''
+[[answers]]
+name = "balancing_mass"
+expr = "m"
+where = "sddot = 0"
+in_terms_of = ["M", "R", "r", "alpha"]
+dimension = "mass"
+''', "balancing_mass", "M*R*sin(alpha)/(R + r)"),
         # Started on the steady orbit of radius ρ0 (see above): N = m g sin α + m ρ0 φ̇² cos α, and
         # ω² = 3 sin²α φ̇² + k/m.
         ("cone_spring_orbit", STEADY_CONE_START, '''
