@@ -139,6 +139,8 @@ _LATEX_PRIMES = re.compile(r"\^\s*(?:\{\s*(?:\\(?:prime|doubleprime|dprime)\s*)+
 # After a middle dot between digits: 1·10⁻³, 2·10^3 is a mantissa times a power of ten, not 1.10.
 _POWER_OF_TEN = re.compile(r"10(?:\^|[⁰¹²³⁴⁵⁶⁷⁸⁹⁻])")
 _DIGIT_RUN = re.compile(r"[0-9]+")
+# The exponent of e-notation right after a bare decimal point (3.e10).
+_EXPONENT_AFTER_POINT = re.compile(r"[eE][+-]?[0-9]+")
 
 # What a console prints before a formula: Mathematica's In[1]:= and Out[1]=, MATLAB's >>, Maxima's (%o1)
 _CONSOLE_PROMPT = re.compile(r"\s*(?:(?:In|Out)\[\d+\]\s*:?=|>>|\(%[io]\d+\))")
@@ -346,6 +348,11 @@ class _Tokenizer:
                        else "a decimal point must be followed by digits, as in 0.5")
             code = "unsupported_function" if previous in ("name", "close") else "syntax"
             hint = "use * for a product" if previous in ("name", "close") else "write 0.5, not .5. or 5."
+            exponent = _EXPONENT_AFTER_POINT.match(self.text, start + 1)
+            if previous == "number" and self.tokens[-1].end == start and exponent:
+                # 3.e10, as C and calculators print it: say how to write that number
+                mantissa = self.tokens[-1].text
+                hint = f"write {mantissa}{exponent.group()} or {mantissa}.0{exponent.group()} for the number"
             self.emit("bad", ".", start, start + 1, error=ExpressionError(message, start, code, hint))
         elif ch == "%" and _MAXIMA_CONSTANT.match(self.text, start + 1):
             # Maxima's (STACK's) %pi, %e, %i: name the constant to type instead.

@@ -156,3 +156,19 @@ def test_division_and_inequalities_are_unchanged(ns, text, expected):
         assert "inequalities" in err.value.message
     else:
         assert str(parse_expression(text, ns).expr) == expected
+
+
+@pytest.mark.parametrize("text, write", [("3.e10", "3e10 or 3.0e10"), ("3.E-3*x", "3E-3 or 3.0E-3"),
+                                         ("12.e+4", "12e+4 or 12.0e+4")])
+def test_a_bare_decimal_point_before_e_notation_says_how_to_write_the_number(ns, text, write):
+    # Moodle Formulas and C accept 3.e10; here the point must be followed by digits, and the hint says so
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text, ns)
+    assert "decimal point" in err.value.message and write in err.value.hint
+
+
+@pytest.mark.parametrize("text", ["5.x", "2.e"])
+def test_other_bare_decimal_points_keep_the_general_hint(ns, text):
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text, ns)
+    assert "write 0.5" in err.value.hint
