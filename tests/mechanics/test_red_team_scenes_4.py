@@ -45,6 +45,8 @@ def halfway(state_function: str) -> str:
 SPOOL_K = "((R + r)/R)"
 SPOOL_A = f"(g*(M*sin(alpha) - m*{SPOOL_K})/(3*M/2 + m*{SPOOL_K}^2))"
 SPOOL_T = f"(m*(g + {SPOOL_K}*{SPOOL_A}))"
+# Pendulum from the axle of a rolling cylinder: the axle's acceleration.
+ROLLING_A = "(m*sin(theta)*(g*cos(theta) + l*thetadot^2)/(3*M/2 + m*sin(theta)^2))"
 # Pendulum from a ring on Y = X²/(2c): s = c sin θ − X cos θ.
 RING_S = "(c*sin(theta) - X*cos(theta))"
 RING_XDDOT = (f"((m*{RING_S}*(c*g*cos(theta) + c*l*thetadot^2 + Xdot^2*cos(theta)) - M*X*(c*g + Xdot^2))"
@@ -126,6 +128,20 @@ RING_TENSION = f"(m*(g*cos(theta) + l*thetadot^2 + Xdot^2*cos(theta)/c) - m*{RIN
         ("spool_incline_pulley", "friction_force", f"M*{SPOOL_A}/2 + {SPOOL_T}*r/R"),
         ("spool_incline_pulley", "block_speed", f"abs(sqrt(2*{SPOOL_K}*h*{SPOOL_A}))"),
         ("spool_incline_pulley", "time_to_rise", f"sqrt(2*h/({SPOOL_K}*{SPOOL_A}))"),
+        # Pendulum from the axle of a rolling cylinder (T_cyl = 3 M ẋ²/4): x is cyclic,
+        # p = (3M/2 + m) ẋ + m l θ̇ cos θ; the bob across the rod l θ̈ = −ẍ cos θ − g sin θ, so
+        # ẍ (3M/2 + m sin²θ) = m sin θ (g cos θ + l θ̇²). The whole horizontally F = d/dt((M + m) ẋ +
+        # m l θ̇ cos θ) = d/dt(p − M ẋ/2) = −M ẍ/2; vertically N = (M + m) g + m l (θ̈ sin θ + θ̇² cos θ).
+        # At the bottom, from rest at θ0 (p = 0, energy): ẋ² = 2 m² g l (1 − cos θ0)/((3M/2 + m) 3M/2),
+        # l θ̇² = 2 g (1 − cos θ0)(3M/2 + m)/(3M/2), θ̈ = 0.
+        ("pendulum_rolling_cylinder", "cylinder_acceleration", ROLLING_A),
+        ("pendulum_rolling_cylinder", "friction_force", f"-M*{ROLLING_A}/2"),
+        ("pendulum_rolling_cylinder", "normal_force",
+         f"(M + m)*g + m*(-({ROLLING_A}*cos(theta) + g*sin(theta))*sin(theta) + l*thetadot^2*cos(theta))"),
+        ("pendulum_rolling_cylinder", "bottom_cylinder_speed",
+         "m*sqrt(2*g*l*(1 - cos(theta0))/((3*M/2 + m)*3*M/2))"),
+        ("pendulum_rolling_cylinder", "bottom_normal_force",
+         "(M + m)*g + 2*m*g*(1 - cos(theta0))*(3*M/2 + m)/(3*M/2)"),
         # Ring on Y = X²/(2c) (Ÿ = (X Ẍ + Ẋ²)/c), bob at l ê, ê = (sin θ, −cos θ): along ê
         # m (a_R·ê − l θ̇²) = −T + m g cos θ, across it m (a_R·ê_θ + l θ̈) = −m g sin θ; the ring along
         # its tangent (c, X): M (Ẍ (c² + X²) + Ẋ² X)/c = T s − M g X, and along the normal (−X, c):
@@ -246,6 +262,14 @@ where = "sddot = 0"
 in_terms_of = ["M", "R", "r", "alpha"]
 dimension = "mass"
 ''', "balancing_mass", "M*R*sin(alpha)/(R + r)"),
+        # Linearised with p = 0: m l² θ̇² (3M/2)/(3M/2 + m) against m g l θ²: ω² = g (3M + 2m)/(3 M l).
+        ("pendulum_rolling_cylinder", "", '''
+[[answers]]
+name = "small_oscillation_frequency"
+kind = "small_oscillation"
+expr = "theta"
+where = "theta = 0"
+''', "small_oscillation_frequency", "sqrt(g*(3*M + 2*m)/(3*M*l))"),
         # Started on the steady orbit of radius ρ0 (see above): N = m g sin α + m ρ0 φ̇² cos α, and
         # ω² = 3 sin²α φ̇² + k/m.
         ("cone_spring_orbit", STEADY_CONE_START, '''
