@@ -1155,8 +1155,9 @@ _INJECTIVE = (sympy.exp, sympy.sinh, sympy.tanh, sympy.atan, sympy.asinh)
 
 def _injective_sides(residual: sympy.Expr) -> sympy.Expr | None:
     """``A - B`` when ``residual = 0`` says ``f(A) = f(B)`` for a function ``f`` that takes each real
-    value once (an odd power, exp, sinh, tanh, atan, asinh; a number on one side read as ``f`` of its
-    preimage); ``|A| - |B|`` for an even power. None otherwise.
+    value once (an odd power or root, exp and a power of a positive number, sinh, tanh, atan, asinh;
+    a number on one side read as ``f`` of its preimage, 0 too: atan(A) = 0 is A = 0); ``|A| - |B|``
+    for an even power. None otherwise.
 
     >>> x, y, r, w = sympy.symbols("x y r w", real=True)
     >>> _injective_sides(x**3 - y**3)
@@ -1165,10 +1166,19 @@ def _injective_sides(residual: sympy.Expr) -> sympy.Expr | None:
     -x + y
     >>> _injective_sides(x**2 - r**2*w**2)
     Abs(x) - Abs(r*w)
+    >>> _injective_sides(2**y - 2**x)  # 2^y = e^(y log 2)
+    x*log(2) - y*log(2)
+    >>> _injective_sides(sympy.exp(y) * sympy.exp(-x) - 1)
+    -x + y
+    >>> _injective_sides(sympy.atan(y - x))  # sympy writes it -atan(x - y)
+    x - y
     >>> _injective_sides(x**2 + y**2) is None
     True
     """
+    residual = _as_exponentials(residual)
     terms = sympy.Add.make_args(residual)
+    if len(terms) == 1:
+        return _preimage(residual.as_coeff_Mul()[1], sympy.S.Zero)  # c f(A) = 0
     if len(terms) != 2:
         return None
     left, right = terms[0], -terms[1]
@@ -1179,13 +1189,66 @@ def _injective_sides(residual: sympy.Expr) -> sympy.Expr | None:
     if a.is_number or b.is_number:
         # f(A) = number: the number's preimage, where f reaches it (2 e^x = 4: x = log 2)
         (c, a), number = ((c1, a), right) if b.is_number else ((c2, b), left)
-        value = number / c
-        if isinstance(a, sympy.exp) and value.is_positive:
-            return a.args[0] - sympy.log(value)
-        return None  # tanh, atan: a number outside their range, or a preimage we do not print
-    if c1 == c2 and type(a) is type(b) and isinstance(a, _INJECTIVE):
+        return _preimage(a, number / c)
+    if c1 != c2:
+        return None
+    if type(a) is type(b) and isinstance(a, _INJECTIVE):
         return a.args[0] - b.args[0]
+    roots = _odd_root(a), _odd_root(b)
+    if None not in roots and roots[0][1] == roots[1][1]:
+        return roots[0][0] - roots[1][0]
     return None
+
+
+def _as_exponentials(residual: sympy.Expr) -> sympy.Expr:
+    """``residual`` with every power of a positive number b ≠ 1 written e^(E log b), and products of
+    exponentials combined (e^y/e^x is e^(y − x)): both exact, so that 2^y = 2^x and e^y/e^x = 1 are
+    seen as e^A = e^B."""
+    def positive_base(e):
+        return e.is_Pow and e.base.is_number and e.base.is_positive and e.base != 1 and not e.exp.is_number
+
+    rewritten = residual.replace(positive_base, lambda e: sympy.exp(e.exp * sympy.log(e.base)))
+    return sympy.powsimp(rewritten, combine="exp") if rewritten.has(sympy.exp) else rewritten
+
+
+def _preimage(a: sympy.Expr, value: sympy.Expr) -> sympy.Expr | None:
+    """``A - f⁻¹(value)`` for ``a = f(A)``, f one-to-one and ``value`` a number in its range; None otherwise."""
+    if not value.is_number or not value.is_real:
+        return None
+    if isinstance(a, sympy.exp):
+        return a.args[0] - sympy.log(value) if value.is_positive else None
+    if isinstance(a, sympy.sinh):
+        return a.args[0] - sympy.asinh(value)
+    if isinstance(a, sympy.asinh):
+        return a.args[0] - sympy.sinh(value)
+    if isinstance(a, sympy.atan):
+        return a.args[0] - sympy.tan(value) if (abs(value) < sympy.pi / 2) is sympy.true else None
+    if isinstance(a, sympy.tanh):
+        return a.args[0] - sympy.atanh(value) if (abs(value) < 1) is sympy.true else None
+    if a.is_Pow and a.exp.is_Integer and a.exp > 0 and not a.base.is_number:
+        n = int(a.exp)
+        if n % 2 == 1:
+            return a.base - sympy.real_root(value, n)
+        return sympy.Abs(a.base) - value ** sympy.Rational(1, n) if value.is_nonnegative else None
+    root = _odd_root(a)
+    if root is not None:
+        return root[0] - value ** root[1]
+    return None
+
+
+def _odd_root(a: sympy.Expr) -> tuple[sympy.Expr, int] | None:
+    """(A, n) for the real n-th root of A with n odd, as the parser writes it: sign(A)·|A|^(1/n)."""
+    if not a.is_Mul or len(a.args) != 2:
+        return None
+    signs = [f for f in a.args if isinstance(f, sympy.sign)]
+    powers = [f for f in a.args if f.is_Pow and isinstance(f.base, sympy.Abs)]
+    if len(signs) != 1 or len(powers) != 1:
+        return None
+    inner, exponent = signs[0].args[0], powers[0].exp
+    if powers[0].base.args[0] not in (inner, -inner) \
+            or not (exponent.is_Rational and exponent.p == 1 and exponent.q % 2 == 1):
+        return None
+    return inner, int(exponent.q)
 
 
 def _same_power(left: sympy.Expr, right: sympy.Expr) -> sympy.Expr | None:

@@ -622,6 +622,18 @@ def test_every_sign_pattern_of_an_abs_argument_met_is_compared(reference, answer
     ("x = y", "log(x) = log(y)", "not_equivalent"),                # undefined where x = y <= 0
     ("x = y", "(x^2 + x y + y^2 - 1)(x - y) = 0", "not_equivalent"),
     ("x = y", "sin(x) = sin(y)", "not_equivalent"),                # sin repeats its values
+    # a power of a positive number is e^(E log b); products of exponentials combine (KAS, Numbas forms)
+    ("x = y", "2^y = 2^x", "equivalent"), ("x = y", "(1/2)^y = (1/2)^x", "equivalent"),
+    ("x = y", "3*10^y = 3*10^x", "equivalent"), ("x = y", "2^(y - x) = 1", "equivalent"),
+    ("x = y", "e^y/e^x = 1", "equivalent"), ("x = y", "2^y = 2^(2x)", "not_equivalent"),
+    ("x = y", "e^y/e^x = 2", "not_equivalent"),
+    # odd roots, and f(A) = 0 read as A = its preimage
+    ("x = y", "cbrt(y) = cbrt(x)", "equivalent"), ("x = y", "cbrt(y - x) = 0", "equivalent"),
+    ("x = y", "atan(y - x) = 0", "equivalent"), ("x = y", "sinh(y - x) = 0", "equivalent"),
+    ("x = y", "tanh(y - x) = 0", "equivalent"), ("x = y", "(y - x)^3 = 0", "equivalent"),
+    ("x = 8", "cbrt(x) = 2", "equivalent"), ("x = y", "atan(y - x) = 1", "not_equivalent"),
+    ("x = y", "exp(y - x) = 0", "not_equivalent"),                 # no solution at all
+    ("x = y", "sin(y - x) = 0", "not_equivalent"),                 # y = x + kπ too
 ])
 def test_equations_with_the_same_solutions_through_a_one_to_one_function_are_right(reference, answer, expected):
     variables = {"x": {"domain": "real", "kind": "coordinate"}, "y": {"domain": "real", "kind": "coordinate"}}
