@@ -142,6 +142,19 @@ RING_TENSION = f"(m*(g*cos(theta) + l*thetadot^2 + Xdot^2*cos(theta)/c) - m*{RIN
          "m*sqrt(2*g*l*(1 - cos(theta0))/((3*M/2 + m)*3*M/2))"),
         ("pendulum_rolling_cylinder", "bottom_normal_force",
          "(M + m)*g + 2*m*g*(1 - cos(theta0))*(3*M/2 + m)/(3*M/2)"),
+        # Two beads on a hoop spun at ω, a rod keeping θ1,2 = θ ± β: in the hoop's frame
+        # L = m a² (θ̇² + ω² (sin²θ1 + sin²θ2)/2) + m g a (cos θ1 + cos θ2), so
+        # θ̈ = ω² sin 2θ cos 2β/2 − g sin θ cos β/a; bead 1's own equation gives the rod's generalized
+        # force λ = m a² (θ̈ − ω² sin θ1 cos θ1 + g sin θ1/a), whose part along the chord is
+        # C = λ/(a cos β) (m g tan β on a resting hoop at θ = 0); energy in the hoop's frame
+        # m a² θ̇² − 2 m g a cos β cos θ + m a² ω² cos 2β cos 2θ/2 from rest at θ0.
+        ("hoop_spinning_two_beads_rod", "equation_of_motion",
+         "omega^2*sin(2*theta)*cos(2*beta)/2 - g*sin(theta)*cos(beta)/a"),
+        ("hoop_spinning_two_beads_rod", "rod_compression",
+         "m*a*(omega^2*sin(2*theta)*cos(2*beta)/2 - g*sin(theta)*cos(beta)/a"
+         " - omega^2*sin(2*theta + 2*beta)/2 + g*sin(theta + beta)/a)/cos(beta)"),
+        ("hoop_spinning_two_beads_rod", "angular_speed_squared",
+         "2*g*cos(beta)*(cos(theta) - cos(theta0))/a + omega^2*cos(2*beta)*(cos(2*theta0) - cos(2*theta))/2"),
         # Ring on Y = X²/(2c) (Ÿ = (X Ẍ + Ẋ²)/c), bob at l ê, ê = (sin θ, −cos θ): along ê
         # m (a_R·ê − l θ̇²) = −T + m g cos θ, across it m (a_R·ê_θ + l θ̈) = −m g sin θ; the ring along
         # its tangent (c, X): M (Ẍ (c² + X²) + Ẋ² X)/c = T s − M g X, and along the normal (−X, c):
