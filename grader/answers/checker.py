@@ -96,6 +96,22 @@ def _namespace(variables: Mapping) -> Namespace:
         raise _RequestError(f"bad variables: {error}") from None
 
 
+def _below(variables: Mapping, symbols: Mapping[str, sympy.Symbol], dims: Mapping) -> dict[sympy.Symbol, sympy.Symbol]:
+    """{a: R} for each variable declared ``"below": "R"``: a < R wherever the answers are compared, as
+    the scene says (a mass at d < R from a hoop's centre); both variables of one dimension."""
+    below = {}
+    for name, spec in variables.items():
+        other = spec.get("below")
+        if other is None:
+            continue
+        if not isinstance(other, str) or other not in symbols or other == name:
+            raise _RequestError(f"variable {name!r}: 'below' must name another variable, got {other!r}")
+        if dims[symbols[name]] != dims[symbols[other]]:
+            raise _RequestError(f"variable {name!r}: 'below' compares it with {other!r}, of another dimension")
+        below[symbols[name]] = symbols[other]
+    return below
+
+
 def _read(text: str, namespace: Namespace, kind: str, printed: bool = True):
     """(exprs, parsed-json, conditions) of a text: one expression, or the residuals of its equations,
     and the text's real domain as typed (`grader.expressions.Parsed.conditions`).
@@ -143,15 +159,16 @@ def _prepare(reference: str, kind: str, variables_json: str, state_json: str, fe
         notes.append(f"dimensions not checked: the reference {error}")
     symbols = {v.name: v.symbol for v in namespace.variables}
     domains = {v.symbol: v.domain for v in namespace.variables}
+    below = _below(variables, symbols, dims)
     seed = seed_for(reference, kind, variables_json)
     ref = _Reference(namespace, kind, exprs, dims, dimension, notes=notes, conditions=conditions)
     if kind == "expression":
-        ref.sampler = Sampler(domains, seed)
+        ref.sampler = Sampler(domains, seed, below=below)
     else:
         state = state_symbols(variables, symbols, json.loads(state_json))
         ref.unknowns = unknown_symbols(variables, symbols, json.loads(state_json))
-        ref.parameters = Sampler({s: d for s, d in domains.items() if s not in state}, seed)
-        ref.states = Sampler({s: d for s, d in domains.items() if s in state}, seed + 1)
+        ref.parameters = Sampler({s: d for s, d in domains.items() if s not in state}, seed, below=below)
+        ref.states = Sampler({s: d for s, d in domains.items() if s in state}, seed + 1, below=below)
     for entry in json.loads(feedback_json):
         try:
             expr_text, message = entry["expr"], entry["message"]

@@ -138,6 +138,20 @@ def draw_parameters(parameters: Mapping[str, Mapping[str, Any]], seed: int) -> d
     >>> 0.5 <= values["m"] <= 2.0 and round(values["m"], 1) == values["m"], values["k"] in (10, 20, 50)
     (True, True)
     """
+    for attempt in range(_RELATED_DRAWS):
+        # A parameter declared below another (a < R): the student's numbers keep the order; a draw
+        # that breaks it is made again from a seed of its own (still reproducible from the stored seed).
+        values = _draw(parameters, seed if attempt == 0 else seed_for(seed, attempt))
+        if all(values[name] < values[spec["below"]] for name, spec in parameters.items()
+               if isinstance(spec, Mapping) and spec.get("below") in values and name in values):
+            return values
+    raise RandomSpecError("no draw keeps every 'below' relation of the parameters: check their ranges")
+
+
+_RELATED_DRAWS = 64
+
+
+def _draw(parameters: Mapping[str, Mapping[str, Any]], seed: int) -> dict[str, float]:
     values: dict[str, float] = {}
     for name in sorted(parameters):
         spec = parameters[name]

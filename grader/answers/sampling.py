@@ -28,6 +28,8 @@ WIDE_STREAM = 0x5EED
 # their own (seed + REAL_STREAM).
 REAL_DECADES = (3.0, 6.0)
 REAL_STREAM = 0x4EA1
+# Draws tried for a point that keeps the variables' order relations (a < R) before pairs are swapped.
+_RELATED_TRIES = 16
 
 
 def seed_for(*parts: Any) -> int:
@@ -81,8 +83,12 @@ class Sampler:
     True
     """
 
-    def __init__(self, domains: Mapping[sympy.Symbol, Any], seed: int, stress: bool = True):
+    def __init__(self, domains: Mapping[sympy.Symbol, Any], seed: int, stress: bool = True,
+                 below: Mapping[sympy.Symbol, sympy.Symbol] | None = None):
         self.domains = dict(sorted(domains.items(), key=lambda item: item[0].name))
+        # {a: R}: a < R at every point (a hoop's off-centre mass inside its radius); the pairs whose
+        # two symbols this sampler draws.
+        self.below = {a: b for a, b in (below or {}).items() if a in self.domains and b in self.domains}
         self._seed = seed
         self._rng = np.random.default_rng(seed)
         self._wide_rng = None
@@ -96,8 +102,22 @@ class Sampler:
 
     def point(self, i: int) -> dict[sympy.Symbol, float]:
         while len(self._points) <= i:
-            self._points.append(self._draw(len(self._points)))
+            self._points.append(self._related(lambda: self._draw(len(self._points))))
         return self._points[i]
+
+    def _related(self, draw) -> dict[sympy.Symbol, float]:
+        """A point from ``draw`` that keeps every ``below`` relation: drawn again (from the same stream, so
+        the i-th point still depends on the seed and i only), or, past a few tries, with each pair that
+        breaks it swapped (a < R holds wherever R < a did)."""
+        point = draw()
+        for _ in range(_RELATED_TRIES):
+            if all(point[a] < point[b] for a, b in self.below.items()):
+                return point
+            point = draw()
+        for a, b in self.below.items():
+            if not point[a] < point[b] and self.domains[a].contains(point[b]) and self.domains[b].contains(point[a]):
+                point[a], point[b] = point[b], point[a]
+        return point
 
     def wide_point(self, i: int) -> dict[sympy.Symbol, float]:
         """The i-th point drawn across the domains' whole scale (``Domain.sample_wide``).
@@ -108,13 +128,16 @@ class Sampler:
         if self._wide_rng is None:
             self._wide_rng = np.random.default_rng(self._seed + WIDE_STREAM)
         while len(self._wide_points) <= i:
-            point = {}
-            for symbol, domain in self.domains.items():
-                wide = getattr(domain, "sample_wide", None)
-                value = float(wide(self._wide_rng)) if wide is not None else float(domain.sample(self._wide_rng))
-                point[symbol] = value if math.isfinite(value) else 1.0
-            self._wide_points.append(point)
+            self._wide_points.append(self._related(self._draw_wide))
         return self._wide_points[i]
+
+    def _draw_wide(self) -> dict[sympy.Symbol, float]:
+        point = {}
+        for symbol, domain in self.domains.items():
+            wide = getattr(domain, "sample_wide", None)
+            value = float(wide(self._wide_rng)) if wide is not None else float(domain.sample(self._wide_rng))
+            point[symbol] = value if math.isfinite(value) else 1.0
+        return point
 
     def _draw(self, i: int) -> dict[sympy.Symbol, float]:
         stress = i % STRESS_EVERY == STRESS_EVERY - 1

@@ -198,7 +198,9 @@ def derive(scene: Scene, budget_s: float | None = None) -> Derivation:
     # Declared intervals (an angle in [0.05, 3]) decide signs in the readable forms of the answers.
     bounds = {v.symbol: (v.domain.lo, v.domain.hi) for v in (*scene.parameters.values(), *scene.coordinates.values())
               if v.domain.kind == "interval"}
-    with budget.overall_budget(budget_s), declared_domains(bounds):
+    # and so do parameters declared below another (d < R: |R − d| is R − d).
+    below = {p.symbol: scene.parameters[p.below].symbol for p in scene.parameters.values() if p.below is not None}
+    with budget.overall_budget(budget_s), declared_domains(bounds, below):
         with budget.step("solving the equations of motion"):
             eom = equations_of_motion(scene)
         answers, equations, alternatives, implicit = evaluate_answers(scene, eom)

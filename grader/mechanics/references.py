@@ -71,6 +71,9 @@ def parameter_specs(scene) -> dict[str, dict[str, Any]]:
             specs[name] = {"dimension": dimension_text(p.dimension), **p.draw}
         elif p.value is not None:
             specs[name] = {"dimension": dimension_text(p.dimension), "value": p.value}
+    for name, p in scene.parameters.items():
+        if p.below is not None and name in specs and p.below in specs:
+            specs[name]["below"] = p.below  # a student's numbers keep the order too
     return specs
 
 
@@ -128,6 +131,9 @@ def reference_answers(derivation) -> list[dict[str, Any]]:
             v = by_symbol[s]
             variables[v.name] = {"dimension": dimension_text(v.dimension), "domain": domain_json(v.domain),
                                  "kind": v.kind}
+            below = scene.parameters[v.name].below if v.name in scene.parameters else None
+            if below is not None:
+                variables[v.name]["below"] = below  # compared only where d < R, as the scene says
         namespace = Namespace([by_symbol[s] for s in symbols])
         _readable_by_the_checker(scene, spec, [reference, *alternatives], namespace)
         feedback = []

@@ -92,6 +92,8 @@ class Parameter:
     # Drawn per student (docs/scene-format.md, "Randomised parameters"): {"random": {min, max, step}}
     # or {"choices": [...]}, as in the file; the engine keeps the parameter symbolic.
     draw: dict[str, Any] | None = None
+    # The name of a parameter of the same dimension this one stays below (d < R).
+    below: str | None = None
 
 
 @dataclass(frozen=True)
@@ -387,8 +389,26 @@ class _SceneReader:
                 value = float(value)
             draw = self.read_draw(key, spec, dom)
             symbol = self.add(Variable(name, dim, dom, "parameter"))
-            parameters[name] = Parameter(name, symbol, dim, dom, value, draw)
+            parameters[name] = Parameter(name, symbol, dim, dom, value, draw, spec.get("below"))
+        for p in parameters.values():
+            if p.below is not None:
+                self.check_below(p, parameters)
         return parameters
+
+    def check_below(self, p: Parameter, parameters: Mapping[str, Parameter]) -> None:
+        """``below = "R"``: another parameter of the same dimension, and numbers that keep the order."""
+        key = f"parameters.{p.name}.below"
+        other = parameters.get(p.below)
+        if other is None or other is p:
+            raise self.fail(key, f"must name another parameter, got {p.below!r}")
+        if other.dimension != p.dimension:
+            raise self.fail(key, f"{p.name} is {p.dimension.describe()} and {other.name} "
+                                 f"{other.dimension.describe()}: only quantities of one dimension are ordered")
+        if p.value is not None and other.value is not None and not p.value < other.value:
+            raise self.fail(key, f"{p.name} = {p.value:g} is not below {other.name} = {other.value:g}")
+        lows, highs = _numbers(p), _numbers(other)
+        if lows and highs and not min(lows) < max(highs):
+            raise self.fail(key, f"no values of {p.name} and {other.name} keep {p.name} < {other.name}")
 
     def read_draw(self, key: str, spec: Mapping[str, Any], domain: Domain) -> dict[str, Any] | None:
         """``random = {min, max, step}`` or ``choices = [...]``: values drawn per student."""
@@ -769,3 +789,14 @@ class _SceneReader:
                                         self.string(f, "message", f"{key}.feedback[{i}]"),
                                         None if score is None else float(score)))
         return tuple(entries)
+
+
+def _numbers(p: Parameter) -> list[float]:
+    """The numbers a parameter may take: its value, its random range's ends or its choices."""
+    if p.value is not None:
+        return [p.value]
+    if p.draw and "random" in p.draw:
+        return [float(p.draw["random"]["min"]), float(p.draw["random"]["max"])]
+    if p.draw and "choices" in p.draw:
+        return [float(c) for c in p.draw["choices"]]
+    return []

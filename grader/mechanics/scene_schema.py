@@ -96,7 +96,8 @@ SCENE_SCHEMA: dict[str, Any] = {
         # name = { dimension, domain, value | random | choices }
         "parameters": _table({"type": "object", "additionalProperties": False,
                               "properties": {"dimension": _DIMENSION, "domain": _DOMAIN, "value": {"type": "number"},
-                                             "random": _RANDOM, "choices": _CHOICES}}),
+                                             "random": _RANDOM, "choices": _CHOICES,
+                                             "below": {"type": "string", "maxLength": 64}}}),
         "coordinates": _table(_COORDINATE),
         "energy": {"type": "object", "additionalProperties": False,
                    "properties": {"kinetic": _NUMBER_OR_EXPRESSION, "potential": _NUMBER_OR_EXPRESSION}},

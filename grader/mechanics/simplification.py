@@ -115,19 +115,19 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
     expr = sympy.sympify(expr, strict=True)  # an expression or a number, never text
     if expr.is_Atom:
         return expr
-    bounds = _bounds_of(expr.free_symbols)
-    form = _remembered_form(expr, seconds, bounds)
+    bounds, order = _bounds_of(expr.free_symbols), _order_of(expr.free_symbols)
+    form = _remembered_form(expr, seconds, bounds, order)
     # Again at the end: a rewriting may bring a factor of known sign into the bars (|√(1 − cos φ₀)|
     # as √2 |sin(φ₀/2)|).
-    return signed_abs(form, bounds) if form.has(sympy.Abs) else form
+    return signed_abs(form, bounds, order) if form.has(sympy.Abs) else form
 
 
 @functools.lru_cache(maxsize=512)
-def _remembered_form(expr: sympy.Expr, seconds: float, bounds: tuple = ()) -> sympy.Expr:
+def _remembered_form(expr: sympy.Expr, seconds: float, bounds: tuple = (), order: tuple = ()) -> sympy.Expr:
     from grader.mechanics.budget import attempt
 
     if expr.has(sympy.Abs):
-        expr = signed_abs(expr, bounds)
+        expr = signed_abs(expr, bounds, order)
     allowed = _multiple_angles(expr)
     cancelled = sympy.cancel(expr)
     if cancelled == 0 or identically_zero(expr, bounds, seconds):
@@ -648,7 +648,7 @@ def _maybe_zero(expr: sympy.Expr) -> bool:
     return not (cmath.isfinite(value) and abs(value) > 1e-30)
 
 
-def signed_abs(expr: sympy.Expr, bounds: tuple = ()) -> sympy.Expr:
+def signed_abs(expr: sympy.Expr, bounds: tuple = (), order: tuple = ()) -> sympy.Expr:
     """Each |a b …| with the factors whose sign the declared domains (``bounds``, as for
     :func:`half_angles`) and the symbols' signs fix taken out with that sign: |a b| = |a| |b| and
     |a| = ±a where a has one sign.
@@ -661,11 +661,14 @@ def signed_abs(expr: sympy.Expr, bounds: tuple = ()) -> sympy.Expr:
     rho/sin(alpha)
     >>> signed_abs(rho / sympy.Abs(sympy.sin(a)))  # α not bounded: its sine may have either sign
     rho/Abs(sin(alpha))
+    >>> R, d = sympy.symbols("R d", positive=True)
+    >>> signed_abs(sympy.Abs(d - R) * sympy.Abs(2*R - 2*d), order=((d, R),))  # d declared below R
+    (R - d)*(2*R - 2*d)
     """
     def rewrite(absolute):
         known, unknown = sympy.Integer(1), []
         for factor in sympy.Mul.make_args(absolute.args[0]):
-            sign = _factor_sign(factor, bounds)
+            sign = _factor_sign(factor, bounds, order)
             if sign is None:
                 unknown.append(factor)
             else:
@@ -675,8 +678,9 @@ def signed_abs(expr: sympy.Expr, bounds: tuple = ()) -> sympy.Expr:
     return expr.replace(lambda e: isinstance(e, sympy.Abs), rewrite)
 
 
-def _factor_sign(f: sympy.Expr, bounds: tuple) -> int | None:
-    """+1 where ``f`` ≥ 0 and −1 where ``f`` ≤ 0 on the declared domains; None where that is not shown."""
+def _factor_sign(f: sympy.Expr, bounds: tuple, order: tuple = ()) -> int | None:
+    """+1 where ``f`` ≥ 0 and −1 where ``f`` ≤ 0 on the declared domains and order (``(a, R)``: a < R);
+    None where that is not shown."""
     if f.is_nonnegative:
         return 1
     if f.is_nonpositive:
@@ -684,7 +688,7 @@ def _factor_sign(f: sympy.Expr, bounds: tuple) -> int | None:
     if isinstance(f, (sympy.sin, sympy.cos)):
         return _sign(f, bounds)
     if f.is_Pow and f.exp.is_Rational:
-        base = _factor_sign(f.base, bounds)
+        base = _factor_sign(f.base, bounds, order)
         if f.exp.is_Integer:
             return None if base is None else base ** int(f.exp % 2 + 2)  # an even power: +1
         return 1 if base == 1 else None  # a root of what is ≥ 0
@@ -694,9 +698,36 @@ def _factor_sign(f: sympy.Expr, bounds: tuple) -> int | None:
             return 1
         if interval is not None and interval[1] <= 0:
             return -1
+    if f.is_Mul:
+        signs = [_factor_sign(factor, bounds, order) for factor in f.args]
+        return None if None in signs else math.prod(signs)
+    if f.is_Add and _trig_interval(f) is not None:
+        lo, hi = _trig_interval(f)
+        if lo >= 0:
+            return 1
+        if hi <= 0:
+            return -1
     if f.is_Add:
+        for a, b in order:  # a multiple of R − a, of either sign
+            ratio = sympy.cancel(f / (b - a))
+            if ratio.is_number and ratio.is_nonzero:
+                return 1 if ratio.is_positive else -1
         return _definite_quadratic(f)
     return None
+
+
+def _trig_interval(f: sympy.Expr) -> tuple[float, float] | None:
+    """Bounds of a sum of numbers and numbers times a sine or cosine (each in [−1, 1]): 1 − cos θ₀ ≥ 0."""
+    lo = hi = 0.0
+    for term in sympy.Add.make_args(f):
+        coefficient, rest = term.as_coeff_Mul()
+        if rest == 1:
+            lo, hi = lo + float(coefficient), hi + float(coefficient)
+        elif isinstance(rest, (sympy.sin, sympy.cos)):
+            lo, hi = lo - abs(float(coefficient)), hi + abs(float(coefficient))
+        else:
+            return None
+    return lo, hi
 
 
 def _definite_quadratic(f: sympy.Expr) -> int | None:
@@ -821,16 +852,28 @@ def _nonzero_at_a_point(expr: sympy.Expr, bounds: tuple, count: int = 4, seed: i
 _DOMAINS: contextvars.ContextVar[dict] = contextvars.ContextVar("declared domains", default={})
 
 
+_BELOW: contextvars.ContextVar[dict] = contextvars.ContextVar("declared order", default={})
+
+
 @contextlib.contextmanager
-def declared_domains(bounds: dict):
+def declared_domains(bounds: dict, below: dict | None = None):
     """Within: the symbols of ``bounds`` ({symbol: (lo, hi)}, a scene's declared intervals) are
     known to stay in them, for the signs :func:`human_form` may rely on (√(2 − 2 cos θ₀) is
-    2 sin(θ₀/2) for 0 ≤ θ₀ ≤ 2π) and the points where it looks for a nonzero value."""
+    2 sin(θ₀/2) for 0 ≤ θ₀ ≤ 2π) and the points where it looks for a nonzero value; and each
+    ``a`` of ``below`` ({a: R}, parameters declared ``below``) stays below its ``R`` (R − a > 0)."""
     token = _DOMAINS.set(dict(bounds))
+    order = _BELOW.set(dict(below or {}))
     try:
         yield
     finally:
         _DOMAINS.reset(token)
+        _BELOW.reset(order)
+
+
+def _order_of(symbols) -> tuple:
+    """The declared ``(a, R)`` pairs (a < R) among ``symbols``, in a fixed order (part of the memory)."""
+    below = _BELOW.get()
+    return tuple(sorted(((a, b) for a, b in below.items() if a in symbols and b in symbols), key=str))
 
 
 def _bounds_of(symbols) -> tuple:

@@ -103,3 +103,31 @@ def test_a_verdict_does_not_depend_on_the_answers_checked_before():
     _reference_candidates.cache_clear()
     first = {a: verdict(a) for a in answers}
     assert {a: verdict(a) for a in reversed(answers)} == first
+
+
+CART = {"M": {"dimension": "kg", "domain": "positive"}, "m": {"dimension": "kg", "domain": "positive"},
+        "g": {"dimension": "m*s^-2", "domain": "positive"}, "R": {"dimension": "m", "domain": "positive"},
+        "a": {"dimension": "m", "domain": "positive"}, "theta0": {"dimension": "dimensionless", "domain": [0.01, 1.5]}}
+CART_SPEED = "2*m*sqrt(g*(1 - cos(theta0))*(R - a))/sqrt((M + m)*(3*M + m))"
+
+
+@pytest.mark.parametrize("answer, below, expected", [
+    # a cylinder of radius a rolling in a hollow of radius R > a: |R − a| is R − a where the scene lives
+    ("2 m sqrt(g (1 - cos(theta0)) abs(R - a))/sqrt((M + m)(3M + m))", "R", "equivalent"),
+    ("4 m sin(theta0/2) sqrt(g (R - a)/2)/sqrt((M + m)(3M + m))", "R", "equivalent"),
+    ("2 m sqrt(g (1 - cos(theta0)) (R + a))/sqrt((M + m)(3M + m))", "R", "not_equivalent"),
+    # without the relation a > R is in the domain, where only |R − a| is defined
+    ("2 m sqrt(g (1 - cos(theta0)) abs(R - a))/sqrt((M + m)(3M + m))", None, "not_equivalent"),
+])
+def test_answers_are_compared_only_where_a_variable_declared_below_another_is(answer, below, expected):
+    variables = {**CART, "a": {**CART["a"], "below": below}} if below else CART
+    assert check(CART_SPEED, answer, variables).verdict == expected
+
+
+@pytest.mark.parametrize("below, message", [
+    ("L", "must name another variable"), ("a", "must name another variable"), ("g", "another dimension"),
+    (3, "must name another variable"),
+])
+def test_a_below_relation_must_name_another_variable_of_the_same_dimension(below, message):
+    verdict = check(CART_SPEED, "0", {**CART, "a": {**CART["a"], "below": below}})
+    assert verdict.verdict == "invalid" and message in verdict.reason

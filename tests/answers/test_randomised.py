@@ -124,3 +124,18 @@ def test_seed_for_is_fixed_by_the_ids_and_the_secret(ids):
 
 def test_seed_for_separates_ids_that_would_concatenate_alike():
     assert seed_for("", 1, 23) != seed_for("", 12, 3)
+
+
+def test_a_parameter_below_another_keeps_the_order_in_every_students_draw():
+    spec = {"d": {"random": {"min": 0.1, "max": 0.9, "step": 0.1}, "below": "R"},
+            "R": {"random": {"min": 0.2, "max": 1.0, "step": 0.1}}}
+    draws = [draw_parameters(spec, seed) for seed in SEEDS]
+    assert all(v["d"] < v["R"] for v in draws)
+    assert draws == [draw_parameters(spec, seed) for seed in SEEDS]  # reproducible from the seed
+    assert len({(v["d"], v["R"]) for v in draws}) > 20
+
+
+def test_a_below_relation_no_draw_can_keep_is_an_error():
+    spec = {"d": {"value": 2.0, "below": "R"}, "R": {"value": 1.0}}
+    with pytest.raises(RandomSpecError, match="below"):
+        draw_parameters(spec, 1)

@@ -56,3 +56,16 @@ def test_stress_on_real_variables_leaves_the_other_points_as_they_were():
     without = Sampler({x: parse_domain("real"), m: parse_domain("positive")}, seed=3, stress=False)
     ordinary = [i for i in range(12) if i % STRESS_EVERY != STRESS_EVERY - 1]
     assert [with_x.point(i) for i in ordinary] == [without.point(i) for i in ordinary]
+
+
+def test_a_variable_declared_below_another_stays_below_it_at_every_point():
+    """{a: R}: a hoop's off-centre mass inside its radius; the ordinary, stress and wide points all
+    keep a < R, and a sampler without both symbols ignores the pair."""
+    positive = parse_domain("positive")
+    a, R, m = sympy.symbols("a R m", positive=True)
+    sampler = Sampler({a: positive, R: positive, m: positive}, seed=7, below={a: R})
+    points = [sampler.point(i) for i in range(4 * STRESS_EVERY * 5)] + [sampler.wide_point(i) for i in range(20)]
+    assert all(p[a] < p[R] for p in points)
+    unordered = Sampler({a: positive, R: positive}, seed=7)
+    assert any(unordered.point(i)[a] > unordered.point(i)[R] for i in range(20))  # the order is not by chance
+    assert Sampler({a: positive, m: positive}, seed=7, below={a: R}).below == {}

@@ -29,6 +29,10 @@ def agree(derivation, answer: str, expected: str) -> None:
     symbols = sorted(value.free_symbols | want.free_symbols, key=str)
     for _ in range(4):
         point = {s: sympy.Float(rng.uniform(0.2, 1.1), 30) for s in symbols}
+        for p in scene.parameters.values():  # a parameter declared below another stays below it
+            if p.below and p.symbol in point and scene.parameters[p.below].symbol in point:
+                small, big = p.symbol, scene.parameters[p.below].symbol
+                point[small], point[big] = sorted((point[small], point[big]))
         got, expect = complex(value.evalf(30, subs=point)), complex(want.evalf(30, subs=point))
         assert abs(got - expect) <= 1e-12 * max(1.0, abs(expect)), \
             f"{scene.id}.{answer}: engine {value}, expected {want} (at {point}: {got} vs {expect})"
@@ -276,7 +280,8 @@ ROD_SUM = "m*(R*phidot^2 + g*cos(phi)/cos(beta))"
         ("cart_cylinder", "normal_force_state",
          f"m*(R - a)*thetadot^2 + m*g*cos(theta) - m*{CART_ACCELERATION}*sin(theta)"),
         ("cart_cylinder", "bottom_normal_force", "m*g*(1 + 4*(1 - cos(theta0))*(M + m)/(3*M + m))"),
-        ("cart_cylinder", "bottom_cart_speed", "2*m*sqrt(g*abs(R - a)*(1 - cos(theta0))/((M + m)*(3*M + m)))"),
+        # a declared below R (the hollow's radius): R − a > 0
+        ("cart_cylinder", "bottom_cart_speed", "2*m*sqrt(g*(R - a)*(1 - cos(theta0))/((M + m)*(3*M + m)))"),
         ("cart_cylinder", "small_oscillation_frequency", "sqrt(2*g*(M + m)/((R - a)*(3*M + m)))"),
         # Hoop with a mass m at d from its centre, rolling (x = R φ): the mass moves at
         # φ̇ (R − d cos φ, d sin φ), so T = J φ̇²/2, J = 2 M R² + m (R² + d² − 2 R d cos φ),

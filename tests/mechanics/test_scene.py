@@ -157,3 +157,33 @@ def test_a_kept_coordinate_must_be_that_coordinate(old, new, key, problem):
         parse_scene(sliding(old, new), source="sliding.toml")
     assert caught.value.key == key
     assert problem in str(caught.value)
+
+
+def with_parameter(line: str) -> str:
+    """The sphere with one more parameter line after R."""
+    anchor = 'R = { dimension = "length", domain = "positive", value = 0.8 }\n'
+    assert anchor in SPHERE
+    return SPHERE.replace(anchor, anchor + line + "\n", 1)
+
+
+@pytest.mark.parametrize("line, problem", [
+    ('d = { dimension = "length", domain = "positive", value = 0.1, below = "L" }', "must name another parameter"),
+    ('d = { dimension = "length", domain = "positive", value = 0.1, below = "d" }', "must name another parameter"),
+    ('d = { dimension = "length", domain = "positive", value = 0.1, below = "m" }', "one dimension"),
+    ('d = { dimension = "length", domain = "positive", value = 0.9, below = "R" }', "is not below R"),
+    ('d = { dimension = "length", domain = "positive", random = { min = 0.9, max = 1.2, step = 0.1 }, below = "R" }',
+     "no values"),
+])
+def test_a_parameter_below_another_must_name_one_of_its_dimension_with_numbers_in_order(line, problem):
+    with pytest.raises(SceneError) as caught:
+        parse_scene(with_parameter(line), source="upload.toml")
+    assert caught.value.key == "parameters.d.below" and problem in str(caught.value)
+
+
+def test_a_parameter_below_another_is_kept_on_the_scene_and_in_the_references():
+    from grader.mechanics.references import parameter_specs
+
+    scene = parse_scene(with_parameter('d = { dimension = "length", domain = "positive", value = 0.1, below = "R" }'),
+                        source="upload.toml")
+    assert scene.parameters["d"].below == "R"
+    assert parameter_specs(scene)["d"]["below"] == "R"

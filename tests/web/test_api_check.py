@@ -125,3 +125,16 @@ def test_partial_credit_of_a_matched_feedback_entry_is_in_the_verdict(client, ma
         "feedback": [{"expr": "m*g", "message": "That is the weight.", "score": 0.25}]})
     body = response.get_json()
     assert response.status_code == 200 and body["verdict"] == "not_equivalent" and body["score"] == 0.25
+
+
+def test_a_variable_below_another_is_part_of_the_check_contract(client, make_token):
+    """'below' goes through the request schema to the checker: |R − a| is R − a where a < R."""
+    _, student = make_token("student")
+    variables = {"R": {"dimension": "length", "domain": "positive"},
+                 "a": {"dimension": "length", "domain": "positive", "below": "R"},
+                 "g": {"dimension": "acceleration", "domain": "positive"}}
+    body = {"reference": "sqrt(g*(R - a))", "answer": "sqrt(g abs(R - a))", "variables": variables}
+    response = client.post("/api/v1/check", headers=student, json=body)
+    assert response.status_code == 200 and response.get_json()["verdict"] == "equivalent"
+    variables["a"]["below"] = "R; drop table"
+    assert client.post("/api/v1/check", headers=student, json=body).status_code == 422

@@ -37,6 +37,9 @@ _VARIABLE = {
              "items": {"oneOf": [{"type": "number"}, {"type": "string", "maxLength": 64}]}}]},
         "kind": {"type": "string", "enum": ["parameter", "coordinate", "velocity", "acceleration", "multiplier",
                                             "force", "time", "answer"]},
+        "below": {"type": "string", "maxLength": 64, "pattern": NAME_PATTERN,
+                  "description": "another variable of the same dimension this one stays below (d < R): answers "
+                                 "are compared only where it does"},
     },
     "description": "A name the text may use: its dimension (e.g. 'mass') and domain ('positive', [lo, hi]).",
 }
