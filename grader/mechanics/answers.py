@@ -320,11 +320,19 @@ class AnswerEvaluator:
         # u̇² readable either way: it is computed once for every answer, and its factors
         # (cos θ − cos θ₀) carry over to where it is substituted.
         squared = self.velocity_squared(u, key, momenta)
+        # |A u̇| is √(A² u̇²) for real A: with u̇ = ±√(…) substituted into the bars, sympy wrote
+        # |√z| as √(z·conj(z)) wherever it could not show z ≥ 0 (a speed where a ball leaves a loop).
+        def even_powers(e):
+            return e.replace(lambda p: p.is_Pow and p.base == u.dot and p.exp.is_Integer and p.exp % 2 == 0,
+                             lambda p: squared ** (p.exp // 2))
+
+        def bars(e):  # √(A²) with u̇² replaced at once (sympy would write √(u̇²) as |u̇| again)
+            inner = even_powers(sympy.expand(e.args[0] ** 2))
+            return e if u.dot in inner.free_symbols else sympy.sqrt(inner)
+
+        expr = expr.replace(lambda e: isinstance(e, sympy.Abs) and u.dot in e.free_symbols, bars)
         expr = sympy.expand(expr)
-        expr = expr.replace(
-            lambda e: e.is_Pow and e.base == u.dot and e.exp.is_Integer and e.exp % 2 == 0,
-            lambda e: squared ** (e.exp // 2),
-        )
+        expr = even_powers(expr)
         if u.dot in expr.free_symbols:
             sign = (signs or {}).get(u.name) or self.motion_sign(u, pushed=True)
             if sign is None:

@@ -79,6 +79,15 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     asks_time = scene.time in spec.expr.xreplace(evaluator.values).free_symbols
     if asks_time and scene.time not in target and spec.kind != "small_oscillation":
         return _at_time(evaluator, spec, target, key)
+    if spec.where[0] - spec.where[1] in (scene.time, -scene.time) and spec.kind != "small_oscillation":
+        return _at_start(evaluator, spec, target, key)
+    if scene.time not in target and spec.kind != "small_oscillation" and _condition_in_time(evaluator, spec, key):
+        # A condition that holds at moments (ẍ = 0 on a plank driven by A sin Ωt: ẍ = A Ω² sin Ωt/3)
+        # names a moment of the motion, not a state: read at rest it gave ẋ = 0, at the start.
+        try:
+            return _at_time(evaluator, spec, target, key)
+        except SceneError:
+            pass  # no motion in closed form: read as before
     at_rest = spec.kind == "small_oscillation"
     try:
         return _where(evaluator, spec, target, key, at_rest=at_rest)
@@ -98,6 +107,28 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
             return _where(evaluator, spec, target, key, at_rest=True)
         except SceneError:
             raise error from None
+
+
+def _at_start(evaluator, spec, target: set, key: str) -> sympy.Expr:
+    """The answer at t = 0: at the state [initial] gives, whether or not the motion has a closed form
+    (a pendulum hung from a bead on a parabola, released at X₀: its tension at release)."""
+    everything = evaluator.parameters | evaluator.state_symbols() | {evaluator.scene.time}
+    value = evaluator.reduction.initial_value(evaluator.reduce(spec.expr, everything, f"answers ({spec.name}).expr"))
+    if value is None:
+        names = ", ".join(f"{u.name}, {u.dot.name}" for u in evaluator.reduction.independent.values())
+        raise SceneError(evaluator.scene.source, key, f"at t = 0 the answer needs [initial] values for {names}")
+    return _no_leftover(evaluator.scene, spec, human_form(value), target)
+
+
+def _condition_in_time(evaluator, spec, key: str) -> bool:
+    """Whether the condition, in the independent variables, depends on t itself."""
+    lhs, rhs = spec.where
+    everything = evaluator.parameters | evaluator.state_symbols() | {evaluator.scene.time}
+    try:
+        condition = evaluator.reduce(lhs - rhs, everything, key, readable=False)
+    except SceneError:
+        return False
+    return evaluator.scene.time in condition.free_symbols
 
 
 def _sets_an_acceleration_to_zero(evaluator, spec) -> bool:
@@ -1129,6 +1160,11 @@ def _parameter_points(scene) -> list[dict]:
     base = {}
     for p in scene.parameters.values():
         base[p.symbol] = p.value if p.value is not None else p.domain.sample(rng)
+    for p in scene.parameters.values():  # d declared below R: a generic point keeps the order
+        big = scene.parameters[p.below] if p.below is not None else None
+        if big is not None and not base[p.symbol] < base[big.symbol] and p.domain.contains(base[big.symbol]) \
+                and big.domain.contains(base[p.symbol]):
+            base[p.symbol], base[big.symbol] = base[big.symbol], base[p.symbol]
     other = {}
     for p in scene.parameters.values():
         value = base[p.symbol] * 1.0137

@@ -126,7 +126,8 @@ RING_TENSION = f"(m*(g*cos(theta) + l*thetadot^2 + Xdot^2*cos(theta)/c) - m*{RIN
         ("spool_incline_pulley", "spool_acceleration", SPOOL_A),
         ("spool_incline_pulley", "tension", SPOOL_T),
         ("spool_incline_pulley", "friction_force", f"M*{SPOOL_A}/2 + {SPOOL_T}*r/R"),
-        ("spool_incline_pulley", "block_speed", f"abs(sqrt(2*{SPOOL_K}*h*{SPOOL_A}))"),
+        # |ẏ| = √(ẏ²) with ẏ² = 2 K h a ≥ 0 while the block rises (the engine writes the bars so)
+        ("spool_incline_pulley", "block_speed", f"sqrt(2*{SPOOL_K}*h*{SPOOL_A})"),
         ("spool_incline_pulley", "time_to_rise", f"sqrt(2*h/({SPOOL_K}*{SPOOL_A}))"),
         # Pendulum from the axle of a rolling cylinder (T_cyl = 3 M ẋ²/4): x is cyclic,
         # p = (3M/2 + m) ẋ + m l θ̇ cos θ; the bob across the rod l θ̈ = −ẍ cos θ − g sin θ, so

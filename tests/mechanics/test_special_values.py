@@ -631,3 +631,50 @@ dimension = "length"
     scene = parse_scene(text, "atwood.toml")
     value = derive(scene).answers["probe"]
     assert sympy.simplify(value - parse_expression(expected, scene.namespace).expr) == 0
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # a condition that holds at moments of a driven motion (ẍ = −A Ω² sin(Ωt)/3): the first moment
+    # after the start, t = π/Ω, not the start itself nor a state at rest
+    ("speed_when_coasting", "-2*A*Omega/3"),
+    ("position_when_coasting", "-pi*A/3"),
+    # where t = 0: the state [initial] gives (at rest, with ẍ(0) = 0)
+    ("friction_at_start", "0"),
+])
+def test_a_condition_on_a_driven_motion_names_a_moment_of_it(derived, answer, expected):
+    d = derived("cylinder_on_oscillating_plank")
+    assert sympy.simplify(d.answers[answer] - parse_expression(expected, d.scene.namespace).expr) == 0
+    assert answer not in d.alternatives
+
+
+def test_where_t_is_0_reads_the_answer_at_the_initial_state():
+    """The pendulum released from rest at θ₀: its tension at t = 0 is m g cos θ₀, whatever the motion."""
+    text = (Path(__file__).resolve().parents[2] / "problems" / "pendulum.toml").read_text(encoding="utf-8") + """
+[[answers]]
+name = "tension_at_release"
+prompt = "Tension at release"
+expr = "tension"
+where = "t = 0"
+in_terms_of = ["m", "g", "theta0"]
+dimension = "force"
+"""
+    d = derive(parse_scene(text, "pendulum.toml"))
+    assert sympy.simplify(d.answers["tension_at_release"] - parse_expression("m*g*cos(theta0)", d.scene.namespace).expr) == 0
+
+
+def test_bars_around_a_velocity_eliminated_by_energy_stay_readable():
+    """|l θ̇| at the bottom is √(2 g l (1 − cos θ₀)): the bars become √(l² θ̇²) with θ̇² from energy at
+    once (sympy wrote |√z| as √(z·conj(z)) where it could not show z ≥ 0, which no student can type)."""
+    text = (Path(__file__).resolve().parents[2] / "problems" / "pendulum.toml").read_text(encoding="utf-8") + """
+[[answers]]
+name = "speed_at_bottom"
+prompt = "Speed at the bottom"
+expr = "abs(l*thetadot)"
+where = "theta = 0"
+in_terms_of = ["g", "l", "theta0"]
+dimension = "velocity"
+"""
+    value = derive(parse_scene(text, "pendulum.toml")).answers["speed_at_bottom"]
+    assert not value.has(sympy.conjugate, sympy.Abs)
+    at = {s: v for s in value.free_symbols for name, v in (("g", 9.81), ("l", 0.7), ("theta0", 0.9)) if s.name == name}
+    assert abs(float(value.xreplace(at)) - math.sqrt(2 * 9.81 * 0.7 * (1 - math.cos(0.9)))) < 1e-12

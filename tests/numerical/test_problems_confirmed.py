@@ -220,6 +220,9 @@ def run_experiment(path: Path) -> Experiment:
     start = model.initial_state(push=PUSH)
     conditions = _where_events(model)
     states, found = _follow_motion(model, start, conditions)
+    for event in conditions:  # where t = 0: the first sample, the start itself, which no crossing reports
+        if event.name in (str(scene.time), str(-scene.time)):
+            found[event.name] = min(states, key=lambda s: s.t)
     # Quantities in time order, so that parametrization angles follow the motion continuously.
     # A fresh model does it: the events above already walked the other one's parametrization
     # guess far along the motion (four turns down a helix), where Gauss–Newton would have to
