@@ -647,34 +647,25 @@ def test_a_condition_on_a_driven_motion_names_a_moment_of_it(derived, answer, ex
     assert answer not in d.alternatives
 
 
+def _pendulum_with(name: str, expr: str, where: str, in_terms_of: str, dimension: str):
+    """The paper's pendulum (released from rest at θ₀) with one more answer, derived."""
+    text = (Path(__file__).resolve().parents[2] / "problems" / "pendulum.toml").read_text(encoding="utf-8")
+    text += (f'\n[[answers]]\nname = "{name}"\nprompt = "{name}"\nexpr = "{expr}"\nwhere = "{where}"\n'
+             f'in_terms_of = {in_terms_of}\ndimension = "{dimension}"\n')
+    return derive(parse_scene(text, "pendulum.toml"))
+
+
 def test_where_t_is_0_reads_the_answer_at_the_initial_state():
     """The pendulum released from rest at θ₀: its tension at t = 0 is m g cos θ₀, whatever the motion."""
-    text = (Path(__file__).resolve().parents[2] / "problems" / "pendulum.toml").read_text(encoding="utf-8") + """
-[[answers]]
-name = "tension_at_release"
-prompt = "Tension at release"
-expr = "tension"
-where = "t = 0"
-in_terms_of = ["m", "g", "theta0"]
-dimension = "force"
-"""
-    d = derive(parse_scene(text, "pendulum.toml"))
+    d = _pendulum_with("tension_at_release", "tension", "t = 0", '["m", "g", "theta0"]', "force")
     assert sympy.simplify(d.answers["tension_at_release"] - parse_expression("m*g*cos(theta0)", d.scene.namespace).expr) == 0
 
 
 def test_bars_around_a_velocity_eliminated_by_energy_stay_readable():
     """|l θ̇| at the bottom is √(2 g l (1 − cos θ₀)): the bars become √(l² θ̇²) with θ̇² from energy at
     once (sympy wrote |√z| as √(z·conj(z)) where it could not show z ≥ 0, which no student can type)."""
-    text = (Path(__file__).resolve().parents[2] / "problems" / "pendulum.toml").read_text(encoding="utf-8") + """
-[[answers]]
-name = "speed_at_bottom"
-prompt = "Speed at the bottom"
-expr = "abs(l*thetadot)"
-where = "theta = 0"
-in_terms_of = ["g", "l", "theta0"]
-dimension = "velocity"
-"""
-    value = derive(parse_scene(text, "pendulum.toml")).answers["speed_at_bottom"]
+    d = _pendulum_with("speed_at_bottom", "abs(l*thetadot)", "theta = 0", '["g", "l", "theta0"]', "velocity")
+    value = d.answers["speed_at_bottom"]
     assert not value.has(sympy.conjugate, sympy.Abs)
     at = {s: v for s in value.free_symbols for name, v in (("g", 9.81), ("l", 0.7), ("theta0", 0.9)) if s.name == name}
     assert abs(float(value.xreplace(at)) - math.sqrt(2 * 9.81 * 0.7 * (1 - math.cos(0.9)))) < 1e-12
