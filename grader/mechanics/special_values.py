@@ -628,6 +628,13 @@ def _solve_factor(condition: sympy.Expr, x: sympy.Symbol, source: str, key: str)
     exponential = _through_exponentials(condition, x, source, key)
     if exponential is not None:
         return exponential
+    compound = condition.replace(
+        lambda e: isinstance(e, (sympy.sin, sympy.cos, sympy.tan)) and x in e.free_symbols and e.args[0] != x,
+        sympy.expand_trig)
+    if compound != condition:
+        # sin(θ + β) beside sin(θ − β) (two beads at θ ± β on a spun hoop): in sin θ and cos θ alone the
+        # substitutions above apply; the general solver ran out of its budget on them.
+        return solve_for(sympy.expand(compound), x, source, key)
     if _transcendental_in(condition, x, _TRANSCENDENTAL) is not None:
         # x beside a function of x (m g l sin θ = k θ, x eˣ = c): no closed form a student could type
         # (at best a LambertW), and solve would spend its whole budget finding that out.

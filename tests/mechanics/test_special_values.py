@@ -669,3 +669,44 @@ def test_bars_around_a_velocity_eliminated_by_energy_stay_readable():
     assert not value.has(sympy.conjugate, sympy.Abs)
     at = {s: v for s in value.free_symbols for name, v in (("g", 9.81), ("l", 0.7), ("theta0", 0.9)) if s.name == name}
     assert abs(float(value.xreplace(at)) - math.sqrt(2 * 9.81 * 0.7 * (1 - math.cos(0.9)))) < 1e-12
+
+
+def test_a_condition_in_sines_of_theta_plus_and_minus_beta_is_solved_in_theta():
+    """Two beads at θ ± β on a hoop spun at ω (a rod joins them): θ̈ = 0 holds where
+    cos θ* = g cos β/(a ω² cos 2β), the compression there is m sin(θ* + β)(g − a ω² cos(θ* + β))/cos β
+    and ω √(cos 2β (1 − cos²θ*)) the frequency about it (by hand). The condition, in sin(β ± θ) and
+    cos(β ± θ), ran out of the solver's budget before it was written in sin θ and cos θ."""
+    text = (SCENES / "hoop_spinning_two_beads_rod.toml").read_text(encoding="utf-8") + """
+[[answers]]
+name = "equilibrium_cos"
+prompt = "cos theta at the equilibrium"
+expr = "cos(theta)"
+where = "thetaddot = 0"
+in_terms_of = ["g", "a", "omega", "beta"]
+
+[[answers]]
+name = "equilibrium_compression"
+prompt = "The rod's compression there"
+expr = "rod_compression"
+where = "thetaddot = 0"
+in_terms_of = ["m", "g", "a", "omega", "beta"]
+dimension = "force"
+
+[[answers]]
+name = "small_oscillation_frequency"
+prompt = "Small oscillations about it"
+kind = "small_oscillation"
+expr = "theta"
+where = "thetaddot = 0"
+"""
+    d = derive(parse_scene(text, "beads.toml"))
+    a, omega, g, beta, m = 0.5, 9.0, 9.81, 0.3, 0.2
+    c = g * math.cos(beta) / (a * omega ** 2 * math.cos(2 * beta))
+    theta = math.acos(c)
+    expected = {"equilibrium_cos": c,
+                "equilibrium_compression": m * math.sin(theta + beta) * (g - a * omega ** 2 * math.cos(theta + beta))
+                / math.cos(beta),
+                "small_oscillation_frequency": omega * math.sqrt(math.cos(2 * beta) * (1 - c ** 2))}
+    for name, want in expected.items():
+        got = _numbers(d.answers[name], a=a, omega=omega, g=g, beta=beta, m=m)
+        assert abs(got - want) < 1e-12 * max(1.0, abs(want)), (name, got, want)
