@@ -240,6 +240,12 @@ def _at_root(value: sympy.Expr, x: sympy.Symbol, root: sympy.Expr) -> sympy.Expr
           and any(isinstance(a, sympy.atan) for a in root.args)):
         v, sign = next(a for a in root.args if isinstance(a, sympy.atan)).args[0], -1
     else:
+        if isinstance(root, (sympy.acos, sympy.asin)):
+            # sin(β − x) at x = acos c stays sin(β − acos c) unless expanded first: then cos(acos c) = c
+            # and sin(acos c) = √(1 − c²) (two beads at θ ± β on a spun hoop, in equilibrium).
+            value = value.replace(
+                lambda e: isinstance(e, (sympy.sin, sympy.cos)) and x in e.free_symbols and e.args[0] != x,
+                sympy.expand_trig)
         substituted = value.xreplace({x: root})
         if not substituted.has(sympy.atan):
             return substituted

@@ -710,3 +710,5 @@ where = "thetaddot = 0"
     for name, want in expected.items():
         got = _numbers(d.answers[name], a=a, omega=omega, g=g, beta=beta, m=m)
         assert abs(got - want) < 1e-12 * max(1.0, abs(want)), (name, got, want)
+        # sin(θ* + β) at θ* = acos c is written in c (sin β c + cos β √(1 − c²)), not left as sin(β + acos c)
+        assert not d.answers[name].has(sympy.acos), d.answers[name]
