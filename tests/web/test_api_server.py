@@ -76,9 +76,12 @@ def test_a_server_killed_mid_grading_loses_no_accepted_submission(site):
         max_requests=100_000, stop=stop)))
     load.start()
     deadline = time.monotonic() + 120
-    while _count(url, "SELECT count(*) FROM verdicts") < 30:
+    # Killed with work in flight: 30 verdicts in, and a backlog the worker has not graded yet (a
+    # worker that keeps up with eight clients would otherwise be killed idle, testing nothing).
+    while (_count(url, "SELECT count(*) FROM verdicts") < 30
+           or _count(url, "SELECT count(*) FROM submissions WHERE status IN ('queued', 'running')") < 3):
         assert time.monotonic() < deadline, first.log()
-        time.sleep(0.05)
+        time.sleep(0.005)
     first.kill()  # SIGKILL to the server's process group, while clients submit and the worker grades
     stop.set()
     load.join()
