@@ -272,12 +272,18 @@ def _integrated_twice(evaluator, coordinates: list, accelerations: dict) -> dict
     if any(accelerations[u].free_symbols & state for u in coordinates):
         return None
     s = sympy.Dummy("s", real=True)
+    positions = {}
+
+    def integrate():  # under dsolve's budget: an integrand of t can be as hard as the equation
+        for u in coordinates:
+            velocity = _initial(evaluator, u.dot) + sympy.integrate(accelerations[u].xreplace({t: s}), (s, 0, t))
+            positions[u] = _initial(evaluator, u.symbol) + sympy.integrate(velocity.xreplace({t: s}), (s, 0, t))
+
+    budget.attempt(integrate, _DSOLVE_BUDGET_S, fallback=lambda: None)
+    if len(positions) < len(coordinates) or any(p.has(sympy.Integral) for p in positions.values()):
+        return None
     motion = {}
-    for u in coordinates:
-        velocity = _initial(evaluator, u.dot) + sympy.integrate(accelerations[u].xreplace({t: s}), (s, 0, t))
-        position = _initial(evaluator, u.symbol) + sympy.integrate(velocity.xreplace({t: s}), (s, 0, t))
-        if position.has(sympy.Integral):
-            return None
+    for u, position in positions.items():
         motion[u.symbol] = _readable(position)
         motion[u.dot] = _readable(sympy.diff(motion[u.symbol], t))
     return motion
