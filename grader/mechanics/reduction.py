@@ -251,20 +251,21 @@ class Reduction:
                 # 2M + m sin²(θ + α), where the Schur complement spreads it over sin α, sin θ) and
                 # longer for others (a rod with both ends on a circle): the shorter of each is kept.
                 rows = self._multipliers_from_rows(C, M, b1)
-                lam = [min((a, b), key=sympy.count_ops) for a, b in zip(lam, rows)]
+                if rows is not None:
+                    lam = [min((a, b), key=sympy.count_ops) for a, b in zip(lam, rows)]
         else:
             lam = []
         self.multipliers = {c.name: lam[i] for i, c in enumerate(scene.constraints)}
         return True
 
-    def _multipliers_from_rows(self, C: sympy.Matrix, M: sympy.Matrix, b1: sympy.Matrix) -> list[sympy.Expr]:
+    def _multipliers_from_rows(self, C: sympy.Matrix, M: sympy.Matrix, b1: sympy.Matrix) -> list[sympy.Expr] | None:
         """λ from k Euler–Lagrange rows C λ = b₁ − M q̈, with q̈ = Φ̈(u, u̇, ü) and ü already solved.
 
         The rows are consistent (ü solves them all), so any k rows whose block of C is invertible
         give λ; the simplest such block is taken (usually the coordinates the constraints were
         solved for). This avoids inverting a full mass matrix with cross terms symbolically (a hoop
         rolling down an incline with a bead inside: M⁻¹ of 4 × 4 trigonometric entries ran over a
-        minute; these rows take a fraction of a second).
+        minute; these rows take a fraction of a second). None where the rows are too long to tidy.
         """
         import itertools
 
@@ -289,11 +290,15 @@ class Reduction:
             raise SceneError(scene.source, "constraints",
                              "the constraint forces cannot be solved for: the constraints' gradients are dependent")
         _, rows, block = min(blocks, key=lambda item: item[:2])
-        residual = sympy.Matrix([
-            _tidy_entry(sympy.cancel(self.to_independent(b1[i, 0] - sum(
-                (M[i, j] * qddot[j] for j in range(n) if M[i, j] != 0), sympy.Integer(0))).xreplace(self.accelerations)))
-            for i in rows])
-        return _solve_small(block, residual)
+        residual = [sympy.cancel(self.to_independent(b1[i, 0] - sum(
+            (M[i, j] * qddot[j] for j in range(n) if M[i, j] != 0), sympy.Integer(0))).xreplace(self.accelerations))
+            for i in rows]
+        if any(sympy.count_ops(e) > 3 * _TIDY_LIMIT for e in residual):
+            # Too long to tidy (see _tidy_entry): λ from these rows would not be the shorter one,
+            # and solving them costs more than the rest of the reduction (a pendulum hung from a
+            # ring on a parabola: 0.7 s of 2.4).
+            return None
+        return _solve_small(block, sympy.Matrix([_tidy_entry(e) for e in residual]))
 
     def _solve_rows(self, eom, phi_ddot: dict) -> None:
         """Solve the scene's Euler–Lagrange rows with q̈ = Φ̈ for (ü, λ) together (any M)."""
@@ -436,7 +441,12 @@ _TIDY_LIMIT = 200  # operations; the textbook scenes' numerators have at most 50
 
 
 def _tidy_entry(expr: sympy.Expr) -> sympy.Expr:
-    """Cheap simplification of one matrix entry (see :func:`tidy_trig`)."""
+    """Cheap simplification of one matrix entry (see :func:`tidy_trig`); an entry of more than
+    three times :data:`_TIDY_LIMIT` operations is left as it is (a pendulum hung from a ring on a
+    parabola: one residual of 1,154 operations took tidy_trig 1.5 s to bring to 834, and the
+    multipliers from the Schur complement were shorter anyway)."""
+    if sympy.count_ops(expr) > 3 * _TIDY_LIMIT:
+        return expr
     return tidy_trig(expr)
 
 
