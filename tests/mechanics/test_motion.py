@@ -300,3 +300,30 @@ def test_accelerations_of_t_alone_are_integrated_twice_without_dsolve(monkeypatc
     scene = load_scene(Path(__file__).resolve().parent / "scenes" / f"{scene}.toml")
     value = derive(scene).answers[answer]
     assert sympy.simplify(value - parse_expression(expected, scene.namespace).expr) == 0
+
+
+@pytest.mark.parametrize("start, speed, expected", [
+    ("0", "0", "g*sin(alpha)*t^2/2"),
+    # thrown up the incline from s = d: it turns back at t = v0/(g sin α) and passes d again
+    ("d", "-v0", "d - v0*t + g*sin(alpha)*t^2/2"),
+    ("-d", "v0", "-d + v0*t + g*sin(alpha)*t^2/2"),
+])
+def test_a_uniform_acceleration_gives_the_parabola_in_t_without_integrating(monkeypatch, start, speed, expected):
+    """u(t) = u₀ + u̇₀ t + ü t²/2 for constant ü, over the readable form of ü, for any start."""
+    from grader.mechanics.scene import parse_scene
+
+    text = scene_text("block_incline_time", ("s = 0\nsdot = 0", f"s = \"{start}\"\nsdot = \"{speed}\""),
+                      ('d = { dimension = "length", domain = "positive", value = 2.0 }',
+                       'd = { dimension = "length", domain = "positive", value = 2.0 }\n'
+                       'v0 = { dimension = "velocity", domain = "positive", value = 1.5 }'),
+                      ('in_terms_of = ["g", "alpha", "t"]', 'in_terms_of = ["g", "alpha", "t", "d", "v0"]'))
+    text = text[:text.index("[[answers]]\nname = \"time_to_slide\"")]
+
+    def no_integral(*args, **kwargs):
+        raise AssertionError("a constant acceleration integrated symbolically")
+
+    monkeypatch.setattr(sympy, "integrate", no_integral)
+    monkeypatch.setattr(sympy, "dsolve", no_integral)
+    scene = parse_scene(text, "scene.toml")
+    value = derive(scene).answers["distance_in_time"]
+    assert sympy.expand(value - parse_expression(expected, scene.namespace).expr) == 0
