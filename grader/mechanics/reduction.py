@@ -246,10 +246,12 @@ class Reduction:
             S = (J * MinvC).applyfunc(lambda e: _tidy_entry(self.to_independent(sympy.cancel(e))))
             r = (J * Minvb1 - b2).applyfunc(lambda e: _tidy_entry(self.to_independent(sympy.cancel(e))))
             lam = _solve_small(S, r)
-            if not M.is_diagonal():
+            if k > 1 or not M.is_diagonal():
                 # The same λ from k Euler–Lagrange rows is shorter for some scenes (the bead's
-                # 2M + m sin²(θ + α), where the Schur complement spreads it over sin α, sin θ) and
-                # longer for others (a rod with both ends on a circle): the shorter of each is kept.
+                # 2M + m sin²(θ + α), where the Schur complement spreads it over sin α, sin θ; a
+                # rod between a floor and an inclined wall, where det S is of degree 4 in sines
+                # and cosines and the rows share ü's denominator) and longer for others (a rod with
+                # both ends on a circle): the shorter of each is kept.
                 rows = self._multipliers_from_rows(C, M, b1)
                 if rows is not None:
                     lam = [min((a, b), key=sympy.count_ops) for a, b in zip(lam, rows)]

@@ -96,7 +96,7 @@ def forget_forms() -> None:
 
     A benchmark that derives a scene again must not find the first derivation's forms remembered.
     """
-    for remembered in (_remembered_form, _simplified_forms, _tidy_root, _weight):
+    for remembered in (_remembered_form, _simplified_forms, _tidy_root, _weight, _group):
         remembered.cache_clear()
 
 
@@ -352,23 +352,26 @@ def grouped(expr: sympy.Expr) -> sympy.Expr:
     >>> grouped(a*w**2*sympy.cos(th) + a*w**2*sympy.cos(sympy.Rational(3, 10)) - 2*g)
     a*omega**2*(cos(theta) + cos(3/10)) - 2*g
     """
-    def group(total):
-        terms = sympy.Add.make_args(sympy.expand(total))
-        if not 3 <= len(terms) <= 16:
-            return total
-        # Only a symbol in two terms or more can be part of a shared coefficient; the seven in the
-        # most terms are tried (28 pairs), which bounds the cost on a large sum.
-        counts = {s: sum(t.has(s) for t in terms) for s in total.free_symbols}
-        shared = sorted((s for s in counts if counts[s] > 1), key=lambda s: (-counts[s], str(s)))[:7]
-        best, best_ops = total, sympy.count_ops(total)
-        tidied: dict = {}  # the same inner sums come back for many choices of symbols
-        for chosen in [(s,) for s in shared] + [(s, t) for i, s in enumerate(shared) for t in shared[i + 1:]]:
-            candidate = _grouped_by(terms, chosen, tidied)
-            if candidate is not None and (ops := sympy.count_ops(candidate)) < best_ops:
-                best, best_ops = candidate, ops
-        return best
+    return expr.replace(lambda e: e.is_Add, _group)
 
-    return expr.replace(lambda e: e.is_Add, group)
+
+@functools.lru_cache(maxsize=4096)  # the candidates of a form, and the forms built on an answer, share sums
+def _group(total: sympy.Add) -> sympy.Expr:
+    """One sum of :func:`grouped`."""
+    terms = sympy.Add.make_args(sympy.expand(total))
+    if not 3 <= len(terms) <= 16:
+        return total
+    # Only a symbol in two terms or more can be part of a shared coefficient; the seven in the
+    # most terms are tried (28 pairs), which bounds the cost on a large sum.
+    counts = {s: sum(t.has(s) for t in terms) for s in total.free_symbols}
+    shared = sorted((s for s in counts if counts[s] > 1), key=lambda s: (-counts[s], str(s)))[:7]
+    best, best_ops = total, sympy.count_ops(total)
+    tidied: dict = {}  # the same inner sums come back for many choices of symbols
+    for chosen in [(s,) for s in shared] + [(s, t) for i, s in enumerate(shared) for t in shared[i + 1:]]:
+        candidate = _grouped_by(terms, chosen, tidied)
+        if candidate is not None and (ops := sympy.count_ops(candidate)) < best_ops:
+            best, best_ops = candidate, ops
+    return best
 
 
 def _grouped_by(terms, symbols, tidied: dict) -> sympy.Expr | None:
@@ -1049,6 +1052,9 @@ def readable_denominator(expr: sympy.Expr) -> sympy.Expr:
     candidates = [expr]
     if expr.has(*_TRIG):
         candidates += [sympy.factor(sympy.expand(_pythagorean(expr, square))) for square in (sympy.sin, sympy.cos)]
+        if len({f.args[0] for f in expr.atoms(sympy.sin, sympy.cos)}) > 1:
+            # A 2 × 2 determinant over two angles: sin(β − φ) cos(β + φ) + sin(β + φ) cos(β − φ) is sin 2β.
+            candidates.append(sympy.factor(tidy_trig(expr)))
     return min(candidates, key=lambda e: _weight(e, (0, 0)))
 
 

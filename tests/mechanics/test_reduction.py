@@ -135,10 +135,20 @@ def test_multipliers_with_cross_terms_in_the_mass_matrix_solve_the_augmented_sys
     # sin(β + φ) cos(β − φ) (= sin 2β) there.
     ("rod_ends_on_circle", "trailing_end_force", "4*(cos(2*beta) + 1)*(cos(2*beta) + 2)"),
     ("rod_ends_on_circle", "leading_end_force", "4*(cos(2*beta) + 1)*(cos(2*beta) + 2)"),
+    # A diagonal mass matrix and two constraints: the Schur complement's determinant was of degree 4
+    # in sines and cosines; the rows share the equation of motion's sin²β + 3 cos β cos θ cos(β − θ).
+    ("rod_floor_inclined_wall", "wall_force", "sin(beta)^2 + 3*cos(beta)*cos(theta)*cos(beta - theta)"),
+    ("rod_floor_inclined_wall", "floor_force", "sin(beta)^2 + 3*cos(beta)*cos(theta)*cos(beta - theta)"),
+    ("rod_floor_inclined_wall", "angular_speed_squared", "l*(sin(beta)^2 + 3*cos(beta)*cos(theta)*cos(beta - theta))"),
+    ("rod_floor_inclined_wall", "wall_force_halfway",
+     "(sin(beta)^2 + 3*cos(beta)*cos(theta0/2)*cos(beta - theta0/2))^2"),
+    # The rows' 2 × 2 block has the determinant sin(β − φ) cos(β + φ) + sin(β + φ) cos(β − φ) = sin 2β.
+    ("dumbbell_in_circle", "track_force_1", "(m1 + m2)*sin(2*beta)"),
 ])
-def test_constraint_forces_with_cross_terms_keep_the_shorter_denominator(derived, scene, answer, denominator):
-    """With a mass matrix that has cross terms, λ is found both ways (Schur complement, Euler–Lagrange
-    rows) and the shorter kept: each answer's denominator is the one people write."""
+def test_constraint_forces_keep_the_shorter_denominator(derived, scene, answer, denominator):
+    """With a mass matrix that has cross terms, or more than one constraint, λ is found both ways
+    (Schur complement, Euler–Lagrange rows) and the shorter kept: each answer's denominator is the
+    one people write."""
     d = derived(scene)
     _, below = sympy.fraction(sympy.together(d.answers[answer]))
     from grader.expressions import parse_expression

@@ -331,3 +331,18 @@ def _assert_same_value_on(a, b, bounds, count: int = 40):
             point[s] = sympy.Float(value, 40)
         x, y = complex(a.xreplace(point).evalf(30)), complex(b.xreplace(point).evalf(30))
         assert abs(x - y) <= 1e-25 * max(1.0, abs(x)), (point, x, y)
+
+
+beta, phi = sympy.symbols("beta phi", positive=True)
+
+
+@pytest.mark.parametrize("determinant, printed", [
+    # m₂ − m₂ cos²(θ₁ − θ₂) is m₂ sin²(θ₁ − θ₂)
+    (m1 * m2 + m2 ** 2 - m2 ** 2 * cos(theta1 - theta2) ** 2, "m2*(m1 + m2*sin(theta1 - theta2)**2)"),
+    # two angles: a sum of products is the sine or cosine of their sum (a dumbbell's 2 × 2 block)
+    (sin(beta - phi) * cos(beta + phi) + sin(beta + phi) * cos(beta - phi), "sin(2*beta)"),
+    (R * (m1 + m2) * (cos(beta - phi) * cos(beta + phi) - sin(beta - phi) * sin(beta + phi)),
+     "R*(m1 + m2)*cos(2*beta)"),
+])
+def test_a_determinant_is_written_as_people_write_it(determinant, printed):
+    assert str(simplification.readable_denominator(determinant)) == printed
