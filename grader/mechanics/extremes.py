@@ -28,6 +28,7 @@ from grader.mechanics.simplification import human_form
 from grader.mechanics.special_values import (
     _direction,
     _evaluate,
+    _numeric,
     _parameter_points,
     _periodic,
     _speed_squared,
@@ -38,6 +39,9 @@ from grader.mechanics.special_values import (
 
 __all__ = ["extreme_value"]
 
+#: Samples per period in the numerical check of an extreme in time (see _extreme_in_time).
+_PERIOD_SAMPLES = 4000
+
 
 def extreme_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     """Closed form of the maximum or minimum of ``spec.expr`` over the motion from [initial]."""
@@ -47,7 +51,9 @@ def extreme_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     with budget.step("writing the quantity in one coordinate", spec.name):
         value = evaluator.reduce(spec.expr, allowed, key)
     coordinates = [u for u in evaluator.reduction.independent.values() if u.symbol in value.free_symbols]
-    if len(coordinates) != 1 or scene.time in value.free_symbols:
+    if scene.time in value.free_symbols:
+        return _extreme_in_time(evaluator, spec, key)
+    if len(coordinates) != 1:
         raise SceneError(scene.source, key,
                          "an extreme over the motion needs the quantity as a function of one coordinate "
                          "(after removing velocities with the first integrals)")
@@ -139,3 +145,100 @@ def _inside(x: float, low: float | None, high: float | None, periodic: bool) -> 
         return True
     images = [x + 2 * math.pi * k for k in range(-3, 4)] if periodic else [x]
     return any(low - 1e-9 <= y <= high + 1e-9 for y in images)
+
+
+def _extreme_in_time(evaluator, spec: AnswerSpec, key: str) -> sympy.Expr:
+    """The extreme of a quantity that the motion makes a periodic function of t (a plank driven as
+    A sin Ωt: the largest friction on the cylinder on it is m A Ω²/3).
+
+    The quantity is written in t with the motion in closed form (:mod:`grader.mechanics.motion`);
+    its candidates are t = 0 and the stationary points df/dt = 0 in closed form. A periodic f takes
+    over t ≥ 0 the values of one period, so the extreme is the best candidate; it is confirmed
+    against f sampled densely over a period at two parameter points (and must be the same candidate
+    at both). Other functions of t are refused: over an unbounded time the extreme may not exist.
+    """
+    from grader.mechanics.motion import motion_in_time
+
+    scene = evaluator.scene
+    t = scene.time
+    everything = evaluator.parameters | evaluator.state_symbols() | {t}
+    with budget.step("writing the quantity in time", spec.name):
+        value = evaluator.reduce(spec.expr, everything, key)
+        if value.free_symbols & evaluator.state_symbols():
+            # Cancelled: a drift in the motion may cancel in the quantity (x + AΩt/3 = A sin(Ωt)/3).
+            along = value.xreplace(motion_in_time(evaluator, key))
+            value = budget.attempt(lambda: sympy.cancel(along), 1.0, fallback=lambda: along)
+    leftover = value.free_symbols - evaluator.parameters - {t}
+    if leftover:
+        raise SceneError(scene.source, key, f"along the motion in time, {spec.expr} still depends on "
+                                            f"{', '.join(sorted(map(str, leftover)))}")
+    period = _period(value, t)
+    if period is None:
+        raise SceneError(scene.source, key,
+                         f"{spec.expr} = {sympy.sstr(value)} along the motion: an extreme over the motion in time "
+                         "is found only where the quantity is periodic in t (sines and cosines of multiples "
+                         "of one frequency); over an unbounded time this one may have none")
+    with budget.step("solving for the stationary points in t", spec.name):
+        candidates = [sympy.Integer(0)] + solve_for(sympy.diff(value, t), t, scene.source, key)
+    want_max = spec.kind == "maximum"
+    chosen = None
+    for point in _parameter_points(scene):
+        amounts = {i: _evaluate(value.xreplace({t: c}), point) for i, c in enumerate(candidates)}
+        amounts = {i: a for i, a in amounts.items() if a is not None}
+        if not amounts:
+            raise SceneError(scene.source, key, f"{spec.expr} is undefined at every stationary point in t")
+        best = (max if want_max else min)(amounts, key=lambda i: (amounts[i], -i))
+        samples = _samples(value, t, _evaluate(period, point), point)
+        extreme = (max if want_max else min)(samples) if samples else None
+        scale = max(1.0, abs(amounts[best]))
+        if extreme is None or (amounts[best] < extreme - 1e-9 * scale if want_max
+                               else amounts[best] > extreme + 1e-9 * scale):
+            raise SceneError(scene.source, key,
+                             f"the stationary points of {spec.expr} in t found in closed form do not give its "
+                             f"{spec.kind} over a period (sampled: {extreme}, best found: {amounts[best]})")
+        if chosen is None:
+            chosen = best
+        elif chosen not in amounts or abs(amounts[chosen] - amounts[best]) > 1e-9 * scale:
+            raise SceneError(scene.source, key, f"when the {spec.kind} comes depends on the parameter values")
+    result = human_form(value.xreplace({t: candidates[chosen]}))
+    leftover = result.free_symbols - evaluator.target(spec, default_state=False)
+    if leftover:
+        raise SceneError(scene.source, key, f"the {spec.kind} still depends on {', '.join(sorted(map(str, leftover)))}")
+    return result
+
+
+def _period(expr: sympy.Expr, t: sympy.Symbol) -> sympy.Expr | None:
+    """A period of ``expr`` in t when t enters only through sin, cos, tan of k·ω t + c with rational
+    ratios k between the frequencies; None otherwise.
+
+    >>> t, w = sympy.symbols("t omega", positive=True)
+    >>> _period(sympy.sin(w*t) + sympy.cos(3*w*t/2), t)
+    4*pi/omega
+    >>> _period(t*sympy.sin(w*t), t) is None
+    True
+    """
+    functions = [f for f in expr.atoms(sympy.sin, sympy.cos, sympy.tan) if t in f.free_symbols]
+    if not functions or t in expr.xreplace({f: sympy.Dummy() for f in functions}).free_symbols:
+        return None
+    frequencies = []
+    for f in functions:
+        frequency = sympy.diff(f.args[0], t)
+        if t in frequency.free_symbols or frequency == 0:
+            return None
+        frequencies.append(frequency)
+    denominators = 1
+    for frequency in frequencies:
+        ratio = sympy.cancel(frequency / frequencies[0])
+        if not ratio.is_Rational:
+            return None
+        denominators = sympy.ilcm(denominators, ratio.q)
+    return 2 * sympy.pi * denominators / sympy.Abs(frequencies[0])
+
+
+def _samples(value: sympy.Expr, t: sympy.Symbol, period: float | None, point: dict) -> list[float]:
+    """``value`` at evenly spaced times over one period (its finite values)."""
+    if period is None or not period > 0:
+        return []
+    f = _numeric(value.xreplace({s: sympy.Float(v, 30) for s, v in point.items()}), t)
+    values = (f(period * k / _PERIOD_SAMPLES) for k in range(_PERIOD_SAMPLES + 1))
+    return [v for v in values if math.isfinite(v)]

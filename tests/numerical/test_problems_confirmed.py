@@ -72,6 +72,10 @@ CONFIRMED_ELSEWHERE = {
     ("watt_governor", "small_oscillation_frequency"),
     ("watt_governor", "least_angular_velocity"),
     ("watt_governor", "equilibrium_cos"),
+    # Extremes over the driven motion: test_special_values_confirmed.py, over two periods.
+    ("cylinder_on_oscillating_plank", "largest_friction"),
+    ("cylinder_on_oscillating_plank", "least_velocity"),
+    ("cylinder_on_oscillating_plank", "largest_spin"),
     # The red-team scenes: tests/numerical/test_red_team_confirmed.py.
     ("bead_hoop_turning_about_rim", "small_oscillation_frequency"),
     ("bead_on_cycloid", "small_oscillation_frequency"),

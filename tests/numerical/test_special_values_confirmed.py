@@ -209,6 +209,24 @@ def test_bead_on_a_rotating_rod_follows_the_closed_form_in_time_and_reaches_the_
     assert abs(reached.qdot[0] - closed_form(model, answers, "speed_at_end")) < 1e-7 * omega * L
 
 
+def test_extremes_over_a_driven_motion_are_those_of_the_integrated_motion_over_two_periods():
+    """A cylinder rolling on a plank driven as A sin Ωt: the largest friction, least velocity and
+    largest spin along the integrated motion (sampled over two periods) are the engine's."""
+    model, answers = engine("cylinder_on_oscillating_plank")
+    omega, A, R = model.values["Omega"], model.values["A"], model.values["R"]
+    times = np.linspace(0.0, 4 * math.pi / omega, 2001)
+    # At rest at x = 0 on the plank moving at AΩ: rolling, ẋ + R φ̇ = AΩ cos 0.
+    motion = simulate(model.numeric, [0.0, 0.0], [0.0, A * omega / R], float(times[-1]), sample_times=times)
+    assert len(motion.samples) == len(times)
+    friction = max(s.multiplier("roll") for s in motion.samples)
+    velocity = min(s.qdot[0] for s in motion.samples)
+    spin = max(s.qdot[1] for s in motion.samples)
+    # Sampled every 1/1000 of a period: an extreme is missed by at most (π/1000)²/2 of its size.
+    for measured, name in ((friction, "largest_friction"), (velocity, "least_velocity"), (spin, "largest_spin")):
+        expected = closed_form(model, answers, name)
+        assert abs(measured - expected) < 1e-5 * abs(expected), name
+
+
 def test_a_block_slides_the_distance_d_down_a_smooth_incline_in_the_time_the_engine_gives():
     model, answers = engine("block_incline_time")
     alpha, d = model.values["alpha"], model.values["d"]

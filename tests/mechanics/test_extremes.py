@@ -1,0 +1,84 @@
+"""Extremes over the motion (grader.mechanics.extremes) when the motion is known in time.
+
+A quantity that the motion makes a periodic function of t takes, over t ≥ 0, the values of one
+period: its maximum or minimum is at t = 0 or a stationary point, checked against the closed form
+derived by hand and against the function sampled over a period. A quantity not periodic in t is
+refused with the reason (over an unbounded time it may have no extreme).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+import sympy
+
+from grader.expressions import parse_expression
+from grader.mechanics.extremes import _period
+from grader.mechanics.lagrange import derive
+from grader.mechanics.scene import SceneError, load_scene, parse_scene
+
+PLANK = Path(__file__).resolve().parent / "scenes" / "cylinder_on_oscillating_plank.toml"
+
+
+@pytest.fixture(scope="module")
+def plank():
+    return derive(load_scene(PLANK))
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # friction −m A Ω² sin(Ωt)/3: largest at Ωt = 3π/2
+    ("largest_friction", "m*A*Omega^2/3"),
+    # ẋ = A Ω (cos Ωt − 1)/3: least at Ωt = π
+    ("least_velocity", "-2*A*Omega/3"),
+    # φ̇ = A Ω (2 cos Ωt + 1)/(3R): largest at the start, t = 0
+    ("largest_spin", "A*Omega/R"),
+])
+def test_an_extreme_of_a_periodic_quantity_in_time_is_the_one_of_a_period(plank, answer, expected):
+    want = parse_expression(expected, plank.scene.namespace).expr
+    assert sympy.simplify(plank.answers[answer] - want) == 0
+
+
+def _with_extreme(kind: str, expr: str) -> str:
+    text = PLANK.read_text(encoding="utf-8")
+    text = text[:text.index("[[answers]]")]
+    return text + f'''
+[[answers]]
+name = "extreme"
+kind = "{kind}"
+expr = "{expr}"
+'''
+
+
+@pytest.mark.parametrize("kind, expr, words", [
+    # x(t) = A (sin Ωt − Ωt)/3 drifts backwards: no minimum over an unbounded time
+    ("minimum", "x", "the motion runs away"),
+    ("maximum", "x*xdot", "periodic in t"),
+    ("minimum", "x + A*Omega*t/3", None),  # = A sin(Ωt)/3: periodic once the drift is taken out
+])
+def test_a_quantity_not_periodic_in_time_is_refused_with_the_reason(kind, expr, words):
+    scene = parse_scene(_with_extreme(kind, expr), "plank.toml")
+    if words is None:
+        value = derive(scene).answers["extreme"]
+        assert sympy.simplify(value + parse_expression("A/3", scene.namespace).expr) == 0
+        return
+    with pytest.raises(SceneError) as refused:
+        derive(scene)
+    assert words in str(refused.value)
+
+
+t, w, c = sympy.symbols("t omega c", positive=True)
+
+
+@pytest.mark.parametrize("expr, period", [
+    (sympy.sin(w * t), 2 * sympy.pi / w),
+    (sympy.sin(w * t) + sympy.cos(3 * w * t / 2 + c), 4 * sympy.pi / w),
+    (sympy.tan(2 * w * t) * sympy.cos(w * t), 2 * sympy.pi / w),
+    (t * sympy.sin(w * t), None),  # t outside the functions
+    (sympy.sin(w * t ** 2), None),  # not linear in t
+    (sympy.sin(w * t) + sympy.sin(sympy.sqrt(2) * w * t), None),  # incommensurate
+    (c * w, None),  # no t at all
+])
+def test_the_period_is_found_only_for_sines_and_cosines_of_commensurate_frequencies(expr, period):
+    found = _period(expr, t)
+    assert (found is None) if period is None else sympy.simplify(found - period) == 0
