@@ -172,6 +172,13 @@ def _extreme_in_time(evaluator, spec: AnswerSpec, key: str) -> sympy.Expr:
     if leftover:
         raise SceneError(scene.source, key, f"along the motion in time, {spec.expr} still depends on "
                                             f"{', '.join(sorted(map(str, leftover)))}")
+    bounded = [u.name for u in evaluator.reduction.independent.values() if u.domain.kind == "interval"]
+    if bounded:
+        # The motion in closed form holds only while it stays in the domain: a period later it may
+        # have left it (a cylinder rolled off the end of the plank).
+        raise SceneError(scene.source, key,
+                         f"an extreme over the motion in time is found only for coordinates without bounds; "
+                         f"{', '.join(bounded)} has a bounded domain the motion may leave")
     period = _period(value, t)
     if period is None:
         raise SceneError(scene.source, key,

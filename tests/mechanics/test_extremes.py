@@ -67,6 +67,15 @@ def test_a_quantity_not_periodic_in_time_is_refused_with_the_reason(kind, expr, 
     assert words in str(refused.value)
 
 
+def test_a_coordinate_with_bounds_the_motion_may_leave_is_refused():
+    """x ∈ [−1, 1]: the plank ends; the drifting cylinder rolls off it, so one period says nothing."""
+    text = _with_extreme("maximum", "lambda_roll").replace('x = { dimension = "length" }',
+                                                           'x = { dimension = "length", domain = [-1, 1] }')
+    with pytest.raises(SceneError) as refused:
+        derive(parse_scene(text, "plank.toml"))
+    assert "bounded domain" in str(refused.value)
+
+
 t, w, c = sympy.symbols("t omega c", positive=True)
 
 
