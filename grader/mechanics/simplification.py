@@ -430,6 +430,12 @@ def _tidy_root(root: sympy.Pow) -> sympy.Expr:
     forms.append(sympy.factor_terms(forms[1]))
     if sympy.count_ops(base) < 40:
         forms += [sympy.factor(base), _readable_fraction(forms[1])]
+    functions = sorted(base.atoms(*_TRIG), key=sympy.default_sort_key)
+    if functions and sympy.count_ops(base) < 80:
+        # Gathered by powers of its sines, cosines, tangents with factored coefficients: a
+        # dumbbell's −2m₁m₂(tan²β − 1) + (m₁² + m₂²)(tan²β + 1) is (m₁ − m₂)² tan²β + (m₁ + m₂)².
+        numerator, denominator = sympy.fraction(forms[1])
+        forms.append(sympy.collect(sympy.expand(numerator), functions, sympy.factor) / denominator)
     return min((f ** root.exp for f in forms), key=lambda e: (sympy.count_ops(e), len(str(e))))
 
 

@@ -346,3 +346,16 @@ beta, phi = sympy.symbols("beta phi", positive=True)
 ])
 def test_a_determinant_is_written_as_people_write_it(determinant, printed):
     assert str(simplification.readable_denominator(determinant)) == printed
+
+
+@pytest.mark.parametrize("root, printed", [
+    # a dumbbell's equilibrium: the radicand by powers of tan β, each coefficient a square
+    (sqrt(-2 * m1 * m2 * (sympy.tan(beta) ** 2 - 1) + (m1 ** 2 + m2 ** 2) * (sympy.tan(beta) ** 2 + 1)),
+     "sqrt((m1 - m2)**2*tan(beta)**2 + (m1 + m2)**2)"),
+    # over a denominator, only the numerator is gathered: the conical pendulum's nodding frequency
+    # stays √(g(3 cos²θ₀ + 1)/(l cos θ₀)), not √(3g cos θ₀/l + g/(l cos θ₀))
+    (sqrt((3 * g * cos(theta0) ** 2 + g) / (l * cos(theta0))), "sqrt(g*(3*cos(theta0)**2 + 1)/(l*cos(theta0)))"),
+])
+def test_a_radicand_is_gathered_by_powers_of_its_trigonometric_functions(root, printed):
+    simplification.forget_forms()
+    assert str(human_form(root)) == printed
