@@ -246,12 +246,14 @@ class Reduction:
             S = (J * MinvC).applyfunc(lambda e: _tidy_entry(self.to_independent(sympy.cancel(e))))
             r = (J * Minvb1 - b2).applyfunc(lambda e: _tidy_entry(self.to_independent(sympy.cancel(e))))
             lam = _solve_small(S, r)
-            if k > 1 or not M.is_diagonal():
+            if not M.is_diagonal() or (k > 1 and _denominator_ops(lam) > _denominator_ops(uddot)):
                 # The same λ from k Euler–Lagrange rows is shorter for some scenes (the bead's
                 # 2M + m sin²(θ + α), where the Schur complement spreads it over sin α, sin θ; a
                 # rod between a floor and an inclined wall, where det S is of degree 4 in sines
                 # and cosines and the rows share ü's denominator) and longer for others (a rod with
-                # both ends on a circle): the shorter of each is kept.
+                # both ends on a circle): the shorter of each is kept. With a diagonal M, the rows
+                # are tried only where det S came out longer than ü's denominator (a wedge with a
+                # block on it and another hanging: 0.2 s for nothing).
                 rows = self._multipliers_from_rows(C, M, b1)
                 if rows is not None:
                     lam = [min((a, b), key=sympy.count_ops) for a, b in zip(lam, rows)]
@@ -450,6 +452,11 @@ def _tidy_entry(expr: sympy.Expr) -> sympy.Expr:
     if sympy.count_ops(expr) > 3 * _TIDY_LIMIT:
         return expr
     return tidy_trig(expr)
+
+
+def _denominator_ops(values: list[sympy.Expr]) -> int:
+    """The longest denominator among ``values``, in operations."""
+    return max((sympy.count_ops(sympy.fraction(v)[1]) for v in values), default=0)
 
 
 def _solve_small(A: sympy.Matrix, b: sympy.Matrix) -> list[sympy.Expr]:
