@@ -96,7 +96,7 @@ def forget_forms() -> None:
 
     A benchmark that derives a scene again must not find the first derivation's forms remembered.
     """
-    for remembered in (_remembered_form, _simplified_forms, _tidy_root, _weight, _group):
+    for remembered in (_remembered_form, _simplified_forms, _tidy_root, _weight, _group, _common_factors, _over):
         remembered.cache_clear()
 
 
@@ -302,7 +302,13 @@ def spread_denominator(expr: sympy.Expr) -> sympy.Expr:
     if denominator.is_number or len(sums) != 1:
         return expr  # a number under a sum (g (7 cos φ − 4 cos φ₀)/3) is shortest left whole
     rest = sympy.Mul(*[f for f in sympy.Mul.make_args(numerator) if f is not sums[0]])
-    return rest * sympy.Add(*[sympy.factor_terms(sympy.cancel(term / denominator)) for term in sums[0].args])
+    return rest * sympy.Add(*[_over(term, denominator) for term in sums[0].args])
+
+
+@functools.lru_cache(maxsize=8192)  # the candidates of a form share their terms and denominator
+def _over(term: sympy.Expr, denominator: sympy.Expr) -> sympy.Expr:
+    """One term of :func:`spread_denominator` over the denominator, cancelled."""
+    return sympy.factor_terms(sympy.cancel(term / denominator))
 
 
 def contract_double_angles(expr: sympy.Expr) -> sympy.Expr:
@@ -366,15 +372,14 @@ def _group(total: sympy.Add) -> sympy.Expr:
     counts = {s: sum(t.has(s) for t in terms) for s in total.free_symbols}
     shared = sorted((s for s in counts if counts[s] > 1), key=lambda s: (-counts[s], str(s)))[:7]
     best, best_ops = total, sympy.count_ops(total)
-    tidied: dict = {}  # the same inner sums come back for many choices of symbols
     for chosen in [(s,) for s in shared] + [(s, t) for i, s in enumerate(shared) for t in shared[i + 1:]]:
-        candidate = _grouped_by(terms, chosen, tidied)
+        candidate = _grouped_by(terms, chosen)
         if candidate is not None and (ops := sympy.count_ops(candidate)) < best_ops:
             best, best_ops = candidate, ops
     return best
 
 
-def _grouped_by(terms, symbols, tidied: dict) -> sympy.Expr | None:
+def _grouped_by(terms, symbols) -> sympy.Expr | None:
     """The terms as Σ c·(Σ monomials), c their coefficients in ``symbols``; None if nothing groups."""
     by_rest: dict = {}
     for term in terms:
@@ -394,11 +399,14 @@ def _grouped_by(terms, symbols, tidied: dict) -> sympy.Expr | None:
     if len(by_coefficient) == len(terms):
         return None  # every term on its own: nothing is shared
     def tidy(total):
-        if total.is_Add and total not in tidied:
-            tidied[total] = sympy.factor_terms(total)
-        return tidied.get(total, total)
+        return _common_factors(total) if total.is_Add else total
 
     return sympy.Add(*[tidy(coefficient) * tidy(sympy.Add(*rests)) for coefficient, rests in by_coefficient.items()])
+
+
+@functools.lru_cache(maxsize=8192)  # the same inner sums come back for every choice of symbols and form
+def _common_factors(total: sympy.Add) -> sympy.Expr:
+    return sympy.factor_terms(total)
 
 
 def tidy_radicands(expr: sympy.Expr) -> sympy.Expr:
