@@ -15,6 +15,7 @@ hard limits (a killed process) are `grader.answers.sandbox`'s job.
 from __future__ import annotations
 
 import json
+import math
 import time
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -27,7 +28,7 @@ from grader.answers.equivalence import Comparison, Compiled, Options, compare_ex
 from grader.answers.evaluate import ArbBackend, Undefined, Unresolved, Unsupported
 from grader.answers.feedback import diagnose
 from grader.answers.reference import DETAILS, KINDS
-from grader.answers.sampling import Sampler, seed_for
+from grader.answers.sampling import Sampler, UnorderedPoint, seed_for
 from grader.answers.verdict import Verdict
 from grader.expressions import (
     DimensionError,
@@ -96,7 +97,8 @@ def _namespace(variables: Mapping) -> Namespace:
         raise _RequestError(f"bad variables: {error}") from None
 
 
-def _below(variables: Mapping, symbols: Mapping[str, sympy.Symbol], dims: Mapping) -> dict[sympy.Symbol, sympy.Symbol]:
+def _below(variables: Mapping, symbols: Mapping[str, sympy.Symbol], dims: Mapping,
+           domains: Mapping) -> dict[sympy.Symbol, sympy.Symbol]:
     """{a: R} for each variable declared ``"below": "R"``: a < R wherever the answers are compared, as
     the scene says (a mass at d < R from a hoop's centre); both variables of one dimension."""
     below = {}
@@ -108,8 +110,18 @@ def _below(variables: Mapping, symbols: Mapping[str, sympy.Symbol], dims: Mappin
             raise _RequestError(f"variable {name!r}: 'below' must name another variable, got {other!r}")
         if dims[symbols[name]] != dims[symbols[other]]:
             raise _RequestError(f"variable {name!r}: 'below' compares it with {other!r}, of another dimension")
+        low, high = _bounds(domains[symbols[name]])[0], _bounds(domains[symbols[other]])[1]
+        if not low < high:
+            raise _RequestError(f"variable {name!r}: no values of its domain are below those of {other!r}")
         below[symbols[name]] = symbols[other]
     return below
+
+
+def _bounds(domain) -> tuple[float, float]:
+    """The least and greatest values of a variable's domain."""
+    if domain.kind == "interval":
+        return domain.lo, domain.hi
+    return (0.0 if domain.kind in ("positive", "nonnegative") else -math.inf), math.inf
 
 
 def _read(text: str, namespace: Namespace, kind: str, printed: bool = True):
@@ -159,7 +171,7 @@ def _prepare(reference: str, kind: str, variables_json: str, state_json: str, fe
         notes.append(f"dimensions not checked: the reference {error}")
     symbols = {v.name: v.symbol for v in namespace.variables}
     domains = {v.symbol: v.domain for v in namespace.variables}
-    below = _below(variables, symbols, dims)
+    below = _below(variables, symbols, dims, domains)
     seed = seed_for(reference, kind, variables_json)
     ref = _Reference(namespace, kind, exprs, dims, dimension, notes=notes, conditions=conditions)
     if kind == "expression":
@@ -408,7 +420,7 @@ def check(
         if alternatives is not None:
             verdict = _alternatives(verdict, alternatives, answer, variables, kind, feedback, budget_s, state,
                                     options, started, feedback_detail)
-    except _RequestError as error:
+    except (_RequestError, UnorderedPoint) as error:
         verdict = Verdict.invalid(str(error), text)
     except RecursionError:
         verdict = Verdict.invalid("the answer is nested too deeply", text)

@@ -16,7 +16,7 @@ from typing import Any, Mapping
 import numpy as np
 import sympy
 
-__all__ = ["Sampler", "seed_for"]
+__all__ = ["Sampler", "UnorderedPoint", "seed_for"]
 
 # Every STRESS_EVERY-th point puts the unbounded positive variables at extreme scales
 # (1e-6 .. 1e6), where float64 cancels badly and where an answer off by a small term shows.
@@ -55,6 +55,10 @@ def _stressable(domain) -> bool:
         return bool(domain.contains(10.0**-STRESS_DECADES)) and bool(domain.contains(10.0**STRESS_DECADES))
     except Exception:
         return False
+
+
+class UnorderedPoint(ValueError):
+    """No point of the domains keeps a declared order ``a < R``: nothing may be compared there."""
 
 
 class Sampler:
@@ -117,6 +121,11 @@ class Sampler:
         for a, b in self.below.items():
             if not point[a] < point[b] and self.domains[a].contains(point[b]) and self.domains[b].contains(point[a]):
                 point[a], point[b] = point[b], point[a]
+        broken = [f"{a} < {b}" for a, b in self.below.items() if not point[a] < point[b]]
+        if broken:
+            # Never compare where the order fails: an answer right only there would be proved wrong.
+            raise UnorderedPoint(f"no point of the variables' domains found that keeps {', '.join(broken)}: "
+                                 "check their domains")
         return point
 
     def wide_point(self, i: int) -> dict[sympy.Symbol, float]:

@@ -131,3 +131,17 @@ def test_answers_are_compared_only_where_a_variable_declared_below_another_is(an
 def test_a_below_relation_must_name_another_variable_of_the_same_dimension(below, message):
     verdict = check(CART_SPEED, "0", {**CART, "a": {**CART["a"], "below": below}})
     assert verdict.verdict == "invalid" and message in verdict.reason
+
+
+@pytest.mark.parametrize("a_domain, r_domain, message", [
+    # no value of a below any of R: refused before any point is drawn
+    ([5, 6], [1, 2], "no values of its domain are below"),
+    ([2, 3], [1, 2], "no values of its domain are below"),
+    # an order that few points keep, none of 17 draws nor their swaps: said, never compared outside it
+    ([5, 100], [1, 5.01], "keeps a < R"),
+])
+def test_an_order_the_domains_cannot_keep_is_refused_never_compared_outside(a_domain, r_domain, message):
+    variables = {**CART, "a": {"dimension": "m", "domain": a_domain, "below": "R"},
+                 "R": {"dimension": "m", "domain": r_domain}}
+    verdict = check(CART_SPEED, CART_SPEED, variables)
+    assert verdict.verdict == "invalid" and message in verdict.reason
