@@ -175,11 +175,16 @@ def test_red_team_scenes_4(derived, scene, answer, expected):
         assert equation.lhs == d.scene.answer(answer).expr
         assert equation.rhs == d.answers[answer]
     agree(d, answer, expected)
-    # Exactly too.
-    got = d.answers[answer]
-    want = parse_expression(expected, d.scene.namespace).expr
-    # A square root may be written with another radicand: equal squares and, from agree, equal signs.
-    assert exactly_zero(got - want) or exactly_zero(got**2 - want**2), f"{scene}.{answer}: {got} vs {want}"
+    assert_exactly(d, answer, expected)
+
+
+def assert_exactly(derivation, answer: str, expected: str) -> None:
+    """The answer is the expected closed form exactly, not only at agree's points. A square root may
+    be written with another radicand: equal squares and, from agree, equal signs."""
+    got = derivation.answers[answer]
+    want = parse_expression(expected, derivation.scene.namespace).expr
+    assert exactly_zero(got - want) or exactly_zero(got**2 - want**2), \
+        f"{derivation.scene.id}.{answer}: {got} vs {want}"
 
 
 def exactly_zero(expr: sympy.Expr) -> bool:
@@ -215,6 +220,28 @@ phidot = "sqrt((g*cos(alpha) + k/m*(rho0/sin(alpha) - l0))/rho0/sin(alpha))"
 '''
 
 
+# The answer blocks the table below appends to its scenes more than once.
+TOP_FORCE = """
+[[answers]]
+name = "top_normal_force"
+expr = "normal_force"
+where = "phi = pi"
+in_terms_of = ["m", "g", "R", "a", "v0"]
+dimension = "force"
+"""
+
+
+def small_oscillation(coordinate: str, equilibrium: str) -> str:
+    """The block of a ``small_oscillation_frequency`` answer about ``equilibrium``."""
+    return f"""
+[[answers]]
+name = "small_oscillation_frequency"
+kind = "small_oscillation"
+expr = "{coordinate}"
+where = "{equilibrium}"
+"""
+
+
 @lru_cache(maxsize=None)
 def derived_with(scene: str, answers: str, start: str = ""):
     text = (SCENES / f"{scene}.toml").read_text()
@@ -229,35 +256,15 @@ def derived_with(scene: str, answers: str, start: str = ""):
     [
         # The ball at the top of the loop (see above): m (v0²/b − 27 g/7), zero for v0² = 27 g b/7;
         # about the bottom φ̈ = −5 g φ/(7b).
-        ("ball_rolling_loop", "", '''
-[[answers]]
-name = "top_normal_force"
-expr = "normal_force"
-where = "phi = pi"
-in_terms_of = ["m", "g", "R", "a", "v0"]
-dimension = "force"
-
+        ("ball_rolling_loop", "", TOP_FORCE + '''
 [[answers]]
 name = "least_launch_speed"
 expr = "v0"
 where = "top_normal_force = 0"
 in_terms_of = ["g", "R", "a"]
 ''', "least_launch_speed", "sqrt(27*g*(R - a)/7)"),
-        ("ball_rolling_loop", "", '''
-[[answers]]
-name = "top_normal_force"
-expr = "normal_force"
-where = "phi = pi"
-in_terms_of = ["m", "g", "R", "a", "v0"]
-dimension = "force"
-''', "top_normal_force", "m*(v0^2/(R - a) - 27*g/7)"),
-        ("ball_rolling_loop", "", '''
-[[answers]]
-name = "small_oscillation_frequency"
-kind = "small_oscillation"
-expr = "phi"
-where = "phi = 0"
-''', "small_oscillation_frequency", "sqrt(5*g/(7*(R - a)))"),
+        ("ball_rolling_loop", "", TOP_FORCE, "top_normal_force", "m*(v0^2/(R - a) - 27*g/7)"),
+        ("ball_rolling_loop", "", small_oscillation("phi", "phi = 0"), "small_oscillation_frequency", "sqrt(5*g/(7*(R - a)))"),
         # The blocks stay at rest relative to the wedge when m2 = m1 sin α (then A = 0 too).
         ("wedge_pulley_hanging_block", "", '''
 [[answers]]
@@ -277,13 +284,7 @@ in_terms_of = ["M", "R", "r", "alpha"]
 dimension = "mass"
 ''', "balancing_mass", "M*R*sin(alpha)/(R + r)"),
         # Linearised with p = 0: m l² θ̇² (3M/2)/(3M/2 + m) against m g l θ²: ω² = g (3M + 2m)/(3 M l).
-        ("pendulum_rolling_cylinder", "", '''
-[[answers]]
-name = "small_oscillation_frequency"
-kind = "small_oscillation"
-expr = "theta"
-where = "theta = 0"
-''', "small_oscillation_frequency", "sqrt(g*(3*M + 2*m)/(3*M*l))"),
+        ("pendulum_rolling_cylinder", "", small_oscillation("theta", "theta = 0"), "small_oscillation_frequency", "sqrt(g*(3*M + 2*m)/(3*M*l))"),
         # Started on the steady orbit of radius ρ0 (see above): N = m g sin α + m ρ0 φ̇² cos α, and
         # ω² = 3 sin²α φ̇² + k/m.
         ("cone_spring_orbit", STEADY_CONE_START, '''
@@ -295,19 +296,12 @@ in_terms_of = ["m", "g", "k", "l0", "alpha", "rho0"]
 dimension = "force"
 ''', "orbit_normal_force",
          "m*(g*sin(alpha) + cos(alpha)*(g*cos(alpha) + k*(rho0/sin(alpha) - l0)/m)/sin(alpha))"),
-        ("cone_spring_orbit", STEADY_CONE_START, '''
-[[answers]]
-name = "small_oscillation_frequency"
-kind = "small_oscillation"
-expr = "rho"
-where = "rho = rho0"
-''', "small_oscillation_frequency",
+        ("cone_spring_orbit", STEADY_CONE_START, small_oscillation("rho", "rho = rho0"), "small_oscillation_frequency",
          "sqrt(3*(g*cos(alpha) + k*(rho0/sin(alpha) - l0)/m)*sin(alpha)/rho0 + k/m)"),
     ],
 )
 def test_special_values_off_the_motion(scene, start, answers, answer, expected):
     d = derived_with(scene, answers, start)
     agree(d, answer, expected)
-    got, want = d.answers[answer], parse_expression(expected, d.scene.namespace).expr
-    assert exactly_zero(got - want) or exactly_zero(got**2 - want**2), f"{scene}.{answer}: {got} vs {want}"
+    assert_exactly(d, answer, expected)
     assert answer not in d.alternatives
