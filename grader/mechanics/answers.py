@@ -28,7 +28,7 @@ import sympy
 from grader.mechanics import budget
 from grader.mechanics.reduction import Reduction, without_hidden_coordinates
 from grader.mechanics.scene import AnswerSpec, Scene, SceneError
-from grader.mechanics.simplification import factored_sums, human_form
+from grader.mechanics.simplification import factored_sums, human_form, joined_roots
 
 __all__ = ["AnswerEvaluator", "evaluate_answers"]
 
@@ -41,11 +41,14 @@ def evaluate_answers(scene: Scene, eom) -> tuple[dict[str, sympy.Expr], dict[str
     evaluator = AnswerEvaluator(scene, eom)
     answers, equations = {}, {}
     for spec in scene.answers:
-        value = evaluator.evaluate(spec)
+        # Printed with each product's roots joined (√(2gR/3)); later answers compute with the
+        # evaluator's own value, which sympy keeps split.
+        value = joined_roots(evaluator.evaluate(spec))
         answers[spec.name] = value
         if spec.kind == "equation":
             equations[spec.name] = sympy.Eq(spec.expr, value, evaluate=False)
-    return answers, equations, evaluator.alternatives, evaluator.implicit
+    alternatives = {name: [joined_roots(a) for a in values] for name, values in evaluator.alternatives.items()}
+    return answers, equations, alternatives, evaluator.implicit
 
 
 def _factored(value: sympy.Expr) -> sympy.Expr:

@@ -52,7 +52,7 @@ import math
 
 import sympy
 
-__all__ = ["contract_double_angles", "declared_domains", "half_angles", "identically_zero", "in_single_angles", "factored_sums", "gathered_roots", "grouped", "human_form", "inverse_hyperbolic",
+__all__ = ["contract_double_angles", "declared_domains", "half_angles", "identically_zero", "in_single_angles", "factored_sums", "gathered_roots", "grouped", "human_form", "inverse_hyperbolic", "joined_roots",
            "quick_form", "readable_denominator", "signs_in_front", "spread_denominator", "tidy_radicands", "tidy_trig"]
 
 _TRIG = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc)
@@ -956,6 +956,108 @@ def gathered_roots(expr: sympy.Expr) -> sympy.Expr:
     # √a·√b = −√(ab) when a and b are both negative: keep the split form unless the two agree
     # at generic points.
     return gathered if _agree(expr, gathered) else expr
+
+
+def joined_roots(expr: sympy.Expr) -> sympy.Expr:
+    """Each product's square roots written as one root, as on a blackboard: √(2gR/3), not
+    √6·√R·√g/3; 2π√(l cos θ₀/g); cos(t√(k/m)).
+
+    sympy splits the root of a product of positive factors, and splits a joined root again in
+    every product it is multiplied into, so the joined form is built unevaluated and only for the
+    printed answer (:meth:`AnswerEvaluator.evaluate`), once nothing more is computed with it.
+
+    √a·√b = √(ab) holds where a ≥ 0 (whatever b's sign) and 1/√b = √(1/b) where b > 0, so a
+    product is joined only where the declared domains and order (:func:`declared_domains`) show
+    every radicand nonnegative, but for at most one in the numerator. Numbers go inside the root as
+    far as they leave whole numbers outside (2√7/7 is 2√(1/7)), pairs of factors that are negative
+    on the domains are written positive ((a − R)(cos θ₀ − 1) as (R − a)(1 − cos θ₀) for a < R), and
+    a root with only a number over it is written 1/√(…), never √(1/(…)).
+
+    >>> l, g, R, m, M = sympy.symbols("l g R m M", positive=True)
+    >>> joined_roots(sympy.sqrt(6) * sympy.sqrt(R) * sympy.sqrt(g) / 3)
+    sqrt(2*R*g/3)
+    >>> joined_roots(2 * m / (sympy.sqrt(M) * sympy.sqrt(3*M + 2*m)))
+    2*m/sqrt(M*(3*M + 2*m))
+    >>> x = sympy.Symbol("x", real=True)
+    >>> joined_roots(sympy.sqrt(g) / sympy.sqrt(x))  # x may be negative: 1/√x is not √(1/x)
+    sqrt(g)/sqrt(x)
+    """
+    bounds, order = _bounds_of(expr.free_symbols), _order_of(expr.free_symbols)
+    joined = _join_roots(expr, bounds, order)
+    if joined is expr or sympy.count_ops(joined) > sympy.count_ops(expr) or not _agree(joined, expr):
+        return expr
+    return joined
+
+
+def _join_roots(expr: sympy.Expr, bounds: tuple, order: tuple) -> sympy.Expr:
+    """:func:`joined_roots` of every product in ``expr``, from the leaves up."""
+    if not expr.args or expr.is_Atom:
+        return expr
+    args = [_join_roots(a, bounds, order) for a in expr.args]
+    if expr.is_Mul:
+        joined = _joined_product(args, bounds, order)
+        if joined is not None:
+            return joined
+    if all(new is old for new, old in zip(args, expr.args)):
+        return expr
+    if expr.is_Add or expr.is_Mul or expr.is_Pow:
+        return expr.func(*args, evaluate=False)  # evaluated, sympy would split the joined roots again
+    return expr.func(*args)
+
+
+def _joined_product(factors: list, bounds: tuple, order: tuple) -> sympy.Expr | None:
+    """The product of ``factors`` with its square roots joined into one, or None where that is not
+    shown exact or there are fewer than two roots."""
+    roots = [f for f in factors if _is_root(f)]
+    if len(roots) < 2:
+        return None
+    unknown = 0
+    for root in roots:
+        if root.base.is_number:
+            continue
+        sign = _factor_sign(root.base, bounds, order)
+        if sign == -1 or (sign is None and root.exp < 0):
+            return None
+        unknown += sign is None
+    if unknown > 1:
+        return None
+    coefficient = sympy.Mul(*[f for f in factors if f.is_Rational])
+    others = [f for f in factors if not _is_root(f) and not f.is_Rational]
+    inside, symbolic = _tidy_radicand(sympy.Mul(*[r.base ** (2 * r.exp) for r in roots
+                                                  if not r.base.is_number])).as_coeff_Mul()
+    numbers = sympy.Mul(*[r.base ** (2 * r.exp) for r in roots if r.base.is_number]) * coefficient ** 2 * inside
+    if not numbers.is_Rational or not numbers.is_positive:
+        return None
+    # Whole numbers outside, the rest of the numbers inside: 4√3/3 is 4√(1/3), 2√2 stays 2√2.
+    whole = _square_part(numbers.p) / _square_part(numbers.q)
+    radicand = _negative_pairs_flipped(numbers / whole ** 2 * symbolic, bounds, order)
+    numerator, denominator = sympy.fraction(radicand)
+    if numerator.is_number and numerator.is_positive:
+        root = sympy.Pow(denominator / numerator, -sympy.S.Half, evaluate=False)
+    else:
+        root = sympy.Pow(radicand, sympy.S.Half, evaluate=False)
+    leading = [whole * sympy.sign(coefficient)] if whole * sympy.sign(coefficient) != 1 else []
+    return sympy.Mul(*leading, *others, root, evaluate=False)
+
+
+def _square_part(n: int) -> sympy.Integer:
+    """The largest whole number whose square divides ``n`` (√12 = 2√3: 2)."""
+    return sympy.Mul(*[f for f in sympy.Mul.make_args(sympy.sqrt(n)) if f.is_Integer])
+
+
+def _negative_pairs_flipped(radicand: sympy.Expr, bounds: tuple, order: tuple) -> sympy.Expr:
+    """``radicand`` with its sums that are ≤ 0 on the domains negated, two at a time."""
+    numerator, denominator = sympy.fraction(radicand)
+    factors = [*sympy.Mul.make_args(numerator), *(1 / f for f in sympy.Mul.make_args(denominator))]
+    negative = [f for f in factors if (f.is_Add or (f.is_Pow and f.base.is_Add and f.exp.is_odd))
+                and _factor_sign(f, bounds, order) == -1]
+    if len(negative) < 2:
+        return radicand
+    flipped = negative[: len(negative) // 2 * 2]
+    rest = [f for f in factors if f not in flipped] if len(set(flipped)) == len(flipped) else None
+    if rest is None:
+        return radicand
+    return sympy.Mul(*rest, *[sympy.Pow(-f.base, f.exp) if f.is_Pow else -f for f in flipped])
 
 
 def _agree(a: sympy.Expr, b: sympy.Expr) -> bool:

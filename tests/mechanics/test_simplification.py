@@ -359,3 +359,41 @@ def test_a_determinant_is_written_as_people_write_it(determinant, printed):
 def test_a_radicand_is_gathered_by_powers_of_its_trigonometric_functions(root, printed):
     simplification.forget_forms()
     assert str(human_form(root)) == printed
+
+
+_s = sympy.Symbol("s", real=True)  # of either sign
+_k = sympy.Symbol("k", positive=True)
+
+
+@pytest.mark.parametrize("expr, domains, below, printed", [
+    # numbers go inside as far as whole numbers stay outside: a body leaving a hemisphere, a disk
+    # rolling off a cylinder, a block pendulum at the bottom
+    (sqrt(6) * sqrt(R) * sqrt(g) / 3, {}, {}, "sqrt(2*R*g/3)"),
+    (2 * sqrt(7) * sqrt(g) * sqrt(R + a) / 7, {}, {}, "2*sqrt(g*(R + a)/7)"),
+    (4 * sqrt(3) * sqrt(g) * sqrt(l) * m * sin(theta0 / 2) / (3 * sqrt(M) * sqrt(3 * M + 2 * m)), {}, {},
+     "4*m*sqrt(g*l/(3*M*(3*M + 2*m)))*sin(theta0/2)"),
+    (sqrt(2) * sqrt(g) * sqrt(l), {}, {}, "sqrt(2*g*l)"),
+    # the conical pendulum's period, and roots inside a function's argument: ω = √(k/m)
+    (2 * sympy.pi * sqrt(l) * sqrt(cos(theta0)) / sqrt(g), {theta0: (0.01, 1.5)}, {}, "2*pi*sqrt(l*cos(theta0)/g)"),
+    (a * (cos(sqrt(_k) * t / sqrt(m)) + cos(sqrt(3) * sqrt(_k) * t / sqrt(m))) / 2, {}, {},
+     "a*(cos(t*sqrt(k/m)) + cos(t*sqrt(3*k/m)))/2"),
+    # a root with only a number over it is 1/√(…)
+    (2 * m / (sqrt(M) * sqrt(3 * M + 2 * m)), {}, {}, "2*m/sqrt(M*(3*M + 2*m))"),
+    # a definite quadratic's reciprocal is positive (the off-centre wheel's 2MR² + m(R − d)²)
+    (2 * R * sqrt(_d) * sqrt(g) * sqrt(m) * sqrt(1 / (R ** 2 * (2 * M + m) - 2 * R * _d * m + _d ** 2 * m)), {}, {},
+     "2*R*sqrt(d*g*m/(R**2*(2*M + m) - 2*R*d*m + d**2*m))"),
+    # two factors negative on the domains are written positive: a < R and cos θ₀ ≤ 1
+    (2 * sqrt(g) * m * sqrt((a - R) * (cos(theta0) - 1)) / (sqrt(M + m) * sqrt(3 * M + m)), {theta0: (0.01, 1.5)},
+     {a: R}, "2*m*sqrt(g*(1 - cos(theta0))*(R - a)/((M + m)*(3*M + m)))"),
+    # one radicand of unknown sign over the line is joined (√a√b = √(ab) for a ≥ 0) ...
+    (sqrt(g) * sqrt(_s), {}, {}, "sqrt(g*s)"),
+    # ... but not two, nor one under a division: √s/√g is not √(s/g) ... and 1/√s is not √(1/s) for s < 0
+    (sqrt(_s) * sqrt(_s - 1), {}, {}, "sqrt(s)*sqrt(s - 1)"),
+    (sqrt(g) / sqrt(_s), {}, {}, "sqrt(g)/sqrt(s)"),
+])
+def test_the_roots_of_a_product_are_joined_where_exact(expr, domains, below, printed):
+    with simplification.declared_domains(domains, below):
+        joined = simplification.joined_roots(expr)
+    assert str(joined) == printed
+    bounds = tuple((s, lo, hi) for s, (lo, hi) in domains.items())
+    _assert_same_value_on(expr, joined, bounds)
