@@ -641,7 +641,95 @@ def dimension_of(expr, dims: Mapping) -> Dimension:
     if not isinstance(expr, sympy.Basic):
         # Text must go through parse_expression first; nothing here reads strings.
         raise TypeError(f"dimension_of takes a sympy expression, got {type(expr).__name__}")
-    return _dim(_DimensionWalker(dims, by_name).walk(expr))
+    walker = _DimensionWalker(dims, by_name)
+    try:
+        return _dim(walker.walk(expr))
+    except DimensionError:
+        scaled = _dimension_by_scaling(expr, walker)
+        if scaled is None:
+            raise
+        return _dim(scaled)
+
+
+# Largest expression whose dimension is worked out by scaling (a symbolic step on student text).
+SCALING_MAX_NODES = 200
+
+
+def _dimension_by_scaling(expr, walker: "_DimensionWalker") -> _Exponents | None:
+    """The dimension of an expression that the walker refuses node by node, but that is homogeneous
+    as a whole: ``u (ln m₀ − ln m₁)`` (each log has a mass in it, their difference does not),
+    ``V₀ rⁿ/Rⁿ`` (a length to a symbolic power, over another).
+
+    That is the definition of a dimension: changing the units multiplies every mass by S_M, every
+    length by S_L and every time by S_T, and a quantity of dimension M^a L^b T^c is multiplied by
+    S_M^a S_L^b S_T^c. The expression is rescaled so, its logarithms and powers of products are
+    expanded (ln(S m) = ln S + ln m, (S r)ⁿ = Sⁿ rⁿ), and the ratio to the expression must be such a
+    monomial; otherwise (ln m₀ alone, sin of a mass) None, and the walker's error stands. Only
+    expressions with a logarithm or a non-numeric power, of at most ``SCALING_MAX_NODES`` nodes.
+
+    >>> import sympy
+    >>> u, m0, m1, r, R, n = sympy.symbols("u m0 m1 r R n", positive=True)
+    >>> dims = {u: "velocity", m0: "mass", m1: "mass", r: "length", R: "length", n: "dimensionless"}
+    >>> dimension_of(u * (sympy.log(m0) - sympy.log(m1)), dims).describe()
+    'a velocity (m/s)'
+    >>> dimension_of(r**n / R**n, dims).is_dimensionless
+    True
+    >>> dimension_of(u * sympy.log(m0), dims)
+    Traceback (most recent call last):
+    ...
+    grader.expressions.errors.DimensionError: log needs a dimensionless argument, got a mass (kg): log(m0)
+    """
+    if isinstance(expr, sympy.core.relational.Relational):
+        sides = [_dimension_by_scaling(side, walker) if _rescalable(side) else _try_walk(walker, side)
+                 for side in (expr.lhs, expr.rhs)]
+        if None in sides or (sides[0] != sides[1] and not _is_zero(expr.lhs) and not _is_zero(expr.rhs)):
+            return None
+        return sides[1] if _is_zero(expr.lhs) else sides[0]
+    if not _rescalable(expr):
+        return None
+    scales = [sympy.Dummy(f"S{i}", positive=True) for i in range(3)]
+    rescale = {}
+    for symbol in expr.free_symbols:
+        try:
+            exponents = walker.lookup(symbol, symbol.name)
+        except DimensionError:
+            return None
+        if exponents != _NONE:
+            factor = sympy.Mul(*[S ** sympy.Rational(e) for S, e in zip(scales, exponents)])
+            rescale[symbol] = symbol * factor
+    scaled = sympy.expand_power_base(sympy.expand_log(expr.xreplace(rescale), force=True), force=True)
+    ratio = sympy.powsimp(sympy.cancel(sympy.expand_log(scaled, force=True) / expr), force=True)
+    if ratio.free_symbols - set(scales):
+        return None
+    powers = ratio.as_powers_dict()
+    if set(powers) - set(scales) - {sympy.S.One}:
+        return None
+    exponents = []
+    for S in scales:
+        e = powers.get(S, sympy.S.Zero)
+        if not e.is_Rational:
+            return None
+        exponents.append(_whole(Fraction(int(e.p), int(e.q))))
+    return tuple(exponents)
+
+
+def _rescalable(expr) -> bool:
+    """Whether the scaling rule applies: a logarithm or a non-numeric power in a small expression,
+    and no applied function of time (those the walker alone knows)."""
+    nodes, interesting = 0, False
+    for node in sympy.preorder_traversal(expr):
+        nodes += 1
+        if nodes > SCALING_MAX_NODES or isinstance(node, (AppliedUndef, sympy.Derivative)):
+            return False
+        interesting = interesting or isinstance(node, sympy.log) or (node.is_Pow and not node.exp.is_Rational)
+    return interesting
+
+
+def _try_walk(walker: "_DimensionWalker", expr) -> _Exponents | None:
+    try:
+        return walker.walk(expr)
+    except DimensionError:
+        return None
 
 
 class _DimensionWalker:

@@ -80,6 +80,39 @@ def test_dimension_of_physical_expressions(expr, expected):
     assert dimension_of(expr, DIMS) == expected
 
 
+u, m0, m1, r, R, n = sympy.symbols("u m0 m1 r R n", positive=True)
+SCALED = {u: L / T, m0: M, m1: M, r: L, R: L, n: Dimension(), g: L / T ** 2, l: L, m: M}
+
+
+@pytest.mark.parametrize("expr, expected", [
+    # A rocket's speed, u ln(m₀/m₁), as students write it: each log has a mass in it, not the sum.
+    (u * (sympy.log(m0) - sympy.log(m1)), L / T),
+    (u * sympy.log(m0) - u * sympy.log(m1), L / T),
+    (sympy.Eq(u, u * sympy.log(m0) - u * sympy.log(m1)), L / T),
+    (sympy.exp(sympy.log(m0) - sympy.log(m1)) * u, L / T),
+    # A power-law potential's (r/R)ⁿ written over two powers, and through logarithms.
+    (m * g * l * r ** n / R ** n, M * L ** 2 / T ** 2),
+    (m * g * l * sympy.exp(n * (sympy.log(r) - sympy.log(R))), M * L ** 2 / T ** 2),
+    (r ** (2 * n + 1) / R ** (2 * n), L),
+    (r ** n / R ** (n + 1), L ** -1),
+])
+def test_a_whole_that_is_homogeneous_has_its_dimension_though_its_parts_have_none(expr, expected):
+    assert dimension_of(expr, SCALED) == expected
+
+
+@pytest.mark.parametrize("expr, words", [
+    (u * sympy.log(m0), "log needs a dimensionless argument, got a mass (kg)"),    # ln m₀ alone
+    (u * sympy.log(m0) - sympy.log(m1), "log needs a dimensionless argument"),     # not the same multiple
+    (u * (sympy.log(m0) - sympy.log(r)), "log needs a dimensionless argument"),     # a mass over a length
+    (r ** n, "raises a length (m) to the non-numeric power n"),
+    (sympy.sin(r) - sympy.sin(R), "sin needs a dimensionless argument"),           # not homogeneous
+])
+def test_a_whole_that_changes_with_the_units_keeps_the_walkers_error(expr, words):
+    with pytest.raises(DimensionError) as err:
+        dimension_of(expr, SCALED)
+    assert words in str(err.value)
+
+
 @pytest.mark.parametrize("expr, words", [
     (m * g + l, ["adds", "a force (kg·m/s²)", "a length (m)"]),      # sympy orders the terms
     (l + 1, ["adds", "a length (m)", "a dimensionless number"]),
