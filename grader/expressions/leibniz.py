@@ -283,6 +283,17 @@ def _nested(tokens: list[Token], k: int, ns, text: str, memo: dict) -> tuple[Tok
     return found[0], found[1] + 1
 
 
+def _operator_in_brackets(tokens: list[Token], i: int):
+    """(numerator, denominator) of ``(d/dt)`` opened at ``tokens[i]`` and applied to a bracket, or None."""
+    top = _numerator(tokens, i + 1)
+    if top is None or top.coordinate is not None or not _is(_at(tokens, top.end), "op", "/"):
+        return None
+    below = _denominator(tokens, top.end + 1)
+    if below is None or not _is(_at(tokens, below[3]), "close", ")") or _at(tokens, below[3] + 1).kind != "open":
+        return None
+    return top, below
+
+
 def _match(tokens: list[Token], i: int, ns, text: str, memo: dict) -> tuple[Token, int] | None:
     """The derivative token for a Leibniz derivative starting at ``tokens[i]`` and where it ends."""
     start = tokens[i]
@@ -310,6 +321,9 @@ def _match(tokens: list[Token], i: int, ns, text: str, memo: dict) -> tuple[Toke
         below = _denominator(tokens, after + 1)
         if below is None or not _is(_at(tokens, below[3]), "close", "}"):
             return None
+        k = below[3] + 1
+    elif start.kind == "open" and _operator_in_brackets(tokens, i):  # (d/dt)(m l² θ̇)
+        top, below = _operator_in_brackets(tokens, i)
         k = below[3] + 1
     elif start.kind == "open":  # (d²θ)/(dt²) and (d²θ)/dt²: Word's linear form of the fraction
         top = _numerator(tokens, i + 1)
@@ -378,6 +392,72 @@ def _match(tokens: list[Token], i: int, ns, text: str, memo: dict) -> tuple[Toke
     return _derivative(start, tokens[end - 1], text, raw or "", order + extra, ns, error), end
 
 
+def _closing(tokens: list[Token], j: int) -> int | None:
+    """The index of the bracket that closes the one opened at ``tokens[j]``, or None."""
+    depth = 0
+    for k in range(j, len(tokens)):
+        kind = tokens[k].kind
+        depth += 1 if kind == "open" else -1 if kind == "close" else 0
+        if depth == 0:
+            return k
+    return None
+
+
+def _operator_first(tokens: list[Token], ns, memo: dict) -> list[Token]:
+    """The tokens with each derivative of a bracket written as a quotient put in operator form, for
+    `_match` to read: ``d(m l² θ̇)/dt`` and ``d[…]/dt`` as ``d/dt(…)``, ``\frac{d(…)}{dt}`` as
+    ``\frac{d}{dt}(…)``, and ``(d/dt)(…)`` as ``d/dt(…)``; ``tokens`` itself when there is none.
+
+    The tokens keep their positions, so what is shown of the derivative spans the text as typed. As
+    for ``dθ/dt``, only where the ``d`` words mean nothing in the namespace.
+    """
+    out: list[Token] = []
+    i, n, changed = 0, len(tokens), False
+    while i < n:
+        token = tokens[i]
+        moved = None
+        if _plain_name(token) and token.value == "d" and not token.order:  # d(…)/dt
+            order, j = _order_mark(tokens, i + 1)
+            moved = order is not None and _bracket_over_dt(tokens, i, j, None, ns, memo)
+        elif _is(token, "command", "frac") and _is(_at(tokens, i + 1), "open", "{"):  # \frac{d(…)}{dt}
+            d = _at(tokens, i + 2)
+            if _plain_name(d) and d.value == "d" and not d.order:
+                order, j = _order_mark(tokens, i + 3)
+                moved = order is not None and _bracket_over_dt(tokens, i + 2, j, "}", ns, memo)
+        if moved:
+            reordered, i = moved
+            out.extend(reordered)
+            changed = True
+            continue
+        out.append(token)
+        i += 1
+    return out if changed else tokens
+
+
+def _bracket_over_dt(tokens: list[Token], d: int, j: int, brace: str | None, ns, memo: dict):
+    """(the tokens of ``d/dt(…)``, end) for ``d(…)/dt`` with the ``d`` (and its order mark) at
+    ``tokens[d:j]``, inside ``\frac{…}{…}`` when ``brace`` is ``"}"``; False when not one."""
+    opener = _at(tokens, j)
+    close = _closing(tokens, j) if opener.kind == "open" else None
+    if close is None or (close == j + 2 and _plain_name(tokens[j + 1])):
+        return False  # no bracket, or d(θ)/dt: one coordinate, which _match reads as dθ/dt
+    if brace is None:
+        if not _is(_at(tokens, close + 1), "op", "/"):
+            return False
+        below = _denominator(tokens, close + 2)
+        if below is None or _means_something([tokens[d]] + below[1], ns, memo):
+            return False
+        return tokens[d:j] + [tokens[close + 1]] + tokens[close + 2:below[3]] + tokens[j:close + 1], below[3]
+    if not (_is(_at(tokens, close + 1), "close", "}") and _is(_at(tokens, close + 2), "open", "{")):
+        return False
+    below = _denominator(tokens, close + 3)
+    if below is None or not _is(_at(tokens, below[3]), "close", "}") or _means_something([tokens[d]] + below[1], ns, memo):
+        return False
+    # \frac { d … } { dt … } ( … )
+    return (tokens[d - 2:j] + [tokens[close + 1], tokens[close + 2]] + tokens[close + 3:below[3] + 1]
+            + tokens[j:close + 1], below[3] + 1)
+
+
 def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
     """The tokens with each Leibniz time derivative replaced by one ``derivative`` token.
 
@@ -410,8 +490,9 @@ def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
     """
     if "d" not in text and _ITALIC_D not in text:  # most answers: nothing to look at
         return tokens
-    out: list[Token] | None = None
     memo: dict = {}
+    tokens = _operator_first(tokens, ns, memo)
+    out: list[Token] | None = None
     i, n = 0, len(tokens)
     while i < n:
         token = tokens[i]

@@ -443,7 +443,9 @@ class _Parser:
                                   f"write ({self.text[token.pos:self.tokens[self.i - 1].end]})^2 for the square "
                                   "of the derivative, or differentiate the whole yourself")
         value = checked(time_derivative(inner, token.value, self.ns, token.text, token.pos), token.pos)
-        self.note(f"read '{self.text[token.pos:self.tokens[self.i - 1].end]}' as {value}")
+        # d(m l² θ̇)/dt was put in operator form (leibniz._operator_first): the token spans the typed /dt too
+        end = max(token.end, self.tokens[self.i - 1].end)
+        self.note(f"read '{self.text[token.pos:end]}' as {value}")
         return value
 
     def diff_call(self, token: Token) -> sympy.Expr:

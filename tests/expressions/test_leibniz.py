@@ -333,6 +333,38 @@ def test_d_dt_of_an_expression_is_its_total_time_derivative(ns, text, same_as):
     assert any(note.startswith("read '") for note in parsed.notes)
 
 
+@pytest.mark.parametrize("text, same_as, shown", [
+    # the quotient form, as F = d(mv)/dt and the Euler–Lagrange equation are written by hand
+    ("d(m l^2 θ̇)/dt", "m*l**2*thetaddot", "d(m l^2 θ̇)/dt"),
+    ("d[x θ]/dt", "xdot*theta + x*thetadot", "d[x θ]/dt"),
+    ("d²(x θ)/dt²", "xddot*theta + 2*xdot*thetadot + x*thetaddot", "d²(x θ)/dt²"),
+    ("d^2(x θ)/dt^2", "xddot*theta + 2*xdot*thetadot + x*thetaddot", "d^2(x θ)/dt^2"),
+    (r"\frac{d(ml^2\dot\theta)}{dt}", "m*l**2*thetaddot", r"\frac{d(ml^2\dot\theta)}{dt}"),
+    (r"\frac{\mathrm{d}(m x)}{\mathrm{d}t}", "m*xdot", r"\frac{\mathrm{d}(m x)}{\mathrm{d}t}"),
+    ("(d/dt)(m l^2 θ̇)", "m*l**2*thetaddot", "(d/dt)(m l^2 θ̇)"),
+    ("2 d(x^2)/dt/x", "4*xdot", "d(x^2)/dt"),
+])
+def test_the_quotient_form_of_d_dt_of_an_expression_is_the_same_derivative(ns, text, same_as, shown):
+    parsed = parse_expression(text, ns)
+    assert (parsed.expr - parse_expression(same_as, ns).expr).expand() == 0
+    assert any(note.startswith(f"read '{shown}'") for note in parsed.notes), parsed.notes
+
+
+@pytest.mark.parametrize("text, named", [
+    ("d(x θ)/dt²", "has d on top but dt² below"),
+    (r"\frac{d(x\theta)}{dt^2}", "has d on top but dt² below"),
+])
+def test_the_quotient_form_is_refused_as_the_operator_form_is(ns, text, named):
+    with pytest.raises(ExpressionError) as error:
+        parse_expression(text, ns)
+    assert named in str(error.value)
+
+
+def test_a_declared_d_keeps_the_quotient_form_a_product():
+    ns = _ns(Variable("d", "length", "positive"), Variable("t", "time", "positive"))
+    assert parse_expression("d(x + l)/t", ns).expr == parse_expression("d*(x + l)/t", ns).expr
+
+
 def test_d_dt_of_an_expression_with_a_declared_time_differentiates_it_too():
     ns = _ns(Variable("t", "time", "real", "time"), Variable("w", "angular_velocity", "positive"))
     assert parse_expression("d/dt(l cos(w t))", ns).expr == parse_expression("-l w sin(w t)", ns).expr
