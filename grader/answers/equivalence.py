@@ -527,6 +527,9 @@ SYMBOLIC_MAX_NODES = 80
 SYMBOLIC_MAX_POWER = 6
 
 
+SYMBOLIC_MAX_TERMS = 500
+
+
 def _small(expr: sympy.Expr) -> bool:
     # A plain stack walk (the order of the nodes does not matter here), quicker than
     # sympy.preorder_traversal's nested generators.
@@ -540,7 +543,34 @@ def _small(expr: sympy.Expr) -> bool:
         if node.is_Pow and node.exp.is_Integer and abs(int(node.exp)) > SYMBOLIC_MAX_POWER:
             return False
         stack.extend(node.args)
-    return True
+    return _expanded_terms(expr) <= SYMBOLIC_MAX_TERMS
+
+
+def _expanded_terms(expr: sympy.Expr) -> int:
+    """An upper bound on the terms ``expand`` makes of ``expr`` (of a power of a sum inside a function
+    or a denominator too), past ``SYMBOLIC_MAX_TERMS`` only as far as it takes to know: powers of sums
+    of powers of sums, each small, multiply out to tens of thousands of terms ((s⁵ + u⁵)⁴ with s a sum
+    of three: 27,405), which took minutes to expand.
+
+    >>> a, b, c = sympy.symbols("a b c")
+    >>> _expanded_terms((a + b)**2 * c), _expanded_terms(((a + b + c)**2 + a)**3)
+    (3, 84)
+    """
+    def terms(node) -> int:
+        if node.is_Add:
+            return min(sum(terms(a) for a in node.args), SYMBOLIC_MAX_TERMS + 1)
+        if node.is_Mul:
+            return min(math.prod(terms(a) for a in node.args), SYMBOLIC_MAX_TERMS + 1)
+        if node.is_Pow and node.exp.is_Integer:
+            k, n = terms(node.base), abs(int(node.exp))
+            count = min(math.comb(k + n - 1, n), SYMBOLIC_MAX_TERMS + 1)  # monomials of degree n in k terms
+            if node.exp < 0:  # expanded in the denominator: one term here, if it can be expanded at all
+                return 1 if count <= SYMBOLIC_MAX_TERMS else SYMBOLIC_MAX_TERMS + 1
+            return count
+        inner = max((terms(a) for a in node.args), default=1)  # expanded inside a function
+        return 1 if inner <= SYMBOLIC_MAX_TERMS else SYMBOLIC_MAX_TERMS + 1
+
+    return terms(expr)
 
 
 def symbolic_zero(diff: sympy.Expr) -> bool:

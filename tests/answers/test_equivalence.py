@@ -85,6 +85,21 @@ def test_symbolic_step_is_cheap_and_only_claims_proofs(diff, proved):
     assert symbolic_zero(diff) is proved
 
 
+_a, _b, _c, _d, _e = sympy.symbols("a b c d e", positive=True)
+_NESTED = (_a + _b + _c) ** 5 + (_d + _e) ** 5
+
+
+@pytest.mark.parametrize("diff", [
+    # powers of sums of powers of sums, each under the size limits: 27,405 terms expanded (minutes)
+    _NESTED ** 5 - _NESTED ** 4 * (_NESTED + (_a - _b) * (_a + _b) - _a ** 2 + _b ** 2),
+    ((_a + _b + _c) ** 4 + (_d + _e) ** 4) ** 3 - 1,
+    1 / ((_a + _b + _c + _d) ** 3 + _e) ** 3 - 1 / _e,  # in a denominator too
+])
+def test_the_symbolic_step_never_expands_what_multiplies_out_to_thousands_of_terms(diff, monkeypatch):
+    monkeypatch.setattr(sympy, "expand", lambda *args, **kwargs: pytest.fail("expanded"))
+    assert symbolic_zero(diff) is False  # left to the numeric judge, which proves it at its points
+
+
 # Equal to T, but 10^100 times a ball-arithmetic zero: every point needs more precision than the
 # first, so the judge reaches its deadline check (an easy answer would be decided before it).
 HARD_T = T + 10**100 * T * (sympy.sin(m1) ** 2 + sympy.cos(m1) ** 2 - 1)
