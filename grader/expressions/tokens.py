@@ -143,6 +143,15 @@ _DIGIT_RUN = re.compile(r"[0-9]+")
 _EXPONENT_AFTER_POINT = re.compile(r"[eE][+-]?[0-9]+")
 
 # What a console prints before a formula: Mathematica's In[1]:= and Out[1]=, MATLAB's >>, Maxima's (%o1)
+# Mathematica's named characters (\[Theta]), as its InputForm and "Copy As Plain Text" write θ, ×, −.
+_MATHEMATICA_NAMED = re.compile(r"\\\[([A-Za-z]+)\]")
+MATHEMATICA_CHARACTERS = {
+    **{name.capitalize(): char for char, name in GREEK_CHARS.items() if name.islower() and char.isalpha()
+       and unicodedata.name(char, "").startswith("GREEK SMALL LETTER") and "FINAL" not in unicodedata.name(char, "")},
+    **{"Capital" + name: char for char, name in GREEK_CHARS.items() if name[:1].isupper()},
+    "CurlyTheta": "ϑ", "CurlyPhi": "φ", "CurlyEpsilon": "ε", "CurlyRho": "ϱ", "Ell": "ℓ",
+    "Times": "×", "CenterDot": "·", "Minus": "−", "Divide": "÷",
+}
 _CONSOLE_PROMPT = re.compile(r"\s*(?:(?:In|Out)\[\d+\]\s*:?=|>>|\(%[io]\d+\))")
 
 # Python modules whose functions students paste with the prefix (np.sin, math.sqrt).
@@ -867,7 +876,13 @@ class _Tokenizer:
 
     def command_symbol(self, start: int) -> None:
         ch = self.text[start + 1] if start + 1 < self.n else ""
-        if ch in (",", ";", ":", "!", " ", ">", "(", ")", "[", "]"):  # \( \) \[ \]: math delimiters, as $
+        named = _MATHEMATICA_NAMED.match(self.text, start) if ch == "[" else None
+        if named is not None and named.group(1) in MATHEMATICA_CHARACTERS:
+            self.mathematica_character(start, named.end(), MATHEMATICA_CHARACTERS[named.group(1)])
+        elif named is not None and named.group(1)[:1].isupper():
+            raise ExpressionError(f"'{named.group()}' is a Mathematica character that is not read here", start,
+                                  "syntax", "type the character itself (θ, ω, ×) or its name (theta, omega, *)")
+        elif ch in (",", ";", ":", "!", " ", ">", "(", ")", "[", "]"):  # \( \) \[ \]: math delimiters, as $
             self.space = True
             self.i = start + 2
         elif ch in ("{", "}"):
@@ -880,6 +895,14 @@ class _Tokenizer:
         else:
             raise ExpressionError("'\\' must start a LaTeX command such as \\frac", start, "syntax",
                                   "delete the backslash, or write a command such as \\frac{a}{b}")
+
+    def mathematica_character(self, start: int, end: int, character: str) -> None:
+        """Mathematica's ``\\[Theta]`` (what its InputForm and "Copy As Plain Text" give for θ), read as
+        the character it names: a letter starts a name there (``\\[Theta]'[t]``, ``\\[Omega]0``)."""
+        if character in GREEK_CHARS:
+            self.identifier(start, GREEK_CHARS[character], end)
+        else:
+            self.emit("op", OPERATOR_CHARS[character], start, end)
 
     def delimiter(self, start: int, j: int, which: str, command: str = "") -> None:
         while j < self.n and is_space(self.text[j]):

@@ -172,3 +172,34 @@ def test_other_bare_decimal_points_keep_the_general_hint(ns, text):
     with pytest.raises(ExpressionError) as err:
         parse_expression(text, ns)
     assert "write 0.5" in err.value.hint
+
+
+# -- Mathematica's named characters: what its InputForm and "Copy As Plain Text" give for θ, ω, × -----
+
+def _mechanics():
+    return Namespace([Variable("m", "mass", "positive"), Variable("g", "acceleration", "positive"),
+                      Variable("l", "length", "positive"), Variable("theta", "angle"),
+                      Variable("thetadot", "angular_velocity"), Variable("omega", "angular_velocity"),
+                      Variable("Omega", "angular_velocity"), Variable("theta1", "angle")])
+
+
+@pytest.mark.parametrize("text, same_as", [
+    (r"m g Cos[\[Theta]] + m l thetadot^2", "m g cos(θ) + m l θ̇^2"),
+    (r"m l \[Omega]^2", "m l ω^2"),
+    (r"\[CapitalOmega] \[Times] m", "Ω m"),
+    (r"Sin[\[Theta]1] \[CenterDot] l", "l sin(θ₁)"),
+    (r"m g \[Minus] m l \[Omega]^2", "m g - m l ω^2"),
+    (r"Cos[\[CurlyTheta]]", "cos θ"),
+    (r"\[Theta]'", "θ̇"),
+])
+def test_mathematicas_named_characters_read_as_the_characters(text, same_as):
+    ns = _mechanics()
+    assert parse_expression(text, ns).expr == parse_expression(same_as, ns).expr
+
+
+def test_an_unknown_named_character_is_refused_by_name_and_latex_display_math_is_still_read():
+    ns = _mechanics()
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(r"\[Bogus] m", ns)
+    assert r"'\[Bogus]'" in err.value.message and "type the character itself" in err.value.hint
+    assert parse_expression(r"\[m g\]", ns).expr == parse_expression("m g", ns).expr
