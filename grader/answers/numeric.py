@@ -117,6 +117,46 @@ class Quantity:
         return rf"{number}\,\mathrm{{{unit}}}"
 
 
+# What an equation editor or a LaTeX source puts around a number and its unit, read as the plain text
+# the grammar below takes (14.06\,\mathrm{N}, 1.406\times10^{1}\ \text{N}, \SI{14.06}{N}, 30^\circ).
+_LATEX_QUANTITY = (
+    (re.compile(r"\\(?:SI|qty)\s*\{([^{}]*)\}\s*\{([^{}]*)\}"), r"\1 \2"),
+    (re.compile(r"\\(?:num|si|unit|mathrm|text|textrm|mathit|mathsf|operatorname|rm)\s*\{([^{}]*)\}"), r"\1"),
+    (re.compile(r"\\frac\s*\{([^{}]*)\}\s*\{([^{}]*)\}"), r"\1/(\2)"),
+    (re.compile(r"\^\s*\{?\s*\\circ\s*\}?"), "°"),
+    (re.compile(r"\^\s*\{([^{}]*)\}"), r"^\1"),
+    (re.compile(r"\\[,;:> ]|~|\\q?quad(?![A-Za-z])|\\(?:thinspace|enspace|medspace|thickspace)(?![A-Za-z])"), " "),
+    (re.compile(r"\\!"), ""),
+    (re.compile(r"\\times(?![A-Za-z])\s*"), "×"),  # a space after a command is not typed, LaTeX's way
+    (re.compile(r"\\c?dot(?![A-Za-z])\s*"), "·"),
+    (re.compile(r"\\approx(?![A-Za-z])"), "≈"),
+    (re.compile(r"\\(?:mu|micro)(?![A-Za-z])\s*"), "µ"),
+    (re.compile(r"\\(?:degree|deg)(?![A-Za-z])"), "°"),
+    (re.compile(r"\\%"), "%"),
+    (re.compile(r"^\s*(?:\$\$?|\\[(\[])|(?:\$\$?|\\[)\]])\s*$|\$"), ""),
+    (re.compile(r"_\{([^{}]*)\}"), r"_\1"),
+)
+
+
+def _plain_quantity(text: str) -> str:
+    r"""``text`` with the LaTeX of a number and its unit written plainly (the text itself when it has none).
+
+    >>> _plain_quantity(r"1.406\times10^{1}\,\mathrm{kg\cdot m/s^{2}}")
+    '1.406×10^1 kg·m/s^2'
+    >>> _plain_quantity(r"\SI{14.06}{N}"), _plain_quantity(r"$30^\circ$"), _plain_quantity(r"F_{N} = 14.06~\text{N}")
+    ('14.06 N', '30°', 'F_N = 14.06 N')
+    """
+    if not re.search(r"[\\$~{]", text):
+        return text
+    for _ in range(3):  # \mathrm{\frac{m}{s^{2}}}: nested forms, from the inside out
+        before = text
+        for pattern, plain in _LATEX_QUANTITY:
+            text = pattern.sub(plain, text)
+        if text == before:
+            break
+    return re.sub(r"\s+", " ", text).strip()
+
+
 def parse_quantity(text: str) -> Quantity:
     """Read ``"14.7 N"``, ``"1.47e1 kg*m/s^2"``, ``"−3.2×10^-2 m"``; raises :class:`QuantityError`.
 
@@ -134,7 +174,7 @@ def parse_quantity(text: str) -> Quantity:
         raise QuantityError("type a number, such as 14.7 or 1.47e1, with its unit")
     if len(text) > _MAX_TEXT:
         raise QuantityError(f"a number with its unit is at most {_MAX_TEXT} characters")
-    text = text.translate(_MINUSES).strip()
+    text = _plain_quantity(text.translate(_MINUSES)).strip()
     label = _LABEL.match(text)
     if label:
         text = text[label.end():]  # "F = 14.7 N", "≈ 14.7 N"

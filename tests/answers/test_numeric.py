@@ -132,6 +132,27 @@ def test_right_values_in_any_unit_of_a_force_are_equivalent(answer):
     assert (verdict.verdict, verdict.certainty) == ("equivalent", "numeric"), verdict.reason
 
 
+@pytest.mark.parametrize("answer", [
+    # as an equation editor or a LaTeX source writes a number and its unit
+    r"14.715\,\mathrm{N}", r"14.715\ \mathrm{N}", r"14.715 \mathrm{N}", r"14.715\text{ N}", r"14.715~\text{N}",
+    r"14.715\;N", r"14.715\quad N", r"1.4715\times10^{1}\,\mathrm{N}", r"1.4715 \cdot 10^{1} N", r"$14.715$ N",
+    r"\SI{14.715}{N}", r"\qty{14.715}{N}", r"14.715\ \mathrm{kg\cdot m/s^{2}}",
+    r"F_{N} = 14.715\ \mathrm{N}", r"\(14.715\,\mathrm{N}\)", r"14.715\,\mathrm{kg}\,\frac{m}{s^{2}}",
+])
+def test_a_number_and_unit_in_latex_read_as_typed_plainly(answer):
+    verdict = check(answer=answer, **WEIGHT)
+    assert (verdict.verdict, verdict.certainty) == ("equivalent", "numeric"), verdict.reason
+
+
+@pytest.mark.parametrize("answer, message", [
+    (r"1\,000\,\mathrm{N}", "without spaces inside it"),  # SI's thin space between thousands: said, not guessed
+    (r"14.715\,\mathrm{furlong}", "the unit is not readable"),
+])
+def test_latex_that_reads_as_no_quantity_is_refused_with_what_to_type(answer, message):
+    verdict = check(answer=answer, **WEIGHT)
+    assert verdict.verdict == "invalid" and message in verdict.reason
+
+
 @pytest.mark.parametrize("answer, code, message", [
     ("15.5 N", None, None),
     ("-14.7 N", "sign", "sign"),
