@@ -42,7 +42,8 @@ from grader.answers.evaluate import (
 )
 from grader.answers.sampling import Sampler
 
-__all__ = ["Options", "Comparison", "Compiled", "PointResult", "compare_expressions", "symbolic_zero"]
+__all__ = ["Options", "Comparison", "Compiled", "PointResult", "compare_expressions", "expansion_terms",
+           "symbolic_zero", "SYMBOLIC_MAX_TERMS"]
 
 LOG2_10 = math.log2(10)
 
@@ -543,17 +544,17 @@ def _small(expr: sympy.Expr) -> bool:
         if node.is_Pow and node.exp.is_Integer and abs(int(node.exp)) > SYMBOLIC_MAX_POWER:
             return False
         stack.extend(node.args)
-    return _expanded_terms(expr) <= SYMBOLIC_MAX_TERMS
+    return expansion_terms(expr) <= SYMBOLIC_MAX_TERMS
 
 
-def _expanded_terms(expr: sympy.Expr) -> int:
+def expansion_terms(expr: sympy.Expr) -> int:
     """An upper bound on the terms ``expand`` makes of ``expr`` (of a power of a sum inside a function
     or a denominator too), past ``SYMBOLIC_MAX_TERMS`` only as far as it takes to know: powers of sums
     of powers of sums, each small, multiply out to tens of thousands of terms ((s⁵ + u⁵)⁴ with s a sum
     of three: 27,405), which took minutes to expand.
 
     >>> a, b, c = sympy.symbols("a b c")
-    >>> _expanded_terms((a + b)**2 * c), _expanded_terms(((a + b + c)**2 + a)**3)
+    >>> expansion_terms((a + b)**2 * c), expansion_terms(((a + b + c)**2 + a)**3)
     (3, 84)
     """
     def terms(node) -> int:

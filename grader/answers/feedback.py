@@ -23,6 +23,8 @@ from typing import Callable, Iterator, Sequence
 
 import sympy
 
+from grader.answers.equivalence import SYMBOLIC_MAX_TERMS, expansion_terms
+
 __all__ = ["diagnose", "factor_message"]
 
 MAX_TERMS = 6
@@ -152,7 +154,8 @@ def _terms(expr: sympy.Expr) -> tuple[sympy.Expr, ...]:
     if len(terms) < 2:
         terms = _terms_without_expanding(expr)
         if terms is None:
-            terms = sympy.Add.make_args(sympy.expand(expr))
+            # powers of sums that multiply out to thousands of terms are not expanded (no feedback by terms)
+            terms = sympy.Add.make_args(sympy.expand(expr)) if expansion_terms(expr) <= SYMBOLIC_MAX_TERMS else ()
     return terms if 2 <= len(terms) <= MAX_TERMS else ()
 
 
