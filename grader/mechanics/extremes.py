@@ -78,6 +78,13 @@ def extreme_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     chosen = None
     for point in _parameter_points(scene):
         legs = _motion_legs(evaluator, u, point, key)
+        if squared is None and len(legs) > 1:
+            # The motion turns back, and the extreme may be where it does; without that point among
+            # the candidates the best of the others would be a wrong answer, not a missing one.
+            raise SceneError(scene.source, key,
+                             f"the motion from [initial] turns back, but where it does ({u.dot.name} = 0) is not "
+                             f"given by energy conservation in closed form here, so the {spec.kind} of {spec.expr} "
+                             "cannot be located")
         best = None
         for sign, low, high in legs:
             for index, candidate in enumerate(candidates):

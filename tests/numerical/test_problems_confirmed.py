@@ -102,6 +102,10 @@ CONFIRMED_ELSEWHERE = {
     ("hoop_bead_incline", "relative_equilibrium_tan"),
     ("hoop_bead_incline", "relative_equilibrium_acceleration"),
     ("dumbbell_in_circle", "small_oscillation_frequency"),
+    # The fifth red team's: the same file (the height of the climb, and a launch speed other than [initial]'s).
+    ("cart_quarter_circle", "max_height"),
+    ("cart_quarter_circle", "rim_angular_speed_squared"),
+    ("cart_quarter_circle", "least_launch_speed"),
 }
 
 

@@ -348,3 +348,29 @@ def test_two_masses_on_a_rod_in_a_circle_oscillate_about_their_tilt_at_the_engin
     expected = closed_form(model, answers, "small_oscillation_frequency")
     measured = _frequency(model, *state(tilt + 1e-4), midpoint_angle, tilt, 2 * math.pi / expected)
     assert abs(measured - expected) < 1e-6 * expected
+
+
+# -- the fifth red team (2026-11-27): a block on a track cut in a free cart -------------------------
+
+def _launched(model, v0: float, *events):
+    """The block launched at v0 from the bottom of the cart's track, the cart at rest: (X, r, θ)."""
+    R = model.values["R"]
+    return simulate(model.numeric, [0.0, R, 0.0], [0.0, 0.0, v0 / R], 5.0, events=list(events))
+
+
+def test_block_up_a_track_on_a_free_cart_climbs_to_the_engines_height_and_reaches_the_rim_from_its_least_speed():
+    model, answers = engine("cart_quarter_circle")
+    v0 = model.values["v0"]
+    turn = Event("turn", lambda s: s.qdot[2], terminal=True)
+    rim = Event("rim", lambda s: s.q[2] - math.pi / 2, terminal=True)
+    top = _launched(model, v0, turn).first("turn")
+    height = model.values["R"] - top.q[1] * math.cos(top.q[2])
+    assert abs(height - closed_form(model, answers, "max_height")) < 1e-6 * height
+    least = closed_form(model, answers, "least_launch_speed")
+    for factor, reaches in ((1.001, True), (0.999, False)):
+        motion = _launched(model, least * factor, rim, turn)
+        assert (motion.first("rim") is not None) == reaches
+    faster = 1.5 * least  # θ̇² at the rim is a function of the launch speed
+    at_rim = _launched(model, faster, rim).first("rim")
+    expected = closed_form(model, answers, "rim_angular_speed_squared", v0=faster)
+    assert abs(at_rim.qdot[2] ** 2 - expected) < 1e-6 * expected
