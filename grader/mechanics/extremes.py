@@ -68,8 +68,7 @@ def extreme_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     with budget.step(f"solving for the stationary and turning points in {u.name}", spec.name):
         candidates = []
         for branch in dict.fromkeys(branches.values()):
-            candidates += [r for r in solve_for(sympy.diff(branch, u.symbol), u.symbol, scene.source, key)
-                           if r not in candidates]
+            candidates += [r for r in _stationary_points(branch, u.symbol, scene.source, key) if r not in candidates]
         squared = _turning_condition(evaluator, u, key)
         if squared is not None:
             candidates += [r for r in solve_for(squared, u.symbol, scene.source, key) if r not in candidates]
@@ -115,6 +114,26 @@ def extreme_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     if leftover:
         raise SceneError(scene.source, key, f"the {spec.kind} still depends on {', '.join(sorted(map(str, leftover)))}")
     return result
+
+
+def _stationary_points(value: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> list[sympy.Expr]:
+    """Where ``value`` may have an extreme inside the motion's range: where its derivative vanishes and,
+    for a value with |…| in it (the least friction coefficient |F|/N), where each bar's argument does.
+
+    |g| h is ± g h wherever g ≠ 0, with the same stationary points, so the bars are dropped before
+    differentiating (the derivative of |g| has sign(g) in it, which solve ran out of its budget on);
+    the zeros of g, where |g| h has a corner, are candidates too. Each is then judged with the bars.
+
+    >>> th, k = sympy.symbols("theta k", positive=True)
+    >>> sorted(_stationary_points(sympy.Abs(sympy.sin(th)) / (2 + sympy.cos(th)), th, "f.toml", "k"), key=str)
+    [-2*pi/3, 0, 2*pi/3, pi]
+    """
+    arguments = [a.args[0] for a in value.atoms(sympy.Abs) if x in a.free_symbols]
+    signed = value.replace(lambda e: isinstance(e, sympy.Abs), lambda e: e.args[0]) if arguments else value
+    found = solve_for(sympy.diff(signed, x), x, source, key)
+    for argument in arguments:
+        found += [r for r in solve_for(argument, x, source, key) if r not in found]
+    return found
 
 
 def _turning_condition(evaluator, u, key: str) -> sympy.Expr | None:

@@ -117,9 +117,13 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
         return expr
     bounds, order = _bounds_of(expr.free_symbols), _order_of(expr.free_symbols)
     form = _remembered_form(expr, seconds, bounds, order)
+    if not form.has(sympy.Abs):
+        return form
     # Again at the end: a rewriting may bring a factor of known sign into the bars (|√(1 − cos φ₀)|
-    # as √2 |sin(φ₀/2)|).
-    return signed_abs(form, bounds, order) if form.has(sympy.Abs) else form
+    # as √2 |sin(φ₀/2)|), and what leaves them is tidied with the rest (2|√(1 − cos²θ₀)|/(7 cos θ₀)
+    # is 2 sin θ₀/(7 cos θ₀), and that is 2 tan θ₀/7).
+    signed = signed_abs(form, bounds, order)
+    return signed if signed == form or signed.has(sympy.Abs) else _remembered_form(signed, seconds, bounds, order)
 
 
 @functools.lru_cache(maxsize=512)
@@ -150,6 +154,11 @@ def _remembered_form(expr: sympy.Expr, seconds: float, bounds: tuple = (), order
         candidates.extend([gathered_roots(c) for c in candidates])
     if expr.has(sympy.log):
         candidates.append(inverse_hyperbolic(expr))
+    if expr.has(sympy.sin) and expr.has(sympy.cos):
+        # sin x/cos x as tan x: the least friction coefficient (2/7) tan θ₀, not 2 sin θ₀/(7 cos θ₀)
+        from sympy.simplify.fu import TR2i
+
+        candidates.extend([TR2i(c) for c in candidates[:3]])
     if expr.has(sympy.cos) and any(p.exp.is_Rational and p.exp.q == 2 for p in expr.atoms(sympy.Pow)):
         halves = dict.fromkeys(half_angles(c, bounds) for c in candidates)
         candidates.extend(sympy.factor_terms(h) for h in halves if h not in candidates)
@@ -1013,7 +1022,7 @@ def _joined_product(factors: list, bounds: tuple, order: tuple) -> sympy.Expr | 
         return None
     unknown = 0
     for root in roots:
-        if root.base.is_number:
+        if root.base.is_Rational:
             continue
         sign = _factor_sign(root.base, bounds, order)
         if sign == -1 or (sign is None and root.exp < 0):
@@ -1024,8 +1033,8 @@ def _joined_product(factors: list, bounds: tuple, order: tuple) -> sympy.Expr | 
     coefficient = sympy.Mul(*[f for f in factors if f.is_Rational])
     others = [f for f in factors if not _is_root(f) and not f.is_Rational]
     inside, symbolic = _tidy_radicand(sympy.Mul(*[r.base ** (2 * r.exp) for r in roots
-                                                  if not r.base.is_number])).as_coeff_Mul()
-    numbers = sympy.Mul(*[r.base ** (2 * r.exp) for r in roots if r.base.is_number]) * coefficient ** 2 * inside
+                                                  if not r.base.is_Rational])).as_coeff_Mul()
+    numbers = sympy.Mul(*[r.base ** (2 * r.exp) for r in roots if r.base.is_Rational]) * coefficient ** 2 * inside
     if not numbers.is_Rational or not numbers.is_positive:
         return None
     # Whole numbers outside, the rest of the numbers inside: 4√3/3 is 4√(1/3), 2√2 stays 2√2.

@@ -356,8 +356,14 @@ def _at_time(evaluator, spec, target: set, key: str) -> sympy.Expr:
     t = scene.time
     everything = evaluator.parameters | evaluator.state_symbols() | {t}
     with budget.step("reducing the condition", spec.name):
+        lhs, rhs = spec.where
+        condition = evaluator.reduce(lhs - rhs, everything, key)
+        asked = evaluator.reduce(spec.expr, everything, f"answers ({spec.name}).expr")
+        # A moment fixed by the parameters alone (α²t² = g/a: when a hoop spun up at α makes its lowest
+        # point unstable) needs no motion, which may have no closed form.
+        timed = (condition.free_symbols | asked.free_symbols) & evaluator.state_symbols()
         try:
-            motion = motion_in_time(evaluator, key)
+            motion = motion_in_time(evaluator, key) if timed else {}
         except SceneError as refused:
             # No q(t); the time may still come from the quadrature t(q) itself.
             try:
@@ -365,8 +371,7 @@ def _at_time(evaluator, spec, target: set, key: str) -> sympy.Expr:
             except SceneError:
                 raise refused from None
             return _time_by_quadrature(evaluator, spec, target, key, quad)
-        lhs, rhs = spec.where
-        condition = evaluator.reduce(lhs - rhs, everything, key).xreplace(motion)
+        condition = condition.xreplace(motion)
         # A polynomial in t (a uniformly accelerated motion) is solved as it is: its readable form
         # took longer than the solve (0.35 s, a wedge with a block on it and another hanging).
         condition = _essential(condition if condition.is_polynomial(t) else human_form(condition))
@@ -378,7 +383,7 @@ def _at_time(evaluator, spec, target: set, key: str) -> sympy.Expr:
     with budget.step("solving the condition for t", spec.name):
         roots = solve_for(condition, t, scene.source, key)
     with budget.step("evaluating the answer at the roots", spec.name):
-        value = evaluator.reduce(spec.expr, everything, f"answers ({spec.name}).expr").xreplace(motion)
+        value = asked.xreplace(motion)
         chosen = _first_time(scene, roots, t, key)
         result = human_form(value.xreplace({t: chosen}))
     return _no_leftover(scene, spec, result, target)
@@ -785,6 +790,9 @@ def _through_exponentials(condition: sympy.Expr, x: sympy.Symbol, source: str, k
 
 def _budgeted_solve(expr: sympy.Expr, x) -> list[sympy.Expr] | None:
     def solve():
+        cubic = _real_cubic_roots(expr, x)
+        if cubic is not None:
+            return cubic
         try:
             return list(sympy.solve(expr, x))
         except NotImplementedError:
@@ -793,20 +801,79 @@ def _budgeted_solve(expr: sympy.Expr, x) -> list[sympy.Expr] | None:
     return budget.attempt(solve, _SOLVE_BUDGET_S, fallback=lambda: None)
 
 
+def _real_cubic_roots(expr: sympy.Expr, x) -> list[sympy.Expr] | None:
+    """The real roots of a cubic in ``x`` in real closed forms, or None when ``expr`` is not one.
+
+    ``solve`` writes them by Cardano's formula with complex cube roots, in i even where all three are
+    real (a block leaving a hemisphere free on a floor: m cos³θ − 3(M + m) cos θ + 2(M + m) = 0); such a
+    form cannot be typed nor checked. Written t³ + p t + q = 0 (x = t − b/3a), the roots are Viète's
+    2A cos(acos(3q/(2pA))/3 − 2πk/3), A = √(−p/3), k = 0, 1, 2 (cos 3φ = 4 cos³φ − 3 cos φ), real in real
+    arithmetic where the cubic is shown to have three real roots on the declared domains (Δ = q²/4 +
+    p³/27 < 0); where it is shown to have one (Δ > 0), Cardano's ∛(−q/2 + √Δ) + ∛(−q/2 − √Δ) with real
+    cube roots. Where Δ may have either sign, neither form holds throughout (Viète's leaves the reals,
+    Cardano's bars and signs of complex numbers give a real number that is no root): None, and
+    ``solve`` decides as before.
+
+    >>> c = sympy.Symbol("c")
+    >>> [sympy.N(r, 6) for r in _real_cubic_roots(c**3 - 3*c + 1, c)]  # three real roots
+    [1.53209, 0.347296, -1.87939]
+    >>> [sympy.N(r, 6) for r in _real_cubic_roots(c**3 + c + 1, c)]  # one
+    [-0.682328]
+    """
+    try:
+        poly = sympy.Poly(expr, x)
+    except sympy.PolynomialError:
+        return None
+    if poly.degree() != 3 or any(coefficient.has(x) for coefficient in poly.all_coeffs()):
+        return None
+    a, b, c, d = poly.all_coeffs()
+    if not all(coefficient.is_real is not False for coefficient in (a, b, c, d)):
+        return None
+    p = (3 * a * c - b ** 2) / (3 * a ** 2)
+    q = (2 * b ** 3 - 9 * a * b * c + 27 * a ** 2 * d) / (27 * a ** 3)
+    if p == 0:
+        return None  # x = −b/3a − ∛q: solve writes it readably
+    shift = -b / (3 * a)
+    # cos 3φ = 3q/(2pA) with A = √(−p/3) itself (not √(−3/p) = 1/A, false on a branch cut): exact for any p
+    scale = sympy.sqrt(-p / 3)
+    angle = sympy.acos(3 * q / (2 * p * scale)) / 3
+    three = [shift + 2 * scale * sympy.cos(angle - 2 * sympy.pi * k / 3) for k in range(3)]
+    sign = _sign_on_the_domains(q ** 2 / 4 + p ** 3 / 27)
+    if sign == -1:
+        return three
+    if sign == 1:
+        half, delta = -q / 2, sympy.sqrt(q ** 2 / 4 + p ** 3 / 27)
+        return [shift + _real_cube_root(half + delta) + _real_cube_root(half - delta)]
+    return None  # one real root or three, as the parameters go: neither form holds throughout
+
+
+def _sign_on_the_domains(expr: sympy.Expr) -> int | None:
+    from grader.mechanics.simplification import _bounds_of, _factor_sign, _order_of
+
+    expr = sympy.factor(sympy.together(expr))
+    return _factor_sign(expr, _bounds_of(expr.free_symbols), _order_of(expr.free_symbols))
+
+
+def _real_cube_root(value: sympy.Expr) -> sympy.Expr:
+    """The real cube root, negative for a negative value (sympy's principal one is complex there)."""
+    return sympy.sign(value) * sympy.Abs(value) ** sympy.Rational(1, 3)
+
+
 # -- no closed form: a numeric answer at a root found numerically ------------------------------------
 # The functions of the one registry: what students type and the checker evaluates.
 _TYPEABLE = frozenset(f.sympy_func for f in FUNCTIONS.values() if f.sympy_func is not None)
 
 
 def _typeable(expr: sympy.Expr) -> bool:
-    """Whether a closed form uses only functions of the registry (not LambertW, a RootOf, a Piecewise).
+    """Whether a closed form uses only functions of the registry (not LambertW, a RootOf, a Piecewise) and
+    real numbers.
 
     >>> x = sympy.Symbol("x", positive=True)
     >>> _typeable(sympy.acos(x / 2)), _typeable(sympy.LambertW(x))
     (True, False)
     """
-    if expr.has(sympy.CRootOf, sympy.Integral, sympy.Derivative):
-        return False
+    if expr.has(sympy.CRootOf, sympy.Integral, sympy.Derivative, sympy.I):
+        return False  # (i: a root that is real written with complex numbers, which no answer can hold)
     return all(f.func in _TYPEABLE for f in expr.atoms(sympy.Function))
 
 
@@ -823,6 +890,7 @@ def _implicit(evaluator, spec, condition, x, target: set, key: str) -> sympy.Exp
     parameter draws students get.
     """
     scene = evaluator.scene
+    condition = _radicands_for_roots(condition)
     variable = _variable(evaluator, x)
     lo, hi = _root_interval(scene, variable, x, key)
     for other in scene.answers:
@@ -863,6 +931,21 @@ def _implicit(evaluator, spec, condition, x, target: set, key: str) -> sympy.Exp
     evaluator.implicit[spec.name] = {"condition": sympy.sstr(condition), "unknown": str(x),
                                      "interval": [lo, hi], "root": chosen}
     return value
+
+
+def _radicands_for_roots(condition: sympy.Expr) -> sympy.Expr:
+    """The condition with each square-root factor written as its radicand: the same roots, where a sign
+    change shows them (θ̇ = 0 from energy is √(f(θ)) = 0, which touches 0 at a turning point without
+    crossing it, and a search for sign changes missed it).
+
+    >>> th = sympy.Symbol("theta")
+    >>> _radicands_for_roots(2*sympy.sqrt(sympy.cos(th) - sympy.cos(1)))
+    2*cos(theta) - 2*cos(1)
+    """
+    numerator, denominator = sympy.fraction(sympy.together(condition))
+    factors = [f.base ** (f.exp * 2) if f.is_Pow and f.exp.is_Rational and f.exp.q == 2 and f.exp > 0 else f
+               for f in sympy.Mul.make_args(numerator)]
+    return sympy.Mul(*factors) / denominator
 
 
 def _root_interval(scene, variable, x, key: str) -> tuple[float, float]:

@@ -12,7 +12,9 @@ from __future__ import annotations
 from functools import lru_cache
 
 import pytest
+import sympy
 
+from grader.expressions import parse_expression
 from grader.mechanics.lagrange import derive
 from grader.mechanics.scene import SceneError, parse_scene
 from tests.mechanics.conftest import SCENES
@@ -99,3 +101,138 @@ def test_an_extreme_whose_turning_points_have_no_closed_form_is_refused_not_gues
     text = (SCENES / "cart_quarter_circle.toml").read_text()
     with pytest.raises(SceneError, match="turns back, but where it does"):
         derive(parse_scene(text, source="cart_quarter_circle.toml"))
+
+
+# A block from rest on top of a smooth hemisphere M free on a smooth floor (Morin): with (M + m) Ẋ +
+# m R θ̇ cos θ = 0 and energy, θ̇² = 2 g (M + m)(1 − cos θ)/(R (M + m sin²θ)); the normal force, from
+# the block's acceleration towards the centre in the hemisphere's (accelerated) frame,
+# N = M m g (3 (M + m) cos θ − m cos³θ − 2 (M + m))/(M + m sin²θ)². It vanishes where
+# k c³ − 3 c + 2 = 0 (c = cos θ, k = m/(M + m)): three real roots for 0 < k < 1, the one in (0, 1) Viète's
+# c = (2/√k) cos(acos(−√k)/3 − 2π/3) (√3 − 1 for M = m).
+HEMISPHERE_C = "(2*sqrt((M + m)/m)*cos(acos(-sqrt(m/(M + m)))/3 - 2*pi/3))"
+
+
+@pytest.mark.parametrize("answer, expected", [
+    ("hemisphere_velocity", "-m*R*thetadot*cos(theta)/(M + m)"),
+    ("angular_speed_squared", "2*g*(M + m)*(1 - cos(theta))/(R*(M + m*sin(theta)^2))"),
+    ("normal_force", "M*m*g*(3*(M + m)*cos(theta) - m*cos(theta)^3 - 2*(M + m))/(M + m*sin(theta)^2)^2"),
+])
+def test_a_block_on_a_hemisphere_free_on_a_floor(answer, expected):
+    d = derived("movable_hemisphere")
+    agree(d, answer, expected)
+    assert_exactly(d, answer, expected)
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # a cubic with three real roots: real closed forms (Viète), never Cardano's complex cube roots
+    ("separation_cos", HEMISPHERE_C),
+    ("hemisphere_speed_at_separation",
+     f"m*{HEMISPHERE_C}/(M + m)*sqrt(2*g*R*(M + m)*(1 - {HEMISPHERE_C})/(M + m*(1 - {HEMISPHERE_C}^2)))"),
+    ("separation_angle_numeric", f"acos({HEMISPHERE_C})"),
+])
+def test_a_block_leaves_a_hemisphere_free_on_a_floor_at_a_root_of_a_cubic(answer, expected):
+    d = derived("movable_hemisphere")
+    agree(d, answer, expected)
+    assert "I" not in str(d.answers[answer])
+
+
+# A bead on a vertical hoop spun at ω about a vertical tangent (the axis at a (1 + sin θ) from the
+# bead), released at rest relative to the hoop at θ = 0.3: energy in the turning frame,
+# θ̇² = ω² ((sin θ + 2) sin θ − (sin θ₀ + 2) sin θ₀) + 2 g (cos θ − cos θ₀)/a, so it turns back where
+# that vanishes again, at θ = 1.45783 for a = 0.2, ω = 6, g = 9.81 (a root without closed form).
+HOOP_ON_A_TANGENT = r'''id = "hoop_tangent_axis"
+title = "Bead on a vertical hoop spun about a vertical tangent line"
+
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 0.05 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+a = { dimension = "length", domain = "positive", value = 0.2 }
+omega = { dimension = "angular_velocity", domain = "positive", value = 6.0 }
+
+[coordinates]
+rho = { dimension = "length", domain = "positive" }
+phi = { dimension = "angle" }
+z = { dimension = "length" }
+
+[energy]
+kinetic = "m/2*(rhodot^2 + rho^2*phidot^2 + zdot^2)"
+potential = "m*g*z"
+
+[[constraints]]
+name = "drive"
+f = "phi - omega*t"
+
+[[constraints]]
+name = "hoop"
+f = "(rho - a)^2 + z^2 - a^2"
+
+[parametrization.variables]
+theta = { dimension = "angle", domain = [-3.1416, 3.1416] }
+
+[parametrization.map]
+rho = "a*(1 + sin(theta))"
+z = "-a*cos(theta)"
+phi = "omega*t"
+
+[initial]
+theta = 0.3
+thetadot = 0
+
+[[answers]]
+name = "turning_angle"
+kind = "numeric"
+expr = "theta"
+where = "thetadot = 0"
+unit = "rad"
+'''
+
+
+def test_where_a_velocity_vanishes_without_a_closed_form_is_the_turning_point_found_numerically():
+    """θ̇ = 0 from energy is √(f(θ)) = 0, which touches 0 at the turning point without crossing it; it
+    was refused as having no root."""
+    from grader.expressions.implicit import Implicit
+    from grader.mechanics.special_values import _numeric
+
+    d = derive(parse_scene(HOOP_ON_A_TANGENT, source="hoop_tangent_axis.toml"))
+    rule = Implicit.from_json(d.implicit["turning_angle"])
+    condition = parse_expression(rule.condition, d.scene.namespace).expr
+    numbers = {s: sympy.Float(v, 30) for s, v in {"a": 0.2, "omega": 6.0, "g": 9.81}.items()}
+    at_values = condition.xreplace({d.scene.namespace.symbol(n): v for n, v in numbers.items()})
+    theta = d.scene.namespace.symbol("theta")
+    assert abs(rule.solve(_numeric(at_values, theta)) - 1.45783) < 1e-4
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # A bead on a hoop spun up about its vertical diameter, φ = α t²/2: with φ̇ = α t,
+    # θ̈ = φ̇² sin θ cos θ − (g/a) sin θ; the motor's torque is d/dt(m a² sin²θ φ̇), and the hoop's
+    # sideways push on the bead that torque over the lever a sin θ.
+    ("equation_of_motion", "(alpha^2*t^2*cos(theta) - g/a)*sin(theta)"),
+    ("drive_torque", "m*a^2*alpha*(2*t*thetadot*sin(theta)*cos(theta) + sin(theta)^2)"),
+    ("sideways_force", "m*a*alpha*(2*t*thetadot*cos(theta) + sin(theta))"),
+    # The lowest point stops being stable once φ̇² = α²t² passes g/a: a moment the parameters alone fix,
+    # though the motion has no closed form (it was refused for that).
+    ("lowest_point_unstable_time", "sqrt(g/a)/alpha"),
+])
+def test_a_bead_on_a_hoop_spun_up_at_a_constant_rate(answer, expected):
+    d = derived("hoop_angular_acceleration")
+    agree(d, answer, expected)
+    assert_exactly(d, answer, expected)
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # A solid ball (I = 2ma²/5) rolling in a bowl, its centre on a circle of radius R − a: energy gives
+    # (7/10) m (R − a)² θ̇² = m g (R − a)(cos θ − cos θ₀); along the groove m (R − a) θ̈ = −m g sin θ + F
+    # with F the friction, and for the spin (2/5) m a² ψ̈ = −a F: F = 2 m g sin θ/7 (against the slide);
+    # across it N − m g cos θ = m (R − a) θ̇², so N = m g (17 cos θ − 10 cos θ₀)/7.
+    ("normal_force", "m*g*(17*cos(theta) - 10*cos(theta0))/7"),
+    ("friction_force", "2*m*g*sin(theta)/7"),
+    ("bottom_normal_force", "m*g*(17 - 10*cos(theta0))/7"),
+    # |F|/N = 2 sin θ/(17 cos θ − 10 cos θ₀) grows with |θ|: its largest is at the release, (2/7) tan θ₀
+    # (it was refused: the bars' derivative ran the solve out of its budget).
+    ("least_friction_coefficient", "2*tan(theta0)/7"),
+    ("small_oscillation_frequency", "sqrt(5*g/(7*(R - a)))"),
+])
+def test_a_ball_rolling_in_a_bowl(answer, expected):
+    d = derived("sphere_in_bowl")
+    agree(d, answer, expected)
+    assert_exactly(d, answer, expected)

@@ -12,6 +12,7 @@ import sympy
 from grader.expressions import parse_expression
 from grader.mechanics.lagrange import derive
 from grader.mechanics.scene import SceneError, parse_scene
+from grader.mechanics import special_values
 from grader.mechanics.special_values import solve_for
 
 SCENES = Path(__file__).resolve().parent / "scenes"
@@ -712,3 +713,45 @@ where = "thetaddot = 0"
         assert abs(got - want) < 1e-12 * max(1.0, abs(want)), (name, got, want)
         # sin(θ* + β) at θ* = acos c is written in c (sin β c + cos β √(1 − c²)), not left as sin(β + acos c)
         assert not d.answers[name].has(sympy.acos), d.answers[name]
+
+
+_c = sympy.Symbol("c")
+_k, _M, _m = sympy.symbols("k M m", positive=True)
+
+
+@pytest.mark.parametrize("cubic, roots", [
+    (_c ** 3 - 3 * _c + 1, [1.5320888862, 0.3472963553, -1.8793852416]),  # three real roots: Viète's
+    (_c ** 3 + _c + 1, [-0.6823278038]),                                      # one: Cardano's, real cube roots
+    # a block leaving a hemisphere free on a floor: three real roots for every M, m > 0
+    (_m * _c ** 3 - 3 * (_M + _m) * _c + 2 * (_M + _m), None),
+])
+def test_a_cubics_real_roots_are_written_with_real_numbers(cubic, roots):
+    found = special_values._real_cubic_roots(cubic, _c)
+    assert not any(r.has(sympy.I) for r in found)
+    if roots is None:  # symbolic: each is a root at values of the parameters, real there
+        point = {_M: 1.5, _m: 0.5}
+        values = [complex(r.evalf(30, subs=point)) for r in found]
+        assert len(values) == 3 and all(abs(v.imag) < 1e-25 for v in values)
+        assert all(abs(complex(cubic.evalf(30, subs={**point, _c: v.real}))) < 1e-12 for v in values)
+    else:
+        assert [round(float(r), 9) for r in found] == [round(r, 9) for r in roots]
+
+
+def test_a_cubic_with_one_or_three_real_roots_as_the_parameters_go_is_left_to_solve():
+    """(m2 − m1) s³ + 3 m1 s − 2 m1 s0 (the rod in a corner, two masses): neither real form holds
+    for all masses, so neither is offered (and solve's complex form is refused by the caller)."""
+    s, m1, m2, s0 = sympy.symbols("s m1 m2 s0", positive=True)
+    assert special_values._real_cubic_roots((m2 - m1) * s ** 3 + 3 * m1 * s - 2 * m1 * s0, s) is None
+    assert not special_values._typeable(sympy.sqrt(3) * sympy.I * s + s ** 2)
+
+
+def test_a_numeric_answer_whose_closed_form_needs_complex_numbers_is_found_numerically():
+    """The rod in a corner with two masses, the angle where it leaves the wall asked as a number: solve's
+    form has i in it, so the root is found numerically (it was refused for the i)."""
+    text = scene_text("rod_in_corner", *TWO_MASSES)
+    start = text.index('name = "leave_sin"')
+    end = text.find("[[answers]]", start)
+    block = text[start:end]
+    text = text[:start] + block.replace('where = "wall_force = 0"', 'where = "wall_force = 0"\nkind = "numeric"')
+    d = derive(parse_scene(text, "t.toml"))
+    assert d.implicit["leave_sin"]["unknown"] == "theta" and "I" not in str(d.answers["leave_sin"])

@@ -106,6 +106,8 @@ CONFIRMED_ELSEWHERE = {
     ("cart_quarter_circle", "max_height"),
     ("cart_quarter_circle", "rim_angular_speed_squared"),
     ("cart_quarter_circle", "least_launch_speed"),
+    ("sphere_in_bowl", "least_friction_coefficient"),
+    ("sphere_in_bowl", "small_oscillation_frequency"),
 }
 
 

@@ -374,3 +374,27 @@ def test_block_up_a_track_on_a_free_cart_climbs_to_the_engines_height_and_reache
     at_rim = _launched(model, faster, rim).first("rim")
     expected = closed_form(model, answers, "rim_angular_speed_squared", v0=faster)
     assert abs(at_rim.qdot[2] ** 2 - expected) < 1e-6 * expected
+
+
+def test_ball_rolling_in_a_bowl_needs_no_more_friction_than_the_engines_least_coefficient():
+    """|F|/N over a whole swing of the integrated motion peaks at the engine's value (at the release)."""
+    model, answers = engine("sphere_in_bowl")
+    R, a, theta0 = (model.values[n] for n in ("R", "a", "theta0"))
+    b = R - a
+    motion = simulate(model.numeric, [b, theta0, -b * theta0 / a], [0.0, 0.0, 0.0], 2.5,
+                      sample_times=np.linspace(0.0, 2.5, 2001))
+    ratios = [abs(s.multiplier("roll")) / abs(s.multiplier("contact")) for s in motion.samples]
+    expected = closed_form(model, answers, "least_friction_coefficient")
+    assert max(ratios) <= expected * (1 + 1e-6)
+    assert abs(max(ratios) - expected) < 1e-6 * expected
+    assert min(s.q[1] for s in motion.samples) < -0.99 * theta0  # a whole swing, out to the other side
+
+
+def test_ball_rolling_in_a_bowl_oscillates_at_the_engines_rate():
+    model, answers = engine("sphere_in_bowl")
+    R, a = model.values["R"], model.values["a"]
+    b, theta = R - a, 1e-4
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, [b, theta, -b * theta / a], [0.0, 0.0, 0.0], lambda s: s.q[1], 0.0,
+                          2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
