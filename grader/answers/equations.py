@@ -1389,8 +1389,16 @@ def _positive_quadratic(expr: sympy.Expr) -> bool:
 
 
 def _nonzero_on(expr: sympy.Expr, domains: dict) -> bool | None:
-    """True when ``expr`` is provably nonzero (and finite) on the whole declared domain, else None."""
-    for factor in sympy.Mul.make_args(sympy.factor_terms(expr)):
+    """True when ``expr`` is provably nonzero (and finite) on the whole declared domain, else None.
+
+    Factor by factor: cancelling a ratio multiplies out a product of nonzero factors ((2 + cos θ₁)
+    times a double pendulum's 2m₁ + m₂ − m₂ cos 2(θ₁ − θ₂)), and each is shown nonzero by its own rule,
+    the sum they multiply out to by none."""
+    try:
+        factored = sympy.factor(expr) if _nodes(expr) <= FACTOR_MAX_NODES else sympy.factor_terms(expr)
+    except (sympy.PolynomialError, ValueError, TypeError):
+        factored = sympy.factor_terms(expr)
+    for factor in sympy.Mul.make_args(factored):
         if factor.is_Pow and factor.exp.is_Integer:
             factor = factor.base  # a power vanishes where its base does (and has poles where it has zeros)
         if factor.is_number:

@@ -108,6 +108,31 @@ def test_a_state_dependent_factor_nonzero_on_the_whole_domain_is_right(answer):
     assert v.verdict == "equivalent" and v.certainty == "proved", v.reason
 
 
+DOUBLE_PENDULUM = {
+    "g": {"dimension": "acceleration", "domain": "positive"}, "l1": {"dimension": "length", "domain": "positive"},
+    "l2": {"dimension": "length", "domain": "positive"}, "m1": {"dimension": "mass", "domain": "positive"},
+    "m2": {"dimension": "mass", "domain": "positive"},
+    "theta1": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "coordinate"},
+    "theta2": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "coordinate"},
+    "theta1dot": {"dimension": "angular_velocity", "kind": "velocity"},
+    "theta2dot": {"dimension": "angular_velocity", "kind": "velocity"},
+    "theta1ddot": {"dimension": "angular_acceleration", "kind": "acceleration"},
+}
+_DP_TOP = ("(-g*(2*m1 + m2)*sin(theta1) - m2*g*sin(theta1 - 2*theta2) - 2*sin(theta1 - theta2)*m2*(theta2dot^2*l2"
+           " + theta1dot^2*l1*cos(theta1 - theta2)))")
+_DP_BOTTOM = "(l1*(2*m1 + m2 - m2*cos(2*theta1 - 2*theta2)))"
+
+
+@pytest.mark.parametrize("answer", [
+    f"{_DP_BOTTOM}*theta1ddot = {_DP_TOP}",                                   # the denominator cleared
+    f"(2 + cos(theta1))*{_DP_BOTTOM}*theta1ddot = (2 + cos(theta1))*{_DP_TOP}",  # and a second nonzero factor
+    f"(1 + sin(theta2)^2)*{_DP_BOTTOM}*theta1ddot = (1 + sin(theta2)^2)*{_DP_TOP}",
+])
+def test_a_product_of_nonzero_state_factors_is_right_though_cancelling_multiplies_it_out(answer):
+    v = check(f"theta1ddot = {_DP_TOP}/{_DP_BOTTOM}", answer, DOUBLE_PENDULUM, kind="equation")
+    assert v.verdict == "equivalent" and v.certainty == "proved", v.reason
+
+
 @pytest.mark.parametrize("answer", [
     "x (rddot - r thetadot^2 + g) = 0",            # x is real: zero at x = 0
     "thetadot (rddot - r thetadot^2 + g) = 0",
