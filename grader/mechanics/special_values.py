@@ -204,9 +204,14 @@ def _at_roots(evaluator, spec, condition, unknown, roots, target: set, key: str,
         # At an equilibrium the answer is taken at rest too: the normal force on a particle resting
         # relative to a turning plane has no Coriolis term (rather than "udot cannot be eliminated").
         allowed = allowed | set(velocities)
-    value = evaluator.reduce(spec.expr, allowed, f"answers ({spec.name}).expr", readable=readable)
+    fixed = {} if at_rest else _velocity_the_condition_fixes(evaluator, spec)
+    # A velocity the condition sets (θ̇ = 0, where a block is highest on a free cart's track) is set
+    # so in the answer, rather than written with energy and taken at the root: the cart's speed there
+    # is m v₀/(M + m), and through θ* it kept R and g (it was refused for them).
+    value = evaluator.reduce(spec.expr, allowed | set(fixed), f"answers ({spec.name}).expr", readable=readable)
     if at_rest:
         value = value.xreplace(velocities)
+    value = value.xreplace(fixed)
     if not readable:
         _defined_at_roots(evaluator, spec, condition, unknown, roots, value, key)
     chosen, *others = _choose_root(evaluator, spec, condition, unknown, roots, value, key, at_rest)
@@ -214,13 +219,24 @@ def _at_roots(evaluator, spec, condition, unknown, roots, target: set, key: str,
     if turned is not None:
         # Reached after the motion has turned back: u̇ there has the other sign than at the start
         # (θ̇ < 0 where a bob launched upwards comes back down through θ = 0.1).
-        value = evaluator.reduce(spec.expr, allowed, f"answers ({spec.name}).expr", readable=readable, signs=turned)
+        value = evaluator.reduce(spec.expr, allowed | set(fixed), f"answers ({spec.name}).expr", readable=readable,
+                                 signs=turned).xreplace(fixed)
     result = human_form(_at_root(value, unknown, chosen))
     if not readable:
         if result.has(sympy.nan, sympy.zoo, sympy.oo, -sympy.oo):
             raise SceneError(evaluator.scene.source, key, "undefined at the root as solved")
         _no_leftover(evaluator.scene, spec, result, target)
     return value, chosen, others, result
+
+
+def _velocity_the_condition_fixes(evaluator, spec) -> dict:
+    """{u̇: c} when the condition is u̇ = c for an independent velocity and c has no state in it, else {}."""
+    lhs, rhs = spec.where
+    velocities = {u.dot for u in evaluator.reduction.independent.values()}
+    for velocity, value in ((lhs, rhs), (rhs, lhs)):
+        if velocity in velocities and not value.free_symbols & evaluator.state_symbols():
+            return {velocity: value}
+    return {}
 
 
 def _at_root(value: sympy.Expr, x: sympy.Symbol, root: sympy.Expr) -> sympy.Expr:

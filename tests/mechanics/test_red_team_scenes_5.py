@@ -75,6 +75,9 @@ def moving_cart():
     # N on the block in its state (θ, θ̇): M m (g cos θ + R θ̇²)/(M + m sin²θ), as for a pendulum on a
     # sliding support (the track pushes instead of the rod pulling).
     ("normal_force_state", "M*m*(g*cos(theta) + R*thetadot^2)/(M + m*sin(theta)^2)"),
+    # Where θ̇ = 0 the block moves with the cart, m v0/(M + m): the condition sets θ̇ in the answer
+    # (through the height θ* it reached, R and g were left in it, and it was refused).
+    ("cart_speed_at_max", "m*v0/(M + m)"),
 ])
 def test_a_block_launched_up_a_track_on_a_free_cart(answer, expected):
     d = derived("cart_quarter_circle")
