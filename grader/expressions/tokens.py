@@ -150,7 +150,7 @@ MATHEMATICA_CHARACTERS = {
        and unicodedata.name(char, "").startswith("GREEK SMALL LETTER") and "FINAL" not in unicodedata.name(char, "")},
     **{"Capital" + name: char for char, name in GREEK_CHARS.items() if name[:1].isupper()},
     "CurlyTheta": "ϑ", "CurlyPhi": "φ", "CurlyEpsilon": "ε", "CurlyRho": "ϱ", "Ell": "ℓ",
-    "Times": "×", "CenterDot": "·", "Minus": "−", "Divide": "÷",
+    "Times": "×", "CenterDot": "·", "Minus": "−", "Divide": "÷", "Degree": "°",
 }
 _CONSOLE_PROMPT = re.compile(r"\s*(?:(?:In|Out)\[\d+\]\s*:?=|>>|\(%[io]\d+\))")
 
@@ -901,6 +901,8 @@ class _Tokenizer:
         the character it names: a letter starts a name there (``\\[Theta]'[t]``, ``\\[Omega]0``)."""
         if character in GREEK_CHARS:
             self.identifier(start, GREEK_CHARS[character], end)
+        elif character == "°":
+            self.degrees(start, end)
         else:
             self.emit("op", OPERATOR_CHARS[character], start, end)
 

@@ -191,6 +191,7 @@ def _mechanics():
     (r"m g \[Minus] m l \[Omega]^2", "m g - m l ω^2"),
     (r"Cos[\[CurlyTheta]]", "cos θ"),
     (r"\[Theta]'", "θ̇"),
+    (r"l Sin[30 \[Degree]]", "l sin(30°)"),
 ])
 def test_mathematicas_named_characters_read_as_the_characters(text, same_as):
     ns = _mechanics()
