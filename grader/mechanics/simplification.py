@@ -51,6 +51,7 @@ import functools
 import math
 
 import sympy
+from sympy.core.mul import _keep_coeff
 
 __all__ = ["contract_double_angles", "declared_domains", "half_angles", "identically_zero", "in_single_angles", "factored_sums", "gathered_roots", "grouped", "human_form", "inverse_hyperbolic", "joined_roots",
            "quick_form", "readable_denominator", "signs_in_front", "spread_denominator", "tidy_radicands", "tidy_trig"]
@@ -285,9 +286,12 @@ def factored_sums(expr: sympy.Expr) -> sympy.Expr:
     M**2 - m**2
     """
     def factored(total):
-        if len(total.args) > _FACTORED_TERMS or not total.is_polynomial() or total.has(sympy.Float):
+        # A function is one more variable here: cos²kx − 2 cos kx + 1 is (cos kx − 1)² (a hill's normal force).
+        functions = {f: sympy.Dummy() for f in total.atoms(sympy.Function)}
+        masked = total.xreplace(functions)
+        if len(total.args) > _FACTORED_TERMS or not masked.is_polynomial() or total.has(sympy.Float):
             return total  # (factored, 0.3 M² + 0.6 M m + 0.3 m² would read 0.3 (1.0 M + 1.0 m)²)
-        candidate = sympy.factor(total)
+        candidate = sympy.factor(masked).xreplace({d: f for f, d in functions.items()})
         return candidate if sympy.count_ops(candidate) < sympy.count_ops(total) else total
 
     return expr.replace(lambda e: e.is_Add, factored)
@@ -998,13 +1002,13 @@ def joined_roots(expr: sympy.Expr) -> sympy.Expr:
     return joined
 
 
-def _join_roots(expr: sympy.Expr, bounds: tuple, order: tuple) -> sympy.Expr:
-    """:func:`joined_roots` of every product in ``expr``, from the leaves up."""
+def _join_roots(expr: sympy.Expr, bounds: tuple, order: tuple, in_product: bool = False) -> sympy.Expr:
+    """:func:`joined_roots` of every product (and every root standing alone) in ``expr``, from the leaves up."""
     if not expr.args or expr.is_Atom:
         return expr
-    args = [_join_roots(a, bounds, order) for a in expr.args]
-    if expr.is_Mul:
-        joined = _joined_product(args, bounds, order)
+    args = [_join_roots(a, bounds, order, in_product=expr.is_Mul) for a in expr.args]
+    if expr.is_Mul or (_is_root(expr) and not in_product):  # a root in a product: the product's to join
+        joined = _joined_product(args if expr.is_Mul else [expr.func(*args, evaluate=False)], bounds, order)
         if joined is not None:
             return joined
     if all(new is old for new, old in zip(args, expr.args)):
@@ -1015,15 +1019,14 @@ def _join_roots(expr: sympy.Expr, bounds: tuple, order: tuple) -> sympy.Expr:
 
 
 def _joined_product(factors: list, bounds: tuple, order: tuple) -> sympy.Expr | None:
-    """The product of ``factors`` with its square roots joined into one, or None where that is not
-    shown exact or there are fewer than two roots."""
+    """The product of ``factors`` with its square roots joined into one and the radicand tidied (numbers
+    and signs), or None where that is not shown exact or changes nothing."""
     roots = [f for f in factors if _is_root(f)]
-    if len(roots) < 2:
+    symbolic_roots = [r for r in roots if not r.base.is_Rational]
+    if not symbolic_roots:
         return None
     unknown = 0
-    for root in roots:
-        if root.base.is_Rational:
-            continue
+    for root in symbolic_roots:
         sign = _factor_sign(root.base, bounds, order)
         if sign == -1 or (sign is None and root.exp < 0):
             return None
@@ -1032,21 +1035,47 @@ def _joined_product(factors: list, bounds: tuple, order: tuple) -> sympy.Expr | 
         return None
     coefficient = sympy.Mul(*[f for f in factors if f.is_Rational])
     others = [f for f in factors if not _is_root(f) and not f.is_Rational]
-    inside, symbolic = _tidy_radicand(sympy.Mul(*[r.base ** (2 * r.exp) for r in roots
-                                                  if not r.base.is_Rational])).as_coeff_Mul()
+    # factor_terms for the numbers of a sum (2r²/3 − 2r₀²/3 is 2/3 times r² − r₀²), which sympy multiplies out
+    inside, symbolic = sympy.factor_terms(
+        _tidy_radicand(sympy.Mul(*[r.base ** (2 * r.exp) for r in symbolic_roots]))).as_coeff_Mul()
     numbers = sympy.Mul(*[r.base ** (2 * r.exp) for r in roots if r.base.is_Rational]) * coefficient ** 2 * inside
-    if not numbers.is_Rational or not numbers.is_positive:
+    if not numbers.is_Rational or numbers == 0:
         return None
+    if numbers < 0:
+        # −d(M + 2m)/(g(m₁ sin β − m₂)) under a root: the minus into a sum, d(M + 2m)/(g(m₂ − m₁ sin β))
+        negated = _one_sum_negated(symbolic)
+        symbolic, numbers = (negated if negated is not None else -symbolic), -numbers
     # Whole numbers outside, the rest of the numbers inside: 4√3/3 is 4√(1/3), 2√2 stays 2√2.
     whole = _square_part(numbers.p) / _square_part(numbers.q)
-    radicand = _negative_pairs_flipped(numbers / whole ** 2 * symbolic, bounds, order)
+    radicand = _keep_coeff(numbers / whole ** 2, _negative_pairs_flipped(symbolic, bounds, order))
+    if len(roots) == 1 and roots[0].exp > 0 and radicand == roots[0].base and whole == abs(coefficient):
+        return None  # nothing to tidy: keep the product as sympy built it
     numerator, denominator = sympy.fraction(radicand)
     if numerator.is_number and numerator.is_positive:
         root = sympy.Pow(denominator / numerator, -sympy.S.Half, evaluate=False)
     else:
         root = sympy.Pow(radicand, sympy.S.Half, evaluate=False)
     leading = [whole * sympy.sign(coefficient)] if whole * sympy.sign(coefficient) != 1 else []
-    return sympy.Mul(*leading, *others, root, evaluate=False)
+    return sympy.Mul(*leading, *others, root, evaluate=False) if leading or others else root
+
+
+def _one_sum_negated(expr: sympy.Expr) -> sympy.Expr | None:
+    """``-expr`` written by negating the one of its sums with the largest share of negative terms (m₁ sin β
+    − m₂ becomes m₂ − m₁ sin β), or None if no sum has a negative term (R + r stays as it is)."""
+    numerator, denominator = sympy.fraction(expr)
+    candidates = []
+    for which, part in enumerate((numerator, denominator)):
+        for i, f in enumerate(sympy.Mul.make_args(part)):
+            if f.is_Add:
+                negative = sum(t.could_extract_minus_sign() for t in f.args)
+                if negative:
+                    candidates.append((negative / len(f.args), which, i))
+    if not candidates:
+        return None
+    _, which, i = max(candidates)
+    parts = [list(sympy.Mul.make_args(numerator)), list(sympy.Mul.make_args(denominator))]
+    parts[which][i] = -parts[which][i]
+    return sympy.Mul(*parts[0]) / sympy.Mul(*parts[1])
 
 
 def _square_part(n: int) -> sympy.Integer:

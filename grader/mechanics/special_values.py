@@ -88,7 +88,13 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
             return _at_time(evaluator, spec, target, key)
         except SceneError:
             pass  # no motion in closed form: read as before
-    at_rest = spec.kind == "small_oscillation"
+    # An acceleration set to zero names an equilibrium; without a motion to follow ([initial] does not
+    # give it), an answer there is taken at rest (the force on a bead resting at a spinning hoop's
+    # relative equilibrium). With one, as the body passes through it (a pendulum in an accelerating car).
+    # (A velocity left free by in_terms_of' coordinates is a steady motion instead: r̈ = 0 for φ̇ at r.)
+    at_rest = spec.kind == "small_oscillation" or (_sets_an_acceleration_to_zero(evaluator, spec)
+                                                   and _no_motion_given(evaluator)
+                                                   and not target & evaluator.state_symbols())
     try:
         return _where(evaluator, spec, target, key, at_rest=at_rest)
     except SceneError as error:
@@ -142,6 +148,12 @@ def _start_left_out(evaluator, target: set) -> bool:
     """Whether [initial] uses parameters, none of which the answer may be written in."""
     used = set().union(*(v.free_symbols for v in evaluator.scene.initial.values())) & evaluator.parameters
     return bool(used) and not used & target
+
+
+def _no_motion_given(evaluator) -> bool:
+    """Whether [initial] leaves out an independent coordinate or its velocity: no motion to follow."""
+    initial = evaluator.scene.initial
+    return any(u.name not in initial or u.dot.name not in initial for u in evaluator.reduction.independent.values())
 
 
 def _where(evaluator, spec, target: set, key: str, at_rest: bool) -> sympy.Expr:

@@ -239,3 +239,88 @@ def test_a_ball_rolling_in_a_bowl(answer, expected):
     d = derived("sphere_in_bowl")
     agree(d, answer, expected)
     assert_exactly(d, answer, expected)
+
+
+# A bead on a hoop spun at ω about its vertical diameter, tied to the lowest point by a spring k of zero
+# length, without [initial] (second red team of the session). At rest in the turning frame:
+# m R ω² sin θ cos θ = (k R + m g) sin θ, so cos θₑ = (kR + mg)/(mRω²); the hoop's force along the radius
+# is then λ = R (k cos θ − k + m ω² sin²θ) + m g cos θ = R (m ω² − k) there.
+HOOP_SPRING_NO_START = r"""id = "hoop_bead_spring_to_bottom"
+title = "Bead on a hoop spun about its vertical diameter, tied to the hoop's lowest point by a spring"
+statement = '''
+A smooth circular hoop of radius $R$ is turned at the constant angular velocity $\omega$ about its
+vertical diameter. A bead of mass $m$ slides on it and is tied to the hoop's lowest point by a
+spring of stiffness $k$ and zero natural length (Marion–Thornton, Morin). Coordinates in the hoop's
+plane: the bead's distance $r$ from the centre and the angle $\theta$ from the downward vertical.
+'''
+
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 0.1 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+k = { dimension = "stiffness", domain = "positive", value = 2.0 }
+R = { dimension = "length", domain = "positive", value = 0.5 }
+omega = { dimension = "angular_velocity", domain = "positive", value = 12.0 }
+
+[coordinates]
+r = { dimension = "length", domain = "positive" }
+theta = { dimension = "angle", domain = [0.01, 3.1] }
+
+[energy]
+kinetic = "m/2*(rdot^2 + r^2*thetadot^2 + omega^2*r^2*sin(theta)^2)"
+potential = "k/2*(r^2 - 2*R*r*cos(theta) + R^2) - m*g*r*cos(theta)"
+
+[[constraints]]
+name = "hoop"
+f = "R - r"
+
+[[answers]]
+name = "equation_of_motion"
+kind = "equation"
+expr = "thetaddot"
+in_terms_of = ["m", "g", "k", "R", "omega", "theta"]
+
+[[answers]]
+name = "equilibrium_cos"
+expr = "cos(theta)"
+where = "thetaddot = 0"
+in_terms_of = ["m", "g", "k", "R", "omega"]
+
+[[answers]]
+name = "frequency"
+kind = "small_oscillation"
+expr = "theta"
+where = "thetaddot = 0"
+
+[[answers]]
+name = "hoop_force_state"
+expr = "lambda_hoop"
+in_terms_of = ["m", "g", "k", "R", "omega", "theta", "thetadot"]
+dimension = "force"
+
+[[answers]]
+name = "hoop_force_equilibrium"
+expr = "hoop_force_state"
+where = "thetaddot = 0"
+in_terms_of = ["m", "g", "k", "R", "omega"]
+dimension = "force"
+
+[[answers]]
+name = "critical_omega"
+expr = "omega"
+where = "equilibrium_cos = 1"
+in_terms_of = ["m", "g", "k", "R"]
+dimension = "angular_velocity"
+"""
+
+
+@pytest.mark.parametrize("answer, expected", [
+    ("equilibrium_cos", "(k*R + m*g)/(m*R*omega^2)"),
+    # no motion to follow: the answer at the equilibrium is taken at rest (it was refused, needing
+    # [initial] for θ̇ from energy)
+    ("hoop_force_equilibrium", "R*(m*omega^2 - k)"),
+    ("critical_omega", "sqrt((k*R + m*g)/(m*R))"),
+])
+def test_an_answer_at_an_equilibrium_without_a_motion_is_taken_at_rest(answer, expected):
+    d = derive(parse_scene(HOOP_SPRING_NO_START, source="hoop_bead_spring_to_bottom.toml"))
+    agree(d, answer, expected)
+    assert_exactly(d, answer, expected)

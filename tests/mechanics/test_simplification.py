@@ -125,8 +125,10 @@ def test_a_rewriting_that_changes_the_value_is_dropped(monkeypatch):
     (m1 ** 3 + 3 * m1 ** 2 * m2 + 3 * m1 * m2 ** 2 + m2 ** 3, "(m1 + m2)**3"),
     # As many operations factored: left as it is.
     (M ** 2 - m ** 2, "M**2 - m**2"),
-    # Sines and cosines are left to the trigonometric rewritings.
-    (sin(theta) ** 2 + 2 * sin(theta) + 1, "sin(theta)**2 + 2*sin(theta) + 1"),
+    # A sine or cosine is one more variable: a hill's normal force has (cos kx − 1)², not cos²kx − 2 cos kx + 1.
+    (sin(theta) ** 2 + 2 * sin(theta) + 1, "(sin(theta) + 1)**2"),
+    (g * (cos(a * theta) ** 2 - 2 * cos(a * theta) + 1) + m, "g*(cos(a*theta) - 1)**2 + m"),
+    (sin(theta) ** 2 + cos(theta) ** 2, "sin(theta)**2 + cos(theta)**2"),  # no shorter product
 ])
 def test_small_sums_are_factored_where_shorter(expr, printed):
     assert sympy.sstr(simplification.factored_sums(expr)) == printed
@@ -385,6 +387,13 @@ _k = sympy.Symbol("k", positive=True)
     # two factors negative on the domains are written positive: a < R and cos θ₀ ≤ 1
     (2 * sqrt(g) * m * sqrt((a - R) * (cos(theta0) - 1)) / (sqrt(M + m) * sqrt(3 * M + m)), {theta0: (0.01, 1.5)},
      {a: R}, "2*m*sqrt(g*(1 - cos(theta0))*(R - a)/((M + m)*(3*M + m)))"),
+    # one root alone: a minus into the sum with most negative terms, and a sum's numbers out of it
+    (sqrt(-_d * (M + 2 * m) / (g * (m * sin(alpha) - M))), {}, {}, "sqrt(d*(M + 2*m)/(g*(M - m*sin(alpha))))"),
+    (sqrt(-_x / (g * (R + r))), {}, {}, "sqrt(-x/(g*(R + r)))"),  # no sum reads better negated
+    (2 * w * sqrt(2 * R ** 2 / 3 - 2 * r ** 2 / 3), {}, {}, "2*omega*sqrt(2*(R**2 - r**2)/3)"),
+    (w * sqrt(6 * R ** 2 - 6 * r ** 2) / 3, {}, {}, "omega*sqrt(2*(R**2 - r**2)/3)"),
+    (sqrt(16 * g * m * _d / (3 * M + 8 * m)), {}, {}, "4*sqrt(d*g*m/(3*M + 8*m))"),
+    (2 * sqrt(g * l), {}, {}, "2*sqrt(g*l)"),  # nothing to tidy
     # one radicand of unknown sign over the line is joined (√a√b = √(ab) for a ≥ 0) ...
     (sqrt(g) * sqrt(_s), {}, {}, "sqrt(g*s)"),
     # ... but not two, nor one under a division: √s/√g is not √(s/g) ... and 1/√s is not √(1/s) for s < 0
