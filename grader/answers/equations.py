@@ -49,8 +49,8 @@ STATE_KINDS = {"coordinate", "velocity", "acceleration", "multiplier", "force", 
 def state_symbols(variables: dict[str, dict], symbols: dict[str, sympy.Symbol], state: list[str] | None = None) -> set:
     """The variables a factor of an equation may not depend on.
 
-    Taken from ``state`` when given, else from each variable's ``kind``; else by name: names
-    ending in ``dot``/``ddot`` and any name ``q`` for which ``qdot`` exists. With no state at all,
+    Taken from ``state`` when given (with the accelerations, always), else from each variable's ``kind``;
+    else by name: names ending in ``dot``/``ddot`` and any name ``q`` for which ``qdot`` exists. With no state at all,
     every variable counts, so that only constant factors are accepted (never too lenient).
 
     Examples
@@ -62,7 +62,10 @@ def state_symbols(variables: dict[str, dict], symbols: dict[str, sympy.Symbol], 
     ['theta', 'thetaddot', 'thetadot']
     """
     if state:
-        chosen = {symbols[n] for n in state if n in symbols}
+        # The accelerations are the equations' unknowns whatever the list names: a state of coordinates and
+        # velocities, as the API describes it, must not turn them into parameters (that turned off every
+        # check of a factor or a mixing of the equations).
+        chosen = {symbols[n] for n in state if n in symbols} | set(_declared_accelerations(variables, symbols))
     else:
         chosen = {symbols[n] for n, spec in variables.items() if n in symbols and (spec or {}).get("kind") in STATE_KINDS}
         if not chosen and not any((spec or {}).get("kind") for spec in variables.values()):
@@ -78,7 +81,7 @@ def unknown_symbols(variables: dict[str, dict], symbols: dict[str, sympy.Symbol]
     """The accelerations: what equations of motion are solved for (sorted by name).
 
     Taken from each variable's ``kind`` ("acceleration"); with no kinds at all, from names ending
-    in ``ddot``. Only state variables count (`state_symbols`), so a declared ``state`` narrows them.
+    in ``ddot``. They are state variables whatever ``state`` lists (`state_symbols`).
 
     Examples
     --------
@@ -87,15 +90,18 @@ def unknown_symbols(variables: dict[str, dict], symbols: dict[str, sympy.Symbol]
     >>> syms = {n: sympy.Symbol(n) for n in names}
     >>> [s.name for s in unknown_symbols({n: {} for n in names}, syms)]
     ['thetaddot', 'xddot']
-    >>> unknown_symbols({n: {} for n in names}, syms, state=["theta", "thetadot"])
-    ()
+    >>> [s.name for s in unknown_symbols({n: {} for n in names}, syms, state=["theta", "thetadot"])]
+    ['thetaddot', 'xddot']
     """
     states = state_symbols(variables, symbols, state)
+    return tuple(sorted(set(_declared_accelerations(variables, symbols)) & states, key=lambda s: s.name))
+
+
+def _declared_accelerations(variables: dict[str, dict], symbols: dict[str, sympy.Symbol]) -> list:
+    """The variables of kind "acceleration"; with no kinds at all, the names ending in ``ddot``."""
     if any((spec or {}).get("kind") for spec in variables.values()):
-        chosen = {symbols[n] for n, spec in variables.items() if (spec or {}).get("kind") == "acceleration"}
-    else:
-        chosen = {s for n, s in symbols.items() if n.endswith("ddot")}
-    return tuple(sorted(chosen & states, key=lambda s: s.name))
+        return [symbols[n] for n, spec in variables.items() if n in symbols and (spec or {}).get("kind") == "acceleration"]
+    return [s for n, s in symbols.items() if n.endswith("ddot")]
 
 
 def _without_repeats(residuals: list[sympy.Expr]) -> list[sympy.Expr]:

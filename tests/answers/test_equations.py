@@ -805,3 +805,27 @@ def test_an_equation_another_one_implies_adds_nothing(pendulum, answer, expected
     assert verdict.verdict == expected, verdict.reason
     if expected == "equivalent":
         assert "implies" in verdict.reason
+
+
+_CART = {"M": {"dimension": "mass", "domain": "positive"}, "m": {"dimension": "mass", "domain": "positive"},
+         "l": {"dimension": "length", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"},
+         "x": {"dimension": "length", "kind": "coordinate"}, "xdot": {"dimension": "velocity", "kind": "velocity"},
+         "xddot": {"dimension": "acceleration", "kind": "acceleration"},
+         "theta": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "coordinate"},
+         "thetadot": {"dimension": "angular_velocity", "kind": "velocity"},
+         "thetaddot": {"dimension": "angular_acceleration", "kind": "acceleration"}}
+_CART_EOM = ("(M + m) xddot + m l thetaddot cos(theta) - m l thetadot^2 sin(theta) = 0; "
+             "l thetaddot + xddot cos(theta) + g sin(theta) = 0")
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # a row multiplied by an acceleration: the accelerations are no parameters, whatever `state` lists
+    ("(M + m) xddot + m l thetaddot cos(theta) - m l thetadot^2 sin(theta) = 0; "
+     "xddot (l thetaddot + xddot cos(theta) + g sin(theta)) = 0", "not_equivalent"),
+    # solved for the accelerations: a mixing by the state, invertible everywhere
+    ("(M + m sin(theta)^2) xddot = m sin(theta) (l thetadot^2 + g cos(theta)); "
+     "l (M + m sin(theta)^2) thetaddot = -sin(theta) ((M + m) g + m l thetadot^2 cos(theta))", "equivalent"),
+])
+@pytest.mark.parametrize("state", [None, ["x", "xdot", "theta", "thetadot"]])
+def test_a_state_of_coordinates_and_velocities_keeps_the_accelerations_unknowns(answer, expected, state):
+    assert check(_CART_EOM, answer, _CART, kind="equation", state=state).verdict == expected
