@@ -427,11 +427,34 @@ def _parameter_factor(reference: list[sympy.Expr], answer: list[sympy.Expr], par
             if _cancels_inside(row, factor, base):
                 continue  # (g - c)*(l*thetaddot/(g - c) + ...): it cancels, as tan(x)*cos(x) does
             if _nonzero_on(base, parameters.domains) is not True:
-                return Comparison(False, "numeric", f"your equation{f' {i + 1}' if len(answer) > 1 else ''} is "
-                                  f"multiplied by {base}, which depends on the parameters and could not be shown "
-                                  "nonzero for all their values: where it vanishes your equation no longer gives "
-                                  "the motion", evidence={"method": "symbolic"})
+                return _factor_may_vanish(base, f" {i + 1}" if len(answer) > 1 else "")
+    if len(answer) == 1 and len(reference) == 1:
+        # The factor as a whole, not only as typed: (m1 - m2)^2 xddot = (m1 - m2)^3 g/(m1 + m2) has none in
+        # common, and a square never changes sign between the parameter points.
+        ratio = _state_free_ratio(reference[0], answer[0], state)
+        for part in sympy.fraction(ratio) if ratio is not None else ():
+            if not part.is_number and _nonzero_on(part, parameters.domains) is not True:
+                return _factor_may_vanish(ratio, "")
     return None
+
+
+def _factor_may_vanish(factor: sympy.Expr, which: str) -> Comparison:
+    return Comparison(False, "numeric", f"your equation{which} is multiplied by {factor}, which depends on the "
+                      "parameters and could not be shown nonzero (and finite) for all their values: where it "
+                      "vanishes your equation no longer gives the motion", evidence={"method": "symbolic"})
+
+
+def _state_free_ratio(reference: sympy.Expr, answer: sympy.Expr, state: set) -> sympy.Expr | None:
+    """answer/reference cancelled, when it is free of the state and both are small enough, else None."""
+    if _nodes(reference) > FACTOR_MAX_NODES or _nodes(answer) > FACTOR_MAX_NODES:
+        return None
+    try:
+        ratio = sympy.cancel(sympy.together(answer / reference))
+        if ratio.free_symbols & state:
+            return None
+        return sympy.factor(ratio)  # (m1 - m2)**2, as the student wrote it, rather than multiplied out
+    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+        return None
 
 
 def _common_factors(expr: sympy.Expr) -> set:

@@ -829,3 +829,32 @@ _CART_EOM = ("(M + m) xddot + m l thetaddot cos(theta) - m l thetadot^2 sin(thet
 @pytest.mark.parametrize("state", [None, ["x", "xdot", "theta", "thetadot"]])
 def test_a_state_of_coordinates_and_velocities_keeps_the_accelerations_unknowns(answer, expected, state):
     assert check(_CART_EOM, answer, _CART, kind="equation", state=state).verdict == expected
+
+
+_ATWOOD_EOM = {"m1": {"dimension": "mass", "domain": "positive"}, "m2": {"dimension": "mass", "domain": "positive"},
+               "g": {"dimension": "acceleration", "domain": "positive"},
+               "omega": {"dimension": "angular_velocity", "domain": "nonnegative"},
+               "alpha": {"dimension": "angle", "domain": [0, 1.5708]},
+               "x": {"dimension": "length", "kind": "coordinate"}, "xdot": {"dimension": "velocity", "kind": "velocity"},
+               "xddot": {"dimension": "acceleration", "kind": "acceleration"}}
+
+
+@pytest.mark.parametrize("reference, answer, expected", [
+    # a parameter factor that can vanish though it never changes sign: a square, a nonnegative parameter,
+    # a sine over [0, π/2], and their reciprocals (second checker red team: these were accepted)
+    ("xddot = (m1 - m2) g/(m1 + m2)", "(m1 - m2)^2 xddot = (m1 - m2)^3 g/(m1 + m2)", "not_equivalent"),
+    ("xddot = (m1 - m2) g/(m1 + m2)", "(m1 + m2) xddot/(m1 - m2)^2 = g/(m1 - m2)", "not_equivalent"),
+    ("xddot = omega^2 x", "omega xddot - omega^3 x = 0", "not_equivalent"),
+    ("xddot = omega^2 x", "xddot/omega^2 = x", "not_equivalent"),
+    ("xddot = 2/3 g sin(alpha)", "3 xddot/sin(alpha) = 2 g", "not_equivalent"),
+    ("xddot = 2/3 g sin(alpha)", "3 sin(alpha) xddot = 2 g sin(alpha)^2", "not_equivalent"),
+    # ... and factors that cannot
+    ("xddot = (m1 - m2) g/(m1 + m2)", "(m1 + m2) xddot = (m1 - m2) g", "equivalent"),
+    ("xddot = (m1 - m2) g/(m1 + m2)", "(m1^2 + m2^2) xddot = (m1^2 + m2^2)(m1 - m2) g/(m1 + m2)", "equivalent"),
+    ("xddot = 2/3 g sin(alpha)", "3 (1 + cos(alpha)) xddot = 2 g sin(alpha) (1 + cos(alpha))", "equivalent"),
+])
+def test_a_parameter_factor_is_judged_as_a_whole_not_only_as_typed(reference, answer, expected):
+    verdict = check(reference, answer, _ATWOOD_EOM, kind="equation")
+    assert verdict.verdict == expected, verdict.reason
+    if expected == "not_equivalent":
+        assert "could not be shown nonzero" in verdict.reason
