@@ -734,15 +734,17 @@ def _state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: 
     >>> state_dependent_factor(ref, thetadot*ref, domains).equivalent
     False
     """
-    # A high power of a nonzero factor ((1 + theta**2)**400) changes no solution: set it aside
-    # rather than make cancel expand it.
-    kept = []
-    for factor in sympy.Mul.make_args(answer):
-        if factor.is_Pow and factor.exp.is_Integer and abs(int(factor.exp)) > FACTOR_MAX_POWER \
-                and _nonzero_on(factor.base, domains) is True:
-            continue
-        kept.append(factor)
-    answer = sympy.Mul(*kept)
+    # A factor nonzero on the whole domain ((1 + theta**2)**400, (2 + cos(theta))**4 (3 + sin(theta))**4)
+    # changes no solution: set it aside rather than make cancel multiply it out (past the size limits,
+    # where the product of nonzero factors could be shown nonzero by no rule). Also one every term has.
+    set_aside = [f for f in _common_factors(answer) if not f.is_number
+                 and _nonzero_on(f.base if f.is_Pow and f.exp.is_Integer else f, domains) is True]
+    if set_aside:
+        if answer.is_Add:
+            answer = sympy.Add(*[sympy.Mul(*[g for g in sympy.Mul.make_args(t) if g not in set_aside])
+                                 for t in answer.args])
+        else:
+            answer = sympy.Mul(*[g for g in sympy.Mul.make_args(answer) if g not in set_aside])
     if not (_nodes(reference) <= FACTOR_MAX_NODES and _nodes(answer) <= FACTOR_MAX_NODES):
         return None
     try:

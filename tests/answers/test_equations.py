@@ -858,3 +858,19 @@ def test_a_parameter_factor_is_judged_as_a_whole_not_only_as_typed(reference, an
     assert verdict.verdict == expected, verdict.reason
     if expected == "not_equivalent":
         assert "could not be shown nonzero" in verdict.reason
+
+
+_R = "(l thetaddot + g sin(theta))"
+
+
+@pytest.mark.parametrize("answer", [
+    # nonzero factors set aside before cancelling, which multiplied them out past the size limits (and
+    # past the budget): each is shown nonzero alone
+    f"(2 + cos(theta))^4 (3 + sin(theta))^4 {_R} = 0",
+    f"(1 + l thetadot^2/g)^6 (1 + theta^2)^6 (3 + cos(theta))^6 {_R} = 0",
+    f"(1 + l thetadot^2/g)^6 (1 + theta^2)^6 (3 + cos(theta))^6 {_R}^2 = 0",
+    "(2 + cos(theta)) l thetaddot = -(2 + cos(theta)) g sin(theta)",  # one every term has
+])
+def test_a_product_of_nonzero_factors_of_any_size_is_set_aside(pendulum, answer):
+    verdict = check(PENDULUM_EOM, answer, pendulum, kind="equation")
+    assert verdict.verdict == "equivalent", verdict.reason
