@@ -20,6 +20,7 @@ verdict.
 
 from __future__ import annotations
 
+import contextvars
 import itertools
 import math
 import time
@@ -189,6 +190,17 @@ def compare_equations(
     >>> compare_equations(ref, [thdd + g / l * sympy.cos(th)], P, S).certainty
     'proved'
     """
+    # The declared orders (x below L) for the proofs that a factor is nonzero (`_nonzero_on`).
+    token = _ORDER.set({**parameters.below, **states.below, **parameters.across, **states.across})
+    try:
+        return _compare_equations(reference, answer, parameters, states, options, deadline, compiled_reference,
+                                  answer_conditions, unknowns)
+    finally:
+        _ORDER.reset(token)
+
+
+def _compare_equations(reference, answer, parameters, states, options, deadline, compiled_reference,
+                       answer_conditions, unknowns) -> Comparison:
     k = len(reference)
     if len(answer) > k:
         distinct = _without_repeats(answer)
@@ -347,7 +359,7 @@ def _sign_region_points(exprs, parameters: Sampler, states: Sampler, start: int,
     for p in range(start + SIGN_REGION_PARAMETER_POINTS):
         new = False
         for j in range(n_states):
-            pattern = _sign_pattern(kinks, {**parameters.point(p), **states.point(p * n_states + j)})
+            pattern = _sign_pattern(kinks, states.joint(parameters.point(p), states.point(p * n_states + j)))
             if pattern is not None and pattern not in seen:
                 seen.add(pattern)
                 new = True
@@ -371,7 +383,7 @@ def _multiple_signs(ref: Compiled, ans: Compiled, parameters: Sampler, states: S
     points = [parameters.point(start + i) for i in range(SIGN_POINTS)]
     points += [parameters.wide_point(i) for i in range(SIGN_POINTS)]
     for i, params in enumerate(points):
-        point = {**params, **states.point(i)}
+        point = states.joint(params, states.point(i))
         try:
             r, _ = ref.at(point, prec)
             a, _ = ans.at(point, prec)
@@ -520,7 +532,7 @@ def _hidden_difference(reference: list[sympy.Expr], answer: list[sympy.Expr], un
         if d == 0 or len(sympy.Add.make_args(d)) >= len(sympy.Add.make_args(solved_a)) + len(
                 sympy.Add.make_args(solved_r)):
             return None
-        point = {**parameters.point(0), **states.point(0)}
+        point = states.joint(parameters.point(0), states.point(0))
         try:
             value, _ = Compiled(d, options.backend()).at(point, int(options.digits * LOG2_10) + 32)
         except (Undefined, Unresolved, Unsupported):
@@ -592,7 +604,7 @@ def _try_precision(refs, anss, params, states, p, k, prec, target):
     n_states = k + 2
     R, S, points, scale = [], [], [], -math.inf
     for j in range(n_states):
-        point = {**params, **states.point(p * n_states + j)}
+        point = states.joint(params, states.point(p * n_states + j))
         try:
             r, rs = _values(refs, point, prec, (p, j))
         except Undefined:
@@ -1013,7 +1025,7 @@ def _combination_at_points(m_r, c_r, m_s, c_s, unknowns, samplers, options, dead
         for j in range(MIXING_STATES):
             if _past(deadline):
                 return None
-            point = {**parameters.point(p), **states.point(p * MIXING_STATES + j)}
+            point = states.joint(parameters.point(p), states.point(p * MIXING_STATES + j))
             outcome = _combination_at(compiled, k, point, target, options.max_bits)
             if isinstance(outcome, dict):
                 return _acceleration_example(outcome, point, unknowns)
@@ -1437,11 +1449,28 @@ def _nonzero_on(expr: sympy.Expr, domains: dict) -> bool | None:
                 continue
             return None
         if factor.is_positive or factor.is_negative or _signed_as_squares(factor) or _no_real_root(factor, domains) \
-                or _positive_quadratic(factor):
+                or _positive_quadratic(factor) or _signed_by_the_order(factor):
             continue
         if _nonzero_in_balls(factor, domains) is not True:
             return None
     return True
+
+
+_ORDER: contextvars.ContextVar[dict] = contextvars.ContextVar("declared below", default={})
+
+
+def _signed_by_the_order(expr: sympy.Expr) -> bool:
+    """Whether ``expr`` has one sign once each declared ``a below b`` is b = a + s with s > 0: L − x, √(L² − x²)'s
+    L² − x² (x > 0), R² + d² − 2Rd cos θ = 4d(d + s) sin²(θ/2) + s² for d below R."""
+    order = {a: b for a, b in _ORDER.get().items() if a in expr.free_symbols or b in expr.free_symbols}
+    if not order or _nodes(expr) > FACTOR_MAX_NODES:
+        return False
+    gaps = {b: a + sympy.Dummy(positive=True) for a, b in order.items()}
+    shifted = expr.xreplace(gaps)
+    for form in (sympy.expand(shifted), sympy.factor(shifted)):
+        if form.is_positive or form.is_negative or _signed_as_squares(form):
+            return True
+    return False
 
 
 def _no_real_root(expr: sympy.Expr, domains: dict) -> bool:
@@ -1632,7 +1661,8 @@ def _sign_change(expr: sympy.Expr, parameters: Sampler, states: Sampler) -> dict
         return None
     seen = {}
     fixed = parameters.point(0)
-    points = [{**fixed, **states.point(i)} for i in range(12)] + [{**fixed, **states.wide_point(i)} for i in range(12)]
+    points = [states.joint(fixed, states.point(i)) for i in range(12)] + [states.joint(fixed, states.wide_point(i))
+                                                                           for i in range(12)]
     with flint.ctx.workprec(64):
         for point in points:
             env = {s: flint.arb(v) for s, v in point.items()}
@@ -1668,7 +1698,7 @@ def _compare_fixed_ratio(reference, answer, parameters, states, options) -> Comp
     for p in range(options.points * 2):
         ratios = []
         for j in range(2):
-            point = {**parameters.point(p), **states.point(2 * p + j)}
+            point = states.joint(parameters.point(p), states.point(2 * p + j))
             try:
                 r, _ = refs[0].at(point, prec)
             except (Undefined, Unresolved):

@@ -57,6 +57,22 @@ def _stressable(domain) -> bool:
         return False
 
 
+def _moved(value: float, bound: float, domain, below: bool) -> float:
+    """``value`` moved to the side of ``bound`` that ``below`` says, inside ``domain``; unchanged where the
+    domain has no room there (the order then fails, and the caller's own check says so)."""
+    kind = getattr(domain, "kind", None)
+    if kind == "interval":
+        lo, hi = float(domain.lo), float(domain.hi)
+        share = min(max((value - lo) / (hi - lo), 1e-3), 1 - 1e-3) if hi > lo else 0.5
+        lo, hi = (lo, min(hi, bound)) if below else (max(lo, bound), hi)
+        return lo + share * (hi - lo) if hi > lo else value
+    if below:
+        if kind in ("positive", "nonnegative"):
+            return bound * abs(value) / (abs(value) + bound) if bound > 0 else value
+        return bound - abs(value) - 1e-3 * max(1.0, abs(bound))
+    return bound + abs(value) + 1e-3 * max(1.0, abs(bound))
+
+
 class UnorderedPoint(ValueError):
     """No point of the domains keeps a declared order ``a < R``: nothing may be compared there."""
 
@@ -93,6 +109,9 @@ class Sampler:
         # {a: R}: a < R at every point (a hoop's off-centre mass inside its radius); the pairs whose
         # two symbols this sampler draws.
         self.below = {a: b for a, b in (below or {}).items() if a in self.domains and b in self.domains}
+        # and the pairs across this sampler and another (a coordinate x below a length L, a parameter):
+        # kept by `joint`, which moves this sampler's value given the other's.
+        self.across = {a: b for a, b in (below or {}).items() if (a in self.domains) != (b in self.domains)}
         self._seed = seed
         self._rng = np.random.default_rng(seed)
         self._wide_rng = None
@@ -108,6 +127,27 @@ class Sampler:
         while len(self._points) <= i:
             self._points.append(self._related(lambda: self._draw(len(self._points))))
         return self._points[i]
+
+    def joint(self, given: Mapping[sympy.Symbol, float], point: Mapping[sympy.Symbol, float]) -> dict:
+        """``given`` (another sampler's point, the parameters) with this sampler's ``point``, each of this
+        sampler's values that breaks a ``below`` order with a given one moved inside its domain to keep it
+        (x of (0, ∞) below L: L x/(x + L)); a deterministic function of both points.
+
+        >>> class Positive:
+        ...     kind = "positive"
+        ...     def contains(self, v): return v > 0
+        >>> x, L = sympy.symbols("x L")
+        >>> states = Sampler({x: Positive()}, seed=1, below={x: L})
+        >>> states.joint({L: 1.0}, {x: 3.0})[x]
+        0.75
+        """
+        joint = {**given, **point}
+        for a, b in self.across.items():
+            if a in joint and b in joint and not joint[a] < joint[b]:
+                moved = a if a in point else b
+                joint[moved] = _moved(joint[moved], joint[b] if moved is a else joint[a], self.domains[moved],
+                                      below=moved is a)
+        return joint
 
     def _related(self, draw) -> dict[sympy.Symbol, float]:
         """A point from ``draw`` that keeps every ``below`` relation: drawn again (from the same stream, so

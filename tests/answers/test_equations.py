@@ -874,3 +874,27 @@ _R = "(l thetaddot + g sin(theta))"
 def test_a_product_of_nonzero_factors_of_any_size_is_set_aside(pendulum, answer):
     verdict = check(PENDULUM_EOM, answer, pendulum, kind="equation")
     assert verdict.verdict == "equivalent", verdict.reason
+
+
+_BELOW = {"g": {"dimension": "acceleration", "domain": "positive"}, "L": {"dimension": "length", "domain": "positive"},
+          "R": {"dimension": "length", "domain": "positive"},
+          "d": {"dimension": "length", "domain": "positive", "below": "R"},
+          "x": {"dimension": "length", "domain": "positive", "kind": "coordinate", "below": "L"},
+          "xdot": {"dimension": "velocity", "kind": "velocity"}, "xddot": {"dimension": "acceleration", "kind": "acceleration"},
+          "theta": {"dimension": "angle", "kind": "coordinate"}, "thetadot": {"dimension": "angular_velocity", "kind": "velocity"},
+          "thetaddot": {"dimension": "angular_acceleration", "kind": "acceleration"}}
+_HOOP_MASS = "(R^2 + d^2 - 2 R d cos(theta)) thetaddot + R d sin(theta) thetadot^2 + g d sin(theta) = 0"
+
+
+@pytest.mark.parametrize("reference, answer, expected", [
+    # a coordinate declared below a parameter (x < L): compared only where it is, and L − x, L² − x² are
+    # nonzero there (second checker red team, 3: these were rejected at x = 2.68 > L = 0.63)
+    ("(L - x) xddot = g x - xdot^2", "xddot = (g x - xdot^2)/(L - x)", "equivalent"),
+    ("xddot = -g x/sqrt(L^2 - x^2)", "sqrt(L^2 - x^2) xddot = -g x", "equivalent"),
+    ("xddot = -g x/sqrt(L^2 - x^2)", "sqrt(L^2 - x^2) xddot = g x", "not_equivalent"),
+    # an off-centre mass d < R: R² + d² − 2Rd cos θ = (R − d)² + 4Rd sin²(θ/2) > 0
+    (_HOOP_MASS, "thetaddot = -d sin(theta) (R thetadot^2 + g)/(R^2 + d^2 - 2 R d cos(theta))", "equivalent"),
+    (_HOOP_MASS, "thetaddot = d sin(theta) (R thetadot^2 + g)/(R^2 + d^2 - 2 R d cos(theta))", "not_equivalent"),
+])
+def test_a_declared_order_holds_at_every_state_compared_and_in_the_proof_a_factor_is_nonzero(reference, answer, expected):
+    assert check(reference, answer, _BELOW, kind="equation").verdict == expected
