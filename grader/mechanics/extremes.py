@@ -44,7 +44,29 @@ _PERIOD_SAMPLES = 4000
 
 
 def extreme_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
-    """Closed form of the maximum or minimum of ``spec.expr`` over the motion from [initial]."""
+    """Closed form of the maximum or minimum of ``spec.expr`` over the motion from [initial]: over the
+    coordinate it is written in, else (another coordinate running away, several left) over time, where
+    the motion has a closed form (a wedge on a spring under a sliding block: X(t) is periodic though the
+    block's s(t) grows as t²)."""
+    try:
+        return _extreme_over_the_coordinate(evaluator, spec)
+    except SceneError as refused:
+        if not _over_time_instead(refused):
+            raise
+        try:
+            return _extreme_in_time(evaluator, spec, f"answers ({spec.name})")
+        except SceneError:
+            raise refused from None
+
+
+def _over_time_instead(refused: SceneError) -> bool:
+    """Whether the coordinate's way failed in a way the motion in time may not: it ran away, or the
+    quantity needs more than one coordinate."""
+    text = str(refused)
+    return "the motion runs away" in text or "as a function of one coordinate" in text
+
+
+def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
     scene = evaluator.scene
     key = f"answers ({spec.name})"
     allowed = evaluator.parameters | evaluator.state_symbols(velocities=False) | {scene.time}

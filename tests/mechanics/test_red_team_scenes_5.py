@@ -324,3 +324,71 @@ def test_an_answer_at_an_equilibrium_without_a_motion_is_taken_at_rest(answer, e
     d = derive(parse_scene(HOOP_SPRING_NO_START, source="hoop_bead_spring_to_bottom.toml"))
     agree(d, answer, expected)
     assert_exactly(d, answer, expected)
+
+
+# A wedge M on a smooth floor tied to a wall by a spring k, a block m sliding down its face from rest
+# (second red team of the session): the wedge oscillates, X(t) = −(m g sin α cos α/k)(1 − cos Ωt) with
+# Ω² = k/(M + m sin²α), while the block's s(t) grows as t²; the face's force is
+# m g cos α (M + m sin²α (1 − cos Ωt))/(M + m sin²α), least at t = 0.
+WEDGE_ON_A_SPRING = r"""id = "wedge_spring_wall_block"
+title = "Block sliding down a smooth wedge that is tied to a wall by a spring"
+statement = '''
+A wedge of mass $M$ with a smooth face inclined at $\alpha$ rests on a smooth floor; a horizontal
+spring of stiffness $k$ joins its back to a wall, relaxed at the start. A block of mass $m$ is released
+at rest on the face; everything starts at rest (Kleppner–Kolenkow, Irodov). Coordinates: the
+wedge's displacement $X$ (towards the side the face looks to), the block's distance $s$ down the
+face, and its height $n$ above the face along the normal. The face can only push.
+'''
+
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 0.5 }
+M = { dimension = "mass", domain = "positive", value = 2.0 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+k = { dimension = "stiffness", domain = "positive", value = 40.0 }
+alpha = { dimension = "angle", domain = [0.05, 1.5], value = 0.6 }
+
+[coordinates]
+X = { dimension = "length" }
+s = { dimension = "length" }
+n = { dimension = "length" }
+
+[energy]
+kinetic = "M/2*Xdot^2 + m/2*((Xdot + sdot*cos(alpha) + ndot*sin(alpha))^2 + (ndot*cos(alpha) - sdot*sin(alpha))^2)"
+potential = "k/2*X^2 + m*g*(n*cos(alpha) - s*sin(alpha))"
+
+[[constraints]]
+name = "face"
+f = "n"
+kind = "unilateral"
+
+[initial]
+X = 0
+Xdot = 0
+s = 0
+sdot = 0
+
+[[answers]]
+name = "greatest_compression"
+kind = "maximum"
+expr = "-X"
+in_terms_of = ["m", "M", "g", "k", "alpha"]
+dimension = "length"
+
+[[answers]]
+name = "least_normal"
+kind = "minimum"
+expr = "lambda_face"
+in_terms_of = ["m", "M", "g", "alpha"]
+dimension = "force"
+"""
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # over the coordinate X the motion "runs away" (s grows): the extreme is taken over time instead
+    ("greatest_compression", "m*g*sin(2*alpha)/k"),
+    ("least_normal", "M*m*g*cos(alpha)/(M + m*sin(alpha)^2)"),
+])
+def test_an_extreme_where_another_coordinate_runs_away_is_taken_over_time(answer, expected):
+    d = derive(parse_scene(WEDGE_ON_A_SPRING, source="wedge_spring_wall_block.toml"))
+    agree(d, answer, expected)
+    assert_exactly(d, answer, expected)
