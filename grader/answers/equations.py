@@ -105,6 +105,74 @@ def _declared_accelerations(variables: dict[str, dict], symbols: dict[str, sympy
     return [s for n, s in symbols.items() if n.endswith("ddot")]
 
 
+# Systems of more equations than unknowns compared by their subsets, at most this many subsets.
+MAX_SUBSETS = 10
+# States at which the equations left out must hold on the reference's solution.
+IMPLIED_POINTS = 4
+
+
+def _with_implied_extras(reference, answer, parameters, states, options, deadline, compiled_reference,
+                         answer_conditions, unknowns) -> Comparison | None:
+    """An answer with more equations than the reference whose others follow from k of them: those k are
+    the reference's system, and at the accelerations they give the others hold too (a cart's two
+    Euler–Lagrange equations and their combination solved for ẍ), else None.
+
+    The others are checked at the reference's solution at a few states: each residual evaluated there
+    is zero to the working digits."""
+    k = len(reference)
+    for n, chosen in enumerate(itertools.combinations(range(len(answer)), k)):
+        if n >= MAX_SUBSETS or _past(deadline):
+            return None
+        subset = [answer[i] for i in chosen]
+        result = compare_equations(reference, subset, parameters, states, options, deadline, compiled_reference,
+                                   answer_conditions, unknowns)
+        if not result.equivalent:
+            continue
+        others = [answer[i] for i in range(len(answer)) if i not in chosen]
+        if _hold_at_the_solutions(reference, others, unknowns, parameters, states):
+            result.reason = (f"{result.reason} (the other equation{'s' * (len(others) > 1)} follow"
+                             f"{'s' * (len(others) == 1)} from these: {'they hold' if len(others) > 1 else 'it holds'} "
+                             f"wherever they do, at {IMPLIED_POINTS} states)")
+            return result
+    return None
+
+
+def _hold_at_the_solutions(reference: list[sympy.Expr], others: list[sympy.Expr], unknowns: tuple,
+                           parameters: Sampler, states: Sampler) -> bool:
+    """Whether each of ``others`` is zero, to 25 digits of its terms' size, where the reference's system
+    (linear in the unknowns) holds, at a few parameter points and states."""
+    import mpmath
+
+    if len(unknowns) != len(reference):
+        return False
+    try:
+        matrix = sympy.Matrix([[r.diff(u) for u in unknowns] for r in reference])
+        if any(entry.has(*unknowns) for entry in matrix):
+            return False  # not linear in the unknowns
+        rest = [r.xreplace({u: 0 for u in unknowns}) for r in reference]
+    except (TypeError, ValueError):
+        return False
+    with mpmath.workdps(40):
+        for i in range(IMPLIED_POINTS):
+            point = {s: sympy.Float(v, 40) for s, v in states.joint(parameters.point(i), states.point(i)).items()
+                     if s not in unknowns}
+            try:
+                a = mpmath.matrix([[mpmath.mpf(sympy.N(e.xreplace(point), 40)) for e in row]
+                                   for row in matrix.tolist()])
+                b = mpmath.matrix([-mpmath.mpf(sympy.N(r.xreplace(point), 40)) for r in rest])
+                solution = mpmath.lu_solve(a, b)
+            except (TypeError, ValueError, ZeroDivisionError):
+                return False
+            at = {**point, **{u: sympy.Float(str(solution[j]), 40) for j, u in enumerate(unknowns)}}
+            for other in others:
+                terms = [abs(complex(sympy.N(t.xreplace(at), 40))) for t in sympy.Add.make_args(other)]
+                if not all(math.isfinite(t) for t in terms) or sum(terms) == 0:
+                    return False
+                if abs(complex(sympy.N(other.xreplace(at), 40))) > 1e-25 * max(terms):
+                    return False
+    return True
+
+
 def _without_repeats(residuals: list[sympy.Expr]) -> list[sympy.Expr]:
     """``residuals`` without those that another one implies: X = f Y with f finite everywhere
     (a number, a parameter, sin θ, θ̇): wherever Y = 0, X = 0 too, so X adds no condition, whether or
@@ -212,6 +280,11 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
             if result.equivalent:
                 result.reason = f"{result.reason} (an equation that another one implies, such as the same equation again, adds nothing)"
             return result
+    if len(answer) > k and unknowns:
+        implied = _with_implied_extras(reference, answer, parameters, states, options, deadline, compiled_reference,
+                                       answer_conditions, unknowns)
+        if implied is not None:
+            return implied
     if len(answer) != k:
         return Comparison(
             False,

@@ -898,3 +898,16 @@ _HOOP_MASS = "(R^2 + d^2 - 2 R d cos(theta)) thetaddot + R d sin(theta) thetadot
 ])
 def test_a_declared_order_holds_at_every_state_compared_and_in_the_proof_a_factor_is_nonzero(reference, answer, expected):
     assert check(reference, answer, _BELOW, kind="equation").verdict == expected
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # a third equation that follows from the two (EL1 − m cos θ·EL2, solved for ẍ): the system is the same
+    (_CART_EOM + "; (M + m sin(theta)^2) xddot = m sin(theta) (l thetadot^2 + g cos(theta))", "equivalent"),
+    ("(M + m sin(theta)^2) xddot = m sin(theta) (l thetadot^2 + g cos(theta)); " + _CART_EOM, "equivalent"),
+    # one that does not follow from them (its sign flipped), or says more (ẍ = 0)
+    (_CART_EOM + "; (M + m sin(theta)^2) xddot = -m sin(theta) (l thetadot^2 + g cos(theta))", "not_equivalent"),
+    (_CART_EOM + "; xddot = 0", "not_equivalent"),
+])
+def test_an_extra_equation_that_follows_from_the_others_adds_nothing(answer, expected):
+    verdict = check(_CART_EOM, answer, _CART, kind="equation")
+    assert verdict.verdict == expected, verdict.reason
