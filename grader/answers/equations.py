@@ -26,6 +26,7 @@ import math
 import time
 
 import flint
+import mpmath
 import sympy
 
 from grader.answers.evaluate import SCALE, ArbBackend, Undefined, Unresolved, Unsupported, _log2_mag, compile_expr
@@ -141,8 +142,6 @@ def _hold_at_the_solutions(reference: list[sympy.Expr], others: list[sympy.Expr]
                            parameters: Sampler, states: Sampler) -> bool:
     """Whether each of ``others`` is zero, to 25 digits of its terms' size, where the reference's system
     (linear in the unknowns) holds, at a few parameter points and states."""
-    import mpmath
-
     if len(unknowns) != len(reference):
         return False
     try:

@@ -697,8 +697,11 @@ def _dimension_by_scaling(expr, walker: "_DimensionWalker") -> _Exponents | None
         if exponents != _NONE:
             factor = sympy.Mul(*[S ** sympy.Rational(e) for S, e in zip(scales, exponents)])
             rescale[symbol] = symbol * factor
-    scaled = sympy.expand_power_base(sympy.expand_log(expr.xreplace(rescale), force=True), force=True)
-    ratio = sympy.powsimp(sympy.cancel(sympy.expand_log(scaled, force=True) / expr), force=True)
+    try:
+        scaled = sympy.expand_power_base(sympy.expand_log(expr.xreplace(rescale), force=True), force=True)
+        ratio = sympy.powsimp(sympy.cancel(sympy.expand_log(scaled, force=True) / expr), force=True)
+    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+        return None  # no ratio to read: the walker's error stands
     if ratio.free_symbols - set(scales):
         return None
     powers = ratio.as_powers_dict()

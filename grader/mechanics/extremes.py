@@ -50,20 +50,16 @@ def extreme_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     block's s(t) grows as t²)."""
     try:
         return _extreme_over_the_coordinate(evaluator, spec)
-    except SceneError as refused:
-        if not _over_time_instead(refused):
-            raise
+    except _NotOverOneCoordinate as refused:
         try:
             return _extreme_in_time(evaluator, spec, f"answers ({spec.name})")
         except SceneError:
             raise refused from None
 
 
-def _over_time_instead(refused: SceneError) -> bool:
-    """Whether the coordinate's way failed in a way the motion in time may not: it ran away, or the
-    quantity needs more than one coordinate."""
-    text = str(refused)
-    return "the motion runs away" in text or "as a function of one coordinate" in text
+class _NotOverOneCoordinate(SceneError):
+    """The coordinate's way failed where the motion in time may not: the motion ran away in that
+    coordinate, or the quantity needs more than one."""
 
 
 def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
@@ -76,9 +72,9 @@ def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
     if scene.time in value.free_symbols:
         return _extreme_in_time(evaluator, spec, key)
     if len(coordinates) != 1:
-        raise SceneError(scene.source, key,
-                         "an extreme over the motion needs the quantity as a function of one coordinate "
-                         "(after removing velocities with the first integrals)")
+        raise _NotOverOneCoordinate(scene.source, key,
+                                    "an extreme over the motion needs the quantity as a function of one coordinate "
+                                    "(after removing velocities with the first integrals)")
     u = coordinates[0]
     if u.name not in scene.initial:
         raise SceneError(scene.source, key, f"an extreme over the motion follows it from [initial]; give {u.name}")
@@ -120,11 +116,12 @@ def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
                     best = (amount, index, sign * start)
         if best is None:
             low, high = legs[0][1], legs[0][2]
+            if low is None or high is None:
+                raise _NotOverOneCoordinate(scene.source, key, f"{spec.expr} has no {spec.kind} on the motion from "
+                                                               "[initial]: the motion runs away")
             raise SceneError(scene.source, key,
                              f"{spec.expr} has no {spec.kind} on the motion from [initial] (no stationary or "
-                             f"turning point between {u.name} = {low:.6g} and {high:.6g})"
-                             if low is not None and high is not None else
-                             f"{spec.expr} has no {spec.kind} on the motion from [initial]: the motion runs away")
+                             f"turning point between {u.name} = {low:.6g} and {high:.6g})")
         if chosen is None:
             chosen = best[1:]
         elif _evaluate(candidates[chosen[0]], point) is None or abs(

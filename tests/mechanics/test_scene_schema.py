@@ -12,7 +12,8 @@ from grader.mechanics.scene import SceneError, load_scene, parse_scene
 from grader.mechanics.scene_schema import SCENE_SCHEMA, structure_problems
 
 ROOT = Path(__file__).resolve().parents[2]
-SCENE_FILES = sorted(ROOT.glob("problems/*.toml")) + sorted((ROOT / "tests/mechanics/scenes").glob("*.toml"))
+SCENE_FILES = (sorted(ROOT.glob("problems/*.toml")) + sorted((ROOT / "tests/mechanics/scenes").glob("*.toml"))
+               + sorted((ROOT / "tests/mechanics/scenes/not_simulated").glob("*.toml")))
 SPHERE = (ROOT / "problems" / "sphere.toml").read_text()
 PENDULUM = (ROOT / "problems" / "pendulum.toml").read_text()
 
