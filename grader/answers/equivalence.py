@@ -768,9 +768,12 @@ def _kink_arguments(exprs) -> list[sympy.Expr]:
     """The arguments of abs and sign in ``exprs`` that depend on the variables, each once."""
     found: list[sympy.Expr] = []
     for expr in exprs:
-        for node in sympy.preorder_traversal(expr):
+        stack = [expr]  # preorder, as sympy.preorder_traversal, without its generator's cost
+        while stack:
+            node = stack.pop()
             if isinstance(node, (sympy.Abs, sympy.sign)) and node.args[0].free_symbols and node.args[0] not in found:
                 found.append(node.args[0])
+            stack.extend(reversed(node.args))
     return found[:MAX_KINKS]
 
 
