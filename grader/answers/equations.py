@@ -31,6 +31,7 @@ import sympy
 
 from grader.answers.evaluate import SCALE, ArbBackend, Undefined, Unresolved, Unsupported, _log2_mag, compile_expr
 from grader.answers.equivalence import (
+    CONFIRM_BITS,
     LOG2_10,
     MAX_PATTERNS,
     Comparison,
@@ -402,6 +403,13 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
                 if k > 1:
                     hidden.reason = f"equation {i + 1}: {hidden.reason}"
                 return hidden
+        confirmed = _try_precision(refs, anss, parameters.point(0), states, 0, k, CONFIRM_BITS + 64, CONFIRM_BITS)
+        if confirmed is not None and confirmed[0] == "differ":
+            # θ̈ = −(g/l) sin(θ(1 + 10⁻⁴⁰)) is a multiple of the reference to 40 digits, not at 300
+            return Comparison(False, "proved", f"{confirmed[1]} (by less than the judge's digits: at more "
+                              "precision the ratio is not constant)", evidence={"method": "ball arithmetic",
+                                                                                 "points": 1},
+                              counterexample=confirmed[2])
         return Comparison(
             True,
             "numeric",

@@ -267,11 +267,18 @@ def compare_at(ref: Compiled, ans: Compiled, point: dict, key, options: Options,
                     return PointResult("differ", answer=a, reference=r)
                 if d.rad().is_zero():
                     return PointResult("agree", a, r, digits=math.inf)
-                scale = max(r_scale, a_scale, _log2_mag(a), _log2_mag(r))
+                size = max(_log2_mag(a), _log2_mag(r))
+                scale = max(r_scale, a_scale, size)
                 if math.isinf(scale):  # values beyond any float's range: no precision will tell
                     return PointResult("unresolved")
                 noise = _log2_mag(d.rad())
-                if noise <= scale - target:
+                # Agreement is to the digits of the values themselves: a value that cancels far below
+                # its terms (1 - cos θ at θ ~ 1e-10) is worked at more precision, where θ²/2 shows
+                # its difference. Only a value that stays below every precision tried (an exact zero
+                # reached by cancellation) is taken at the scale of its terms.
+                if noise <= size - target:
+                    return PointResult("agree", a, r, digits=(size - noise) / LOG2_10)
+                if noise <= scale - target and prec * 2 > options.max_bits:
                     return PointResult("agree", a, r, digits=(scale - noise) / LOG2_10)
         prec *= 2
         if prec > options.max_bits:
@@ -667,6 +674,7 @@ def compare_expressions(
     result = compare_numeric(ref, ans, sampler, options, deadline)
     if result.equivalent and options.method == "arb":
         return (_hidden_difference(diff, answer, reference, ref, ans, sampler, options)
+                or _below_the_digits(ref, ans, sampler, options)
                 or _at_landmarks(ref, ans, sampler, (reference, answer), options, deadline)
                 or _in_sign_regions(ref, ans, sampler, (reference, answer), options, deadline) or result)
     return result
@@ -697,6 +705,33 @@ def _hidden_difference(diff: sympy.Expr, answer: sympy.Expr, reference: sympy.Ex
     result = PointResult("differ", answer=a, reference=r)
     return Comparison(False, "proved", "your answer and the correct one differ at the point in the counterexample "
                       "(by less than the judge's digits: their difference alone is not zero there)",
+                      evidence={"method": options.describe(), "points": 1}, counterexample=counterexample(point, result),
+                      values=(_to_float(a), _to_float(r)))
+
+
+# Working precision of the one confirming evaluation (about 300 digits): 8 points agreeing to 30
+# digits do not tell m g from m g tanh(100), which differ by 3e-87 relative.
+CONFIRM_BITS = 1024
+
+
+def _below_the_digits(ref: Compiled, ans: Compiled, sampler: Sampler, options: Options) -> Comparison | None:
+    """A difference below the judge's digits that more precision at one point shows, or None.
+
+    ``m g cos(10⁻²⁰)``, ``m g tanh(100)`` and ``m g`` agree to 30 digits at every point; at
+    `CONFIRM_BITS` the ball of their difference at the first point excludes zero, a proof that they
+    differ. The reference's value at that precision is cached with its other values.
+    """
+    point = sampler.point(0)
+    try:
+        a, _ = ans.at(point, CONFIRM_BITS, 0 if options.fast else None)
+        r, _ = ref.at(point, CONFIRM_BITS, 0)
+    except (Undefined, Unresolved):
+        return None
+    if (a - r).contains(0):
+        return None
+    result = PointResult("differ", answer=a, reference=r)
+    return Comparison(False, "proved", "your answer and the correct one differ at the point in the counterexample "
+                      "(by less than the judge's digits: at more precision they differ there)",
                       evidence={"method": options.describe(), "points": 1}, counterexample=counterexample(point, result),
                       values=(_to_float(a), _to_float(r)))
 

@@ -28,6 +28,15 @@ WIDE_STREAM = 0x5EED
 # their own (seed + REAL_STREAM).
 REAL_DECADES = (3.0, 6.0)
 REAL_STREAM = 0x4EA1
+# Interval variables on stress points: a value from the bands ordinary points avoid (near zero,
+# the outer ends; `Domain.sample_avoided`), from a generator of their own (seed + BAND_STREAM).
+BAND_STREAM = 0xBA4D
+# The other points of a bounded interval are stratified: in each block of 2 * STRESS_EVERY points,
+# its ordinary points take the interval's equal parts once each, in an order drawn from a
+# generator of their own (seed + STRATA_STREAM), so that no part is missed by chance.
+STRATA_STREAM = 0x57A7
+_BLOCK = 2 * STRESS_EVERY
+_REGULAR_PER_BLOCK = _BLOCK - 2
 # Draws tried for a point that keeps the variables' order relations (a < R) before pairs are swapped.
 _RELATED_TRIES = 16
 
@@ -121,6 +130,12 @@ class Sampler:
         # stress values come from a generator of their own, so every other value stays as it was.
         self._stress_real = {s for s, d in self.domains.items() if stress and _real_line(d)}
         self._real_rng = np.random.default_rng(seed + REAL_STREAM)
+        self._stress_bands = {s for s, d in self.domains.items()
+                              if stress and getattr(d, "sample_avoided", None) and d.avoided_bands()}
+        self._band_rng = np.random.default_rng(seed + BAND_STREAM)
+        self._stratified = {s for s, d in self.domains.items() if getattr(d, "sample_stratum", None) and d.avoided_bands()}
+        self._strata_rng = np.random.default_rng(seed + STRATA_STREAM)
+        self._strata: dict = {}
         self._points: list[dict[sympy.Symbol, float]] = []
 
     def point(self, i: int) -> dict[sympy.Symbol, float]:
@@ -188,6 +203,16 @@ class Sampler:
             point[symbol] = value if math.isfinite(value) else 1.0
         return point
 
+    def _stratum_value(self, symbol, domain, i: int) -> float:
+        """The i-th (ordinary, not stress) point's value of an interval variable: one of the equal
+        parts of its block's order."""
+        block, position = divmod(i, _BLOCK)
+        order = self._strata.get((symbol, block))
+        if order is None:
+            order = self._strata[symbol, block] = self._strata_rng.permutation(_REGULAR_PER_BLOCK)
+        regular = position - position // STRESS_EVERY  # the stress positions (3, 7) take no part
+        return float(domain.sample_stratum(self._strata_rng, int(order[regular]), _REGULAR_PER_BLOCK))
+
     def _draw(self, i: int) -> dict[sympy.Symbol, float]:
         stress = i % STRESS_EVERY == STRESS_EVERY - 1
         point = {}
@@ -201,5 +226,9 @@ class Sampler:
                 if stress and symbol in self._stress_real:
                     magnitude = 10.0 ** self._real_rng.uniform(-REAL_DECADES[0], REAL_DECADES[1])
                     value = magnitude if self._real_rng.uniform() < 0.5 else -magnitude
+                elif stress and symbol in self._stress_bands:
+                    value = float(domain.sample_avoided(self._band_rng, i // STRESS_EVERY))
+                elif not stress and symbol in self._stratified:
+                    value = self._stratum_value(symbol, domain, i)
             point[symbol] = value
         return point

@@ -109,6 +109,70 @@ class Domain:
             value = float(rng.uniform(lo, hi))
         return value
 
+    def sample_stratum(self, rng, j: int, n: int) -> float:
+        """A value from the ``j``-th of ``n`` equal parts of a finite interval (strictly inside it), or
+        `sample`'s kind of value for any other domain. Points that take each part once cover every
+        part: eight random ones all miss |θ| > π/2 on [-π, π] once in 256 checks.
+
+        Examples
+        --------
+        >>> import random
+        >>> d = parse_domain([-4, 4])
+        >>> sorted(int(d.sample_stratum(random.Random(j), j, 8) // 1) for j in range(8))
+        [-4, -3, -2, -1, 0, 1, 2, 3]
+        """
+        if self.kind != "interval" or not (math.isfinite(self.lo) and math.isfinite(self.hi)):
+            return self.sample(rng)
+        width = (self.hi - self.lo) / n
+        value = self.lo + (j + float(rng.uniform(0, 1))) * width
+        if not self.lo < value < self.hi:
+            value = self.lo + (j + 0.5) * width
+        return value
+
+    def avoided_bands(self) -> list[tuple[float, float]]:
+        """The parts of a finite interval that `sample` never draws from: the values near zero
+        (nearest first, where a sign or an ``abs`` changes) and the outer 5% at each end.
+
+        Examples
+        --------
+        >>> [(round(a, 3), round(b, 3)) for a, b in parse_domain([-1, 10]).avoided_bands()]
+        [(-0.945, 0.0), (0.0, 0.945), (-1.0, -0.45), (9.45, 10.0)]
+        >>> parse_domain("real").avoided_bands()
+        []
+        """
+        if self.kind != "interval" or not (math.isfinite(self.lo) and math.isfinite(self.hi)):
+            return []
+        margin = 0.05 * (self.hi - self.lo)
+        lo, hi = self.lo + margin, self.hi - margin
+        tiny = 0.1 * max(abs(lo), abs(hi))
+        # each side of zero on its own: on [-0.2, π] the few negative values are what matters
+        near_zero = [(a, b) for a, b in ((max(self.lo, -tiny), min(self.hi, 0.0)), (max(self.lo, 0.0), min(self.hi, tiny)))
+                     if a < b]
+        ends = [(a, b) for a, b in ((self.lo, lo), (hi, self.hi))
+                if not any(c <= a < b <= d for c, d in near_zero)]
+        return near_zero + ends
+
+    def sample_avoided(self, rng, k: int) -> float:
+        """A value from the ``k``-th (cyclically) of `avoided_bands`, strictly inside the interval,
+        or `sample`'s kind of value where there is none: spot checks that only drew from `sample`
+        never saw v < 0 on [-1, 10], where -c v|v| and -c v² differ.
+
+        Examples
+        --------
+        >>> import random
+        >>> d = parse_domain([-1, 10])
+        >>> all(-1 < d.sample_avoided(random.Random(k), 2) < -0.45 for k in range(20))
+        True
+        """
+        bands = self.avoided_bands()
+        if not bands:
+            return self.sample(rng)
+        lo, hi = bands[k % len(bands)]
+        value = float(rng.uniform(lo, hi))
+        if not self.lo < value < self.hi:  # never an end itself, where the expressions may not be defined
+            value = lo + 0.5 * (hi - lo)
+        return value
+
     def sample_wide(self, rng, decades: tuple[float, float] = (-3.0, 6.0)) -> float:
         """A random value across the whole domain's scale, not only near 1.
 

@@ -145,3 +145,53 @@ def test_an_order_the_domains_cannot_keep_is_refused_never_compared_outside(a_do
                  "R": {"dimension": "m", "domain": r_domain}}
     verdict = check(CART_SPEED, CART_SPEED, variables)
     assert verdict.verdict == "invalid" and message in verdict.reason
+
+
+DRAG = {"c": {"dimension": "mass/length", "domain": "positive"}, "v": {"dimension": "velocity", "domain": [-1, 10]}}
+PENDULUM = {"g": {"dimension": "acceleration", "domain": "positive"}, "l": {"dimension": "length", "domain": "positive"},
+            "theta": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "coordinate"},
+            "thetadot": {"dimension": "angular_velocity", "domain": "real", "kind": "velocity"},
+            "thetaddot": {"dimension": "angular_acceleration", "domain": "real", "kind": "acceleration"}}
+PENDULUM_ONE_SIDE = {**PENDULUM, "theta": {**PENDULUM["theta"], "domain": [-0.2, 3.1416]}}
+SMALL = {"R": {"dimension": "length", "domain": "positive"}, "theta": {"dimension": "angle", "domain": [1e-11, 1e-10]}}
+TINY_X = {"x": {"dimension": "dimensionless", "domain": [1e-13, 1e-12]}}
+WEIGHT = {"m": {"dimension": "mass", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"}}
+PENDULUM_EOM = "thetaddot = -(g/l)*sin(theta)"
+
+
+@pytest.mark.parametrize("reference, answer, variables, kind", [
+    # wrong only where ordinary points of an interval seldom go: near zero, on its short side, at its ends
+    ("-c*v*abs(v)", "-c*v^2", DRAG, "expression"),
+    ("-c*v", "-c*abs(v)", DRAG, "expression"),
+    ("theta", "acos(cos(theta))", {"theta": {"dimension": "angle", "domain": [0, 3.3]}}, "expression"),
+    (PENDULUM_EOM, "thetaddot = -(g/l)*sin(theta)*sign(abs(theta) - 0.25)", PENDULUM, "equation"),
+    (PENDULUM_EOM, "(sign(abs(theta) - 0.1) + 1) thetaddot = -(g/l) sin(theta) (sign(abs(theta) - 0.1) + 1)",
+     PENDULUM, "equation"),
+    (PENDULUM_EOM, "thetaddot = -(g/l)*sqrt(1 - cos(theta)^2)", PENDULUM_ONE_SIDE, "equation"),
+    # a value that cancels far below its terms is compared to its own digits, not to its terms'
+    ("R*(1 - cos(theta))", "R*theta^2/2", SMALL, "expression"),
+    ("cos(x) - 1 + x^2/2", "0", TINY_X, "expression"),
+    ("cos(x) - 1 + x^2/2", "-x^4/24", TINY_X, "expression"),
+    ("exp(x) - 1", "x + x^2/2", {"x": {"dimension": "dimensionless", "domain": [1e-14, 1e-13]}}, "expression"),
+    # differences below the judge's 30 digits that no symbolic step isolates
+    ("m*g", "m g sqrt(1 + 10^-40)", WEIGHT, "expression"),
+    ("m*g", "m g cos(10^-20)", WEIGHT, "expression"),
+    ("m*g", "m g (1 - exp(-100))", WEIGHT, "expression"),
+    ("m*g", "m g tanh(100)", WEIGHT, "expression"),
+    ("m*g", "m g exp(10^-40)", WEIGHT, "expression"),
+    (PENDULUM_EOM, "thetaddot = -(g/l)*sin(theta*(1 + 10^-40))", PENDULUM, "equation"),
+])
+def test_answers_wrong_only_where_few_points_look_are_proved_wrong(reference, answer, variables, kind):
+    verdict = check(reference, answer, variables, kind=kind)
+    assert verdict.verdict == "not_equivalent", verdict.reason
+
+
+@pytest.mark.parametrize("reference, answer, variables", [
+    ("R*(1 - cos(theta))", "2*R*sin(theta/2)^2", SMALL),
+    ("cos(x) - 1 + x^2/2", "2*sin(x/2)^4 - 2*sin(x/2)^2 + x^2/2 - 2*sin(x/2)^4 + 0", TINY_X),
+    ("-c*v*abs(v)", "-c*v*sqrt(v^2)", DRAG),
+    ("x", "sin(x)^2 + cos(x)^2 - 1 + x", {"x": {"dimension": "dimensionless", "domain": "real"}}),
+])
+def test_equal_answers_with_heavy_cancellation_stay_equivalent(reference, answer, variables):
+    verdict = check(reference, answer, variables)
+    assert verdict.verdict == "equivalent", verdict.reason

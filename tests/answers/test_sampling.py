@@ -2,6 +2,7 @@
 
 import math
 
+import pytest
 import sympy
 
 from grader.answers.sampling import STRESS_EVERY, Sampler, seed_for
@@ -69,3 +70,26 @@ def test_a_variable_declared_below_another_stays_below_it_at_every_point():
     unordered = Sampler({a: positive, R: positive}, seed=7)
     assert any(unordered.point(i)[a] > unordered.point(i)[R] for i in range(20))  # the order is not by chance
     assert Sampler({a: positive, m: positive}, seed=7, below={a: R}).below == {}
+
+
+def test_the_ordinary_points_of_an_interval_take_each_of_its_parts_once_per_block():
+    # eight independent draws all miss |θ| > π/2 on [-π, π] once in 256 checks; the parts do not
+    theta = sympy.Symbol("theta", real=True)
+    s = Sampler({theta: parse_domain([-4, 2])}, seed=seed_for("theta"))
+    for block in range(5):
+        ordinary = [s.point(8 * block + j)[theta] for j in range(8) if j % STRESS_EVERY != STRESS_EVERY - 1]
+        assert sorted(math.floor(v) for v in ordinary) == [-4, -3, -2, -1, 0, 1]
+
+
+@pytest.mark.parametrize("domain, band", [
+    ([-1, 10], (-1, 0)),          # the side of zero ordinary draws hardly reach
+    ([-0.2, 3.1416], (-0.2, 0)),
+    ([0, 3.3], (3.135, 3.3)),      # the outer end, beyond pi, where acos(cos θ) is no longer θ
+    ([-3.1416, 3.1416], (-0.29, 0.29)),
+])
+def test_stress_points_of_an_interval_reach_the_bands_ordinary_points_avoid(domain, band):
+    x = sympy.Symbol("x", real=True)
+    s = Sampler({x: parse_domain(domain)}, seed=seed_for("x", str(domain)))
+    stressed = [s.point(i)[x] for i in range(STRESS_EVERY - 1, 16 * STRESS_EVERY, STRESS_EVERY)]
+    assert any(band[0] < v < band[1] for v in stressed)
+    assert all(domain[0] < v < domain[1] for v in stressed)
