@@ -354,6 +354,12 @@ class _Parser:
             self.advance()
             bracketed = self.peek().kind == "open"
             exponent = self.expression(_POW - 1)
+            after = self.peek()
+            if exponent == 1 and self.tokens[self.i - 1].text == "1" and after.kind == "op" and after.value == "/":
+                # x^1/2 is x/2 by precedence, and the classic slip for the square root
+                divisor = self.peek(1).text
+                self.note(f"read '^1/{divisor}' as the power 1, then divided by {divisor}: write "
+                          f"^(1/{divisor}) for the power 1/{divisor}")
             if left is sympy.E and base.kind == "name":
                 # e^-kt, e^2x: the factors typed glued to the exponent stay in it, as nobody means
                 # e^(-k)·t (x^2y stays x²·y: only the exponential's exponent is read so).
@@ -415,7 +421,14 @@ class _Parser:
             self.expect_close(token)
             return inner
         if kind == "root":
-            return self.root(self.function_argument(token, "√"), token.value, token.pos)
+            bracketed = self.peek().kind == "open"
+            value = self.root(self.function_argument(token, "√"), token.value, token.pos)
+            after = self.peek()
+            if not bracketed and after.kind == "op" and after.value in "+-" and not value.is_number:
+                # √x²+y² is √(x²) + y² by precedence; the sum under the root needs its brackets
+                self.note(f"read '{self.text[token.pos:after.pos].strip()}' as the root of that alone, then "
+                          f"'{after.value}' what follows: write {token.text}(…) around everything the root covers")
+            return value
         if kind == "command":
             return self.latex_command(token)
         if kind == "derivative":  # Leibniz notation, already resolved (or refused) by read_leibniz
@@ -781,6 +794,13 @@ class _Parser:
         if following.kind == "name" and following.value.lower() not in FUNCTIONS \
                 and not following.forced_function:
             self.note(f"read '{self.text[token.pos:following.end]}' as {name}({arg})·{following.text}")
+        elif following.kind == "op" and following.value in "*/" and name != "√" \
+                and self.peek(1).kind in _ATOM_STARTS:
+            # cos 2*x, sin θ/2: the function takes the factor before the operator, as precedence says
+            # and some readers do not; said, since the other reading is as common
+            shown = self.text[token.pos:self.peek(1).end]
+            self.note(f"read '{shown}' as {name}({arg}){following.value}{self.peek(1).text}: write "
+                      f"{name}(…) around everything the {name} covers")
         return arg
 
     def dimensionless_argument(self, arg: sympy.Expr, start: int, name: str) -> sympy.Expr:
@@ -834,8 +854,12 @@ class _Parser:
                 or (spaced and not self.text[last.end:following.pos].strip()))
             latex_word = (last.kind == "name" and last.text[:1] == "\\" and last.text[-1:].isalpha()
                           and not self.text[last.end:following.pos].strip())
-            if not (following.kind == "name" and (split_part or typed_glued or latex_word)
-                    and following.value.lower() not in FUNCTIONS and not following.forced_function):
+            # sin 2(x + 1) is sin(2(x + 1)), as sin 2x is sin(2x); an exponent's e^2(x + 1) is left as it was
+            glued_bracket = (following.kind == "open" and following.value == "(" and name != "e^"
+                             and last.kind == "number" and following.pos == last.end)
+            if not glued_bracket and not (following.kind == "name" and (split_part or typed_glued or latex_word)
+                                          and following.value.lower() not in FUNCTIONS
+                                          and not following.forced_function):
                 break
             arg = checked(sympy.Mul(arg, self.expression(_MUL)), following.pos)
             glued = glued or not split_part or name == "e^"  # a split name's note does not say e^(...)

@@ -1023,6 +1023,11 @@ def _lone_number(tokens: list[Token], k: int) -> bool:
         and tokens[k + 2].kind == "close" and tokens[k + 2].value == ")"
 
 
+def _function_name(token: Token) -> bool:
+    """Whether ``token`` names a function: ``sin (2)`` and ``\\sin \\left( 2 \\right)`` are its call."""
+    return token.kind == "name" and str(token.value).lstrip("\\").lower() in FUNCTIONS
+
+
 def _equation_numbers(tokens: list[Token]) -> None:  # changes tokens in place
     r"""``(2) y = l`` and ``x + y = l (2)``: a whole number in brackets set apart by a space at the start or
     the end of a line reads as the equation's number or as a factor 2; it is refused, naming both (read
@@ -1044,7 +1049,7 @@ def _equation_numbers(tokens: list[Token]) -> None:  # changes tokens in place
         for end in ends:  # x + y = l (2)
             k = end - 3
             if _lone_number(tokens, k) and tokens[k].space_before and k > 0 \
-                    and tokens[k - 1].kind in ("name", "number", "close") and not tokens[k - 1].kind == "newline":
+                    and tokens[k - 1].kind in ("name", "number", "close") and not _function_name(tokens[k - 1]):
                 found = k
                 break
     if found is not None:

@@ -195,3 +195,18 @@ def test_answers_wrong_only_where_few_points_look_are_proved_wrong(reference, an
 def test_equal_answers_with_heavy_cancellation_stay_equivalent(reference, answer, variables):
     verdict = check(reference, answer, variables)
     assert verdict.verdict == "equivalent", verdict.reason
+
+
+@pytest.mark.parametrize("reference, answer", [
+    # constants whose typed form has a real domain to check (asin's argument in [-1, 1]): decided by
+    # the points, never "differs by a constant" with a zero difference
+    ("2*asin(1)", "2*asin(1)"), ("pi", "2*asin(1)"), ("pi/3", "2*asin(1/2)"), ("2*pi/3", "2*acos(1/2)"),
+    ("pi", "asin(1) + asin(1)"), ("2", "2*sin(asin(1))"), ("2", "2*acosh(cosh(1))"), ("pi + 1", "2*asin(1) + 1"),
+])
+def test_a_constant_with_a_domain_to_check_is_equal_to_its_value(reference, answer):
+    assert check(reference, answer, {}).verdict == "equivalent"
+
+
+@pytest.mark.parametrize("reference, answer", [("pi", "2*asin(1) + 10^-50"), ("2", "2*acosh(cosh(1)) + 1")])
+def test_a_constant_with_a_domain_that_differs_is_still_proved_wrong(reference, answer):
+    assert check(reference, answer, {}).verdict == "not_equivalent"

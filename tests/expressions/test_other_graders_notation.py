@@ -204,3 +204,46 @@ def test_an_unknown_named_character_is_refused_by_name_and_latex_display_math_is
         parse_expression(r"\[Bogus] m", ns)
     assert r"'\[Bogus]'" in err.value.message and "type the character itself" in err.value.hint
     assert parse_expression(r"\[m g\]", ns).expr == parse_expression("m g", ns).expr
+
+
+# -- SymPy's, CortexJS's, MathQuill's and lambda-feedback's parser suites (red team, 2026-11-27) --------
+
+@pytest.fixture
+def xy():
+    return Namespace([Variable("x", "dimensionless", "real"), Variable("y", "dimensionless", "real")])
+
+
+@pytest.mark.parametrize("text, expected", [
+    # a function name, a space, then a number in brackets is the function's call, not an equation's number
+    ("sin (2)", "sin(2)"), ("cos (0)", "1"), ("2 sin (3)", "2*sin(3)"), ("sqrt (3)", "sqrt(3)"),
+    (r"\sin (2)", "sin(2)"), (r"\sin \left( 2 \right)", "sin(2)"), (r"2\cos \left(2\right)", "2*cos(2)"),
+    # a bracket glued to the number of a function's argument stays in it, as sin 2x is sin(2x)
+    ("sin 2(x+1)", "sin(2*x + 2)"),
+])
+def test_a_function_takes_the_bracket_that_follows_it(xy, text, expected):
+    assert parse_expression(text, xy).expr == parse_expression(expected, xy).expr
+
+
+def test_an_equation_number_after_a_variable_is_still_refused(xy):
+    with pytest.raises(ExpressionError) as err:
+        parse_expression("x + y (2)", xy)
+    assert err.value.code == "ambiguous"
+
+
+@pytest.mark.parametrize("text, read_as, note", [
+    # readings that follow precedence but that other parsers flag: said in a note, never silent
+    ("√x²+y²", "y**2 + Abs(x)", "write √(…) around everything the root covers"),
+    ("√x^2+y^2", "y**2 + Abs(x)", "write √(…) around everything the root covers"),
+    ("cos 2*x", "x*cos(2)", "write cos(…) around everything the cos covers"),
+    ("sin x/2", "sin(x)/2", "write sin(…) around everything the sin covers"),
+    ("x^1/2", "x/2", "write ^(1/2) for the power 1/2"),
+])
+def test_a_reading_other_parsers_call_ambiguous_is_said(xy, text, read_as, note):
+    parsed = parse_expression(text, xy)
+    assert parsed.text == read_as
+    assert any(note in n for n in parsed.notes), parsed.notes
+
+
+@pytest.mark.parametrize("text", ["√2+1", "x^(1/2)", "2 sin(x) y", "sin(x)/2"])
+def test_unambiguous_forms_get_no_such_note(xy, text):
+    assert not any("covers" in n or "for the power" in n for n in parse_expression(text, xy).notes)
