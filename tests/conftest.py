@@ -169,6 +169,27 @@ def make_token(app):
 
 
 @pytest.fixture
+def enrol(app):
+    """``enrol(user_id, code, role)``: the user enrolled in course ``code`` (made on first use) as ``role``
+    (``"lms"`` links an LMS account to the course)."""
+    from sqlalchemy import select
+
+    from grader.store.models import Course, Enrolment
+
+    def add(user_id: int, code: str, role: str = "student") -> int:
+        with app.extensions["lagrade.db"].write() as session:
+            course = session.scalar(select(Course).where(Course.code == code))
+            if course is None:
+                course = Course(code=code, title=code)
+                session.add(course)
+                session.flush()
+            session.add(Enrolment(user_id=user_id, course_id=course.id, role=role))
+            return course.id
+
+    return add
+
+
+@pytest.fixture
 def yoyo() -> DerivedProblem:
     """The hand-written yo-yo problem (not stored)."""
     return YOYO

@@ -32,7 +32,10 @@ def create(role: str, name: str | None, external_id: str | None) -> None:
             if name is None:
                 count = session.scalar(select(func.count()).select_from(User).where(User.role == role))
                 name = f"{role} {count + 1}"
-            user = create_user(session, role=role, name=name, external_id=external_id)
+            try:
+                user = create_user(session, role=role, name=name, external_id=external_id)
+            except ValueError as error:
+                raise click.BadParameter(str(error), param_hint="--external-id") from None
             secret = create_token(session, user, name=name)
             user_id = user.id
     finally:

@@ -16,6 +16,7 @@ from sqlalchemy import select
 from sqlalchemy.orm import Session, joinedload
 
 from grader.store.models import ENROLMENT_ROLES, Course, Enrolment, User
+from grader.store.users import LTI_PREFIX, reserved_external_id
 
 __all__ = ["CourseError", "Member", "ROSTER_COLUMNS", "MAX_ROSTER_ROWS", "add_member", "course_by_code",
            "create_course", "parse_roster", "roster"]
@@ -70,6 +71,9 @@ def add_member(session: Session, course: Course, member: Member) -> tuple[Enrolm
         raise CourseError(f"A member's role is one of {', '.join(ENROLMENT_ROLES)}, not {member.role!r}.")
     if not (member.email or member.external_id):
         raise CourseError("Give each member an e-mail address or an external id.")
+    if reserved_external_id(member.external_id):
+        raise CourseError(f"External ids starting with {LTI_PREFIX!r} are made by LTI launches; give the member "
+                          "their id in your LMS or an e-mail address.")
     user = None
     if member.email:
         user = session.scalar(select(User).where(User.email == member.email))

@@ -26,11 +26,16 @@ __all__ = [
     "hash_secret",
     "new_password_problem",
     "set_password",
-    "student_for_external_id",
+    "LTI_PREFIX",
+    "reserved_external_id",
     "user_for_token",
 ]
 
 TOKEN_PREFIX = "lg_"
+# External ids of people who come in through LTI (`grader.web.lti.accounts.external_id`): made by
+# their launch only. Anyone can compute one from an issuer and a sub, so an id given by an LMS
+# token, a roster or the command line may not start so (it would take the person's account first).
+LTI_PREFIX = "lti:"
 MIN_PASSWORD_LENGTH = 10
 MAX_PASSWORD_LENGTH = 1024  # what the sign-in form reads of a password
 
@@ -39,11 +44,23 @@ def hash_secret(secret: str) -> str:
     return hashlib.sha256(secret.encode()).hexdigest()
 
 
+def reserved_external_id(external_id: str | None) -> bool:
+    """Whether ``external_id`` is one only an LTI launch may give (see `LTI_PREFIX`).
+
+    >>> reserved_external_id("lti:0f3a"), reserved_external_id("s1234"), reserved_external_id(None)
+    (True, False, False)
+    """
+    return isinstance(external_id, str) and external_id.strip().lower().startswith(LTI_PREFIX)
+
+
 def create_user(session: Session, *, role: str, name: str, email: str | None = None,
-                password: str | None = None, external_id: str | None = None) -> User:
-    """Add a user (flushed, not committed); ``role`` is one of student, instructor, admin, lms."""
+                password: str | None = None, external_id: str | None = None, lti: bool = False) -> User:
+    """Add a user (flushed, not committed); ``role`` is one of student, instructor, admin, lms.
+    ``lti``: made by an LTI launch or roster sync, the only ones that may use `LTI_PREFIX`."""
     if role not in ROLES:
         raise ValueError(f"unknown role {role!r}; expected one of {', '.join(ROLES)}")
+    if reserved_external_id(external_id) and not lti:
+        raise ValueError(f"external ids starting with {LTI_PREFIX!r} are made by LTI launches only")
     user = User(role=role, name=name, email=email, external_id=external_id)
     if password is not None:
         set_password(user, password)
@@ -105,11 +122,3 @@ def user_for_token(session: Session, secret: str) -> tuple[User, ApiToken] | Non
     if token is None or token.revoked_at is not None:
         return None
     return token.user, token
-
-
-def student_for_external_id(session: Session, external_id: str) -> User:
-    """The student an LMS knows as ``external_id``, created on first sight."""
-    user = session.scalar(select(User).where(User.external_id == external_id))
-    if user is None:
-        user = create_user(session, role="student", name=external_id, external_id=external_id)
-    return user

@@ -20,6 +20,10 @@ action                 who, besides admins
                        problem is seen by its managers only, and answered by nobody.
 ``submit_for_others``  an LMS for a published problem it sees (its linked courses or no course);
                        an instructor for a problem they manage. A student only ever for itself.
+                       For one student (`may_act_for`): an LMS only for a student who may
+                       answer the version themselves and is enrolled in a course linked to it
+                       (an LMS linked to one course enrols there a student it names for the
+                       first time); an instructor for a student of a course they teach.
 ``manage``             instructors, for problems of courses they teach (``Enrolment.role ==
                        "instructor"``) and problems in no course: read references and drafts,
                        list its versions, publish and unpublish one, upload or edit a new
@@ -90,6 +94,7 @@ __all__ = [
     "find_course",
     "find_derivation",
     "find_problem",
+    "may_act_for",
     "find_problem_version",
     "find_submission",
     "find_version",
@@ -233,6 +238,31 @@ def allowed(principal: Principal, action: Action, resource: Resource = None) -> 
         # every student of every LMS, and its grades are none of one LMS's business.
         return manages or (principal.role == "lms" and course is not None and open_to_me)
     return False
+
+
+def may_act_for(principal: Principal, student: Principal, version: ProblemVersion) -> bool:
+    """Whether ``principal`` may submit ``version`` for ``student`` (``submit_for_others``, for this one).
+
+    The student must be one of the caller's: enrolled in a course the LMS is linked to (and able to
+    answer the version themselves), or in a course the instructor teaches. Without it, an LMS of one
+    course acted (and read the results) for the students of every other course.
+
+    Examples
+    --------
+    >>> from grader.store.models import Problem, ProblemVersion
+    >>> shared = ProblemVersion(published=True, problem=Problem(slug="yoyo", course_id=None))
+    >>> moodle = Principal(user_id=1, role="lms", enrolled=frozenset({1}))
+    >>> ours, theirs = (Principal(user_id=n, role="student", enrolled=frozenset({c})) for n, c in ((2, 1), (3, 2)))
+    >>> may_act_for(moodle, ours, shared), may_act_for(moodle, theirs, shared)
+    (True, False)
+    """
+    if not (allowed(principal, Action.SUBMIT_FOR_OTHERS, version) and student.role == "student"):
+        return False
+    if principal.is_admin:
+        return True
+    if principal.role == "lms":
+        return allowed(student, Action.SUBMIT, version) and bool(principal.enrolled & student.enrolled)
+    return bool(principal.taught & student.enrolled)  # an instructor of the problem tries a draft for them too
 
 
 def _may_course(principal: Principal, action: Action, course_id: int) -> bool:

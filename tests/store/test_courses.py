@@ -50,6 +50,7 @@ def test_members_are_enrolled_once_and_found_by_email_or_external_id(database):
 @pytest.mark.parametrize("member, words", [
     (Member("Nobody"), "e-mail address or an external id"),
     (Member("Ada", "ada@example.org", role="dean"), "role is one of"),
+    (Member("Mallory", None, "lti:" + "0" * 64), "made by LTI launches"),  # would take a person's LTI account
 ])
 def test_a_member_without_an_address_or_with_an_unknown_role_is_refused(database, member, words):
     with database.write() as session:

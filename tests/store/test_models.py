@@ -13,7 +13,6 @@ from grader.store.users import (
     create_token,
     create_user,
     hash_secret,
-    student_for_external_id,
     user_for_token,
 )
 
@@ -131,11 +130,11 @@ def test_sign_in_checks_the_password_hash(database, email, password, ok):
         assert (authenticate(session, email, password) is not None) is ok
 
 
-def test_an_lms_student_is_created_once(database):
-    with database.write() as session:
-        first = student_for_external_id(session, "lms-42")
-        again = student_for_external_id(session, "lms-42")
-        assert first.id == again.id and first.role == "student"
+@pytest.mark.parametrize("external_id", ["lti:0123abcd", "LTI:0123abcd", " lti:x"])
+def test_an_id_only_an_lti_launch_gives_is_refused_anywhere_else(database, external_id):
+    # anyone can compute a person's LTI id: made first by a token or a roster, it took their account
+    with database.write() as session, pytest.raises(ValueError, match="LTI launches only"):
+        create_user(session, role="student", name="Mallory", external_id=external_id)
 
 
 def test_unknown_roles_are_refused(database):

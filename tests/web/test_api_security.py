@@ -45,9 +45,11 @@ def test_students_see_only_their_own_submissions(client, make_token, yoyo_versio
     assert client.get(location, headers=bob).status_code == 404  # not even its existence
 
 
-def test_an_lms_sees_only_what_it_sent(client, make_token, yoyo_version):
-    _, moodle = make_token("lms", name="Moodle")
-    _, canvas = make_token("lms", name="Canvas")
+def test_an_lms_sees_only_what_it_sent(client, make_token, enrol, yoyo_version):
+    moodle_id, moodle = make_token("lms", name="Moodle")
+    canvas_id, canvas = make_token("lms", name="Canvas")
+    enrol(moodle_id, "MECH", "lms")
+    enrol(canvas_id, "MECH", "lms")
     location = client.post("/api/v1/problems/yoyo/submissions", json={"answer": "tension", "text": "m*g", "user": "s1"},
                            headers=moodle).headers["Location"]
     assert client.get(location, headers=moodle).status_code == 200

@@ -72,8 +72,9 @@ def test_the_same_idempotency_key_with_another_body_is_refused(client, make_toke
     assert response.get_json()["type"] == "urn:lagrade:error:idempotency-key-reused"
 
 
-def test_an_lms_submits_for_a_student_by_external_id(client, make_token, yoyo_version):
-    _, lms = make_token("lms")
+def test_an_lms_submits_for_a_student_by_external_id(client, make_token, enrol, yoyo_version):
+    lms_id, lms = make_token("lms")
+    enrol(lms_id, "MECH", "lms")  # linked to one course: a student it names first is enrolled there
     response = _submit(client, lms, user="canvas-1234")
     assert response.status_code == 202
     submission = response.get_json()
@@ -138,3 +139,48 @@ def test_an_equation_counterexample_shows_no_value_of_the_reference():
     assert v.verdict == "not_equivalent" and "reference_there" in v.counterexample
     shown = _student_counterexample(v.counterexample)
     assert shown["values"] and not [k for k in shown if "reference" in k]
+
+
+def test_an_lms_acts_only_for_students_of_its_own_courses(client, make_token, enrol, yoyo_version):
+    # an LMS of one course submitted (and then read the results) for the students of every other one
+    moodle_id, moodle = make_token("lms", name="Moodle")
+    enrol(moodle_id, "MECH", "lms")
+    theirs_id, _ = make_token("student", external_id="other-1")
+    enrol(theirs_id, "OTHER", "student")
+    ours_id, _ = make_token("student", external_id="mech-1")
+    enrol(ours_id, "MECH", "student")
+    assert _submit(client, moodle, user="mech-1").status_code == 202
+    refused = _submit(client, moodle, user="other-1")
+    assert refused.status_code == 422 and "not a student of your courses" in refused.get_json()["detail"]
+    # "unknown", "not yours" and "not a student" read the same: nothing tells who exists here
+    instructor_id, _ = make_token("instructor", external_id="ine-1")
+    enrol(instructor_id, "MECH", "instructor")
+    assert _submit(client, moodle, user="ine-1").get_json()["detail"] == \
+        refused.get_json()["detail"].replace("other-1", "ine-1")
+
+
+@pytest.mark.parametrize("courses", [0, 2])
+def test_an_lms_of_no_course_or_several_names_no_new_student(client, make_token, enrol, yoyo_version, courses):
+    lms_id, lms = make_token("lms")
+    for code in ("MECH", "OTHER")[:courses]:
+        enrol(lms_id, code, "lms")
+    assert _submit(client, lms, user="newcomer").status_code == 422
+
+
+def test_an_lms_cannot_take_the_id_an_lti_launch_gives(client, make_token, enrol, yoyo_version):
+    # anyone computes "lti:" + sha256(issuer, sub); made first here, it locked the person out of LTI
+    lms_id, lms = make_token("lms")
+    enrol(lms_id, "MECH", "lms")
+    assert _submit(client, lms, user="lti:" + "0" * 64).status_code == 422
+
+
+def test_an_instructor_acts_for_students_of_the_courses_they_teach(client, make_token, enrol, yoyo_version):
+    teacher_id, teacher = make_token("instructor")
+    enrol(teacher_id, "MECH", "instructor")
+    ours_id, _ = make_token("student", external_id="mech-1")
+    enrol(ours_id, "MECH", "student")
+    theirs_id, _ = make_token("student", external_id="other-1")
+    enrol(theirs_id, "OTHER", "student")
+    assert _submit(client, teacher, user="mech-1").status_code == 202
+    assert _submit(client, teacher, user="other-1").status_code == 422
+    assert _submit(client, teacher, user="nobody-yet").status_code == 422

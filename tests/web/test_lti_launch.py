@@ -257,3 +257,19 @@ def test_any_posted_launch_is_refused_with_a_4xx_page_never_a_500(tool, lms, tok
         token = f"{_segment(header)}.{_segment(claims)}.{signature}"
     response = client.post("/lti/launch", data={"state": "s1", "id_token": token, **extra})
     assert 400 <= response.status_code < 500, response.get_data(as_text=True)[-400:]
+
+
+def test_a_launch_whose_id_another_account_holds_is_refused_with_a_page_not_a_500(tool, lms):
+    # made before such ids were reserved (an LMS token or a roster naming "lti:<sha256>"): the person
+    # is told what to ask for, and the other account is never handed to them
+    from grader.store.lti_models import LtiPlatform
+    from grader.web.lti.accounts import external_id
+
+    with _db(tool).write() as session:
+        issuer = session.scalar(select(LtiPlatform.issuer))
+        session.add(User(role="student", name="squatter", external_id=external_id(issuer, "student-1")))
+    response, _ = launch(tool.test_client(), lms)
+    assert response.status_code == 409
+    assert "held by another account" in response.get_data(as_text=True)
+    with _db(tool).read() as session:
+        assert session.scalar(select(LtiAccount)) is None

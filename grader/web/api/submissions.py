@@ -12,14 +12,15 @@ from sqlalchemy.orm import Session
 from grader import jobs
 from grader.store.assignments import pending_assignment
 from grader.store.db import db
-from grader.store.models import ProblemVersion, Submission, User, Verdict
-from grader.store.users import student_for_external_id
+from grader.store.models import Course, ProblemVersion, Submission, User, Verdict
+from grader.store.courses import CourseError, Member, add_member
+from grader.store.users import reserved_external_id
 from grader.web import clock
 from grader.web.api import spec
 from grader.web.api.problems import EVERYONE, visible_version
 from grader.web.api.schemas import PARSED, SUBMISSION_REQUEST, read_json
 from grader.web.errors import ApiProblem
-from grader.web.policy import Action, current_principal, find_submission, require
+from grader.web.policy import Action, Principal, current_principal, find_submission, may_act_for, require
 from grader.web.student.verdicts import student_summary
 
 __all__ = ["submission_json"]
@@ -91,7 +92,7 @@ def submission_json(submission: Submission) -> dict[str, Any]:
 
 def _whose(session: Session, requester: User, version: ProblemVersion, external_id: str | None) -> User:
     """The student a submission is for: the caller, or the one named by ``user`` if the access policy
-    lets the caller submit for others (an LMS, instructors of the problem)."""
+    lets the caller submit for that student (`grader.web.policy.may_act_for`)."""
     principal = current_principal()
     if external_id is None:
         if principal.role == "lms":
@@ -100,16 +101,39 @@ def _whose(session: Session, requester: User, version: ProblemVersion, external_
     if principal.role == "student" and external_id == requester.external_id:
         return requester
     require(principal, Action.SUBMIT_FOR_OTHERS, version)  # a student naming someone else: 403
+    # One answer for "unknown", "not yours" and "not a student": it tells nobody who exists here.
+    not_yours = ApiProblem(422, f"{external_id!r} is not a student of your courses who may answer this problem "
+                                "(enrol them in your course first).", kind="invalid-request")
     student = session.scalar(select(User).where(User.external_id == external_id))
-    if student is None:  # first sight of this student: create them in a transaction of its own
+    if student is None:
+        student_id = _first_sight(principal, external_id)
+        if student_id is None:
+            raise not_yours
+        session.commit()  # ends this read's snapshot (nothing to write), which began before the student was made
+        student = session.get(User, student_id)
+    if not may_act_for(principal, Principal.of(session, student), version):
+        raise not_yours
+    return student
+
+
+def _first_sight(principal: Principal, external_id: str) -> int | None:
+    """The id of the student an LMS linked to exactly one course names for the first time, made and
+    enrolled there (as its roster would); None where that course is not known (an instructor, an LMS
+    of several courses or none) or the id is one only an LTI launch may give."""
+    if principal.role != "lms" or len(principal.enrolled) != 1 or reserved_external_id(external_id):
+        return None
+    (course_id,) = principal.enrolled
+    member = Member(name=external_id, external_id=external_id, role="student")
+    for _ in range(2):  # a concurrent request may make the same student first: then it exists
         try:
             with db.write() as writer:
-                student = student_for_external_id(writer, external_id)
-        except IntegrityError:  # created concurrently by another request: it exists now
-            student = session.scalar(select(User).where(User.external_id == external_id))
-    if student.role != "student":
-        raise ApiProblem(422, f"{external_id!r} is not a student.", kind="invalid-request")
-    return student
+                enrolment, _ = add_member(writer, writer.get(Course, course_id), member)
+                return enrolment.user_id
+        except IntegrityError:
+            continue
+        except CourseError:
+            return None
+    return None
 
 
 def _not_in_an_open_assignment(session: Session, user: User, version: ProblemVersion) -> None:

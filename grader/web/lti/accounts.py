@@ -17,7 +17,11 @@ from grader.store.lti_models import LtiAccount, LtiPlatform
 from grader.store.models import Enrolment, User
 from grader.store.users import create_user
 
-__all__ = ["course_role", "external_id", "lti_user", "enrol"]
+__all__ = ["AccountTaken", "course_role", "external_id", "lti_user", "enrol"]
+
+
+class AccountTaken(ValueError):
+    """The id an LTI person gets here is held by an account that is not theirs."""
 
 # LIS roles (full URIs or short names) that make someone a teacher of the course here. Teaching
 # assistants and content developers prepare and grade problems, so they count as instructors.
@@ -57,8 +61,13 @@ def lti_user(session: Session, platform: LtiPlatform, sub: str, name: str, role:
     instructor's (never the other way: a teacher may take another course as a learner)."""
     account = session.scalar(select(LtiAccount).where(LtiAccount.platform_id == platform.id, LtiAccount.sub == sub))
     if account is None:
+        taken = session.scalar(select(User).where(User.external_id == external_id(platform.issuer, sub)))
+        if taken is not None:
+            # made outside LTI before such ids were reserved: never handed to whoever launches
+            raise AccountTaken("This LMS account's id on lagrade is held by another account. Ask the "
+                               "administrator of lagrade to remove or rename it, then launch again.")
         user = create_user(session, role=role, name=(name or "LMS user")[:200],
-                           external_id=external_id(platform.issuer, sub))
+                           external_id=external_id(platform.issuer, sub), lti=True)
         session.add(LtiAccount(platform_id=platform.id, sub=sub, user_id=user.id))
         session.flush()
         return user

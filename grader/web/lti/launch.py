@@ -39,7 +39,7 @@ from grader.store.lti_models import LtiContext, LtiLaunch, LtiNonce, LtiPlatform
 from grader.store.models import Course, Problem, utcnow
 from grader.store.problems import problem_by_slug
 from grader.web.lti import keys
-from grader.web.lti.accounts import course_role, enrol, lti_user
+from grader.web.lti.accounts import AccountTaken, course_role, enrol, lti_user
 from grader.web.lti.platforms import find_platform, platform_keys
 
 __all__ = ["CLAIM", "Launch", "LaunchRefused", "link_target", "login_redirect", "open_context", "open_resource_link",
@@ -242,7 +242,10 @@ def open_context(session: Session, launch: Launch) -> tuple[Any, LtiContext | No
     """The launching user (made on first launch) and the launch's LMS course, mapped to a lagrade
     course (made on its first launch), with the user enrolled there in their LMS role."""
     platform = session.get(LtiPlatform, launch.platform_id)
-    user = lti_user(session, platform, launch.claims["sub"], launch.name, launch.role)
+    try:
+        user = lti_user(session, platform, launch.claims["sub"], launch.name, launch.role)
+    except AccountTaken as error:
+        raise LaunchRefused(409, str(error)) from None
     context_claim = launch.claim("context")
     if not isinstance(context_claim, dict) or not isinstance(context_claim.get("id"), str):
         return user, None

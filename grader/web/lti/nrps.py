@@ -15,7 +15,7 @@ from sqlalchemy.orm import Session
 from grader.store.db import Database
 from grader.store.lti_models import LtiContext, LtiPlatform
 from grader.store.models import utcnow
-from grader.web.lti.accounts import course_role, enrol, lti_user
+from grader.web.lti.accounts import AccountTaken, course_role, enrol, lti_user
 from grader.web.lti.http import PlatformUnreachable, get_page
 from grader.web.lti.tokens import PlatformAccess, access_token
 
@@ -75,7 +75,11 @@ def apply_roster(session: Session, context_id: int, members: list[dict]) -> Rost
             continue
         role = course_role(roles if isinstance(roles, list) else [])
         name = member.get("name") or " ".join(str(member.get(k, "")) for k in ("given_name", "family_name")).strip()
-        user = lti_user(session, platform, sub, name if isinstance(name, str) else "", role)
+        try:
+            user = lti_user(session, platform, sub, name if isinstance(name, str) else "", role)
+        except AccountTaken:  # its id is held by an account that is not theirs: never enrolled as them
+            result.skipped += 1
+            continue
         enrol(session, user, context.course_id, role)
         result.members += 1
         if role == "instructor":
