@@ -552,7 +552,7 @@ class _UnitParser:
         if self.peek() in (("op", "^"), ("op", "**")):
             self.take()
             exponent = self.exponent()
-            if abs(exponent) > 12:
+            if abs(exponent) > 12 or exponent.denominator > 12:
                 raise DimensionError(f"a unit exponent of {exponent} is not plausible in {self.text!r}")
             size, dim = size ** float(exponent), dim ** exponent
         return head_size * size, head_dim * dim
@@ -564,12 +564,24 @@ class _UnitParser:
         kind, value = self.take()
         if kind == "op" and value == "(":
             exp = self.exponent()
-            if self.take() != ("op", ")"):
+            closing = self.peek()
+            if closing is None:
                 raise DimensionError(f"unbalanced parenthesis in dimension {self.text!r}")
+            if self.take() != ("op", ")"):
+                # kg^(10^400), kg^(1e999): an exponent is one number, not an expression
+                raise DimensionError(f"a unit exponent is a whole number or a fraction such as 2, -1 or (1/2), "
+                                     f"got {''.join(closing[1])!r} after it in {self.text!r}")
             return sign * exp
         if kind != "num":
             raise DimensionError(f"a unit exponent must be a number, got {value!r} in {self.text!r}")
-        return sign * Fraction(value)
+        return sign * self._fraction(value)
+
+    def _fraction(self, written: str) -> Fraction:
+        """The exponent a number token writes (``2``, ``1/2``), refusing a zero denominator, which
+        :class:`~fractions.Fraction` would raise as ZeroDivisionError, no DimensionError."""
+        if int(written.partition("/")[2] or 1) == 0:
+            raise DimensionError(f"a unit exponent of {written} divides by zero in {self.text!r}")
+        return Fraction(written)
 
 
 # -- dimension of an expression --------------------------------------------

@@ -7,7 +7,7 @@ import pytest
 import sympy
 
 from grader.expressions import Dimension, DimensionError, dimension_of, parse_dimension
-from grader.expressions.dimensions import NAMED_DIMENSIONS
+from grader.expressions.dimensions import NAMED_DIMENSIONS, parse_unit
 
 M, L, T = Dimension(1, 0, 0), Dimension(0, 1, 0), Dimension(0, 0, 1)
 
@@ -46,6 +46,23 @@ def test_si_expressions(text, expected):
 def test_bad_dimension_text_is_refused(text):
     with pytest.raises(DimensionError):
         parse_dimension(text)
+
+
+# Exponents that once escaped as a ZeroDivisionError (a checker's "internal error") or were
+# refused as an "unbalanced parenthesis" they do not have: each is refused saying what is wrong.
+@pytest.mark.parametrize("text, message", [
+    ("kg^(1/0)", "divides by zero"),
+    ("kg^(0/0)", "divides by zero"),
+    ("m^(-1/0)", "divides by zero"),
+    ("kg^1/0", "divides by zero"),
+    ("m^(1e999)", "a unit exponent is a whole number or a fraction|unknown unit 'e'"),  # a unit reads letters
+    ("kg^(10^400)", "a unit exponent is a whole number or a fraction"),
+    ("kg^(1/1000)", "not plausible"),
+])
+@pytest.mark.parametrize("read", [parse_dimension, parse_unit], ids=["dimension", "unit"])
+def test_an_exponent_that_is_no_plausible_number_is_refused_with_what_is_wrong(read, text, message):
+    with pytest.raises(DimensionError, match=message):
+        read(text)
 
 
 @pytest.mark.parametrize("dim, words", [

@@ -138,3 +138,14 @@ def test_a_variable_below_another_is_part_of_the_check_contract(client, make_tok
     assert response.status_code == 200 and response.get_json()["verdict"] == "equivalent"
     variables["a"]["below"] = "R; drop table"
     assert client.post("/api/v1/check", headers=student, json=body).status_code == 422
+
+
+@pytest.mark.parametrize("dimension", ["kg^(1/0)", "kg^(0/0)", "m^(-1/0)", "kg^(10^400)"])
+def test_a_variable_dimension_with_an_impossible_exponent_is_refused_as_a_bad_dimension(client, make_token,
+                                                                                        dimension):
+    _, student = make_token("student")
+    response = client.post("/api/v1/check", headers=student, json={
+        "reference": "m", "answer": "m", "variables": {"m": {"dimension": dimension, "domain": "positive"}}})
+    body = response.get_json()
+    assert "internal error" not in str(body)
+    assert "exponent" in str(body)
