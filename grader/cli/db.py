@@ -61,22 +61,18 @@ def create_user(role: str, email: str, name: str | None, password: str | None) -
 @click.option("--title", help="Default: the code.")
 def create_course(code: str, title: str | None) -> None:
     """Create the course CODE (its students see its published problems; see `grader db enrol`)."""
-    from sqlalchemy import select
-
+    from grader.store.courses import CourseError
+    from grader.store.courses import create_course as create
     from grader.store.migrate import upgrade as run_upgrade
-    from grader.store.models import Course
 
     url = default_url()
     run_upgrade(url)
     database = Database(url)
     try:
         with database.write() as session:
-            if session.scalar(select(Course).where(Course.code == code)) is not None:
-                raise click.ClickException(f"there is a course {code!r} already")
-            course = Course(code=code, title=title or code)
-            session.add(course)
-            session.flush()
-            course_id = course.id
+            course_id = create(session, code=code, title=title or code).id
+    except CourseError as error:
+        raise click.ClickException(str(error)) from None
     finally:
         database.dispose()
     click.echo(f"created course {code} (course {course_id})")

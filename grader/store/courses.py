@@ -10,22 +10,27 @@ from __future__ import annotations
 
 import csv
 import io
+import re
 from dataclasses import dataclass
 
-from sqlalchemy import select
+from sqlalchemy import func, select
 from sqlalchemy.orm import Session, joinedload
 
 from grader.store.models import ENROLMENT_ROLES, Course, Enrolment, User
 from grader.store.users import LTI_PREFIX, reserved_external_id
 
-__all__ = ["CourseError", "Member", "ROSTER_COLUMNS", "MAX_ROSTER_ROWS", "add_member", "course_by_code",
-           "create_course", "parse_roster", "roster"]
+__all__ = ["COURSE_CODE_CHARS", "COURSE_CODE_PATTERN", "CourseError", "Member", "ROSTER_COLUMNS", "MAX_ROSTER_ROWS",
+           "add_member", "check_course_code", "course_by_code", "create_course", "parse_roster", "roster"]
 
 ROSTER_COLUMNS = ("email", "name", "external_id", "role")  # a roster's header names these (role optional)
 MAX_ROSTER_ROWS = 2000
 _EMAIL_CHARS = User.__table__.c.email.type.length
 _NAME_CHARS = User.__table__.c.name.type.length
 _EXTERNAL_CHARS = User.__table__.c.external_id.type.length
+# A course code goes into URLs and CSV file names: ASCII letters and digits, with - _ . inside.
+# The API's schema shows the same pattern; check_course_code is the rule every way in applies.
+COURSE_CODE_PATTERN = "^[A-Za-z0-9][A-Za-z0-9_.-]*$"
+COURSE_CODE_CHARS = Course.__table__.c.code.type.length
 
 
 class CourseError(ValueError):
@@ -46,10 +51,36 @@ def course_by_code(session: Session, code: str) -> Course | None:
     return session.scalar(select(Course).where(Course.code == code))
 
 
+def check_course_code(code: str) -> str:
+    """``code`` if it is a course code, else CourseError saying what one is.
+
+    Examples
+    --------
+    >>> check_course_code("MECH-2026")
+    'MECH-2026'
+    >>> check_course_code("-x")
+    Traceback (most recent call last):
+    ...
+    grader.store.courses.CourseError: '-x' is not a course code: a code is 1 to 64 ASCII letters, digits, ...
+    """
+    # fullmatch: a "$" alone would let a code end in a newline
+    if not isinstance(code, str) or len(code) > COURSE_CODE_CHARS or not re.fullmatch(COURSE_CODE_PATTERN, code):
+        raise CourseError(f"{code!r} is not a course code: a code is 1 to {COURSE_CODE_CHARS} ASCII letters, digits, "
+                          f"- _ or ., starting with a letter or a digit.")
+    return code
+
+
 def create_course(session: Session, *, code: str, title: str, instructor: User | None = None) -> Course:
-    """A new course; ``instructor`` (its creator) teaches it. Raises CourseError if ``code`` is taken."""
-    if course_by_code(session, code) is not None:
-        raise CourseError(f"There is already a course {code!r}; choose another code.")
+    """A new course; ``instructor`` (its creator) teaches it.
+
+    Raises CourseError if ``code`` is no course code (:func:`check_course_code`) or is taken, in any
+    case: ``other`` beside ``OTHER`` would be two courses a person tells apart by case alone.
+    """
+    check_course_code(code)
+    taken = session.scalar(select(Course.code).where(func.lower(Course.code) == code.lower()).limit(1))
+    if taken is not None:
+        raise CourseError(f"There is already a course {taken!r}; codes that differ only in case are one code, "
+                          f"choose another.")
     course = Course(code=code, title=title)
     session.add(course)
     session.flush()

@@ -66,7 +66,10 @@ def test_enrolling_again_changes_the_role(url, users):
     (("enrol", "MECH", "--user", "1", "--as", "lms"), "student account; it cannot be enrolled as lms"),
     (("enrol", "MECH", "--user", "3", "--as", "student"), "lms account; it cannot be enrolled as student"),
     (("enrol", "MECH", "--user", "1", "--as", "instructor"), "cannot be enrolled as instructor"),
-    (("create-course", "MECH"), "there is a course 'MECH' already"),
+    (("create-course", "MECH"), "already a course 'MECH'"),
+    (("create-course", "mech"), "already a course 'MECH'"),  # codes differ by more than case
+    (("create-course", "--", "-x"), "'-x' is not a course code"),
+    (("create-course", "Ω²ǅ"), "'Ω²ǅ' is not a course code"),
 ])
 def test_mistakes_are_refused_in_one_line(url, users, args, message):
     _run("create-course", "MECH")

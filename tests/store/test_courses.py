@@ -57,3 +57,20 @@ def test_a_member_without_an_address_or_with_an_unknown_role_is_refused(database
         course = create_course(session, code="MECH", title="Mechanics")
         with pytest.raises(CourseError, match=words):
             add_member(session, course, member)
+
+
+BAD_CODES = ["Ω²ǅ", "-x", ".MECH", "", "MECH 2026", "MECH/2026", "MECH\n", "x" * 65]
+
+
+@pytest.mark.parametrize("code", BAD_CODES)
+def test_a_course_code_is_ascii_letters_digits_and_inner_punctuation(database, code):
+    with database.write() as session, pytest.raises(CourseError, match="is not a course code"):
+        create_course(session, code=code, title="Mechanics")
+
+
+@pytest.mark.parametrize("taken, again", [("OTHER", "other"), ("mech-1", "MECH-1"), ("Phys", "pHYS")])
+def test_codes_that_differ_only_in_case_are_one_code(database, taken, again):
+    with database.write() as session:
+        create_course(session, code=taken, title="First")
+        with pytest.raises(CourseError, match=f"already a course {taken!r}"):
+            create_course(session, code=again, title="Second")

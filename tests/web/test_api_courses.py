@@ -86,6 +86,18 @@ def test_a_course_code_is_taken_once_and_students_create_none(client, make_token
     assert client.post("/api/v1/courses", json={"code": "MINE", "title": "Mine"}, headers=someone).status_code == 403
 
 
+@pytest.mark.parametrize("code, status, detail", [
+    ("mech", 409, "already a course 'MECH'"),     # one code in any case
+    ("MECH\n", 422, "is not a course code"),       # the schema's pattern ends at a newline; the rule does not
+    ("Ω²ǅ", 422, "must match the pattern"),
+    ("-x", 422, "must match the pattern"),
+])
+def test_a_course_code_follows_the_one_rule_in_any_case(client, course, code, status, detail):
+    response = client.post("/api/v1/courses", json={"code": code, "title": "Again"}, headers=course["ine"])
+    assert response.status_code == status and detail in response.get_json()["detail"]
+    assert response.mimetype == "application/problem+json"
+
+
 def test_a_student_sees_only_their_courses_and_no_roster(client, make_token, course, student):
     ada = student("s-ada")
     assert [c["code"] for c in client.get("/api/v1/courses", headers=ada).get_json()["courses"]] == ["MECH"]

@@ -13,7 +13,7 @@ from zoneinfo import ZoneInfo
 import pytest
 from sqlalchemy import select
 
-from grader.store.models import User
+from grader.store.models import Course, User
 from grader.store.users import create_token, set_password
 from tests.web.conftest_pages import (  # noqa: F401  (fixtures)
     PASSWORD, Account, accounts, as_instructor, csrf, grade_all, sign_in,
@@ -73,6 +73,22 @@ def _student(app, email: str):
     client = app.test_client()
     assert sign_in(client, Account(user_id, email, "student")).status_code == 302
     return client
+
+
+# The page once took codes the API refuses (its own test was str.isalnum, true of Ω²ǅ) and a code
+# beside one that differs only in case.
+@pytest.mark.parametrize("code, words", [
+    ("Ω²ǅ", "is not a course code"),
+    ("-x", "is not a course code"),
+    ("MECH 2026", "is not a course code"),
+    ("phys", "There is already a course &#39;PHYS&#39;"),
+])
+def test_the_page_refuses_the_course_codes_the_api_refuses(app, as_instructor, code, words):
+    assert _post(as_instructor, "/instructor/courses", code="PHYS", title="Physics").status_code == 302
+    refused = _post(as_instructor, "/instructor/courses", code=code, title="Again")
+    assert refused.status_code == 422 and words in refused.get_data(as_text=True)
+    with app.extensions["lagrade.db"].read() as session:
+        assert session.scalar(select(Course).where(Course.title == "Again")) is None
 
 
 def test_the_roster_page_lists_everyone_enrolled_from_the_csv(course):

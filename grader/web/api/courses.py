@@ -18,7 +18,8 @@ from sqlalchemy.exc import IntegrityError
 from grader.jobs.assignment_submissions import HandInRefused, hand_in
 from grader.jobs.queue import MAX_ANSWER_CHARS, AnswerUnreadable, IdempotencyConflict, SubmissionRejected
 from grader.store.assignments import MAX_PROBLEMS, AssignmentError, create_assignment
-from grader.store.courses import CourseError, Member, add_member, create_course, parse_roster, roster
+from grader.store.courses import (COURSE_CODE_CHARS, COURSE_CODE_PATTERN, CourseError, Member, add_member,
+                                   check_course_code, create_course, parse_roster, roster)
 from grader.store.db import db
 from grader.store.models import (ENROLMENT_ROLES, SCORE_POLICIES, Assignment, Course, Problem, Submission, User)
 from grader.web import clock
@@ -35,8 +36,7 @@ __all__ = ["course_json"]
 
 PEOPLE = API_ROLES - {"lms"}  # TAs may hold student accounts; the policy decides per course
 MAX_ROSTER_BYTES = 512 * 1024
-_CODE = {"type": "string", "minLength": 1, "maxLength": Course.__table__.c.code.type.length,
-         "pattern": "^[A-Za-z0-9][A-Za-z0-9_.-]*$"}
+_CODE = {"type": "string", "minLength": 1, "maxLength": COURSE_CODE_CHARS, "pattern": COURSE_CODE_PATTERN}
 _SLUG = {"type": "string", "minLength": 1, "maxLength": Assignment.__table__.c.slug.type.length,
          "pattern": "^[A-Za-z0-9][A-Za-z0-9_.-]*$"}
 _TITLE = {"type": "string", "minLength": 1, "maxLength": Course.__table__.c.title.type.length}
@@ -149,6 +149,10 @@ def create_course_route():
     """Create a course (instructors); the caller becomes its instructor."""
     require(current_principal(), Action.CREATE_COURSE, None)
     body = g.api_body
+    try:
+        check_course_code(body["code"])  # what the schema's pattern lets by ("MECH\n")
+    except CourseError as error:
+        raise ApiProblem(422, str(error), kind="invalid-request") from None
     try:
         with db.write() as session:
             course = create_course(session, code=body["code"], title=body["title"],
