@@ -387,9 +387,10 @@ def check(
         ``evidence["matched"]`` says which: 0 for ``reference``, i for the i-th alternative.
     values, unit, tolerance, dimension, implicit
         For ``kind="numeric"`` (`grader.answers.numeric`): the student's parameter values at which
-        the reference is evaluated, the answer's SI unit text, ``{relative?, absolute?, sig_figs?}``,
-        the answer's dimension, and for a reference without a closed form the root its unknown is
-        at (`grader.expressions.implicit.Implicit` as JSON).
+        the reference is evaluated (each in its variable's domain), the answer's unit text (``""``:
+        the reference's dimension, in any unit of it; `grader.answers.numeric.asked_unit`),
+        ``{relative?, absolute?, sig_figs?}``, the answer's dimension, and for a reference without a
+        closed form the root its unknown is at (`grader.expressions.implicit.Implicit` as JSON).
 
     Returns
     -------

@@ -15,10 +15,17 @@ asked in N·m, % for an angle. A bare number for a dimensionless answer is in th
 when degrees are asked). Readings that are only a guess are refused, never judged, when they do not
 give the answer's dimension: ``9.8 ms^-2`` (ms is the millisecond; m s^-2 was meant), ``14.7 Nm``.
 
+The unit asked is decided in one place, :func:`asked_unit`: a request without one (``unit = ""``)
+asks for the reference's dimension in any unit of it (a pure number only when the reference is
+dimensionless), and a unit that contradicts the reference's dimension is a bad request, never a
+verdict on the student.
+
 Verdicts: a number outside the tolerance is ``not_equivalent``; a unit of the wrong dimension is
 ``not_equivalent`` with the dimension named in words; a missing unit (when the answer has one) or an
 unreadable number is ``invalid`` with a message saying what to type. Messages never state the
-reference value.
+reference value. A request that cannot be graded (no number for a name, numbers outside their
+variables' domains, a unit of another dimension than the reference) raises
+:class:`NumericRequestError`, which `grader.answers.checker.check` reports as ``invalid``.
 """
 
 from __future__ import annotations
@@ -35,11 +42,12 @@ import sympy
 from grader.answers.evaluate import SCALE, FloatBackend, Unsupported, compile_expr
 from grader.answers.verdict import Verdict
 from grader.expressions.implicit import Implicit, ImplicitError
-from grader.expressions import DimensionError, ExpressionError, Namespace, parse_dimension, parse_expression
-from grader.expressions.dimensions import parse_unit, read_unit
+from grader.expressions import (DimensionError, ExpressionError, Namespace, dimension_of, parse_dimension,
+                                parse_expression)
+from grader.expressions.dimensions import UnitReading, parse_unit, read_unit
 from grader.expressions.unicode_input import misleading_character
 
-__all__ = ["DEFAULT_TOLERANCE", "NumericRequestError", "Quantity", "QuantityError", "check_numeric",
+__all__ = ["DEFAULT_TOLERANCE", "NumericRequestError", "Quantity", "QuantityError", "asked_unit", "check_numeric",
            "parse_quantity", "reference_value", "within_tolerance"]
 
 DEFAULT_TOLERANCE = {"relative": 0.01}
@@ -250,7 +258,9 @@ def within_tolerance(value: float, reference: float, tolerance: Mapping[str, Any
 
     ``relative`` and ``absolute`` (SI units): within either is enough. ``sig_figs = n``: the value,
     rounded to n significant figures in the student's unit (of ``size``), is within half a unit of
-    the n-th figure of the reference; with ``relative``/``absolute`` too, both must hold.
+    the n-th figure of the reference; with ``relative``/``absolute`` too, both must hold. A zero
+    reference has no figures to match: there ``sig_figs = n`` takes a value below 10^-n in the
+    student's unit (zero to n decimal places).
 
     Examples
     --------
@@ -258,6 +268,8 @@ def within_tolerance(value: float, reference: float, tolerance: Mapping[str, Any
     (True, False)
     >>> within_tolerance(14.7, 14.715, {"sig_figs": 3}), within_tolerance(14.6, 14.715, {"sig_figs": 3})
     (True, False)
+    >>> within_tolerance(0.0, 0.0, {"sig_figs": 2}), within_tolerance(0.001, 0.0, {"sig_figs": 2})
+    (True, True)
     """
     band = [tolerance[k] for k in ("relative", "absolute") if tolerance.get(k) is not None]
     ok = True
@@ -290,6 +302,94 @@ def _round_figures(x: float, n: int) -> float:
 def _reference_expr(text: str, variables_json: str) -> tuple[sympy.Expr, Namespace]:
     namespace = Namespace.from_spec(json.loads(variables_json))
     return parse_expression(text, namespace, printed=False).expr, namespace
+
+
+@lru_cache(maxsize=256)
+def _reference_dimension(text: str, variables_json: str) -> Any:
+    """The reference's dimension from its variables' (None where it has none, such as ``m + l``, or every one, 0)."""
+    expr, namespace = _reference_expr(text, variables_json)
+    if expr == 0:
+        return None  # zero has every dimension (m*a - m*a is a force as well as anything)
+    try:
+        return dimension_of(expr, namespace.dimensions())
+    except DimensionError:
+        return None  # the request's unit alone decides, as for any reference whose dimension is unknown
+
+
+def asked_unit(unit: Any, reference: Any = None, dimension: str | None = None) -> UnitReading:
+    """The unit a numeric answer is asked in: ``unit`` read, or without one the reference's dimension in SI.
+
+    The one place that decides what ``unit = ""`` means (the request's default, and the stored
+    reference's, `grader.answers.reference.ReferenceAnswer`): the answer is of the reference's
+    dimension, in any unit of it, and a pure number only where the reference is dimensionless.
+
+    Parameters
+    ----------
+    unit : str
+        The unit asked (``"N"``), or ``""`` for none.
+    reference : Dimension or None
+        The reference's dimension, from its variables; None where it cannot be found.
+    dimension : str, optional
+        The answer's dimension as the request declares it (``"force"``, ``"kg*m*s^-2"``).
+
+    Raises
+    ------
+    NumericRequestError
+        When the unit or the declared dimension does not read, or when the unit, the declared
+        dimension and the reference's disagree: such a request would grade every student against
+        another quantity than the reference.
+
+    Examples
+    --------
+    >>> force = parse_dimension("force")
+    >>> asked_unit("kN", force).size, asked_unit("", force).dimension.describe()
+    (1000.0, 'a force (kg·m/s²)')
+    >>> asked_unit("m", force)
+    Traceback (most recent call last):
+    ...
+    grader.answers.numeric.NumericRequestError: the unit 'm' is a length (m), but the reference is a force (kg·m/s²)
+    """
+    if not isinstance(unit, str):
+        raise NumericRequestError("'unit' must be a string")
+    try:
+        reading = read_unit(unit)
+    except DimensionError as error:
+        raise NumericRequestError(f"bad unit {unit!r}: {error}") from None
+    try:
+        declared = parse_dimension(dimension) if dimension else None
+    except DimensionError as error:
+        raise NumericRequestError(f"bad dimension {dimension!r}: {error}") from None
+    if not unit.strip():
+        if declared is not None and reference is not None and declared != reference:
+            raise NumericRequestError(f"the dimension {dimension!r} is {declared.describe()}, but the reference is "
+                                      f"{reference.describe()}")
+        wanted = declared or reference
+        return reading if wanted is None else UnitReading(1.0, wanted)
+    if declared is not None and declared != reading.dimension:
+        raise NumericRequestError(f"the unit {unit!r} is not {declared.describe()}")
+    if reference is not None and reference != reading.dimension:
+        raise NumericRequestError(f"the unit {unit!r} is {reading.dimension.describe()}, but the reference is "
+                                  f"{reference.describe()}")
+    return reading
+
+
+def _check_domains(namespace: Namespace, variables: Mapping[str, Any], values: Mapping[str, Any]) -> None:
+    """Raise for a number outside its variable's declared domain (or not below the variable it is
+    declared ``below``): the reference holds only there, so its value elsewhere grades nothing."""
+    numbers = {k: v for k, v in values.items()
+               if isinstance(k, str) and isinstance(v, (int, float)) and not isinstance(v, bool)}
+    for variable in namespace.variables:
+        value = numbers.get(variable.name)
+        if value is None:
+            continue  # no number: _value says so where the reference needs one
+        if not variable.domain.contains(value):
+            raise NumericRequestError(f"the value {value:g} of {variable.name!r} is outside its domain "
+                                      f"({variable.domain})")
+        spec = variables.get(variable.name)
+        other = spec.get("below") if isinstance(spec, Mapping) else None
+        if isinstance(other, str) and other in numbers and not value < numbers[other]:
+            raise NumericRequestError(f"the value {value:g} of {variable.name!r} is not below that of {other!r} "
+                                      f"({numbers[other]:g}), as its domain says")
 
 
 @lru_cache(maxsize=256)
@@ -410,20 +510,14 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
     'give a unit: the answer is a force (kg·m/s²), for example in N'
     """
     tol = _tolerance(tolerance)
-    if not isinstance(unit, str):
-        raise NumericRequestError("'unit' must be a string")
-    try:
-        expected = read_unit(unit)
-        expected_dim = expected.dimension
-        if dimension:
-            declared = parse_dimension(dimension)
-            if declared != expected_dim:
-                raise NumericRequestError(f"the unit {unit!r} is not {declared.describe()}")
-    except DimensionError as error:
-        raise NumericRequestError(f"bad unit {unit!r}: {error}") from None
     try:
         variables_json = json.dumps(variables, sort_keys=True)
-        values = _with_root(implicit, variables_json, dict(values or {}))
+        _, namespace = _reference_expr(reference, variables_json)
+        expected = asked_unit(unit, _reference_dimension(reference, variables_json), dimension)
+        expected_dim = expected.dimension
+        values = dict(values or {})
+        _check_domains(namespace, variables, values)
+        values = _with_root(implicit, variables_json, values)
         target = _value(reference, variables_json, values)
     except ExpressionError as error:
         raise NumericRequestError(f"the reference does not parse: {error}") from None
@@ -446,7 +540,8 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
         quantity = Quantity(quantity.number, "", expected.size, quantity.dimension, quantity.sig_figs)
         parsed["notes"].append(f"read in {unit}, the unit asked")
     if quantity.unit == "" and not expected_dim.is_dimensionless:
-        reason = f"give a unit: the answer is {expected_dim.describe()}, for example in {unit}"
+        example = f", for example in {unit}" if unit.strip() else ""
+        reason = f"give a unit: the answer is {expected_dim.describe()}{example}"
         return Verdict("invalid", "none", reason, parsed=parsed,
                        feedback=[{"code": "missing_unit", "message": f"Give a unit: the answer is "
                                                                      f"{expected_dim.describe()}."}])
@@ -460,7 +555,7 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
             unit_name = _UNIT_NAMES.get(milli[1:], milli[1:])
             message = (f"{milli} is the milli{unit_name}; if you meant metres times {unit_name}s, put a space "
                        f"between them: m {milli[1:]}.")
-            return Verdict("invalid", "none", message[:1].lower() + message[1:-1], parsed=parsed,
+            return Verdict("invalid", "none", _reason(message), parsed=parsed,
                            feedback=[{"code": "unit", "message": message}])
         mine = "a pure number" if quantity.dimension.is_dimensionless else quantity.dimension.describe()
         wanted = "a pure number" if expected_dim.is_dimensionless else expected_dim.describe()
@@ -468,7 +563,7 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
             name, read_as = quantity.joined[0]
             message = (f"{quantity.unit} was read as {quantity.unit.replace(name, read_as, 1)} ({name} as units "
                        f"written together), {mine}; the answer is {wanted}. Type the units apart, with spaces or *.")
-            return Verdict("invalid", "none", message[:1].lower() + message[1:-1], parsed=parsed,
+            return Verdict("invalid", "none", _reason(message), parsed=parsed,
                            feedback=[{"code": "unit", "message": message}])
         message = f"Your unit {quantity.unit} is {mine}; the answer is {wanted}."
         return Verdict("not_equivalent", "proved", f"wrong unit: {quantity.unit} is {mine}, the answer is {wanted}",
@@ -476,12 +571,14 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
                        evidence={"method": "units"})
     conflict = _unit_conflict(expected.symbols, angle, quantity.symbols, expected_dim == parse_dimension("energy"))
     if conflict:
-        return Verdict("invalid", "none", conflict[:1].lower() + conflict[1:-1], parsed=parsed,
+        return Verdict("invalid", "none", _reason(conflict), parsed=parsed,
                        feedback=[{"code": "unit", "message": conflict}])
     if quantity.unit and quantity.size != 1.0:
         parsed["notes"].append(f"converted from {quantity.unit} to SI units")
     figures = tol.get("sig_figs")
-    if figures is not None and quantity.sig_figs < figures:
+    # Zero has no significant figures: a zero answer, or any answer to a zero reference, is judged by
+    # its value alone (within_tolerance's rule for a zero reference), never told to give more figures.
+    if figures is not None and quantity.sig_figs < figures and quantity.number != 0 and target != 0:
         return Verdict("not_equivalent", "proved", f"give at least {figures} significant figures",
                        parsed=parsed, evidence={"method": "numeric_value"},
                        feedback=[{"code": "sig_figs", "message": f"Give your answer to {figures} significant figures."}])
@@ -503,6 +600,19 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
     if scores:
         verdict.score = max(scores)
     return verdict
+
+
+def _reason(message: str) -> str:
+    """A feedback sentence as a verdict's reason: without its full stop, and lower-case where it starts
+    with an ordinary word (never a unit symbol: ``Hz counts cycles``, not ``hz``; ``Nm was read``, not
+    the nanometre's ``nm``)."""
+    text = message[:-1] if message.endswith(".") else message
+    first = text.split(" ", 1)[0]
+    try:
+        read_unit(first)
+    except DimensionError:
+        return text[:1].lower() + text[1:]
+    return text
 
 
 def _unit_conflict(asked: Sequence[str], angle: bool, typed: Sequence[str], energy: bool) -> str | None:

@@ -68,7 +68,10 @@ class ReferenceAnswer:
         Other references that are also right (``alternatives`` in the scene file: the mirror
         equilibrium, the other sign convention); the verdict's ``evidence["matched"]`` says which.
     unit : str
-        Numeric answers: the SI unit text the answer is asked in (``"N"``; ``""`` for a pure number).
+        Numeric answers: the unit text the answer is asked in (``"N"``); ``""`` asks for the answer's
+        dimension in any unit of it, a pure number only where the reference is dimensionless. Kept as
+        given: what it means, and whether it agrees with the reference, is decided by the checker
+        (`grader.answers.numeric.asked_unit`), as for a request that names no unit.
     tolerance : dict or None
         Numeric answers: ``{"relative"?, "absolute"?, "sig_figs"?}`` (None: 1 % relative).
     weight : float

@@ -446,8 +446,10 @@ def test_a_bare_number_for_an_angle_is_in_the_unit_asked(unit, answer, verdict, 
 ])
 def test_a_milli_prefix_that_may_be_metres_times_a_unit_is_refused_with_the_spacing_to_type(unit, answer):
     # ms is the millisecond: "9.8 ms^-2" is strictly 9.8e6 s^-2, but what the student meant is m s^-2.
-    request = {"m/s^2": dict(WEIGHT, reference="g"), "m/s": dict(WEIGHT, reference="g*m/m"),
-               "N*m": dict(TORQUE)}[unit]
+    speed = dict(WEIGHT, reference="sqrt(g*l)", variables={**VARIABLES, "l": {"dimension": "length",
+                                                                               "domain": "positive"}},
+                 values={**VALUES, "l": 1.0})  # a velocity, as the unit m/s asks
+    request = {"m/s^2": dict(WEIGHT, reference="g"), "m/s": speed, "N*m": dict(TORQUE)}[unit]
     reply = check(answer=answer, **dict(request, unit=unit))
     assert reply.verdict == "invalid" and "put a space between them: m " in reply.feedback[0]["message"]
 
@@ -462,3 +464,143 @@ def test_units_written_together_are_a_guess_refused_rather_than_judged_when_thei
                                     "F = 14.7 N", "≈ 14.7 N", "14.7 Kg m/s^2", "1.47⋅10^1 N", "14.7 kg⋅m/s²"])
 def test_a_force_as_students_type_it(answer):
     assert check(answer=answer, **WEIGHT).verdict == "equivalent"
+
+
+# -- zero under significant figures --------------------------------------------------------------
+# Zero has no significant figures: "0.00 N" has as many as "0 N" (none that count). A zero answer is
+# never told to give more figures; nor is any answer to a zero reference, which has no figures to
+# match: there the rule of within_tolerance decides (below 10^-n in the student's unit).
+SLOPE = dict(reference="m*g*sin(theta)", kind="numeric", unit="N",
+             variables={**VARIABLES, "theta": {"dimension": "angle", "domain": "real"}})
+FLAT = {"m": 2, "g": 9.81, "theta": 0}              # the force along a flat floor: exactly 0 N
+TILTED = {"m": 2, "g": 9.81, "theta": math.pi / 6}  # 9.81 N
+
+
+@pytest.mark.parametrize("values, answer, tolerance, verdict, codes", [
+    # a zero answer to a zero reference: right whatever sig_figs asks
+    (FLAT, "0 N", {"sig_figs": 2}, "equivalent", []),
+    (FLAT, "0.0 N", {"sig_figs": 2}, "equivalent", []),
+    (FLAT, "0.00 N", {"sig_figs": 2}, "equivalent", []),
+    (FLAT, "0e0 N", {"sig_figs": 2}, "equivalent", []),
+    (FLAT, "-0 N", {"sig_figs": 2}, "equivalent", []),
+    (FLAT, "0.00 kN", {"sig_figs": 2}, "equivalent", []),
+    (FLAT, "0 N", {"sig_figs": 15}, "equivalent", []),
+    (FLAT, "0 N", {"sig_figs": 3, "relative": 0.01}, "equivalent", []),
+    # a nonzero answer to a zero reference: zero to n decimal places, or wrong by its value
+    (FLAT, "0.001 N", {"sig_figs": 2}, "equivalent", []),
+    (FLAT, "0.0010 N", {"sig_figs": 2}, "equivalent", []),
+    (FLAT, "0.01 N", {"sig_figs": 2}, "not_equivalent", []),
+    (FLAT, "1 N", {"sig_figs": 2}, "not_equivalent", []),
+    (FLAT, "0.5 N", {"sig_figs": 3}, "not_equivalent", []),
+    # a zero answer to a nonzero reference: wrong by its value, not for its figures
+    (TILTED, "0 N", {"sig_figs": 2}, "not_equivalent", []),
+    (TILTED, "0.00 N", {"sig_figs": 2}, "not_equivalent", []),
+    # nonzero answers to a nonzero reference: the figures still count
+    (TILTED, "9.8 N", {"sig_figs": 2}, "equivalent", []),
+    (TILTED, "1e1 N", {"sig_figs": 2}, "not_equivalent", ["sig_figs"]),
+])
+def test_a_zero_is_judged_by_its_value_never_by_its_significant_figures(values, answer, tolerance, verdict, codes):
+    reply = check(answer=answer, values=values, tolerance=tolerance, **SLOPE)
+    assert (reply.verdict, [f["code"] for f in reply.feedback]) == (verdict, codes), reply.reason
+    if codes != ["sig_figs"]:
+        assert "significant figures" not in reply.reason
+
+
+# -- the unit asked, and a request without one ---------------------------------------------------
+# unit = "" asks for the reference's dimension in any unit of it, with the rules of a unit that is
+# given (a force needs a unit); a pure number only where the reference is dimensionless.
+NO_UNIT = {k: v for k, v in WEIGHT.items() if k != "unit"}
+
+
+@pytest.mark.parametrize("answer, verdict, codes", [
+    ("14.7 N", "equivalent", []), ("0.0147 kN", "equivalent", []), ("1.47e1 kg*m/s^2", "equivalent", []),
+    ("1471.5 cN", "equivalent", []),
+    ("15.5 N", "not_equivalent", []), ("147 N", "not_equivalent", ["power_of_ten"]),
+    ("14.7 m", "not_equivalent", ["dimension"]),
+    ("14.7", "invalid", ["missing_unit"]),  # as when "N" is asked: a force is given with its unit
+])
+@pytest.mark.parametrize("request_unit", [None, ""])
+def test_without_a_unit_the_answer_is_of_the_references_dimension(answer, verdict, codes, request_unit):
+    request = dict(NO_UNIT, answer=answer, **({} if request_unit is None else {"unit": request_unit}))
+    reply = check_request(request)
+    assert (reply["verdict"], [f["code"] for f in reply["feedback"]]) == (verdict, codes), reply["reason"]
+
+
+def test_a_missing_unit_without_a_unit_asked_names_the_dimension_only():
+    reply = check(answer="14.7", **NO_UNIT)
+    assert reply.reason == "give a unit: the answer is a force (kg·m/s²)"
+
+
+def test_a_dimensionless_reference_without_a_unit_is_still_a_pure_number():
+    pure = dict(NO_UNIT, reference="m*g/(m*g)")
+    assert check(answer="1.0", **pure).verdict == "equivalent"
+    assert check(answer="1.0 N", **pure).feedback[0]["code"] == "dimension"
+
+
+@pytest.mark.parametrize("change, words", [
+    ({"unit": "m"}, ("the unit 'm' is a length (m)", "the reference is a force (kg·m/s²)")),
+    ({"unit": "deg"}, ("the unit 'deg' is dimensionless", "the reference is a force")),
+    ({"unit": "kJ"}, ("an energy or torque", "the reference is a force")),
+    ({"unit": "N", "reference": "m*g/(m*g)"}, ("the unit 'N' is a force", "the reference is dimensionless")),
+    ({"unit": "", "dimension": "length"}, ("the dimension 'length' is a length (m)", "the reference is a force")),
+])
+@pytest.mark.parametrize("answer", ["14.7 N", "14.7 m", "14.7"])
+def test_a_unit_that_contradicts_the_references_dimension_is_a_bad_request(change, words, answer):
+    reply = check(answer=answer, **dict(WEIGHT, **change))
+    assert reply.verdict == "invalid" and all(w in reply.reason for w in words), reply.reason
+    assert reply.feedback == []  # nothing for the student: the request is at fault
+
+
+def test_a_stored_reference_without_a_unit_asks_for_its_dimension():
+    reference = ReferenceAnswer.from_json({**REFERENCE, "unit": ""})
+    assert check_request(reference.request("0.981 N", values={"m": 0.3}))["verdict"] == "equivalent"
+    assert check_request(reference.request("0.981", values={"m": 0.3}))["verdict"] == "invalid"
+    wrong = ReferenceAnswer.from_json({**REFERENCE, "unit": "m", "dimension": "m"})
+    reply = check_request(wrong.request("0.981 m", values={"m": 0.3}))
+    assert reply["verdict"] == "invalid" and "the reference is a force" in reply["reason"]
+
+
+# -- reasons keep a unit symbol as typed -----------------------------------------------------------
+
+@pytest.mark.parametrize("question, answer, reason", [
+    (dict(OMEGA, unit="rad/s"), "5 Hz", "Hz counts cycles per second (f = ω/2π); give this angular frequency in "
+                                        "rad/s (or s⁻¹)"),
+    (dict(OMEGA, reference="sqrt(k/m)/(2*pi)", unit="Hz"), "5 rad/s", "give this frequency in Hz"),
+    (dict(TORQUE, unit="N*m"), "5 J", "a torque is given in N·m"),
+    (WEIGHT, "14.7 Nm", "Nm was read as N m"),
+    (dict(WEIGHT, reference="g", unit="m/s^2"), "9.8 ms^-2", "ms is the millisecond"),
+])
+def test_a_reason_starts_lower_case_unless_it_starts_with_a_unit_symbol(question, answer, reason):
+    reply = check(answer=answer, **question)
+    assert reply.verdict == "invalid" and reply.reason.startswith(reason), reply.reason
+    assert reply.feedback[0]["message"].rstrip(".").lower() == reply.reason.lower()
+
+
+# -- the student's numbers lie in their variables' domains -----------------------------------------
+HOOP = dict(reference="m*g*d/R", kind="numeric", unit="N",
+            variables={**VARIABLES, "R": {"dimension": "length", "domain": "positive"},
+                       "d": {"dimension": "length", "domain": "nonnegative", "below": "R"},
+                       "theta": {"dimension": "angle", "domain": [0, 1.5708]}})
+INSIDE = {"m": 1.5, "g": 9.81, "R": 1.0, "d": 0.5, "theta": 1.0}  # m g d/R = 7.3575 N
+
+
+@pytest.mark.parametrize("change, words", [
+    ({"m": -1.5}, "the value -1.5 of 'm' is outside its domain (positive)"),
+    ({"m": 0}, "of 'm' is outside its domain (positive)"),
+    ({"g": math.inf}, "of 'g' is outside its domain (positive)"),
+    ({"g": math.nan}, "of 'g' is outside its domain (positive)"),
+    ({"d": -0.1}, "of 'd' is outside its domain (nonnegative)"),
+    ({"theta": 2.0}, "of 'theta' is outside its domain ([0, 1.5708])"),  # named though the reference has no theta
+    ({"d": 1.0}, "the value 1 of 'd' is not below that of 'R' (1)"),
+])
+@pytest.mark.parametrize("answer", ["7.36 N", "-7.36 N", "7.36 m"])
+def test_numbers_outside_their_domains_are_a_bad_request_never_graded(change, words, answer):
+    reply = check(answer=answer, values={**INSIDE, **change}, **HOOP)
+    assert reply.verdict == "invalid" and words in reply.reason, reply.reason
+
+
+@pytest.mark.parametrize("change", [{}, {"d": 0.0}, {"theta": 0.0}, {"theta": 1.5708}, {"other": -1.0}])
+def test_numbers_in_their_domains_are_graded_ends_included(change):
+    values = {**INSIDE, **change}
+    answer = f"{1.5 * 9.81 * values['d']:.4g} N"
+    assert check(answer=answer, values=values, **HOOP).verdict == "equivalent"
