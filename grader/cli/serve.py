@@ -25,13 +25,12 @@ PASSWORDS_FILE = "first-start-passwords.txt"
               help="Create a demo instructor and student on first start.")
 def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, demo: bool) -> None:
     """Serve the web pages and the API, and grade submissions in the background."""
-    import waitress
-
     from grader.jobs.derivation import close_shared_sandboxes, load_problem_files
     from grader.store.db import Database, default_url
     from grader.store.migrate import upgrade
     from grader.web import create_app
     from grader.web.background import start_background
+    from grader.web.server_refusals import create_server
 
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(levelname)s %(name)s: %(message)s")
     url = default_url()
@@ -50,9 +49,10 @@ def serve(host: str, port: int, workers: int, threads: int, problems_dir: Path, 
 
     background = start_background(app, grading_workers=workers)
     # A body over the app's cap is refused by waitress from its Content-Length, before it is read:
-    # a flood of oversized requests then costs the server a header each, not megabytes each.
-    server = waitress.create_server(app, host=host, port=port, threads=threads, ident="lagrade",
-                                    max_request_body_size=app.config["MAX_CONTENT_LENGTH"] + 1)
+    # a flood of oversized requests then costs the server a header each, not megabytes each. The
+    # app writes that refusal (and waitress's others): a problem document under /api/, a page elsewhere.
+    server = create_server(app, host=host, port=port, threads=threads, ident="lagrade",
+                           max_request_body_size=app.config["MAX_CONTENT_LENGTH"] + 1)
     base = f"http://{host}:{server.effective_port}"
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(0))
     click.echo(f"sign in at {base}{_sign_in_path(app)}; API at {base}/api/v1 (see /api/v1/openapi.json)\n"

@@ -65,6 +65,11 @@ def wants_problem_json() -> bool:
 
 
 def init_app(app: Flask) -> None:
+    from grader.web.server_refusals import refuse_early
+
+    # First of the app's before_request functions: a request the server refused reaches no view.
+    app.before_request(refuse_early)
+
     @app.errorhandler(ApiProblem)
     def _api_problem(error: ApiProblem):
         return problem_response(error.status, error.detail, kind=error.kind, title=error.title,

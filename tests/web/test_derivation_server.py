@@ -67,10 +67,11 @@ def test_the_server_derives_uploads_in_the_background_and_refuses_oversized_bodi
         assert re.fullmatch(r"upload\.toml: the derivation (ran out of its 1\.8 s budget while .+"
                             r"|took longer than 2 s and was stopped)", failed["error"]), failed["error"]
 
-        # Over the app's 1 MiB cap: waitress answers from the Content-Length, without reading the body.
+        # Over the app's 1 MiB cap: waitress refuses from the Content-Length, without reading the body,
+        # and the app writes the answer (grader.web.server_refusals).
         huge = requests.post(base + "/api/v1/check", data=b"x" * (2 * 1024 * 1024),
                              headers={**headers, "Content-Type": "application/json"}, timeout=30)
-        assert huge.status_code == 413
+        assert huge.status_code == 413 and huge.headers["Content-Type"] == "application/problem+json"
 
 
 def test_a_derivation_interrupted_by_a_kill_is_finished_after_the_restart(site):
