@@ -320,13 +320,25 @@ def _in_single_angles(replaced: sympy.Expr) -> sympy.Expr:
     return sympy.factor(ratio.xreplace({S: sympy.sin(angle), C: sympy.cos(angle)}))
 
 
+def _reached_in_family(evaluator, u, condition, numeric: dict[int, float], point: dict, key: str) -> int | None:
+    """The root the motion from [initial] at ``point`` reaches first, or None where it reaches none."""
+    try:
+        return _first_reached(evaluator, u, condition, numeric, point, key)
+    except SceneError:
+        return None
+
+
 def _turned_back(evaluator, spec, condition, x, roots, chosen, key: str) -> dict | None:
     """{u: sign} when the chosen root of the one motion from [initial] is reached moving the other way
     than u starts (after a turning point), else None."""
     variable = _variable(evaluator, x)
-    if variable is None or variable[0] != "coordinate" or not _one_motion(evaluator, spec, variable[1]):
+    if variable is None or variable[0] != "coordinate":
         return None
     u = variable[1]
+    if _family_motion(evaluator, spec, u):
+        return _turned_back_in_family(evaluator, condition, x, variable, roots, chosen, key)
+    if not _one_motion(evaluator, spec, u):
+        return None
     start = evaluator.motion_sign(u, pushed=True)
     if start is None:
         return None
@@ -336,6 +348,52 @@ def _turned_back(evaluator, spec, condition, x, roots, chosen, key: str) -> dict
     if index not in numeric:
         return None
     return _turned_back_at(evaluator, u, start, condition, numeric[index], point, key)
+
+
+def _turned_back_in_family(evaluator, condition, x, variable, roots, chosen, key: str) -> dict | None:
+    """`_turned_back` for an answer about a family of motions (`_family_motion`): the way u moves at
+    the chosen root, at the scene's values and across the domains wherever the motion reaches it;
+    the same everywhere, or the file is refused (then no one sign is right for the formula)."""
+    u = variable[1]
+    start = evaluator.motion_sign(u, pushed=True)
+    if start is None:
+        return None
+    index = roots.index(chosen)
+    decided = None
+    for parameters in _parameter_points(evaluator.scene) + _domain_samples(evaluator.scene):
+        point = _with_state(evaluator, parameters, condition.free_symbols - {x})
+        numeric = _numeric_roots(roots, point, variable)
+        if index not in numeric:
+            continue
+        try:
+            _, direction = _first_reached_on(evaluator, u, condition, {0: numeric[index]}, point, key)
+        except SceneError:  # not reached at these values: they say nothing about the way it goes
+            continue
+        # The way u moves there, not only whether it turned: released at θ₀ in [-1.5, 1.5] the bob
+        # passes the bottom one way or the other, and the sign taken at the scene's θ₀ = 0.8 was
+        # wrong for every θ₀ < 0.
+        if decided is None:
+            decided = direction
+        elif direction != decided:
+            raise SceneError(evaluator.scene.source, key, _depends_on_parameters(parameters).replace(
+                "which root holds", "which way the motion passes the root"))
+    return {u.name: int(decided)} if decided is not None and decided * start < 0 else None
+
+
+def _domain_samples(scene) -> list[dict]:
+    """A few parameter points across the declared domains (seeded: the same every time), each keeping
+    the declared orders (r₀ below R) as `_parameter_points` does."""
+    rng = numpy.random.default_rng(11)
+    points = []
+    for _ in range(DOMAIN_POINTS):
+        point = {p.symbol: p.domain.sample(rng) for p in scene.parameters.values()}
+        for p in scene.parameters.values():
+            big = scene.parameters[p.below] if p.below is not None else None
+            if big is not None and not point[p.symbol] < point[big.symbol] \
+                    and p.domain.contains(point[big.symbol]) and big.domain.contains(point[p.symbol]):
+                point[p.symbol], point[big.symbol] = point[big.symbol], point[p.symbol]
+        points.append(point)
+    return points
 
 
 def _turned_back_at(evaluator, u, start: int, condition, root: float, point: dict, key: str) -> dict | None:
@@ -1106,6 +1164,10 @@ def _select(evaluator, spec, x, roots, value, variable, condition, numeric, poin
     elif one_motion:
         # Even a single root must be reached: the motion may turn back before it.
         index = _first_reached(evaluator, variable[1], condition, numeric, point, key)
+    elif (not at_rest and spec.kind != "small_oscillation" and len(groups) > 1
+          and _family_motion(evaluator, spec, variable[1])
+          and (index := _reached_in_family(evaluator, variable[1], condition, numeric, point, key)) is not None):
+        pass  # the motion at these parameter values reaches that root first (see _family_motion)
     elif len(groups) == 1:
         index = min(groups[0])
     elif variable is not None and variable[0] == "velocity" and _by_momentum(evaluator, variable[1], roots, numeric,
@@ -1198,6 +1260,24 @@ def _one_motion(evaluator, spec, u) -> bool:
     return not (used & allowed) and not (others & allowed)
 
 
+def _family_motion(evaluator, spec, u) -> bool:
+    """Whether the answer is about a family of motions from [initial]: an answer in terms of a
+    parameter that [initial] uses (θ₀, v₀), about a coordinate that [initial] gives.
+
+    Its value at a configuration is a formula in that parameter, reachable for some of its values.
+    Where the motion from [initial] does reach the root, at the scene's values and across the
+    domains, it still decides which root and which way u moves there (a pendulum launched at w₀
+    from the bottom meets θ = -0.2 on its way back, θ̇ < 0); where it reaches none, nothing does.
+    """
+    initial = evaluator.scene.initial
+    if u.name not in initial or _one_motion(evaluator, spec, u):
+        return False
+    used = set().union(*(e.free_symbols for e in initial.values()))
+    allowed = evaluator.target(spec, default_state=False) if spec.in_terms_of is not None else set()
+    others = {v.symbol for v in evaluator.reduction.independent.values() if v.symbol != u.symbol}
+    return bool(used & allowed) and not (others & allowed)
+
+
 def _with_state(evaluator, point: dict, symbols: set) -> dict:
     """The parameter point, with numbers for the state variables an answer is written in.
 
@@ -1277,8 +1357,7 @@ def _domain_points(scene, roots) -> list[dict]:
     there are several roots to choose between."""
     if len(roots) < 2:
         return []
-    rng = numpy.random.default_rng(11)
-    return [{p.symbol: p.domain.sample(rng) for p in scene.parameters.values()} for _ in range(DOMAIN_POINTS)]
+    return _domain_samples(scene)
 
 
 def _parameter_points(scene) -> list[dict]:

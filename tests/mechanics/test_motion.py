@@ -136,7 +136,9 @@ def test_the_quadrature_gives_the_time_out_and_back_only_on_the_way_out():
     quadrature's time), r = 0.9 r₀ only after the turn (refused, with the turning point)."""
     text = scene_text("radial_fall", ("rdot = 0", 'rdot = "sqrt(G*M/r0)"'), ('prompt = "Speed', 'prompt = "Velocity'),
                       ('expr = "-rdot"', 'expr = "rdot"'))
-    outward = derive(parse_scene(text.replace("value = 1.8", "value = 3.0"), "fall.toml"))
+    # R beyond r0 declared: below r0 the velocity there is reached on the way back, with the other sign
+    beyond = text.replace('value = 2.0 }', 'value = 2.0, below = "R" }')
+    outward = derive(parse_scene(beyond.replace("value = 1.8", "value = 3.0"), "fall.toml"))
     point = {"G": 1.0, "M": 1.0, "r0": 2.0, "R": 3.0}
     # t = ∫ dr/√(2GM/r − GM/r₀) from r₀ to R, numerically.
     from scipy.integrate import quad
