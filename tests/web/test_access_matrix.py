@@ -205,8 +205,9 @@ ROWS = [
     Row("GET", "/courses", "/courses",                                                 "login login ok    ok    ok    ok    login ok"),
     Row("GET", "/courses/<code>/assignments/<assignment>", "/courses/MECH/assignments/hw1",
                                                                                        "login login ok    404   ok    404   login ok"),
+    # hw1 closed in 2021: the student may hand in, and is refused by the deadline (422, the text kept)
     Row("POST", "/courses/<code>/assignments/<assignment>/submit", "/courses/MECH/assignments/hw1/submit",
-                                                                                       "401   401   ok    404   403   404   401   403",
+                                                                                       "401   401   422   404   403   404   401   403",
         {"data": {"problem": "mech", "answer-tension": "m*g/3"}}),
     Row("GET", "/instructor/courses", "/instructor/courses",                           "login login 403   403   ok    ok    login ok"),
     Row("POST", "/instructor/courses", "/instructor/courses",                          "401   401   403   403   ok    ok    401   ok",

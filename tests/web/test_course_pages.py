@@ -13,7 +13,7 @@ from zoneinfo import ZoneInfo
 import pytest
 from sqlalchemy import select
 
-from grader.store.models import Course, User
+from grader.store.models import Course, Submission, User
 from grader.store.users import create_token, set_password
 from tests.web.conftest_pages import (  # noqa: F401  (fixtures)
     PASSWORD, Account, accounts, as_instructor, csrf, grade_all, sign_in,
@@ -115,8 +115,8 @@ def test_attempts_run_out_and_the_page_says_so(app, course, clock):
     page = cy.get("/courses/PHYS/assignments/hw1").get_data(as_text=True)
     assert re.search(r"2 attempts used, 0 left", page)
     assert 'name="answer-tension"' not in page and 'name="answer-acceleration"' in page
-    _post(cy, "/courses/PHYS/assignments/hw1/submit", problem="yoyo", **{"answer-tension": "m*g/3"})
-    assert "No attempts left" in cy.get("/courses/PHYS/assignments/hw1").get_data(as_text=True)
+    refused = _post(cy, "/courses/PHYS/assignments/hw1/submit", problem="yoyo", **{"answer-tension": "m*g/3"})
+    assert refused.status_code == 422 and "No attempts left" in refused.get_data(as_text=True)
 
 
 def test_after_the_close_nothing_is_accepted_and_the_solution_is_shown(app, course, clock):
@@ -124,9 +124,10 @@ def test_after_the_close_nothing_is_accepted_and_the_solution_is_shown(app, cour
     clock.now = CLOSES
     assert 'class="card derivation solution"' not in cy.get("/courses/PHYS/assignments/hw1").get_data(as_text=True)
     clock.now = CLOSES + timedelta(seconds=1)
-    _post(cy, "/courses/PHYS/assignments/hw1/submit", problem="yoyo", **{"answer-tension": "m*g/3"})
+    refused = _post(cy, "/courses/PHYS/assignments/hw1/submit", problem="yoyo", **{"answer-tension": "m*g/3"})
+    assert refused.status_code == 422 and "no more submissions are accepted" in refused.get_data(as_text=True)
     page = cy.get("/courses/PHYS/assignments/hw1").get_data(as_text=True)
-    assert "This assignment is closed." in page and "no more submissions are accepted" in page
+    assert "This assignment is closed." in page
     assert 'class="card derivation solution"' in page and "<math" in page  # rendered as MathML
 
 
@@ -162,3 +163,31 @@ def test_the_practice_page_sends_a_student_to_the_open_assignment(app, course, c
     response = _post(cy, "/problems/yoyo/submit", **{"answer-tension": "m*g/3"})
     assert response.headers["Location"].endswith("/courses/PHYS/assignments/hw1")
     assert "hand it in there" in cy.get(response.headers["Location"]).get_data(as_text=True)
+
+
+# As on the practice page: a refused answer is marked at its input with its text kept, the others
+# are stored, and a rate limit partway names what it held back.
+def test_a_refused_hand_in_keeps_its_text_and_the_others_are_handed_in(app, course, clock):
+    cy = _student(app, "cy@example.org")
+    too_long = "m*g+" * 1125  # 4500 characters
+    refused = _post(cy, "/courses/PHYS/assignments/hw1/submit", problem="yoyo",
+                    **{"answer-tension": too_long, "answer-acceleration": "2*g/3"})
+    html = refused.get_data(as_text=True)
+    assert refused.status_code == 422 and "Submitted 1 answer for grading" in html
+    assert "Not submitted:</strong> the answer is 4500 characters long" in html and f'value="{too_long}"' in html
+    with app.extensions["lagrade.db"].read() as session:
+        assert session.scalars(select(Submission.answer_name)).all() == ["acceleration"]
+
+
+def test_a_rate_limit_partway_through_a_hand_in_keeps_the_rest(app, course, clock):
+    app.config.update(RATE_LIMITS_ENABLED=True, RATE_LIMITS={**app.config["RATE_LIMITS"], "submit": (1, 1)})
+    cy = _student(app, "cy@example.org")
+    typed = {"tension": "m*g/3", "acceleration": "2*g/3"}
+    held = _post(cy, "/courses/PHYS/assignments/hw1/submit", problem="yoyo",
+                 **{f"answer-{name}": text for name, text in typed.items()})
+    html = held.get_data(as_text=True)
+    with app.extensions["lagrade.db"].read() as session:
+        [sent] = session.scalars(select(Submission.answer_name)).all()
+    [rest] = {"tension", "acceleration"} - {sent}
+    assert held.status_code == 429 and f"Not submitted (too many submissions in a short time): {rest}." in html
+    assert f'value="{typed[rest]}"' in html

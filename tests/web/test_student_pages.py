@@ -190,3 +190,41 @@ def test_the_history_names_each_answer_by_its_prompt(app, as_student, problems):
     html = as_student.get("/problems/yoyo").get_data(as_text=True)
     row = html[html.index('id="history"'):].split("<tr>")[2]
     assert "Tension" in row and ">tension<" not in row
+
+
+def _answer_block(html: str, name: str) -> str:
+    """The part of the page about one answer: its input, its preview, what became of it."""
+    start = html.index(f'id="answer-{name}"')
+    ends = [html.find('class="answer-block"', start), html.index('class="buttons"', start)]
+    return html[start:min(end for end in ends if end != -1)]
+
+
+# A refused answer (over the 4000-character limit) once ended the loop: the answers after it were
+# neither stored nor kept in the form. Whichever is refused, the other is stored.
+@pytest.mark.parametrize("refused, valid, text", [("tension", "acceleration", "2*g/3"),
+                                                  ("acceleration", "tension", "m*g/3")])
+def test_a_refused_answer_is_marked_at_its_input_and_the_others_are_stored(app, as_student, problems,
+                                                                           refused, valid, text):
+    too_long = "m*g+" * 1125  # 4500 characters
+    response = submit_answers(as_student, "yoyo", **{refused: too_long, valid: text})
+    html = response.get_data(as_text=True)
+    assert response.status_code == 422 and submissions(app) == 1
+    with app.extensions["lagrade.db"].read() as session:
+        assert session.scalars(select(Submission.answer_name)).all() == [valid]
+    block = _answer_block(html, refused)
+    assert "Not submitted:" in block and "4500 characters long; the limit is 4000" in block
+    assert f'value="{too_long}"' in block  # kept in its input, to shorten
+    assert f'value="{text}"' in _answer_block(html, valid) and "Submitted 1 answer for grading" in html
+
+
+def test_a_rate_limit_partway_names_the_answers_not_submitted_and_keeps_their_text(app, as_student, problems):
+    app.config.update(RATE_LIMITS_ENABLED=True, RATE_LIMITS={**app.config["RATE_LIMITS"], "submit": (1, 1)})
+    response = submit_answers(as_student, "yoyo", tension="m*g/3", acceleration="2*g/3")
+    html = response.get_data(as_text=True)
+    assert response.status_code == 429 and submissions(app) == 1  # the first; the limit stopped the second
+    with app.extensions["lagrade.db"].read() as session:
+        [sent] = session.scalars(select(Submission.answer_name)).all()
+    [held] = {"tension", "acceleration"} - {sent}
+    assert "Not submitted:" in _answer_block(html, held) and "Not submitted:" not in _answer_block(html, sent)
+    assert f"Not submitted (too many submissions in a short time): {held}." in html
+    assert 'value="2*g/3"' in html and 'value="m*g/3"' in html

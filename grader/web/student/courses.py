@@ -42,6 +42,13 @@ def courses():
 @bp.get("/courses/<code>/assignments/<assignment>")
 @login_required(PAGE_ROLES)
 def assignment(code: str, assignment: str):
+    return _assignment_page(code, assignment)
+
+
+def _assignment_page(code: str, assignment: str, kept: dict[tuple[str, str], str] | None = None,
+                     refused: dict[tuple[str, str], str] | None = None, status: int = 200):
+    """The assignment page; ``kept`` texts stay in their inputs, ``refused`` ones say why next to
+    them (both by (problem, answer))."""
     principal = current_principal()
     found = find_assignment(db.session, principal, code, assignment)
     grader_view = allowed(principal, Action.GRADE_COURSE, found)
@@ -53,8 +60,8 @@ def assignment(code: str, assignment: str):
             latest.setdefault((submission.problem_version.problem.slug, submission.answer_name),
                               verdict_view(submission))
     return render_template("courses/assignment.html", a=view, code=code, grader_view=grader_view, latest=latest,
-                           pending=any(v["pending"] for v in latest.values()),
-                           manage=allowed(principal, Action.MANAGE_COURSE, found))
+                           pending=any(v["pending"] for v in latest.values()), kept=kept or {},
+                           refused=refused or {}, manage=allowed(principal, Action.MANAGE_COURSE, found)), status
 
 
 @bp.post("/courses/<code>/assignments/<assignment>/submit")
@@ -77,10 +84,17 @@ def hand_in_page(code: str, assignment: str):
     texts = {n: t for n, t in texts.items() if t}
     if not texts:
         flash("Type at least one answer before submitting.", "error")
-    sent, late = 0, 0
+    sent, late, refused, limit = 0, 0, {}, None
     for name, text in texts.items():
         try:
-            limiter.hit("submit", g.user.id)
+            if limit is None:  # the limit does not recover within one request: the rest wait too
+                limiter.hit("submit", g.user.id)
+        except ApiProblem as error:
+            limit = error.detail
+        if limit is not None:
+            refused[(slug, name)] = limit
+            continue
+        try:
             _, late, created = hand_in(Database.current(), user=g.user, assignment_id=assignment_id,
                                        problem_id=problem_id, answer=name, text=text, now=clock.now(),
                                        secret=current_app.config["SECRET_KEY"])
@@ -88,9 +102,15 @@ def hand_in_page(code: str, assignment: str):
                 sent += 1
             else:
                 flash(f"{name}: you already sent exactly this answer; it was not counted again.", "info")
-        except (HandInRefused, SubmissionRejected, ApiProblem) as error:
-            flash(f"{name}: {getattr(error, 'detail', None) or error}", "error")
+        except (HandInRefused, SubmissionRejected) as error:
+            refused[(slug, name)] = str(error)
     if sent:
         lateness = f" ({late} day{'s' if late != 1 else ''} late)" if late else ""
         flash(f"Submitted {sent} answer{'s' if sent != 1 else ''} for grading{lateness}.", "success")
+    if refused:
+        why = " (too many submissions in a short time)" if limit else ""
+        flash(f"Not submitted{why}: {', '.join(name for _, name in refused)}. Your text is kept below, with the "
+              f"reason next to each.", "error")
+        return _assignment_page(code, assignment, {(slug, n): t for n, t in texts.items() if (slug, n) in refused},
+                                refused, status=429 if limit else 422)
     return redirect(url_for("student.assignment", code=code, assignment=assignment) + f"#problem-{slug}")

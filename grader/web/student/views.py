@@ -11,6 +11,7 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from typing import Any
 
 from flask import abort, flash, g, jsonify, redirect, render_template, request, url_for
@@ -36,7 +37,7 @@ FIELD = "answer-"  # form field of answer NAME: "answer-NAME"
 
 
 def _answers(version: ProblemVersion, texts: dict[str, str], previews: dict[str, dict],
-             attempts: list[Submission]) -> list[dict[str, Any]]:
+             attempts: list[Submission], refused: dict[str, str]) -> list[dict[str, Any]]:
     """One entry per answer of the version: what the student sees about it (never the reference)."""
     latest: dict[str, Submission] = {}
     for submission in attempts:  # newest first
@@ -51,15 +52,16 @@ def _answers(version: ProblemVersion, texts: dict[str, str], previews: dict[str,
             # A numeric answer is a number with its unit: no names to use.
             "names": allowed_names(reference) if reference.get("kind") != "numeric" else [],
             "text": texts.get(name, last.text if last is not None else ""),
-            "preview": previews.get(name), "latest": verdict_view(last) if last is not None else None,
+            "preview": previews.get(name), "refused": refused.get(name),
+            "latest": verdict_view(last) if last is not None else None,
         })
     return answers
 
 
 def _problem_page(version: ProblemVersion, texts: dict[str, str] | None = None,
-                  previews: dict[str, dict] | None = None, status: int = 200):
+                  previews: dict[str, dict] | None = None, status: int = 200, refused: dict[str, str] | None = None):
     attempts = history(db.session, g.user, version.problem)
-    answers = _answers(version, texts or {}, previews or {}, attempts)
+    answers = _answers(version, texts or {}, previews or {}, attempts, refused or {})
     pending = any(a["latest"] and a["latest"]["pending"] for a in answers)
     return render_template("student/problem.html", version=version, answers=answers, pending=pending,
                            numbers=_numbers(version),
@@ -123,6 +125,61 @@ def preview_page(slug: str):
     return _problem_page(version, texts, previews)
 
 
+@dataclass
+class _Outcome:
+    """What became of each answer of one submit: stored, already stored, or not stored and why."""
+
+    sent: int = 0
+    again: int = 0
+    unreadable: dict[str, dict] = field(default_factory=dict)  # name -> its preview, with the caret
+    refused: dict[str, str] = field(default_factory=dict)      # name -> why it was not stored
+    limited: bool = False                                        # refused by the rate limit
+
+
+def _submit_each(version: ProblemVersion, texts: dict[str, str]) -> _Outcome:
+    """Submit every answer, carrying on past a refused one (as an assignment's hand-in does)."""
+    outcome, limit = _Outcome(), None
+    for name, text in texts.items():
+        try:
+            if limit is None:  # the limit does not recover within one request: the rest wait too
+                limiter.hit("submit", g.user.id)
+        except ApiProblem as error:
+            limit = error.detail
+        if limit is not None:
+            outcome.refused[name], outcome.limited = limit, True
+            continue
+        try:
+            _, created = submit(Database.current(), user=g.user, version=version, answer=name, text=text.strip())
+        except AnswerUnreadable:
+            # Not an attempt: shown next to its input, with the caret, as the preview shows it.
+            outcome.unreadable[name] = preview(version.reference(name), text)
+        except SubmissionRejected as error:
+            outcome.refused[name] = str(error)
+        else:
+            outcome.sent += created
+            outcome.again += not created
+    return outcome
+
+
+def _flash_outcome(outcome: _Outcome) -> None:
+    if outcome.sent:
+        flash(f"Submitted {outcome.sent} answer{'s' if outcome.sent != 1 else ''} for grading.", "success")
+    if outcome.again:
+        flash("You had already sent " + ("this answer" if outcome.again == 1 else "these answers")
+              + " exactly as typed: " + ("its" if outcome.again == 1 else "their") + " verdict is shown below, and "
+              "it is not counted as another attempt.", "success")
+    if outcome.unreadable:
+        flash("The grader cannot read " + ("an answer" if len(outcome.unreadable) == 1
+                                           else f"{len(outcome.unreadable)} answers")
+              + ": fix what is marked next to it and submit again. Nothing was counted as an attempt for it.",
+              "error")
+    if outcome.refused:
+        names = ", ".join(outcome.refused)
+        why = " (too many submissions in a short time)" if outcome.limited else ""
+        flash(f"Not submitted{why}: {names}. Your text is kept below, with the reason next to each; "
+              f"submit again once it is fixed.", "error")
+
+
 @bp.post("/problems/<slug>/submit")
 @login_required(STUDENTS)
 def submit_answers(slug: str):
@@ -138,31 +195,12 @@ def submit_answers(slug: str):
     if not texts:
         flash("Type at least one answer before submitting.", "error")
         return _problem_page(find_version(db.session, me, slug, Action.SUBMIT), status=422)
-    sent, again, unreadable = 0, 0, {}
-    for name, text in texts.items():
-        try:
-            limiter.hit("submit", g.user.id)
-            _, created = submit(Database.current(), user=g.user, version=version, answer=name, text=text.strip())
-            sent += created
-            again += not created
-        except AnswerUnreadable:
-            # Not an attempt: shown next to its input, with the caret, as the preview shows it.
-            unreadable[name] = preview(version.reference(name), text)
-        except (SubmissionRejected, ApiProblem) as error:
-            flash(getattr(error, "detail", None) or str(error), "error")
-            break
-    if sent:
-        flash(f"Submitted {sent} answer{'s' if sent != 1 else ''} for grading.", "success")
-    if again:
-        flash("You had already sent " + ("this answer" if again == 1 else "these answers")
-              + " exactly as typed: " + ("its" if again == 1 else "their") + " verdict is shown below, and "
-              "it is not counted as another attempt.", "success")
-    if unreadable:
-        flash("The grader cannot read " + ("an answer" if len(unreadable) == 1 else f"{len(unreadable)} answers")
-              + ": fix what is marked next to it and submit again. Nothing was counted as an attempt for it.",
-              "error")
-        return _problem_page(find_version(db.session, me, slug, Action.SUBMIT), _typed(version), unreadable,
-                             status=422)
+    outcome = _submit_each(version, texts)
+    _flash_outcome(outcome)
+    if outcome.unreadable or outcome.refused:
+        # Every typed text stays in the form; what was not stored is marked next to its input.
+        return _problem_page(find_version(db.session, me, slug, Action.SUBMIT), _typed(version), outcome.unreadable,
+                             status=429 if outcome.limited else 422, refused=outcome.refused)
     return redirect(url_for("student.problem", slug=slug) + "#answers")
 
 
