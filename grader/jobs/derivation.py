@@ -77,8 +77,38 @@ def read_scene_id(source: str, filename: str = "upload.toml") -> str | None:
         raise DerivationError(f"{filename}: not valid TOML: {error}") from None
     except RecursionError:  # tomllib recurses per level of [[[...]]] or {a={b=...}}
         raise DerivationError(f"{filename}: not valid TOML: nested too deeply") from None
+    where = _holding_nul(data)
+    if where is not None:
+        # TOML's "\u0000" is a NUL, which no database column takes: refused here, not by the worker
+        # after a derivation (which then failed as "interrupted").
+        raise DerivationError(f"{filename}: {where} holds a NUL character (\\u0000), which is not text; remove it")
     slug = data.get("id")
     return slug if isinstance(slug, str) else None
+
+
+def _holding_nul(data: dict) -> str | None:
+    """The key path (``answers[0].prompt``) of the first key or string of ``data`` holding a NUL, or None.
+
+    Examples
+    --------
+    >>> _holding_nul({"title": "Pendulum", "answers": [{"name": "T", "prompt": "The\\x00tension"}]})
+    'answers[0].prompt'
+    >>> _holding_nul({"variables": {"m\\x00": {"dimension": "mass"}}})
+    'variables."m\\\\u0000"'
+    """
+    stack: list[tuple[str, object]] = [("", data)]  # a stack, not recursion: TOML nests deep
+    while stack:
+        where, value = stack.pop()
+        if isinstance(value, str) and "\x00" in value:
+            return where or "a value"
+        if isinstance(value, dict):
+            for key in value:
+                if "\x00" in key:
+                    return (f"{where}." if where else "") + '"' + key.replace("\x00", "\\u0000") + '"'
+            stack.extend(reversed([(f"{where}.{key}" if where else key, item) for key, item in value.items()]))
+        elif isinstance(value, list):
+            stack.extend(reversed([(f"{where}[{index}]", item) for index, item in enumerate(value)]))
+    return None
 
 
 def derivation_sandbox(timeout_s: float = DERIVE_TIMEOUT_S, memory_mb: int = DERIVE_MEMORY_MB) -> Sandbox:

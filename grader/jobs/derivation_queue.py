@@ -26,6 +26,7 @@ from sqlalchemy.orm import Session, aliased
 
 from grader.jobs.processes import holder_is_dead
 from grader.store.db import Database
+from grader.store.lengths import StoredValueError
 from grader.store.models import DerivationJob, Problem, User, utcnow
 from grader.store.problems import DerivedProblem, problem_by_slug, save_problem
 
@@ -158,9 +159,20 @@ def finish(db: Database, task: DerivationTask, worker_id: str, derived: DerivedP
            may_update: MayUpdate) -> bool:
     """Store ``derived`` as a version and mark the job done, in one transaction.
 
-    A scene whose id names a problem the requester may not change fails instead (its id is taken).
-    Returns False (and writes nothing) when the claim is no longer ours.
+    A scene whose id names a problem the requester may not change fails instead (its id is taken),
+    and so does one with a value no column takes (a NUL character, a title too long): deriving it
+    again would not help, so the job fails at once with that reason rather than going back to the
+    queue until it reads as interrupted. Returns False (and writes nothing) when the claim is no
+    longer ours.
     """
+    try:
+        return _store(db, task, worker_id, derived, may_update)
+    except StoredValueError as error:  # the transaction was rolled back: nothing of it was stored
+        return fail(db, task, worker_id, f"{task.filename}: the derived problem cannot be stored: {error}")
+
+
+def _store(db: Database, task: DerivationTask, worker_id: str, derived: DerivedProblem,
+           may_update: MayUpdate) -> bool:
     with db.write() as session:
         job = session.get(DerivationJob, task.job_id)
         if job is None or job.status != "running" or job.worker_id != worker_id:

@@ -7,7 +7,8 @@ from pathlib import Path
 import pytest
 from sqlalchemy import select
 
-from grader.jobs.derivation import DerivationError, SandboxUnavailable, derive_source, load_problem_files
+from grader.jobs.derivation import (DerivationError, SandboxUnavailable, derive_source, load_problem_files,
+                                    read_scene_id)
 from grader.sandbox import Outcome
 from grader.store.models import ProblemVersion
 
@@ -145,3 +146,23 @@ def test_every_shipped_and_textbook_scene_registers(path):
     reply = derive_request({"source": path.read_text(), "filename": path.name})
     assert reply["outcome"] == "ok", reply.get("message") or reply.get("trace")
     assert {r["kind"] for r in reply["problem"]["references"]} <= {"expression", "equation", "numeric"}
+
+
+# TOML's "\u0000" escape is a NUL character in any string or key; no column takes it, so the scene
+# is refused before a derivation is queued, naming where the NUL is.
+@pytest.mark.parametrize("source, where", [
+    ('id = "x"\ntitle = "\\u0000Simple pendulum"\n', "title"),
+    ('id = "x"\nstatement = """A string\\u0000"""\n', "statement"),
+    ('id = "x\\u0000"\n', "id"),
+    ('id = "x"\n[[answers]]\nname = "T"\nprompt = "ok"\n[[answers]]\nname = "a"\nprompt = "The\\u0000a"\n',
+     "answers[1].prompt"),
+    ('id = "x"\n[[answers]]\nname = "T"\nfeedback = [{ when = "m*g", say = "\\u0000" }]\n',
+     "answers[0].feedback[0].say"),
+    ('id = "x"\n[variables]\n"m\\u0000" = { dimension = "mass" }\n', 'variables."m\\u0000"'),
+    ('id = "x"\n[parameters]\ng = { value = 9.81, unit = "m/s^2\\u0000" }\n', "parameters.g.unit"),
+])
+def test_a_scene_holding_a_nul_character_is_refused_naming_where(source, where):
+    with pytest.raises(DerivationError) as refused:
+        read_scene_id(source, "pendulum.toml")
+    assert str(refused.value) == (f"pendulum.toml: {where} holds a NUL character (\\u0000), which is not text; "
+                                  "remove it")

@@ -1,5 +1,6 @@
 """The derivation queue: uploads are stored as jobs, claimed once, finished or failed with a message."""
 
+import dataclasses
 import socket
 from datetime import timedelta
 
@@ -105,6 +106,24 @@ def test_a_problem_id_the_requester_may_not_change_fails_the_job(database, peopl
     assert queue.finish(database, task, "w", yoyo, nobody_may_update)
     job = _job(database, task.job_id)
     assert job.status == "failed" and "taken by another course" in job.error and job.problem_version_id is None
+
+
+# A derived problem the database cannot take (a NUL in its title; once let through at upload) was
+# left running, claimed again and derived again, then failed as "interrupted 2 times".
+@pytest.mark.parametrize("field, value, words", [
+    ("title", "\x00Yo-yo", "problem_versions.title: holds a NUL character"),
+    ("title", "Yo-yo " * 100, "problem_versions.title: 600 characters; the limit is 200"),
+])
+def test_a_derived_problem_that_cannot_be_stored_fails_its_job_at_once_with_the_reason(database, people, yoyo,
+                                                                                     field, value, words):
+    queue.enqueue(database, requester_id=people["ine"], source=SOURCE, filename="yoyo.toml")
+    task = queue.claim(database, "w", lease_s=60)
+    assert queue.finish(database, task, "w", dataclasses.replace(yoyo, **{field: value}), anyone_may_update)
+    job = _job(database, task.job_id)
+    assert job.status == "failed" and job.error.startswith("yoyo.toml: the derived problem cannot be stored")
+    assert words in job.error and "interrupted" not in job.error and job.attempts == 1
+    with database.read() as session:
+        assert session.scalar(select(Problem).where(Problem.slug == "yoyo")) is None  # nothing half-stored
 
 
 def test_an_outcome_from_a_worker_that_lost_its_claim_is_dropped(database, people, yoyo):

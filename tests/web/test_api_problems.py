@@ -70,6 +70,37 @@ def test_uploads_that_are_not_scene_files_are_refused_at_once(client, make_token
     assert response.get_json()["type"] == f"urn:lagrade:error:{kind}"
 
 
+# A NUL (TOML's "\u0000") anywhere in the scene once passed the upload, failed in the worker as
+# "interrupted" minutes later, and two such uploads locked the instructor out with a 429.
+@pytest.mark.parametrize("source, where", [
+    (YOYO_SOURCE.replace('title = "Yo-yo', 'title = "\\u0000Yo-yo'), "title"),
+    (YOYO_SOURCE.replace('id = "yoyo"', 'id = "yoyo\\u0000"'), "id"),
+    (YOYO_SOURCE + '\n[[answers]]\nname = "x"\nprompt = "\\u0000"\n', "answers[3].prompt"),
+])
+def test_a_scene_holding_a_nul_character_is_refused_at_upload_naming_where(app, client, make_token, source, where):
+    from sqlalchemy import func, select
+
+    from grader.store.models import DerivationJob
+
+    _, instructor = make_token("instructor")
+    for _ in range(3):  # never queued, so never "too many derivations"
+        response = _upload(client, instructor, source)
+        assert response.status_code == 422 and response.mimetype == "application/problem+json"
+        problem = response.get_json()
+        assert problem["type"] == "urn:lagrade:error:invalid-scene"
+        assert f"upload.toml: {where} holds a NUL character" in problem["detail"]
+    with app.extensions["lagrade.db"].read() as session:
+        assert session.scalar(select(func.count(DerivationJob.id))) == 0
+
+
+def test_a_new_version_holding_a_nul_character_is_refused_at_upload(client, make_token, yoyo_version):
+    _, instructor = make_token("instructor")
+    source = YOYO_SOURCE.replace('title = "Yo-yo', 'title = "\\u0000Yo-yo')
+    response = client.post("/api/v1/problems/yoyo/versions", data=source.encode(), headers=instructor,
+                           content_type="application/toml")
+    assert response.status_code == 422 and "title holds a NUL character" in response.get_json()["detail"]
+
+
 @pytest.mark.parametrize("source, message", [
     (YOYO_SOURCE.replace('potential = "-m*g*s"', 'potential = "-m*g*tehta"'), "tehta"),
     (YOYO_SOURCE.replace("m*g*s", "m*g*sss"), "not an energy"),

@@ -123,6 +123,20 @@ def test_a_broken_scene_is_explained_and_nothing_is_stored(app, as_instructor):
     assert as_instructor.get("/instructor/problems/swing/review").status_code == 404
 
 
+@pytest.mark.parametrize("change, where", [
+    (lambda s: s.replace('title = "Pendulum', 'title = "\\u0000Pendulum'), "title"),
+    (lambda s: s.replace('statement = "A bob', 'statement = "\\u0000A bob'), "statement"),
+])
+def test_a_scene_holding_a_nul_character_is_refused_in_the_form_and_nothing_is_queued(app, as_instructor,
+                                                                                       change, where):
+    response = as_instructor.post("/instructor/problems/new", data={"source": change(PENDULUM),
+                                                                    "csrf_token": csrf(as_instructor)})
+    body = response.get_data(as_text=True)
+    assert response.status_code == 422 and f"pasted.toml: {where} holds a NUL character" in body
+    assert "\\u0000" in body  # the pasted source is kept for fixing
+    assert derive_all(app) == 0
+
+
 def test_a_scene_id_of_another_course_cannot_be_taken_over(as_other_instructor, problems):
     scene = YOYO_SCENE.replace('id = "yoyo"', 'id = "mech"')
     response = as_other_instructor.post("/instructor/problems/new",

@@ -67,6 +67,7 @@ def test_an_edited_scene_is_derived_as_a_new_draft_and_students_keep_the_publish
     (lambda s: "", 422, "The scene file is empty."),
     (lambda s: "id = ", 422, "TOML"),
     (lambda s: s + "#" * (300 * 1024), 422, "at most 256 KiB"),
+    (lambda s: s.replace('title = "', 'title = "\\u0000'), 422, "yoyo.toml: title holds a NUL character"),
 ])
 def test_an_edit_that_cannot_be_a_draft_of_this_problem_is_refused_and_kept(app, as_instructor, yoyo_from_file,
                                                                            change, status, message):
