@@ -231,6 +231,7 @@ def load_problem_files(database, paths, **limits) -> list[tuple[str, str]]:
             outcomes.append((path.name, "unchanged"))
             continue
         try:
+            read_scene_id(source, path.name)  # what an upload is refused for (a NUL) skips the file
             derived = derive_source(source, filename=path.name, **limits)
         except DerivationError as error:
             outcomes.append((path.name, f"skipped: {error}"))

@@ -58,10 +58,14 @@ def test_loading_problem_files_adds_versions_only_for_changed_sources(database, 
         assert session.scalars(select(ProblemVersion.number)).all() == [1, 2]
 
 
-def test_a_broken_problem_file_is_skipped_not_fatal(database, tmp_path):
-    (tmp_path / "bad.toml").write_text("not toml [")
+@pytest.mark.parametrize("source, words", [
+    ("not toml [", "not valid TOML"),
+    ('id = "x"\ntitle = "\\u0000Pendulum"\n', "title holds a NUL character"),  # no column takes it
+])
+def test_a_broken_problem_file_is_skipped_not_fatal(database, tmp_path, source, words):
+    (tmp_path / "bad.toml").write_text(source)
     [(name, outcome)] = load_problem_files(database, [tmp_path / "bad.toml"])
-    assert name == "bad.toml" and outcome.startswith("skipped:")
+    assert name == "bad.toml" and outcome.startswith("skipped: bad.toml: ") and words in outcome
 
 
 class _Ended:
