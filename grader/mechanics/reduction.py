@@ -33,6 +33,11 @@ class Reduction:
 
     def __init__(self, scene: Scene):
         self.scene = scene
+        # With several branches of the solved constraints: the expression in the independent
+        # variables that vanishes where the branch taken ends, and the branch, for messages.
+        self.branch_end: sympy.Expr | None = None
+        self.branch_of = ""
+        self.branch_radicands: list[sympy.Expr] = []
         if scene.parametrization is not None:
             self.independent: dict[str, Coordinate] = dict(scene.parametrization.variables)
             self.phi = dict(scene.parametrization.mapping)
@@ -157,6 +162,14 @@ class Reduction:
         solution = self._branch(solutions, dependent)
         phi = {c.symbol: solution.get(c.symbol, c.symbol) for c in scene.coordinates.values()}
         independent = {n: c for n, c in scene.coordinates.items() if c not in dependent}
+        if len(solutions) > 1:
+            # Where det(∂f/∂q_dependent) vanishes the branch taken ends (y = √(R² − x²) at x = ±R): a
+            # motion that gets there goes on along another branch, which no formula in x follows.
+            self.branch_end = jac.det().xreplace(phi)
+            self.branch_of = ", ".join(f"{c.name} = {sympy.sstr(solution[c.symbol])}" for c in dependent)
+            # the radicands whose root's sign tells the branches apart (R² − x² in y = ±√(R² − x²))
+            self.branch_radicands = sorted({p.base for c in dependent for p in solution[c.symbol].atoms(sympy.Pow)
+                                            if p.exp.is_Rational and p.exp.q == 2}, key=sympy.default_sort_key)
         return independent, phi
 
     def _branch(self, solutions: list[dict], dependent: list[Coordinate]) -> dict:

@@ -324,6 +324,8 @@ def _reached_in_family(evaluator, u, condition, numeric: dict[int, float], point
     """The root the motion from [initial] at ``point`` reaches first, or None where it reaches none."""
     try:
         return _first_reached(evaluator, u, condition, numeric, point, key)
+    except LeavesTheBranch:
+        raise  # then the formula on this branch may be wrong where the root is: never guessed
     except SceneError:
         return None
 
@@ -366,7 +368,11 @@ def _turned_back_in_family(evaluator, condition, x, variable, roots, chosen, key
         if index not in numeric:
             continue
         try:
-            _, direction = _first_reached_on(evaluator, u, condition, {0: numeric[index]}, point, key)
+            # the first root reached: the chosen one, or one where the answer has its value (a
+            # particle leaving a hemisphere at x = ±0.6 R, pushed either way from the top)
+            _, direction = _first_reached_on(evaluator, u, condition, numeric, point, key)
+        except LeavesTheBranch:
+            raise
         except SceneError:  # not reached at these values: they say nothing about the way it goes
             continue
         # The way u moves there, not only whether it turned: released at θ₀ in [-1.5, 1.5] the bob
@@ -1390,19 +1396,7 @@ def _first_reached_on(evaluator, u, condition, numeric: dict[int, float], point:
     u0 = float(sympy.N(scene.initial[u.name].xreplace({s: sympy.Float(v, 30) for s, v in point.items()})))
     periodic = not _bounded(u) and _periodic(condition, u.symbol)
     # The path depends on the motion only: remembered for the other answers and conditions.
-    paths = evaluator.__dict__.setdefault("_motion_paths", {})
-    remembered = (u.name, tuple(sorted((str(s), v) for s, v in point.items())))
-    if remembered not in paths:
-        direction = _direction(evaluator, u, point)
-        speed2 = _speed_squared(evaluator, u, point, key)
-        path = []  # (direction, end or None, why it ends)
-        end, why = _travel(u, u0, direction, speed2)
-        path.append((direction, end, why))
-        if why == "turns back":
-            other_end, other_why = _travel(u, end, -direction, speed2, skip=True)
-            path.append((-direction, other_end, other_why))
-        paths[remembered] = path
-    path = paths[remembered]
+    path = _path(evaluator, u, u0, point, key)
     best = None
     start = u0
     for leg, (d, stop, _) in enumerate(path):
@@ -1421,9 +1415,132 @@ def _first_reached_on(evaluator, u, condition, numeric: dict[int, float], point:
         start = stop if stop is not None else start
     stops = ", then ".join(f"{why} at {u.name} = {stop:.6g}" for _, stop, why in path if stop is not None)
     roots = ", ".join(f"{u.name} = {r:.6g}" for r in numeric.values())
+    if path[-1][2] == LEAVES_THE_BRANCH:
+        raise LeavesTheBranch(scene.source, key, _beyond_the_branch(evaluator, u, path[-1][1], "a root of the "
+                                                                    f"condition ({roots})"))
     raise SceneError(scene.source, key,
                      f"the motion from [initial] {stops or 'runs away'} before it reaches a root of the "
                      f"condition ({roots})")
+
+
+LEAVES_THE_BRANCH = "reaches the end of the solved constraints' branch"
+
+
+class LeavesTheBranch(SceneError):
+    """The motion from [initial] reaches the end of the branch the constraints were solved on (y =
+    √(R² − x²) at x = R) before what is asked: beyond, no formula in the independent variables holds."""
+
+
+def _beyond_the_branch(evaluator, u, where: float, what: str) -> str:
+    return (f"the motion from [initial] reaches {u.name} = {where:.6g}, where the constraints as solved "
+            f"({evaluator.reduction.branch_of}) change branch, before {what}: beyond it no formula in "
+            f"{u.name} follows the motion. List in [coordinates] first the coordinate to keep (the engine "
+            "solves for the last ones), so that the motion stays on one branch, or add a [parametrization] "
+            "(an angle around a circle)")
+
+
+def _path(evaluator, u, u0: float, point: dict, key: str) -> list[tuple[float, float | None, str]]:
+    """The legs of the motion from u0 at ``point``: (direction, where it ends or None, why); the
+    first leg ends where the motion turns back, leaves the domain or the constraints' branch; after a
+    turn, one more leg. Remembered for the other answers and conditions (it depends on the motion only)."""
+    paths = evaluator.__dict__.setdefault("_motion_paths", {})
+    remembered = (u.name, tuple(sorted((str(s), v) for s, v in point.items())))
+    if remembered not in paths:
+        direction = _direction(evaluator, u, point)
+        speed2 = _speed_squared(evaluator, u, point, key)
+        end_of_branch = _end_of_branch(evaluator, u, point)
+        path = []
+        end, why = _travel(u, u0, direction, speed2, end_of_branch=end_of_branch)
+        path.append((direction, end, why))
+        if why == "turns back":
+            other_end, other_why = _travel(u, end, -direction, speed2, skip=True, end_of_branch=end_of_branch)
+            path.append((-direction, other_end, other_why))
+        paths[remembered] = path
+    return paths[remembered]
+
+
+def motion_stays_on_the_branch(evaluator, spec) -> None:
+    """LeavesTheBranch when the motion from [initial] reaches the end of the branch the constraints
+    were solved on and the extreme's quantity is another function on the other branch: the largest
+    Q_x of a bead on a Cartesian circle, written with x = √(R² − y²), came out 0 (the bead passes the
+    bottom, where Q_x changes sign), while the largest Q_y is the same on both sides. Only for one
+    coordinate with energy conserved (the path is known); otherwise nothing is said."""
+    reduction = evaluator.reduction
+    if reduction.branch_end is None or len(reduction.independent) != 1:
+        return
+    (u,) = reduction.independent.values()
+    if u.name not in evaluator.scene.initial:
+        return
+    point = _parameter_points(evaluator.scene)[0]
+    key = f"answers ({spec.name})"
+    try:
+        u0 = float(sympy.N(evaluator.scene.initial[u.name].xreplace({s: sympy.Float(v, 30) for s, v in point.items()})))
+        path = _path(evaluator, u, u0, point, key)
+    except (SceneError, TypeError, ValueError):
+        return
+    stop = next((stop for _, stop, why in path if why == LEAVES_THE_BRANCH), None)
+    if stop is None:
+        return
+    # the quantity the extreme is taken of, as a function of the state
+    function = evaluator.reduce(spec.expr, evaluator.parameters | evaluator.state_symbols() | {evaluator.scene.time},
+                                key, readable=False)
+    if _the_same_on_both_branches(reduction, function, point, u, u0):
+        return
+    raise LeavesTheBranch(evaluator.scene.source, key, _beyond_the_branch(evaluator, u, stop,
+                                                                          "the extreme over the motion"))
+
+
+def _the_same_on_both_branches(reduction, function: sympy.Expr, point: dict, u, u0: float) -> bool:
+    """Whether ``function`` (of the state, on the branch taken) is the same with the branch's root
+    negated, i.e. on the other branch, at states near the start: each root √B of the answer whose
+    radicand B is a positive multiple of a branch radicand changes sign (odd powers of it only)."""
+    numbers = {s: sympy.Float(v, 30) for s, v in point.items()}
+    flipped = {}
+    for p in function.atoms(sympy.Pow):
+        if not (p.exp.is_Rational and p.exp.q == 2):
+            continue
+        for radicand in reduction.branch_radicands:
+            if _positive_multiple(p.base, radicand, numbers, u.symbol, u0):
+                flipped[p] = -p
+                break
+    if not flipped:
+        return True
+    other = function.xreplace(flipped)
+    rng = numpy.random.default_rng(5)
+    for _ in range(4):
+        state = dict(numbers)
+        for s in function.free_symbols - set(numbers):
+            state[s] = sympy.Float(u0 * (1 + 0.01 * rng.uniform(-1, 1)) if s == u.symbol else rng.uniform(0.3, 2), 30)
+        a, b = _evaluate(function, state), _evaluate(other, state)
+        if a is None or b is None:
+            continue
+        if abs(a - b) > 1e-9 * max(1.0, abs(a), abs(b)):
+            return False
+    return True
+
+
+def _positive_multiple(base: sympy.Expr, radicand: sympy.Expr, numbers: dict, x, x0: float) -> bool:
+    """Whether base/radicand is one positive constant near x0 (so that √base = c √radicand)."""
+    ratios = []
+    for k in (-1, 0, 1):
+        at = {**numbers, x: sympy.Float(x0 * (1 + 0.003 * k) + 1e-3 * k, 30)}
+        b, r = _evaluate(base, at), _evaluate(radicand, at)
+        if b is None or r is None or r == 0:
+            return False
+        ratios.append(b / r)
+    return all(r > 0 for r in ratios) and max(ratios) - min(ratios) <= 1e-9 * max(abs(r) for r in ratios)
+
+
+def _end_of_branch(evaluator, u, point: dict):
+    """The float function of u that vanishes where the solved constraints' branch ends, or None (one
+    branch, or a function of more than u at this point)."""
+    end = evaluator.reduction.branch_end
+    if end is None:
+        return None
+    numbers = end.xreplace({s: sympy.Float(v, 30) for s, v in point.items()})
+    if numbers.free_symbols - {u.symbol}:
+        return None
+    return _numeric(numbers, u.symbol)
 
 
 def _periodic(condition: sympy.Expr, x: sympy.Symbol) -> bool:
@@ -1447,8 +1564,9 @@ def _images_ahead(r: float, start: float, d: float, stop: float | None) -> list[
     return [i for i in images if stop is None or d * (i - stop) <= 1e-12]
 
 
-def _travel(u, u0: float, d: float, speed2, skip: bool = False) -> tuple[float | None, str]:
-    """Where the motion from u0 in direction d stops: a turning point, the domain's end, or None."""
+def _travel(u, u0: float, d: float, speed2, skip: bool = False, end_of_branch=None) -> tuple[float | None, str]:
+    """Where the motion from u0 in direction d stops: a turning point, the domain's end, the end of the
+    solved constraints' branch (where ``end_of_branch`` vanishes or stops being defined), or None."""
     limit = None
     if u.domain.kind == "interval":
         limit = u.domain.hi if d > 0 else u.domain.lo
@@ -1465,6 +1583,15 @@ def _travel(u, u0: float, d: float, speed2, skip: bool = False) -> tuple[float |
         if limit is not None and d * (nxt - limit) > 0:
             return limit, "leaves the domain"
         value = speed2(nxt)
+        if end_of_branch is not None and (k > 1 or not skip):
+            here, there = end_of_branch(x), end_of_branch(nxt)
+            if math.isfinite(here) and here != 0 and (not math.isfinite(there) or here * there <= 0):
+                # the branch ends between x and nxt: at the zero (a real turning point before it is no
+                # branch end: energy is tested first below only when it is reached inside)
+                if math.isfinite(value) and value < 0 and math.isfinite(there):
+                    pass
+                else:
+                    return _branch_end_between(end_of_branch, x, nxt), LEAVES_THE_BRANCH
         if math.isfinite(value) and value < 0 and (k > 1 or not skip):
             if math.isfinite(previous) and previous >= 0:
                 from scipy.optimize import brentq  # here: importing scipy.optimize costs more than most derivations
@@ -1473,6 +1600,19 @@ def _travel(u, u0: float, d: float, speed2, skip: bool = False) -> tuple[float |
             return x, "turns back"
         x, previous = nxt, value
     return None, "never turns back"
+
+
+def _branch_end_between(end_of_branch, a: float, b: float) -> float:
+    """Where ``end_of_branch`` vanishes between a and b (it may stop being defined past its zero)."""
+    fa = end_of_branch(a)
+    for _ in range(60):  # bisection: past the zero the function may be nan, which brentq cannot take
+        m = 0.5 * (a + b)
+        fm = end_of_branch(m)
+        if math.isfinite(fm) and fm * fa > 0:
+            a, fa = m, fm
+        else:
+            b = m
+    return 0.5 * (a + b)
 
 
 def energy_speed_squared(evaluator, u, key: str, readable: bool = True) -> sympy.Expr | None:

@@ -12,6 +12,7 @@ files are also confirmed along the simulated motion by tests/numerical/test_prob
 from __future__ import annotations
 
 import pytest
+import sympy
 
 from tests.mechanics.test_red_team_scenes_5 import assert_hand_derived, derived
 from tests.mechanics.conftest import SCENES
@@ -44,3 +45,43 @@ def test_the_way_a_family_passes_a_root_must_be_the_same_across_the_domains():
                 .replace('"w0"]', '"theta0"]').replace("theta = 1/5", "theta = 0"))
     with pytest.raises(SceneError, match="which way the motion passes the root depends on the parameter values"):
         derive(parse_scene(text, source="released_either_side.toml"))
+
+
+# -- the branch the constraints are solved on ---------------------------------------------------------
+# With coordinates x, y on the circle x² + y² = R², the engine keeps one and solves for the other on the
+# branch [initial] is on (y = -√(R² - x²)). Where det ∂f/∂(the solved one) vanishes the branch ends: a
+# motion that gets there goes on along the other branch, which no formula in the kept coordinate
+# follows. What lies beyond is refused by name; what lies before, or is the same on both branches, is not.
+
+def _circle(order: str = "x, y", start: str = 'x = "3*R/5"\ny = "-4*R/5"', answer: str = "") -> str:
+    text = (SCENES / "bead_circle_cartesian_from_rest.toml").read_text()
+    if order == "y, x":
+        text = text.replace('x = { dimension = "length" }\ny = { dimension = "length" }',
+                            'y = { dimension = "length" }\nx = { dimension = "length" }')
+    text = text.replace('x = "3*R/5"\ny = "-4*R/5"', start)
+    return text[:text.index("[[answers]]")] + answer
+
+
+LARGEST = '[[answers]]\nname = "largest"\nkind = "maximum"\nexpr = "{q}"\nin_terms_of = ["m", "g", "R"]\n'
+
+
+@pytest.mark.parametrize("text", [
+    # released above the centre's level, x kept: the bead passes x = R, where y = +√(R² - x²) ends, before
+    # it reaches the bottom (x = 0); at x = 0 the branch's formula is the top, which it never reaches
+    _circle(start='x = "3*R/5"\ny = "4*R/5"', answer='[[answers]]\nname = "force_at_x0"\nexpr = "Q_wire_y"\n'
+                                                     'where = "x = 0"\nin_terms_of = ["m", "g", "R"]\n'),
+    # y kept: from (3R/5, -4R/5) the bead passes the bottom, where x = √(R² - y²) ends, and Q_x changes
+    # sign there: the largest Q_x over the swing was 0
+    _circle(order="y, x", answer=LARGEST.format(q="Q_wire_x")),
+])
+def test_what_lies_beyond_the_end_of_the_solved_branch_is_refused_by_name(text):
+    with pytest.raises(SceneError, match="change branch"):
+        derive(parse_scene(text, source="circle.toml"))
+
+
+def test_an_extreme_the_same_on_both_branches_is_still_given():
+    # Q_y is the same function of y on both sides of the bottom: its largest value is at the bottom,
+    # N = m v²/R + m g with v² = 2 g (R - 4R/5): 7 m g/5
+    d = derive(parse_scene(_circle(order="y, x", answer=LARGEST.format(q="Q_wire_y")), source="circle.toml"))
+    assert sympy.simplify(d.answers["largest"] - sympy.Rational(7, 5) * d.scene.parameters["g"].symbol
+                          * d.scene.parameters["m"].symbol) == 0
