@@ -613,7 +613,10 @@ def in_single_angles(expr: sympy.Expr) -> sympy.Expr:
     forms = []
     for order in (list(replacement.values()), list(reversed(list(replacement.values())))):
         generators = order + sorted((numerator.free_symbols | denominator.free_symbols) - set(order), key=str)
-        reduced = [sympy.reduced(sympy.expand(part), relations, *generators)[1] for part in (numerator, denominator)]
+        try:
+            reduced = [sympy.reduced(sympy.expand(part), relations, *generators)[1] for part in (numerator, denominator)]
+        except sympy.PolynomialError:  # √g beside g: not a polynomial in the generators, not ours to rewrite
+            return expr
         forms.append(sympy.factor_terms(sympy.cancel(reduced[0] / reduced[1])))
     best = min(forms, key=lambda e: (sympy.count_ops(e), len(str(e))))
     return best.xreplace(back)

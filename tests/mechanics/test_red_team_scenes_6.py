@@ -85,3 +85,22 @@ def test_an_extreme_the_same_on_both_branches_is_still_given():
     d = derive(parse_scene(_circle(order="y, x", answer=LARGEST.format(q="Q_wire_y")), source="circle.toml"))
     assert sympy.simplify(d.answers["largest"] - sympy.Rational(7, 5) * d.scene.parameters["g"].symbol
                           * d.scene.parameters["m"].symbol) == 0
+
+
+@pytest.mark.parametrize("fraction", ["theta0/2", "theta0/3"])
+def test_a_root_beside_its_radicands_variable_is_tidied_not_a_crash(fraction):
+    # Released from rest at θ₀ in (0.1, 1.5): θ̇ at θ₀/2 is -√(2g(cos(θ₀/2) - cos θ₀)/l) by energy; tidying
+    # it into single angles met √g beside g and raised sympy's PolynomialError out of grader derive.
+    text = (SCENES / "pendulum_launched_from_bottom.toml").read_text()
+    text = (text.replace('w0 = { dimension = "angular_velocity", domain = "positive", value = 2.0 }',
+                         'theta0 = { dimension = "angle", domain = [0.1, 1.5], value = 0.8 }')
+                .replace('theta = 0\nthetadot = "w0"', 'theta = "theta0"\nthetadot = 0'))
+    text = text[:text.index("[[answers]]")] + (
+        f'[[answers]]\nname = "partway"\nexpr = "thetadot"\nwhere = "theta = {fraction}"\n'
+        'in_terms_of = ["g", "l", "theta0"]\n')
+    d = derive(parse_scene(text, source="released.toml"))
+    g, l, theta0 = (d.scene.parameters[n].symbol for n in ("g", "l", "theta0"))
+    expected = -sympy.sqrt(2 * g * (sympy.cos(sympy.sympify(fraction.replace("theta0", "t"), locals={"t": theta0}))
+                                    - sympy.cos(theta0)) / l)
+    for point in ({g: 9.81, l: 1.3, theta0: 0.8}, {g: 3.0, l: 0.4, theta0: 1.4}):
+        assert abs(complex(sympy.N((d.answers["partway"] - expected).subs(point)))) < 1e-12
