@@ -17,6 +17,8 @@ Examples
 
 from __future__ import annotations
 
+import itertools
+
 import numpy
 import sympy
 
@@ -149,9 +151,10 @@ class Reduction:
                     break
         jac = sympy.Matrix([[sympy.diff(k.f, c.symbol) for c in dependent] for k in scene.constraints])
         if len(dependent) < len(scene.constraints) or jac.det() == 0:
-            raise SceneError(scene.source, "constraints",
-                             "cannot solve the constraints for a set of coordinates; add a "
-                             "[parametrization] that satisfies them")
+            # The first choice, constraint by constraint, can take the one coordinate a later
+            # constraint has (B in x + aψ - B = 0, then B - bt²/2 = 0): any set with a nonzero
+            # Jacobian will do, the most preferred first.
+            dependent, jac = self._dependent_set(order)
         try:
             solutions = sympy.solve([k.f for k in scene.constraints], [c.symbol for c in dependent], dict=True)
         except NotImplementedError:
@@ -171,6 +174,18 @@ class Reduction:
             self.branch_radicands = sorted({p.base for c in dependent for p in solution[c.symbol].atoms(sympy.Pow)
                                             if p.exp.is_Rational and p.exp.q == 2}, key=sympy.default_sort_key)
         return independent, phi
+
+    def _dependent_set(self, order: list[Coordinate]) -> tuple[list[Coordinate], sympy.Matrix]:
+        """The first set of coordinates, in the order of preference, whose Jacobian is not singular."""
+        scene = self.scene
+        k = len(scene.constraints)
+        for chosen in itertools.combinations(order, k):
+            jac = sympy.Matrix([[sympy.diff(c.f, q.symbol) for q in chosen] for c in scene.constraints])
+            if jac.det() != 0:
+                return list(chosen), jac
+        raise SceneError(scene.source, "constraints",
+                         "cannot solve the constraints for any set of coordinates (their Jacobian is singular "
+                         "for every choice); add a [parametrization] that satisfies them")
 
     def _branch(self, solutions: list[dict], dependent: list[Coordinate]) -> dict:
         """With several branches (y = ±√(l² − x²)), take the one the initial state is on."""

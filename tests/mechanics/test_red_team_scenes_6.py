@@ -14,6 +14,7 @@ from __future__ import annotations
 import pytest
 import sympy
 
+from tests.mechanics.test_red_team_scenes import agree
 from tests.mechanics.test_red_team_scenes_5 import assert_hand_derived, derived
 from tests.mechanics.conftest import SCENES
 from grader.mechanics.lagrange import derive
@@ -21,6 +22,8 @@ from grader.mechanics.scene import SceneError, parse_scene
 
 
 @pytest.mark.parametrize("scene, answer, expected", [
+    # A disk rolling on a belt at B = bt²/2, a spring k to a wall: x + aψ = B; the friction F on the disk
+    # gives m ẍ = -kx + F and (m a²/2) ψ̈ = F a, so F = (m/2)(b - ẍ) and ẍ = -(2k/3m) x + b/3: from rest,
     # Launched at ω₀ from the bottom: energy, θ̇² = ω₀² − 2 (g/l)(1 − cos θ). θ = 0.2 is met on the way
     # out (θ̇ > 0); θ = -0.2 only after the turn at θ* = acos(1 − l ω₀²/(2g)), on the way back (θ̇ < 0).
     ("pendulum_launched_from_bottom", "angular_velocity_out", "sqrt(w0^2 - 2*g*(1 - cos(1/5))/l)"),
@@ -33,6 +36,19 @@ from grader.mechanics.scene import SceneError, parse_scene
 ])
 def test_an_answer_about_a_family_of_motions_is_where_the_motion_goes(scene, answer, expected):
     assert_hand_derived(derived(scene), answer, expected)
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # A disk rolling on a belt at B = bt²/2, a spring k to a wall: x + aψ = B; the friction F on the disk
+    # gives m ẍ = -kx + F and (m a²/2) ψ̈ = F a, so F = (m/2)(b - ẍ) and ẍ = -(2k/3m) x + b/3: from rest,
+    # x = (m b/2k)(1 - cos ωt) with ω² = 2k/(3m); F = m b (3 - cos ωt)/6; ẋ = 0 again at ωt = π.
+    ("x_t", "b*m*(1 - cos(t*sqrt(2*k/(3*m))))/(2*k)"),
+    ("friction_t", "b*m*(3 - cos(t*sqrt(2*k/(3*m))))/6"),
+    ("t_rest", "pi*sqrt(3*m/(2*k))"),
+])
+def test_constraints_are_solved_for_any_set_of_coordinates_that_can_be(answer, expected):
+    # listed x, ψ, B: the first choice, constraint by constraint, took B for both and was refused
+    agree(derived("disk_on_accelerating_belt"), answer, expected)
 
 
 def test_the_way_a_family_passes_a_root_must_be_the_same_across_the_domains():
