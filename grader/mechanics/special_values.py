@@ -474,6 +474,11 @@ def _at_time(evaluator, spec, target: set, key: str) -> sympy.Expr:
                          f"leaves {', '.join(others) or 'no t'}")
     with budget.step("solving the condition for t", spec.name):
         roots = solve_for(condition, t, scene.source, key)
+        period = _time_period(condition, t)
+        if period is not None:
+            # solve gives the roots of one period about 0 (0 and a negative one, for a box on a
+            # spring whose speed is next 0 after half a period): their images a period or two on
+            roots = roots + [r + n * period for n in (1, 2) for r in roots]
     with budget.step("evaluating the answer at the roots", spec.name):
         value = asked.xreplace(motion)
         chosen = _first_time(scene, roots, t, key)
@@ -550,6 +555,32 @@ def _time_by_quadrature(evaluator, spec, target: set, key: str, quad) -> sympy.E
         value = evaluator.reduce(spec.expr, target | evaluator.parameters | {q, t}, f"answers ({spec.name}).expr")
         result = human_form(value.xreplace({q: root, t: moment}))
     return _no_leftover(scene, spec, result, target)
+
+
+def _time_period(condition: sympy.Expr, t: sympy.Symbol) -> sympy.Expr | None:
+    """The period in t of a condition where t enters only through sines, cosines and tangents of
+    commensurate multiples of t (a t + b, a free of t), or None.
+
+    >>> t, w = sympy.symbols("t omega", positive=True)
+    >>> _time_period(sympy.sin(w*t) + sympy.cos(2*w*t) - 1, t)
+    2*pi/omega
+    >>> _time_period(sympy.sin(w*t) - t, t) is None
+    True
+    """
+    atoms = [f for f in condition.atoms(*_TRIG) if t in f.free_symbols]
+    if not atoms or t in condition.xreplace({f: sympy.Dummy() for f in atoms}).free_symbols:
+        return None
+    rates = []
+    for f in atoms:
+        rate = sympy.diff(f.args[0], t)
+        if rate == 0 or t in rate.free_symbols:
+            return None
+        rates.append(rate)
+    ratios = [sympy.nsimplify(r / rates[0]) for r in rates]
+    if not all(q.is_Rational for q in ratios):
+        return None
+    base = rates[0] / sympy.ilcm(*[q.q for q in ratios]) if len(ratios) > 1 else rates[0]
+    return sympy.Abs(2 * sympy.pi / base) if not (2 * sympy.pi / base).is_positive else 2 * sympy.pi / base
 
 
 def _first_time(scene, roots: list[sympy.Expr], t: sympy.Symbol, key: str) -> sympy.Expr:

@@ -51,6 +51,15 @@ def test_constraints_are_solved_for_any_set_of_coordinates_that_can_be(answer, e
     agree(derived("disk_on_accelerating_belt"), answer, expected)
 
 
+def test_a_moment_of_a_periodic_motion_may_lie_beyond_the_roots_solve_gives():
+    # A box M free on a floor, a block m on a spring k inside, from X = 0 at rest and x = u0 at v0: with
+    # ω² = k(M + m)/(M m), Ẋ = m(v0(1 - cos ωt) + ω u0 sin ωt)/(M + m), zero where tan(ωt/2) = -ω u0/v0:
+    # t = 2(π - atan(ω u0/v0))/ω. solve gives 0 and a negative root; the images a period on were never
+    # looked at ("never reaches the condition at a time t > 0").
+    agree(derived("block_on_spring_in_free_box"), "time_box_at_rest",
+          "2*sqrt(M*m/(k*(M + m)))*(pi - atan(u0*sqrt(k*(M + m)/(M*m))/v0))")
+
+
 def test_the_way_a_family_passes_a_root_must_be_the_same_across_the_domains():
     # Released from rest at θ₀ in [-1.5, 1.5], the bob passes the bottom moving against θ₀'s sign:
     # θ̇ = -2 √(g/l) sin(θ₀/2). One sign taken at the scene's θ₀ = 0.8 was wrong for every θ₀ < 0.
