@@ -53,6 +53,7 @@ Examples
 
 from __future__ import annotations
 
+import contextvars
 import math
 
 import numpy
@@ -156,11 +157,39 @@ def _no_motion_given(evaluator) -> bool:
     return any(u.name not in initial or u.dot.name not in initial for u in evaluator.reduction.independent.values())
 
 
+# The way a velocity the condition sets moves (θ̇ = −ω₀/2: −1), while its special value is found: the
+# moment is the first one the motion passes moving that way (see _first_reached_on).
+_MOVING: contextvars.ContextVar[tuple[str, int] | None] = contextvars.ContextVar("moving", default=None)
+
+
 def _where(evaluator, spec, target: set, key: str, at_rest: bool) -> sympy.Expr:
     """``spec.expr`` where the condition holds: along the motion, or at rest (an equilibrium)."""
+    asked = None if at_rest else _velocity_sign_asked(evaluator, spec)
+    token = _MOVING.set((asked[0].name, asked[1]) if asked else None)
+    try:
+        return _where_moving(evaluator, spec, target, key, at_rest, {asked[0].name: asked[1]} if asked else None)
+    finally:
+        _MOVING.reset(token)
+
+
+def _velocity_sign_asked(evaluator, spec) -> tuple | None:
+    """(u, ±1) when the condition sets an independent velocity to a value of one sign at the
+    parameter points (θ̇ = −ω₀/2), else None."""
+    fixed = _velocity_the_condition_fixes(evaluator, spec)
+    if not fixed:
+        return None
+    (velocity, value), = fixed.items()
+    signs = {numpy.sign(v) for p in _parameter_points(evaluator.scene) if (v := _evaluate(value, p)) is not None}
+    if len(signs) != 1 or 0 in signs:
+        return None
+    u = next(u for u in evaluator.reduction.independent.values() if u.dot == velocity)
+    return u, int(signs.pop())
+
+
+def _where_moving(evaluator, spec, target: set, key: str, at_rest: bool, signs: dict | None) -> sympy.Expr:
     scene = evaluator.scene
     with budget.step("reducing the condition", spec.name):
-        condition, unknown = _condition(evaluator, spec, target, key, at_rest)
+        condition, unknown = _condition(evaluator, spec, target, key, at_rest, signs)
     with budget.step(f"solving the condition for {unknown}", spec.name):
         try:
             roots = solve_for(condition, unknown, scene.source, key)
@@ -615,8 +644,10 @@ def _depends_on_parameters(point: dict) -> str:
 
 
 # -- the condition --------------------------------------------------------------------------------
-def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False) -> tuple[sympy.Expr, sympy.Symbol]:
-    """The condition in the independent variables, and its one unknown (``at_rest``: every velocity 0)."""
+def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False,
+               signs: dict | None = None) -> tuple[sympy.Expr, sympy.Symbol]:
+    """The condition in the independent variables, and its one unknown (``at_rest``: every velocity 0;
+    ``signs``: the sign of a velocity the condition sets, when energy eliminates it)."""
     scene = evaluator.scene
     lhs, rhs = spec.where
     everything = evaluator.parameters | evaluator.state_symbols() | {scene.time}
@@ -644,7 +675,7 @@ def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False) ->
             here = expr.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
             here = here.xreplace({c.dot: 0 for c in scene.coordinates.values()})
         try:
-            condition = evaluator.reduce(here, allowed, key)
+            condition = evaluator.reduce(here, allowed, key, signs=signs)
         except SceneError:
             continue
         condition = condition.xreplace(still)
@@ -1430,7 +1461,11 @@ def _first_reached_on(evaluator, u, condition, numeric: dict[int, float], point:
     path = _path(evaluator, u, u0, point, key)
     best = None
     start = u0
+    moving = _MOVING.get()
     for leg, (d, stop, _) in enumerate(path):
+        if moving is not None and moving[0] == u.name and d != moving[1]:
+            start = stop if stop is not None else start
+            continue  # a moment asked moving the other way (θ̇ = −ω₀/2) is not on this leg
         for index, r in numeric.items():
             images = [r] if not periodic else _images_ahead(r, start, d, stop)
             for image in images:

@@ -129,3 +129,19 @@ def test_a_root_beside_its_radicands_variable_is_tidied_not_a_crash(fraction):
                                     - sympy.cos(theta0)) / l)
     for point in ({g: 9.81, l: 1.3, theta0: 0.8}, {g: 3.0, l: 0.4, theta0: 1.4}):
         assert abs(complex(sympy.N((d.answers["partway"] - expected).subs(point)))) < 1e-12
+
+
+@pytest.mark.parametrize("where, moving", [("thetadot = -w0/2", "back"), ("thetadot = w0/2", "out")])
+def test_a_moment_a_velocity_of_one_sign_names_is_found_moving_that_way(where, moving):
+    # Launched at ω₀ from the bottom: |θ̇| = ω₀/2 where 1 - cos θ = 3 l ω₀²/(8 g), at θ = ±a; moving back
+    # (θ̇ < 0) the bob first passes +a after its turn. Energy eliminated θ̇ with its sign at the start, so
+    # θ̇ = -ω₀/2 had "no solution in closed form".
+    text = (SCENES / "pendulum_launched_from_bottom.toml").read_text()
+    text = text[:text.index("[[answers]]")] + (
+        f'[[answers]]\nname = "angle"\nexpr = "theta"\nwhere = "{where}"\nin_terms_of = ["g", "l", "w0"]\n'
+        f'[[answers]]\nname = "rate"\nexpr = "thetadot"\nwhere = "{where}"\nin_terms_of = ["g", "l", "w0"]\n')
+    d = derive(parse_scene(text, source=f"{moving}.toml"))
+    g, l, w0 = (d.scene.parameters[n].symbol for n in ("g", "l", "w0"))
+    for point in ({g: 9.81, l: 1.0, w0: 2.0}, {g: 3.0, l: 0.5, w0: 1.7}):
+        assert abs(complex(sympy.N((d.answers["angle"] - sympy.acos(1 - 3 * l * w0**2 / (8 * g))).subs(point)))) < 1e-12
+        assert abs(complex(sympy.N((d.answers["rate"] - (-1 if moving == "back" else 1) * w0 / 2).subs(point)))) < 1e-12
