@@ -38,12 +38,15 @@ def evaluate_answers(scene: Scene, eom) -> tuple[dict[str, sympy.Expr], dict[str
     """Closed form of every answer, for ``kind = "equation"`` answers the reference equation, the
     derived alternatives (a special value at several roots that nothing decides between), and for
     numeric answers without a closed form the root their unknown is at (special_values._implicit)."""
-    evaluator = AnswerEvaluator(scene, eom)
+    with budget.step("reducing the scene to its independent coordinates"):
+        evaluator = AnswerEvaluator(scene, eom)
     answers, equations = {}, {}
     for spec in scene.answers:
         # Printed with each product's roots joined (√(2gR/3)); later answers compute with the
-        # evaluator's own value, which sympy keeps split.
-        value = joined_roots(evaluator.evaluate(spec))
+        # evaluator's own value, which sympy keeps split. The answer is named when the budget runs
+        # out anywhere in it, not only in the steps that name themselves.
+        with budget.step("deriving its value", spec.name):
+            value = joined_roots(evaluator.evaluate(spec))
         answers[spec.name] = value
         if spec.kind == "equation":
             equations[spec.name] = sympy.Eq(spec.expr, value, evaluate=False)

@@ -44,6 +44,22 @@ def test_a_derivation_out_of_budget_names_the_step():
     assert "0.01 s budget while" in str(caught.value)
 
 
+def test_an_answer_out_of_budget_is_named_wherever_in_it_the_time_runs_out(monkeypatch):
+    # a step that names no answer of its own (an extreme's search, a tidying) said only "while deriving"
+    from grader.mechanics import answers
+
+    def slow(evaluator, spec):
+        time.sleep(5)
+
+    monkeypatch.setattr("grader.mechanics.extremes.extreme_value", slow)
+    scene = load_scene(SCENES / "cylinder_in_cylinder.toml")
+    largest = next(a.name for a in scene.answers if a.kind == "maximum")
+    with pytest.raises(BudgetExceeded) as caught:
+        derive(scene, budget_s=3)
+    assert f"for the answer '{largest}'" in str(caught.value), str(caught.value)
+    assert answers  # (the module whose loop names the answer)
+
+
 def test_grader_derive_has_a_budget_and_says_where_it_ran_out():
     result = CliRunner().invoke(derive_command, [str(SCENES / "double_pendulum.toml"), "--budget", "0.1"])
     assert result.exit_code == 3
