@@ -69,6 +69,7 @@ _TIME = parse_dimension("time")
 _EXPONENT_LETTER = re.compile(r"^[0-9.]+([eE])[+-]?[0-9]+$")
 # \pi2, \omega12, \pi2x: a LaTeX command with digits (and letters) after it, which the tokenizer reads
 # as one name (see latex_argument).
+_UNBRACED_FRAC_DIGITS = re.compile(r"\\[dt]?frac\s*(\d)\s*(\d)\s*$")
 _COMMAND_THEN_DIGITS = re.compile(r"^\\([A-Za-z]+)\d[A-Za-z0-9]*$")
 _I = sympy.I
 _OPERATOR_POWER = {"+": _ADD, "-": _ADD, "*": _MUL, "/": _MUL, "^": _POW}
@@ -337,6 +338,14 @@ class _Parser:
                 factors.append(guarded_pow(part, sympy.Integer(-1), token.pos))
             return "/"
         if token.kind == "number":
+            unbraced = _UNBRACED_FRAC_DIGITS.search(self.text[:token.pos])
+            if unbraced:
+                # \frac1234 is ½·34 to TeX (one digit per argument) and 12/34 to whoever typed it
+                a, b = unbraced.group(1), unbraced.group(2)
+                raise ExpressionError(f"'{self.text[unbraced.start():token.end]}' is \\frac{{{a}}}{{{b}}}·{token.text} to LaTeX, "
+                                      "which takes one digit for each argument without braces", unbraced.start(),
+                                      "ambiguous", f"write \\frac{{{a}{b}}}{{{token.text}}} or \\frac{{{a}}}{{{b}{token.text}}} "
+                                      "with braces, or put * before the number")
             raise ExpressionError(f"missing operator before '{token.text}'", token.pos, "syntax",
                                   "write * (or another operator) before the number")
         factors.append(self.expression(_MUL))

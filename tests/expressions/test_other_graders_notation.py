@@ -247,3 +247,13 @@ def test_a_reading_other_parsers_call_ambiguous_is_said(xy, text, read_as, note)
 @pytest.mark.parametrize("text", ["√2+1", "x^(1/2)", "2 sin(x) y", "sin(x)/2"])
 def test_unambiguous_forms_get_no_such_note(xy, text):
     assert not any("covers" in n or "for the power" in n for n in parse_expression(text, xy).notes)
+
+
+@pytest.mark.parametrize("text, braced", [(r"\frac1234", r"\frac{12}{34}"), (r"\frac123", r"\frac{12}{3}"),
+                                          (r"\dfrac 12 3", r"\frac{12}{3}")])
+def test_unbraced_frac_digits_then_a_number_name_both_readings(xy, text, braced):
+    # SymPy's LaTeX suite: \frac1234 is ½·34 to TeX; a student meant 12/34. Refused, saying both.
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text, xy)
+    assert err.value.code == "ambiguous" and "one digit for each argument" in err.value.message
+    assert braced in err.value.hint
