@@ -34,6 +34,9 @@ action                 who, besides admins
 ``regrade``            those who manage the problem.
 ``export``             those who manage the problem (CSV of grades or submissions).
 ``view_submission``    its student; the LMS that sent it; instructors who manage its problem.
+                       On a problem in no course (shared), an instructor sees, there and in
+                       grades and exports, only the work of students of the courses they teach
+                       or assist and of students in no course (`students_in_view`).
 ``view_derivation``    an uploaded scene's derivation job: the instructor who uploaded it, and
                        the instructors who teach its course (the course chosen at upload, or
                        the course of the problem it made).
@@ -95,6 +98,7 @@ __all__ = [
     "find_derivation",
     "find_problem",
     "may_act_for",
+    "students_in_view",
     "find_problem_version",
     "find_submission",
     "find_version",
@@ -265,6 +269,36 @@ def may_act_for(principal: Principal, student: Principal, version: ProblemVersio
     return bool(principal.taught & student.enrolled)  # an instructor of the problem tries a draft for them too
 
 
+def students_in_view(principal: Principal, course_id: int | None):
+    """Whose work on a problem of ``course_id`` a caller who may read its grades sees, as a condition
+    on a user-id column, or None for everyone's.
+
+    A problem of a course: everyone's (its students'). A problem in no course is shared by every
+    instructor, and by students of every course: each instructor sees the students of the courses
+    they teach or assist and the students in no course, never another course's (an instructor of
+    OTHER read MECH's names and scores through a shared problem). Admins see everyone's.
+    """
+    if course_id is not None or principal.is_admin or principal.role == "lms":
+        return None
+    mine = principal.taught | principal.assisted
+
+    def condition(user_id):
+        a_student_somewhere = select(Enrolment.id).where(Enrolment.user_id == user_id,
+                                                         Enrolment.role == "student").exists()
+        one_of_mine = select(Enrolment.id).where(Enrolment.user_id == user_id, Enrolment.course_id.in_(mine)).exists()
+        return ~a_student_somewhere | one_of_mine
+
+    return condition
+
+
+def _sees_student(principal: Principal, course_id: int | None, student: User) -> bool:
+    """`students_in_view` for one student already loaded."""
+    if students_in_view(principal, course_id) is None:
+        return True
+    courses = {e.course_id for e in student.enrolments if e.role == "student"}
+    return not courses or bool(courses & (principal.taught | principal.assisted))
+
+
 def _may_course(principal: Principal, action: Action, course_id: int) -> bool:
     if action is Action.VIEW_COURSE:
         return course_id in principal.enrolled
@@ -283,7 +317,9 @@ def _may_view_submission(principal: Principal, submission: Submission) -> bool:
     if submission.assignment_id is not None and submission.assignment is not None and _may_course(
             principal, Action.GRADE_COURSE, submission.assignment.course_id):
         return True  # the course's TAs grade what was handed in for its assignments
-    return principal.role == "instructor" and principal.manages_course(submission.problem_version.problem.course_id)
+    course_id = submission.problem_version.problem.course_id
+    return (principal.role == "instructor" and principal.manages_course(course_id)
+            and _sees_student(principal, course_id, submission.user))
 
 
 def _may_view_derivation(principal: Principal, job: DerivationJob) -> bool:

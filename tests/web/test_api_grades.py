@@ -60,3 +60,41 @@ def test_regrade_grades_everything_again_against_the_newest_version(app, client,
     assert rows["bob"]["latest_verdict"] == "equivalent" and rows["ada"]["latest_verdict"] == "not_equivalent"
     submission = client.get("/api/v1/submissions/3", headers=instructor).get_json()
     assert submission["grading_round"] == 2 and submission["verdict"]["version"] == 2
+
+
+@pytest.mark.parametrize("teaches, sees", [
+    # yoyo is in no course, shared: each instructor sees the students of their own courses and those in no
+    # course, never another course's (an instructor of OTHER read MECH's names and scores through it)
+    ("MECH", {"ada", "cyd"}), ("OTHER", {"bob", "cyd"}), (None, {"cyd"}),
+])
+def test_a_shared_problems_grades_show_an_instructor_only_their_own_students(
+        client, make_token, enrol, yoyo_version, workers, poll, teaches, sees):
+    people = {}
+    for name, course in (("ada", "MECH"), ("bob", "OTHER"), ("cyd", None)):
+        user_id, headers = make_token("student", external_id=name)
+        if course:
+            enrol(user_id, course, "student")
+        poll(_submit(client, headers, "m*g/3"), headers)
+        people[name] = user_id
+    teacher_id, teacher = make_token("instructor")
+    if teaches:
+        enrol(teacher_id, teaches, "instructor")
+    for query in ("", "?format=csv"):
+        response = client.get(f"/api/v1/problems/yoyo/grades{query}", headers=teacher)
+        rows = response.get_json()["grades"] if not query else list(csv.DictReader(io.StringIO(response.get_data(as_text=True))))
+        assert {row["external_id"] for row in rows} == sees
+    _, admin = make_token("admin")
+    assert {row["external_id"] for row in client.get("/api/v1/problems/yoyo/grades", headers=admin).get_json()["grades"]} \
+        == {"ada", "bob", "cyd"}
+
+
+def test_a_shared_problems_submission_is_seen_by_its_students_instructors_only(client, make_token, enrol, yoyo_version):
+    ada_id, ada = make_token("student", external_id="ada")
+    enrol(ada_id, "MECH", "student")
+    location = _submit(client, ada, "m*g/3")
+    ours_id, ours = make_token("instructor")
+    enrol(ours_id, "MECH", "instructor")
+    theirs_id, theirs = make_token("instructor")
+    enrol(theirs_id, "OTHER", "instructor")
+    assert client.get(location, headers=ours).status_code == 200
+    assert client.get(location, headers=theirs).status_code == 404  # as if it did not exist

@@ -15,7 +15,7 @@ from grader.store.scores import practice_scores
 from grader.web.api import spec
 from grader.web.api.problems import INSTRUCTORS, visible_version
 from grader.web.csv_export import csv_response
-from grader.web.policy import Action
+from grader.web.policy import Action, current_principal, students_in_view
 
 CSV_COLUMNS = ["user_id", "external_id", "name", "answer", "submissions", "latest_submission", "latest_status",
                "latest_verdict", "latest_score", "best_score", "score", "problem_score"]
@@ -34,13 +34,15 @@ def grade_rows(slug: str, action: Action = Action.READ_GRADES) -> list[dict[str,
     """One row per (student, answer): submission count, the latest one's verdict, the best score,
     if the access policy lets the caller ``action`` (read or export) the problem's grades."""
     version = visible_version(slug, action=action)
-    submissions = db.session.scalars(
-        select(Submission)
-        .join(ProblemVersion, Submission.problem_version_id == ProblemVersion.id)
-        .where(ProblemVersion.problem_id == version.problem_id)
-        .options(joinedload(Submission.user), selectinload(Submission.verdicts))
-        .order_by(Submission.user_id, Submission.answer_name, Submission.id)
-    )
+    query = (select(Submission)
+             .join(ProblemVersion, Submission.problem_version_id == ProblemVersion.id)
+             .where(ProblemVersion.problem_id == version.problem_id)
+             .options(joinedload(Submission.user), selectinload(Submission.verdicts))
+             .order_by(Submission.user_id, Submission.answer_name, Submission.id))
+    in_view = students_in_view(current_principal(), version.problem.course_id)
+    if in_view is not None:  # a shared problem: the caller's students only (see the policy)
+        query = query.where(in_view(Submission.user_id))
+    submissions = db.session.scalars(query)
     rows: dict[tuple[int, str], dict[str, Any]] = {}
     for submission in submissions:
         verdict = submission.verdict

@@ -39,8 +39,9 @@ class Row:
     verdict_id: int | None
 
 
-def results(session: Session, problem: Problem) -> list[Row]:
-    """Every submission to any version of ``problem`` with the verdict in effect, oldest first."""
+def results(session: Session, problem: Problem, in_view=None) -> list[Row]:
+    """Every submission to any version of ``problem`` with the verdict in effect, oldest first
+    (``in_view``: of the students `grader.web.policy.students_in_view` lets the caller see)."""
     in_effect = and_(Verdict.submission_id == Submission.id, Verdict.grading_round == Submission.grading_round)
     query = (select(Submission.id, Submission.user_id, User.name, User.email, User.external_id,
                     Submission.answer_name, Submission.text, Submission.received_at, Submission.status,
@@ -50,6 +51,8 @@ def results(session: Session, problem: Problem) -> list[Row]:
              .outerjoin(Verdict, in_effect)
              .where(ProblemVersion.problem_id == problem.id)
              .order_by(Submission.id))
+    if in_view is not None:
+        query = query.where(in_view(Submission.user_id))
     return [Row(*row) for row in session.execute(query)]
 
 

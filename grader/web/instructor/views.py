@@ -30,7 +30,7 @@ from grader.web.instructor import bp
 from grader.answers.grouping import GroupingCache, group_wrong_answers
 from grader.web.instructor.stats import CSV_HEADER, csv_rows, per_answer, results, score_distribution, signature
 from grader.web.policy import (Action, allowed, current_principal, find_derivation, find_problem,
-                               find_problem_version, managed_courses, managed_problems)
+                               find_problem_version, managed_courses, managed_problems, students_in_view)
 from grader.web.problem_life import MAX_SCENE_BYTES
 from grader.web.student.statement import statement_problems
 
@@ -165,9 +165,10 @@ def publish(slug: str, number: int):
 @bp.get("/problems/<slug>")
 @login_required(INSTRUCTOR_ROLES)
 def problem(slug: str):
-    found = find_problem(db.session, current_principal(), slug, Action.READ_GRADES)
+    principal = current_principal()
+    found = find_problem(db.session, principal, slug, Action.READ_GRADES)
     version = latest_version(db.session, found, published_only=True) or found.versions[-1]
-    rows = results(db.session, found)
+    rows = results(db.session, found, students_in_view(principal, found.course_id))
     names = [r["name"] for r in version.references]
     grouped, cache = {}, _grouping_cache()
     for reference in version.references:
@@ -178,8 +179,8 @@ def problem(slug: str):
         grouped[reference["name"]] = {"groups": groups[:SHOWN_GROUPS], "more": max(0, len(groups) - SHOWN_GROUPS),
                                       "wrong": len(wrong), "prompt": reference.get("prompt") or reference["name"]}
     students = {r.user_id: r.student for r in rows}
-    scores = sorted(((students.get(user_id, ""), score) for user_id, score in
-                     practice_scores(db.session, version).items()), key=lambda item: (item[0].lower(), item[1].problem))
+    scores = sorted(((students[user_id], score) for user_id, score in practice_scores(db.session, version).items()
+                     if user_id in students), key=lambda item: (item[0].lower(), item[1].problem))
     return render_template("instructor/problem.html", problem=found, version=version, grouped=grouped, scores=scores,
                            distribution=score_distribution(rows, names), answers=per_answer(rows, names),
                            recent=list(reversed(rows[-SHOWN_SUBMISSIONS:])), total=len(rows))
@@ -203,8 +204,10 @@ def _checker_says(reference: dict):
 @bp.get("/problems/<slug>/submissions.csv")
 @login_required(INSTRUCTOR_ROLES)
 def export_csv(slug: str):
-    found = find_problem(db.session, current_principal(), slug, Action.EXPORT)
-    return csv_response(csv_rows(results(db.session, found)), f"{found.slug}-submissions.csv", header=CSV_HEADER)
+    principal = current_principal()
+    found = find_problem(db.session, principal, slug, Action.EXPORT)
+    rows = results(db.session, found, students_in_view(principal, found.course_id))
+    return csv_response(csv_rows(rows), f"{found.slug}-submissions.csv", header=CSV_HEADER)
 
 
 @bp.post("/problems/<slug>/regrade")
