@@ -71,9 +71,20 @@ def served(app):
 
     server = create_server(app, host="127.0.0.1", port=0, threads=2,
                            max_request_body_size=app.config["MAX_CONTENT_LENGTH"] + 1)
-    thread = threading.Thread(target=server.run, daemon=True)
+    stopping = threading.Event()
+
+    def run():
+        try:
+            server.run()
+        except OSError:
+            # the sockets closed below under a select() in progress (EBADF): the loop's end, not an error
+            if not stopping.is_set():
+                raise
+
+    thread = threading.Thread(target=run, daemon=True)
     thread.start()
     yield server.effective_port
+    stopping.set()
     server.task_dispatcher.shutdown()  # the answers written, then the sockets closed: the loop ends
     asyncore.close_all(server._map)
     thread.join(timeout=5)
