@@ -609,7 +609,8 @@ def _time_period(condition: sympy.Expr, t: sympy.Symbol) -> sympy.Expr | None:
     if not all(q.is_Rational for q in ratios):
         return None
     base = rates[0] / sympy.ilcm(*[q.q for q in ratios]) if len(ratios) > 1 else rates[0]
-    return sympy.Abs(2 * sympy.pi / base) if not (2 * sympy.pi / base).is_positive else 2 * sympy.pi / base
+    period = 2 * sympy.pi / base
+    return period if period.is_positive else sympy.Abs(period)
 
 
 def _first_time(scene, roots: list[sympy.Expr], t: sympy.Symbol, key: str) -> sympy.Expr:
@@ -1651,13 +1652,11 @@ def _travel(u, u0: float, d: float, speed2, skip: bool = False, end_of_branch=No
         value = speed2(nxt)
         if end_of_branch is not None and (k > 1 or not skip):
             here, there = end_of_branch(x), end_of_branch(nxt)
-            if math.isfinite(here) and here != 0 and (not math.isfinite(there) or here * there <= 0):
-                # the branch ends between x and nxt: at the zero (a real turning point before it is no
-                # branch end: energy is tested first below only when it is reached inside)
-                if math.isfinite(value) and value < 0 and math.isfinite(there):
-                    pass
-                else:
-                    return _branch_end_between(end_of_branch, x, nxt), LEAVES_THE_BRANCH
+            ends = math.isfinite(here) and here != 0 and (not math.isfinite(there) or here * there <= 0)
+            # The branch ends between x and nxt (its function vanishes, or stops being defined, there),
+            # unless energy turns the motion back inside the branch first (the test below).
+            if ends and not (math.isfinite(value) and value < 0 and math.isfinite(there)):
+                return _branch_end_between(end_of_branch, x, nxt), LEAVES_THE_BRANCH
         if math.isfinite(value) and value < 0 and (k > 1 or not skip):
             if math.isfinite(previous) and previous >= 0:
                 from scipy.optimize import brentq  # here: importing scipy.optimize costs more than most derivations
