@@ -704,11 +704,15 @@ def _hidden_difference(diff: sympy.Expr, answer: sympy.Expr, reference: sympy.Ex
         r, _ = ref.at(point, prec, 0)
     except (Undefined, Unresolved, Unsupported):
         return None
+    return _differ_below_the_digits(point, a, r, options, "their difference alone is not zero there")
+
+
+def _differ_below_the_digits(point: dict, a, r, options: Options, how: str) -> Comparison:
+    """The verdict where answer ``a`` and reference ``r`` differ at ``point`` by less than the judge's digits."""
     result = PointResult("differ", answer=a, reference=r)
     return Comparison(False, "proved", "your answer and the correct one differ at the point in the counterexample "
-                      "(by less than the judge's digits: their difference alone is not zero there)",
-                      evidence={"method": options.describe(), "points": 1}, counterexample=counterexample(point, result),
-                      values=(_to_float(a), _to_float(r)))
+                      f"(by less than the judge's digits: {how})", evidence={"method": options.describe(), "points": 1},
+                      counterexample=counterexample(point, result), values=(_to_float(a), _to_float(r)))
 
 
 # Working precision of the one confirming evaluation (about 300 digits): 8 points agreeing to 30
@@ -731,11 +735,7 @@ def _below_the_digits(ref: Compiled, ans: Compiled, sampler: Sampler, options: O
         return None
     if (a - r).contains(0):
         return None
-    result = PointResult("differ", answer=a, reference=r)
-    return Comparison(False, "proved", "your answer and the correct one differ at the point in the counterexample "
-                      "(by less than the judge's digits: at more precision they differ there)",
-                      evidence={"method": options.describe(), "points": 1}, counterexample=counterexample(point, result),
-                      values=(_to_float(a), _to_float(r)))
+    return _differ_below_the_digits(point, a, r, options, "at more precision they differ there")
 
 
 # Constants outside the ordinary samples' scale (0.5 .. 3) say where else to look: abs(x - 10)

@@ -119,6 +119,18 @@ class RateLimiter:
         """
         self._draw(action, key, cost, take=True)
 
+    def refusal(self, action: str, key: object, earlier: str | None) -> str | None:
+        """Why the next of several items of one request is refused by ``action``'s limit, or None
+        (charging it): the first refusal's detail, which holds for the rest of the request too (the
+        limit does not recover within it). For a submit of several answers, each one an attempt."""
+        if earlier is not None:
+            return earlier
+        try:
+            self.hit(action, key)
+        except ApiProblem as error:
+            return error.detail
+        return None
+
     def check(self, action: str, key: object) -> None:
         """Raise the 429 problem if ``key``'s limit for ``action`` is used up, without charging it.
 

@@ -20,7 +20,6 @@ from grader.web import clock
 from grader.web.auth.session import login_required
 from grader.web.coursework import STATE_WORDS, assignment_view, rules_in_words
 from grader.web.student.verdicts import verdict_view
-from grader.web.errors import ApiProblem
 from grader.web.policy import PAGE_ROLES, Action, allowed, current_principal, find_assignment, my_courses, require
 from grader.web.security import limiter
 from grader.web.student import bp
@@ -86,11 +85,7 @@ def hand_in_page(code: str, assignment: str):
         flash("Type at least one answer before submitting.", "error")
     sent, late, refused, limit = 0, 0, {}, None
     for name, text in texts.items():
-        try:
-            if limit is None:  # the limit does not recover within one request: the rest wait too
-                limiter.hit("submit", g.user.id)
-        except ApiProblem as error:
-            limit = error.detail
+        limit = limiter.refusal("submit", g.user.id, limit)
         if limit is not None:
             refused[(slug, name)] = limit
             continue

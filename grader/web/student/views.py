@@ -140,11 +140,7 @@ def _submit_each(version: ProblemVersion, texts: dict[str, str]) -> _Outcome:
     """Submit every answer, carrying on past a refused one (as an assignment's hand-in does)."""
     outcome, limit = _Outcome(), None
     for name, text in texts.items():
-        try:
-            if limit is None:  # the limit does not recover within one request: the rest wait too
-                limiter.hit("submit", g.user.id)
-        except ApiProblem as error:
-            limit = error.detail
+        limit = limiter.refusal("submit", g.user.id, limit)
         if limit is not None:
             outcome.refused[name], outcome.limited = limit, True
             continue
