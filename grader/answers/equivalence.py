@@ -678,6 +678,7 @@ def compare_expressions(
         return (_hidden_difference(diff, answer, reference, ref, ans, sampler, options)
                 or _below_the_digits(ref, ans, sampler, options)
                 or _at_landmarks(ref, ans, sampler, (reference, answer), options, deadline)
+                or _past_the_branches(ref, ans, sampler, (reference, answer), options, deadline)
                 or _in_sign_regions(ref, ans, sampler, (reference, answer), options, deadline) or result)
     return result
 
@@ -778,20 +779,34 @@ def _at_landmarks(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, options
             point = {**base, **{s: v for s in free}}
             # keyed by the value itself: the reference's cache is shared by every answer to it
             result = compare_at(ref, ans, point, ("landmark", v), options, deadline)
-            if result.kind in ("answer_undefined", "answer_defined") and _isolated(ref, ans, sampler, point, options,
-                                                                                   deadline):
-                continue  # a removable point: see _isolated
-            if result.kind in ("differ", "answer_undefined", "answer_defined"):
-                example = counterexample(point, result)
-                values_ = (_to_float(result.answer), _to_float(result.reference)) if result.kind == "differ" else None
-                return Comparison(False, "proved", "your answer and the correct one differ at the point in the "
-                                  "counterexample" if result.kind == "differ" else
-                                  "your answer is undefined at a point where the correct one is defined"
-                                  if result.kind == "answer_undefined" else
-                                  "your answer is defined at a point of the domain where the correct one is not",
-                                  evidence={"method": options.describe(), "points": 1},
-                                  counterexample=example, values=values_)
+            found = _proved_there(ref, ans, sampler, point, result, options, deadline, rounder=False)
+            if found is not None:
+                return found
     return None
+
+
+_DIFFERENCES = {
+    "differ": "your answer and the correct one differ at the point in the counterexample",
+    "answer_undefined": "your answer is undefined at a point where the correct one is defined",
+    "answer_defined": "your answer is defined at a point of the domain where the correct one is not",
+}
+
+
+def _proved_there(ref: Compiled, ans: Compiled, sampler: Sampler, point: dict, result: PointResult, options: Options,
+                  deadline: float | None, rounder: bool = True) -> Comparison | None:
+    """The verdict that ``result`` at ``point`` proves (a difference, one side undefined), or None where
+    it proves nothing (agreement; a removable point, see `_isolated`). ``rounder``: stated at a rounder
+    point showing the same, where one does (`_rounder_witness`)."""
+    if result.kind not in _DIFFERENCES:
+        return None
+    if result.kind != "differ" and _isolated(ref, ans, sampler, point, options, deadline):
+        return None
+    if rounder:
+        point, result = _rounder_witness(ref, ans, sampler, point, result, options, deadline)
+    differ = result.kind == "differ"
+    return Comparison(False, "proved", _DIFFERENCES[result.kind], evidence={"method": options.describe(), "points": 1},
+                      counterexample=counterexample(point, result),
+                      values=(_to_float(result.answer), _to_float(result.reference)) if differ else None)
 
 
 # Points drawn beyond the compared ones to meet the other sign patterns of abs/sign arguments, and
@@ -856,20 +871,57 @@ def _in_sign_regions(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, opti
         result = compare_at(ref, ans, point, i, options, deadline)
         if result.kind == "budget":
             return None
-        if result.kind in ("answer_undefined", "answer_defined") and _isolated(ref, ans, sampler, point, options,
-                                                                               deadline):
-            continue
-        if result.kind in ("differ", "answer_undefined", "answer_defined"):
-            point, result = _rounder_witness(ref, ans, sampler, point, result, options, deadline)
-            differ = result.kind == "differ"
-            return Comparison(False, "proved",
-                              "your answer and the correct one differ at the point in the counterexample" if differ
-                              else "your answer is undefined at a point where the correct one is defined"
-                              if result.kind == "answer_undefined" else
-                              "your answer is defined at a point of the domain where the correct one is not",
-                              evidence={"method": options.describe(), "points": 1},
-                              counterexample=counterexample(point, result),
-                              values=(_to_float(result.answer), _to_float(result.reference)) if differ else None)
+        found = _proved_there(ref, ans, sampler, point, result, options, deadline)
+        if found is not None:
+            return found
+    return None
+
+
+# Points compared, in all, where an expression has a branch or a pole and a variable ranges over a
+# finite interval: the ordinary first eight reach only two of the interval's avoided bands (points
+# 3 and 7; `Sampler`), so √(1 − sin²x) passed for cos x on [0.1, 1.75], and asin(sin x) for x on
+# [−1.5, 2], wrong only past π/2 at the far end. Sixteen take every band once (points 3, 7, 11, 15).
+BRANCH_POINTS = 16
+# Then each such variable just inside each end of its interval (this share of its width from it),
+# the others as at the first point: acos(cos x) and |x| differ on [−3.14, 3.15] only past π. Not
+# nearer: an end written to four or five digits means its round value (α in [0, 1.5708] is an
+# incline up to π/2, where √(1 − sin²α) is cos α, not the 4·10⁻⁶ past it).
+END_OFFSET = 1e-3
+_BRANCHES = (sympy.asin, sympy.acos, sympy.atan, sympy.acot, sympy.asec, sympy.acsc, sympy.atan2, sympy.Abs,
+             sympy.sign, sympy.tan, sympy.cot, sympy.sec, sympy.csc, sympy.log, sympy.floor, sympy.ceiling)
+
+
+def _has_branch(exprs) -> bool:
+    """Whether an expression has a function that is one formula on part of its argument's range only (an
+    inverse trigonometric function, abs, sign, a root of a variable, a pole, a logarithm)."""
+    stack = list(exprs)
+    while stack:
+        node = stack.pop()
+        if isinstance(node, _BRANCHES) or (node.is_Pow and not node.exp.is_Integer and node.base.free_symbols):
+            return True
+        stack.extend(node.args)
+    return False
+
+
+def _past_the_branches(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, options: Options,
+                       deadline: float | None) -> Comparison | None:
+    """A counterexample among the first `BRANCH_POINTS` points where the expressions have a branch and
+    a variable of theirs ranges over a finite interval, or None."""
+    symbols = set().union(*(e.free_symbols for e in exprs))
+    if options.points >= BRANCH_POINTS or not sampler.banded & symbols or not _has_branch(exprs):
+        return None
+    points = [(sampler.point(i), i) for i in range(options.points, BRANCH_POINTS)]
+    for symbol in sorted(sampler.banded & symbols, key=str):
+        domain = sampler.domains[symbol]
+        step = END_OFFSET * (domain.hi - domain.lo)
+        points += [({**sampler.point(0), symbol: end}, None) for end in (domain.lo + step, domain.hi - step)]
+    for point, key in points:
+        result = compare_at(ref, ans, point, key, options, deadline)
+        if result.kind == "budget":
+            return None
+        found = _proved_there(ref, ans, sampler, point, result, options, deadline)
+        if found is not None:
+            return found
     return None
 
 

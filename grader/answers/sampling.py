@@ -138,6 +138,12 @@ class Sampler:
         self._strata: dict = {}
         self._points: list[dict[sympy.Symbol, float]] = []
 
+    @property
+    def banded(self) -> set:
+        """The variables whose stress points take the bands of a finite interval that the others avoid
+        (`Domain.avoided_bands`): its ends and each side of zero, one band per stress point in turn."""
+        return self._stress_bands
+
     def point(self, i: int) -> dict[sympy.Symbol, float]:
         while len(self._points) <= i:
             self._points.append(self._related(lambda: self._draw(len(self._points))))

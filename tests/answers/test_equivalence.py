@@ -308,3 +308,37 @@ def test_every_sign_pattern_of_an_abs_argument_met_is_compared(reference, answer
     from grader.answers import check
 
     assert check(f"{reference} + {shift}", f"{answer} + {shift}", XYZ_REAL).verdict == expected
+
+
+# Wrong only on the part of an interval past a branch point near one end (red team, 2026-11-27 C): an
+# inverse trigonometric function or a root of a square is the answer on one side of π/2 (or π) only.
+_BRANCH_PAIRS = [("cos(x)", "sqrt(1 - sin(x)^2)"), ("asin(sin(x))", "x"), ("atan(tan(x))", "x"),
+                 ("acos(cos(x))", "abs(x)")]
+_BRANCH_ENDS = {"cos(x)": 1.5708, "asin(sin(x))": 1.5708, "atan(tan(x))": 1.5708, "acos(cos(x))": 3.1416}
+
+
+def _check_on(reference, answer, lo, hi):
+    from grader.answers.checker import check
+
+    return check(reference, answer, {"x": {"dimension": "dimensionless", "domain": [lo, hi]}})
+
+
+@pytest.mark.parametrize("reference, answer", _BRANCH_PAIRS)
+@pytest.mark.parametrize("lo", [0.1, -0.5, 0.0])
+def test_an_answer_wrong_only_past_a_branch_point_near_an_end_is_refused(reference, answer, lo):
+    # The far end runs from just past the branch point (0.1% of the interval) to 0.7 past it.
+    past = _BRANCH_ENDS[reference]
+    for hi in [past + 0.004, past + 0.03, *(past + 0.0125 * k for k in range(1, 56))]:
+        verdict = _check_on(reference, answer, lo, hi)
+        assert verdict.verdict == "not_equivalent", (hi, verdict.reason)
+        assert verdict.counterexample["values"]["x"] > past
+
+
+@pytest.mark.parametrize("reference, answer", _BRANCH_PAIRS)
+@pytest.mark.parametrize("short", [0.07, 0.0])
+def test_the_same_answers_are_right_on_an_interval_up_to_the_branch_point(reference, answer, short):
+    # short = 0: the end is the branch point written to four decimals (1.5708 for π/2, 3.1416 for π), a
+    # few millionths past it, as instructors write an incline's or a swing's range
+    lo = 0.1 if reference in ("cos(x)", "acos(cos(x))") else -1.5
+    verdict = _check_on(reference, answer, lo, _BRANCH_ENDS[reference] - short)
+    assert verdict.verdict == "equivalent", verdict.reason
