@@ -776,7 +776,17 @@ class _Parser:
         while self.peek().kind == "op" and self.peek().value == "," and opener.value == "(":
             self.advance()
             args.append(self.expression(0))
-        self.expect_close(opener)
+        closer = self.expect_close(opener)
+        if opener.value == "[" and spec.name == "log" and self.peek().kind in _ATOM_STARTS:
+            # Maple's log[10](x) is the logarithm of x to base 10, Mathematica's Log[10] (x) the product
+            # log(10)·x: read as the product, an answer x log 10 was accepted for Maple's. (Sin[θ] (a + b)
+            # is a product in both.)
+            index = self.text[opener.end:closer.pos].strip()
+            raise ExpressionError(f"cannot read '{token.text}[{index}]' before an argument: Maple's log[{index}](x) is "
+                                  f"the logarithm of x to base {index}, Mathematica's Log[{index}] x the product",
+                                  opener.pos, "ambiguous",
+                                  f"write log(…, {index}) for the logarithm to base {index}, or log({index})*(…) for "
+                                  "the product")
         if not spec.min_args <= len(args) <= spec.max_args:
             wanted = (f"{spec.min_args}" if spec.min_args == spec.max_args
                       else f"{spec.min_args} or {spec.max_args}")

@@ -844,6 +844,9 @@ def test_answers_pasted_from_other_tools_mean_what_they_mean_there(student_ns, s
     # two arguments in square brackets: Mathematica's order is the reverse of ours
     ("ArcTan[x, y]", "ambiguous", "ArcTan[x, y] is atan2(y, x)"),
     ("Log[2, x]", "ambiguous", "Log[b, x] is log(x, b)"),
+    # an index in square brackets before the argument: Maple's logarithm to a base, its indexed function
+    ("log[10](x)", "ambiguous", "Maple's log[10](x) is the logarithm of x to base 10"),
+    ("ln[2] x", "ambiguous", "write log(…, 2) for the logarithm to base 2, or log(2)*(…) for the product"),
     # a module function the grammar does not have, named with its prefix
     ("np.linspace(x)", "unsupported_function", "'np.linspace'"),
     ("np.e", "unsupported_function", "'np.e'"),
