@@ -141,35 +141,41 @@ def _with_implied_extras(reference, answer, parameters, states, options, deadlin
 
 def _hold_at_the_solutions(reference: list[sympy.Expr], others: list[sympy.Expr], unknowns: tuple,
                            parameters: Sampler, states: Sampler) -> bool:
-    """Whether each of ``others`` is zero, to 25 digits of its terms' size, where the reference's system
-    (linear in the unknowns) holds, at a few parameter points and states."""
-    if len(unknowns) != len(reference):
+    """Whether each of ``others`` is zero where the reference's system (linear in the unknowns) holds, at a
+    few parameter points and states: in ball arithmetic at `CONFIRM_BITS`, the unknowns solved there as
+    balls, each residual's ball must contain zero and be narrow. Fixed digits let a slightly false
+    equation pass (``+ 1e-30 g/l``, ``+ e^-200 g/l``), as `grader.answers.equivalence._below_the_digits`
+    found for expressions."""
+    if len(unknowns) != len(reference) or any(other.is_number for other in others):
         return False
+    split = _linear_in(reference, unknowns)
+    if split is None:
+        return False
+    matrix, rest = split
+    k = len(unknowns)
     try:
-        matrix = sympy.Matrix([[r.diff(u) for u in unknowns] for r in reference])
-        if any(entry.has(*unknowns) for entry in matrix):
-            return False  # not linear in the unknowns
-        rest = [r.xreplace({u: 0 for u in unknowns}) for r in reference]
-    except (TypeError, ValueError):
+        compiled = [Compiled(e, ArbBackend()) for e in (*matrix, *rest)]
+        checks = [Compiled(other, ArbBackend()) for other in others]
+    except Unsupported:
         return False
-    with mpmath.workdps(40):
-        for i in range(IMPLIED_POINTS):
-            point = {s: sympy.Float(v, 40) for s, v in states.joint(parameters.point(i), states.point(i)).items()
-                     if s not in unknowns}
-            try:
-                a = mpmath.matrix([[mpmath.mpf(sympy.N(e.xreplace(point), 40)) for e in row]
-                                   for row in matrix.tolist()])
-                b = mpmath.matrix([-mpmath.mpf(sympy.N(r.xreplace(point), 40)) for r in rest])
-                solution = mpmath.lu_solve(a, b)
-            except (TypeError, ValueError, ZeroDivisionError):
-                return False
-            at = {**point, **{u: sympy.Float(str(solution[j]), 40) for j, u in enumerate(unknowns)}}
-            for other in others:
-                terms = [abs(complex(sympy.N(t.xreplace(at), 40))) for t in sympy.Add.make_args(other)]
-                if not all(math.isfinite(t) for t in terms) or sum(terms) == 0:
+    for i in range(IMPLIED_POINTS):
+        point = {s: v for s, v in states.joint(parameters.point(i), states.point(i)).items() if s not in unknowns}
+        try:
+            values = [c.at(point, CONFIRM_BITS)[0] for c in compiled]
+            with flint.ctx.workprec(CONFIRM_BITS):
+                a = flint.arb_mat(k, k, values[:k * k])
+                det = a.det()
+                if not det.is_finite() or det.contains(0):
                     return False
-                if abs(complex(sympy.N(other.xreplace(at), 40))) > 1e-25 * max(terms):
+                solution = a.solve(flint.arb_mat(k, 1, [-v for v in values[k * k:]]))
+            at = {**point, **{u: solution[j, 0] for j, u in enumerate(unknowns)}}
+            for check in checks:
+                value, scale = check.at(at, CONFIRM_BITS)
+                # a wide ball contains zero without saying anything: it must be narrow next to the terms
+                if not value.contains(0) or _log2_mag(value.rad()) > scale - CONFIRM_BITS // 2:
                     return False
+        except (Undefined, Unresolved, ZeroDivisionError, ValueError):
+            return False
     return True
 
 
@@ -270,6 +276,9 @@ def compare_equations(
 def _compare_equations(reference, answer, parameters, states, options, deadline, compiled_reference,
                        answer_conditions, unknowns) -> Comparison:
     k = len(reference)
+    determined = set().union(*(r.free_symbols for r in reference)) & set(states.domains)
+    if k > len(determined):
+        return _over_determined(reference, determined, parameters)
     if len(answer) > k:
         distinct = _without_repeats(answer)
         if len(distinct) < len(answer):
@@ -395,6 +404,13 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
         factor = _parameter_factor(reference, answer, parameters, states)
         if factor is not None:
             return factor
+    if agreed >= min(needed, 3) and not unknowns and parameters.domains:
+        # An equilibrium or a statics system must hold for every parameter value too; only an
+        # equation degenerate there itself is spared (`_degenerate_there`).
+        found = _parameter_dependence(reference, answer, refs, anss, parameters, states, needed * 2, target,
+                                      signs, mixing, options)
+        if found is not None:
+            return found
     if agreed >= min(needed, 3):
         digits = options.digits if math.isinf(digits_seen) else int(digits_seen)
         for i, j in _paired_rows(mixing, k):
@@ -418,6 +434,19 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
             evidence={"method": "ball arithmetic", "points": agreed, "digits": digits},
         )
     return Comparison(None, "none", "could not decide: the equations could not be evaluated reliably")
+
+
+def _over_determined(reference: list[sympy.Expr], determined: set, parameters: Sampler) -> Comparison:
+    """The request error of a reference with more equations than state variables in it: its equations
+    then also fix parameters (``x + y = 1; x - y = 0`` with y untagged), and a factor (mixing) free of
+    the state can carry any answer onto it at each parameter point, so no answer can be graded."""
+    untagged = sorted(s.name for s in set().union(*(r.free_symbols for r in reference)) & set(parameters.domains))
+    names = ", ".join(sorted(s.name for s in determined)) or "none"
+    return Comparison(None, "none", f"the reference has {len(reference)} equations but only {len(determined)} "
+                      f"variable{'s' * (len(determined) != 1)} to solve for ({names}): its equations also fix "
+                      f"parameters, and it cannot be graded as equations. Give the variables the equations determine "
+                      f"a kind (coordinate, force, answer, ...); the reference's variables without one are: "
+                      f"{', '.join(untagged) or 'none'}", evidence={"method": "request"})
 
 
 # Parameter points drawn beyond the compared ones, each with its states, to meet the other sign
@@ -500,8 +529,101 @@ def _mixing_signs(refs: list[Compiled], anss: list[Compiled], parameters: Sample
     return signs
 
 
+def _parameter_dependence(reference, answer, refs, anss, parameters: Sampler, states: Sampler, start: int,
+                          target: float, signs: dict, mixing, options: Options) -> Comparison | None:
+    """For equations without accelerations: a refusal when the answer is the reference times a factor
+    (a mixing matrix) of the parameters that vanishes (is singular) for some of their values, unless
+    both equations have no solution there anyway (`_degenerate_there`); else None.
+
+    Symbolically where the factor can be had (the ratio of single equations, the determinant of
+    systems linear in the state); else by a sign change between parameter points."""
+    k, state = len(reference), set(states.domains)
+
+    def degenerate(base):
+        return _degenerate_there(base, reference, answer, state, parameters.domains)
+
+    factor = _parameter_factor(reference, answer, parameters, states, exempt=degenerate)
+    if factor is not None:
+        return factor
+    if k == 1:
+        if _state_free_ratio(reference[0], answer[0], state) is not None:
+            return None  # the whole ratio was analysed: a sign change is a degenerate equation's pole
+        signs = _multiple_signs(refs[0], anss[0], parameters, states, start, target, signs)
+        return _vanishing_multiple(k, signs) if len(signs) == 2 else None
+    determinant = _state_free_determinant(reference, answer, state)
+    if determinant is not None:
+        for part in sympy.fraction(determinant):
+            for base in _bases(part):
+                if _nonzero_on(base, parameters.domains) is not True and not degenerate(base):
+                    return Comparison(False, "numeric", f"your equations are combinations of the reference "
+                                      f"equations by a matrix whose determinant has the factor {base}, which "
+                                      "depends on the parameters and could not be shown nonzero for all their "
+                                      "values: where it vanishes your equations say less than the reference",
+                                      evidence={"method": "symbolic"})
+        return None
+    if signs and len(_paired_rows(mixing, k)) < k:
+        signs = _mixing_signs(refs, anss, parameters, states, start, target, signs, options.max_bits)
+    return _vanishing_multiple(k, signs) if len(signs) == 2 else None
+
+
+def _state_free_determinant(reference: list[sympy.Expr], answer: list[sympy.Expr], state: set):
+    """det(answer's matrix)/det(reference's), factored, for systems linear in as many state variables
+    as equations (the mixing matrix is then their quotient), else None."""
+    present = sorted(set().union(*(r.free_symbols for r in reference + answer)) & state, key=lambda s: s.name)
+    if len(present) != len(reference) or any(_nodes(r) > FACTOR_MAX_NODES for r in reference + answer):
+        return None
+    split_r, split_s = _linear_in(reference, tuple(present)), _linear_in(answer, tuple(present))
+    if split_r is None or split_s is None:
+        return None
+    try:
+        quotient = sympy.factor(sympy.cancel(sympy.together(split_s[0].det(method="berkowitz")
+                                                            / split_r[0].det(method="berkowitz"))))
+    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+        return None
+    return None if quotient.free_symbols & state else quotient
+
+
+def _degenerate_there(base: sympy.Expr, reference: list[sympy.Expr], answer: list[sympy.Expr], state: set,
+                      domains: dict) -> bool:
+    """Whether neither system has a solution where ``base`` (of the parameters) vanishes: at resonance
+    ``(k - m w^2) X = F0`` says ``-F0 = 0`` and ``X = F0/(k - m w^2)`` is undefined, so the factor
+    ``k - m w^2`` between them changes no solution. Each system needs an equation undefined there
+    (``base`` divides its denominator) or one that is a nonzero constant there (``base = 0`` solved
+    for a parameter it is linear in)."""
+    where = _zero_of(base)
+    if where is None:
+        return False
+
+    def no_solution(system):
+        for row in system:
+            try:
+                numerator, denominator = sympy.fraction(sympy.together(row))
+                if not sympy.gcd(base, denominator).is_number:
+                    return True
+                there = sympy.cancel(numerator.xreplace(where))
+            except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+                continue
+            if there != 0 and not there.free_symbols & state and _nonzero_on(there, domains) is True:
+                return True
+        return False
+
+    return no_solution(reference) and no_solution(answer)
+
+
+def _zero_of(base: sympy.Expr) -> dict | None:
+    """``{p: value}`` with ``base`` zero at ``p = value``, for a parameter ``p`` it is linear in with a
+    numeric coefficient, else None."""
+    if _nodes(base) > FACTOR_MAX_NODES:
+        return None
+    for p in sorted(base.free_symbols, key=lambda s: s.name):
+        slope = base.diff(p)
+        if slope.is_number and slope != 0:
+            return {p: sympy.expand(-base.xreplace({p: 0}) / slope)}
+    return None
+
+
 def _parameter_factor(reference: list[sympy.Expr], answer: list[sympy.Expr], parameters: Sampler,
-                      states: Sampler) -> Comparison | None:
+                      states: Sampler, exempt=None) -> Comparison | None:
     """A refusal when an equation of the answer is multiplied (or divided) by a factor free of the
     state that cannot be shown nonzero for every value of the parameters, else None.
 
@@ -518,16 +640,23 @@ def _parameter_factor(reference: list[sympy.Expr], answer: list[sympy.Expr], par
                 continue
             if _cancels_inside(row, factor, base):
                 continue  # (g - c)*(l*thetaddot/(g - c) + ...): it cancels, as tan(x)*cos(x) does
-            if _nonzero_on(base, parameters.domains) is not True:
+            if _nonzero_on(base, parameters.domains) is not True and not (exempt and exempt(base)):
                 return _factor_may_vanish(base, f" {i + 1}" if len(answer) > 1 else "")
     if len(answer) == 1 and len(reference) == 1:
         # The factor as a whole, not only as typed: (m1 - m2)^2 xddot = (m1 - m2)^3 g/(m1 + m2) has none in
         # common, and a square never changes sign between the parameter points.
         ratio = _state_free_ratio(reference[0], answer[0], state)
         for part in sympy.fraction(ratio) if ratio is not None else ():
-            if not part.is_number and _nonzero_on(part, parameters.domains) is not True:
+            if not part.is_number and _nonzero_on(part, parameters.domains) is not True and not (
+                    exempt and all(_nonzero_on(base, parameters.domains) is True or exempt(base)
+                                   for base in _bases(part))):
                 return _factor_may_vanish(ratio, "")
     return None
+
+
+def _bases(product: sympy.Expr) -> list:
+    """The factors of ``product`` that are not numbers, each without its integer power."""
+    return [f.base if f.is_Pow and f.exp.is_Integer else f for f in sympy.Mul.make_args(product) if not f.is_number]
 
 
 def _factor_may_vanish(factor: sympy.Expr, which: str) -> Comparison:
@@ -1415,9 +1544,10 @@ def _same_polynomial_ideal(reference: list[sympy.Expr], answer: list[sympy.Expr]
     they have the same solutions. ``x y = 2, x + y = 3`` and ``x^2 - 3x + 2 = 0, y = 3 - x`` are no
     combination of each other with constant coefficients, but one ideal. Each equation keeps only what
     decides its real zeros (`_real_zeros_only`: (x - y)**2 is x - y, (x**2 + 1)(x - y) is x - y).
-    Coefficients may hold parameters (``with_parameters``: a basis over their rational functions, the
-    same ideal for all but special values); equations of motion, which must hold for every parameter
-    value, are compared with numbers only.
+    Coefficients may hold parameters (``with_parameters``): they are variables of the polynomial ring
+    like the unknowns, so equal ideals there are equal for every value of the parameters (a basis over
+    their rational functions divides by them: ``(a - 1) y = (a - 1)(b - x)`` is ``y = b - x`` for all
+    ``a`` but 1, where it says nothing). Equations of motion are compared with numbers only.
 
     >>> x, y = sympy.symbols("x y", real=True)
     >>> _same_polynomial_ideal([x*y - 2, x + y - 3], [x**2 - 3*x + 2, y - 3 + x], {x, y})
@@ -1457,8 +1587,9 @@ def _same_polynomial_ideal(reference: list[sympy.Expr], answer: list[sympy.Expr]
             return False  # a float coefficient: no exact basis
         # A basis can take seconds even at these sizes (degree 3 with one parameter: 13 s), and a
         # wrong system comes here too: the work is cut off in CPU time, the verdict then stays.
+        ring = gens + sorted(parameters, key=lambda s: s.name)
         bases = budget.attempt(
-            lambda: [sympy.groebner([p.as_expr() for p in system], *gens, order="grevlex") for system in polys],
+            lambda: [sympy.groebner([p.as_expr() for p in system], *ring, order="grevlex") for system in polys],
             GROEBNER_BUDGET_S, fallback=lambda: None)
     except (sympy.PolynomialError, sympy.polys.polyerrors.CoercionFailed, NotImplementedError, ValueError,
             TypeError):

@@ -911,3 +911,101 @@ def test_a_declared_order_holds_at_every_state_compared_and_in_the_proof_a_facto
 def test_an_extra_equation_that_follows_from_the_others_adds_nothing(answer, expected):
     verdict = check(_CART_EOM, answer, _CART, kind="equation")
     assert verdict.verdict == expected, verdict.reason
+
+
+# Red team 2026-11-8: equations without accelerations (equilibria, statics, polynomial systems) must hold
+# for every value of the parameters too, unless the equation is itself degenerate there (resonance).
+_HOOP_STATIC = {"theta": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "coordinate"},
+                "omega": {"dimension": "angular_velocity", "domain": "positive"},
+                "g": {"dimension": "acceleration", "domain": "positive"}, "R": {"dimension": "length", "domain": "positive"}}
+_XY_AB = {"x": {"dimension": "dimensionless", "domain": "real", "kind": "coordinate"},
+          "y": {"dimension": "dimensionless", "domain": "real", "kind": "coordinate"},
+          "a": {"dimension": "dimensionless", "domain": "positive"}, "b": {"dimension": "dimensionless", "domain": "positive"}}
+_ROPE = {"T1": {"dimension": "force", "domain": "real", "kind": "force"},
+         "T2": {"dimension": "force", "domain": "real", "kind": "force"},
+         "m1": {"dimension": "mass", "domain": "positive"}, "m2": {"dimension": "mass", "domain": "positive"},
+         "g": {"dimension": "acceleration", "domain": "positive"}}
+_HOOP_EQUILIBRIUM = "omega^2*R*cos(theta) = g"
+_ROPE_TENSIONS = "T1 = m1 g; T2 = (m1 + m2) g"
+
+
+@pytest.mark.parametrize("reference, answer, variables, expected", [
+    # a factor of the parameters: 0 = 0 where omega^2 R = g (squared, it never changes sign)
+    (_HOOP_EQUILIBRIUM, "(omega^2*R - g)*(omega^2*R*cos(theta) - g) = 0", _HOOP_STATIC, "not_equivalent"),
+    (_HOOP_EQUILIBRIUM, "(omega^2*R - g)^2*(omega^2*R*cos(theta) - g) = 0", _HOOP_STATIC, "not_equivalent"),
+    (_HOOP_EQUILIBRIUM, "omega^2 R cos(theta)/(omega^2 R - g) = g/(omega^2 R - g)", _HOOP_STATIC, "not_equivalent"),
+    (_HOOP_EQUILIBRIUM, "(omega^2*R + g)*(omega^2*R*cos(theta) - g) = 0", _HOOP_STATIC, "equivalent"),
+    (_HOOP_EQUILIBRIUM, "cos(theta) = g/(omega^2 R)", _HOOP_STATIC, "equivalent"),
+    # a mixing of the parameters: singular where its determinant a - 1 (m2 - m1) vanishes
+    ("x = a; y = b", "x + y = a + b; x + a*y = a + a*b", _XY_AB, "not_equivalent"),
+    ("x = a; y = b", "x = a; (a - 1)^2 y = (a - 1)^2 b", _XY_AB, "not_equivalent"),
+    ("x = a; y = b", "x + y = a + b; x + (a^2 + 1) y = a + (a^2 + 1) b", _XY_AB, "equivalent"),
+    ("x = a; y = b", "x + (a - 1)^2 y = a + (a - 1)^2 b; y = b", _XY_AB, "equivalent"),   # det 1
+    (_ROPE_TENSIONS, "T1 + T2 = (2 m1 + m2) g; m1 T1 + m2 T2 = (m1^2 + m1 m2 + m2^2) g", _ROPE, "not_equivalent"),
+    (_ROPE_TENSIONS, "T1 + T2 = (2 m1 + m2) g; T2 - T1 = m2 g", _ROPE, "equivalent"),
+    # the same solutions (Gröbner) must hold for every parameter value, not only generic ones
+    ("x y = a; x + y = b", "x^2 - b x + a = 0; (a - 1) y = (a - 1)(b - x)", _XY_AB, "not_equivalent"),
+    ("x y = a; x + y = b", "x^2 - b x + a = 0; (a - b) y = (a - b)(b - x)", _XY_AB, "not_equivalent"),
+    ("x y = a; x + y = b", "x^2 - b x + a = 0; (a + 1) y = (a + 1)(b - x)", _XY_AB, "equivalent"),
+    ("x y = a; x + y = b", "x^2 - b x + a = 0; y = b - x", _XY_AB, "equivalent"),
+    # resonance: both equations have no solution where k = m w^2, so the factor between them changes nothing
+    ("(k - m w^2) X = F0", "(k - m w^2)^2 X = F0 (k - m w^2)", FORCED, "not_equivalent"),
+    ("(k - m w^2) X = F0", "m (k - m w^2) X = m F0", FORCED, "equivalent"),
+])
+def test_equations_without_accelerations_hold_for_every_parameter_value(reference, answer, variables, expected):
+    v = check(reference, answer, variables, kind="equation")
+    assert v.verdict == expected, v.reason
+
+
+_PENDULUM_TAGGED = {"theta": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "coordinate"},
+                    "g": {"dimension": "acceleration", "domain": "positive"},
+                    "l": {"dimension": "length", "domain": "positive"},
+                    "thetadot": {"dimension": "angular_velocity", "domain": "real", "kind": "velocity"},
+                    "thetaddot": {"dimension": "angular_acceleration", "domain": "real", "kind": "acceleration"}}
+_CART_THIRD = "(M + m sin(theta)^2) xddot = m sin(theta) (l thetadot^2 + g cos(theta))"
+
+
+@pytest.mark.parametrize("reference, answer, variables, expected", [
+    # an extra equation false by less than 40 digits does not follow from the others
+    (PENDULUM_EOM, "thetaddot = -g/l*sin(theta); thetaddot = -g/l*sin(theta) + 1e-30*g/l", _PENDULUM_TAGGED,
+     "not_equivalent"),
+    (PENDULUM_EOM, "thetaddot = -g/l*sin(theta); thetaddot = -g/l*sin(theta) + exp(-200)*g/l", _PENDULUM_TAGGED,
+     "not_equivalent"),
+    (_CART_EOM, f"{_CART_EOM}; {_CART_THIRD} + 1e-30 m g", _CART, "not_equivalent"),
+    (_CART_EOM, f"{_CART_EOM}; {_CART_THIRD} + exp(-200) m g", _CART, "not_equivalent"),
+    (_CART_EOM, f"{_CART_EOM}; {_CART_THIRD}", _CART, "equivalent"),
+    (_CART_EOM, f"{_CART_THIRD}; {_CART_EOM}", _CART, "equivalent"),
+])
+def test_an_extra_equation_must_hold_exactly_at_the_solutions_not_to_fixed_digits(reference, answer, variables,
+                                                                                   expected):
+    v = check(reference, answer, variables, kind="equation")
+    assert v.verdict == expected, v.reason
+
+
+_XY_HALF_TAGGED = {"x": {"dimension": "dimensionless", "domain": "real", "kind": "coordinate"},
+                   "y": {"dimension": "dimensionless", "domain": "real"}}
+_ATWOOD_HALF_TAGGED = {"T": {"dimension": "force", "domain": "real"},
+                       "a": {"dimension": "acceleration", "domain": "real", "kind": "acceleration"},
+                       "m1": {"dimension": "mass", "domain": "positive"}, "m2": {"dimension": "mass", "domain": "positive"},
+                       "g": {"dimension": "acceleration", "domain": "positive"}}
+_ATWOOD_SYSTEM = "T - m1*g = m1*a; m2*g - T = m2*a"
+
+
+@pytest.mark.parametrize("reference, answer, variables, untagged", [
+    ("x + y = 1; x - y = 0", "x = 0; y = 0", _XY_HALF_TAGGED, "y"),
+    ("x + y = 1; x - y = 0", "x = 1/2; y = 1/2", _XY_HALF_TAGGED, "y"),
+    (_ATWOOD_SYSTEM, "a = (m2-m1)*g/(m1+m2); T = m1*m2*g/(m1+m2)", _ATWOOD_HALF_TAGGED, "T"),
+    (_ATWOOD_SYSTEM, "a = (m2-m1)*g/(m1+m2); T = 2*m1*m2*g/(m1+m2)", _ATWOOD_HALF_TAGGED, "T"),
+])
+def test_a_reference_whose_equations_fix_untagged_variables_is_a_request_error(reference, answer, variables,
+                                                                               untagged):
+    # more equations than variables to solve for: a mixing free of the state carries any answer onto it
+    v = check(reference, answer, variables, kind="equation")
+    assert v.verdict == "invalid", v.reason
+    assert "kind" in v.reason and untagged in v.reason.split("without one are:")[1]
+    # with the kind given, the system is graded: the tension without its 2 is wrong, with it right
+    tagged = {n: {**spec, "kind": spec.get("kind", "coordinate" if n in "xyT" else None)} for n, spec in variables.items()}
+    tagged = {n: {k: w for k, w in spec.items() if w is not None} for n, spec in tagged.items()}
+    expected = "equivalent" if answer in ("x = 1/2; y = 1/2", "a = (m2-m1)*g/(m1+m2); T = 2*m1*m2*g/(m1+m2)") \
+        else "not_equivalent"
+    assert check(reference, answer, tagged, kind="equation").verdict == expected
