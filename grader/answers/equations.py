@@ -326,8 +326,8 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
                 return factor
             # exp(x) = exp(y), x^3 = y^3: the same solutions as x = y, but the ratio of the residuals is
             # no factor that cancels; either equation may be the one written so (|x| = |y| against x^2 = y^2)
-            inner = None if answer_conditions else _injective_sides(answer[0])
-            inner_reference = _injective_sides(reference[0])
+            inner = None if answer_conditions else (_injective_sides(answer[0]) or _logs_exponentiated(answer[0]))
+            inner_reference = _injective_sides(reference[0]) or _logs_exponentiated(reference[0])
             for ref_form, answer_form in ((reference[0], inner), (inner_reference, answer[0]),
                                           (inner_reference, inner)):
                 if ref_form is None or answer_form is None or _past(deadline):
@@ -337,11 +337,20 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
                                           answer_conditions if answer_form is answer[0] else (), unknowns)
                 if again.equivalent:
                     again.reason = ("the same solutions as the reference: f(A) = f(B), with f taking each value "
-                                    "once (an odd power, exp, atan; an even power on |A|), holds exactly where "
+                                    "once (an odd power, exp, atan, log of positive quantities; an even power on "
+                                    "|A|), holds exactly where "
                                     f"A = B, and that equation is {again.reason}")
                     return again
             if factor is not None:
                 return factor
+            if _nodes(reference[0]) > FACTOR_MAX_NODES or _nodes(answer[0]) > FACTOR_MAX_NODES:
+                # No factor free of the state, proved; one that depends on it was never looked for.
+                return Comparison(False, "numeric", f"{outcome[1]}; it may still be the reference times a factor "
+                                  "that depends on the state, but your equation is too large for that factor to be "
+                                  "analysed (simplify it and submit again)",
+                                  evidence={"method": "ball arithmetic", "points": agreed + 1,
+                                            "factor": "not analysed (too large)"},
+                                  counterexample=outcome[2])
         if k > 1 and options.factors and outcome[1].startswith(_NOT_A_COMBINATION) and not answer_conditions \
                 and _same_polynomial_ideal(reference, answer, set(states.domains), with_parameters=not unknowns,
                                            domains={**parameters.domains, **states.domains}):
@@ -968,6 +977,8 @@ def _state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: 
             answer = sympy.Mul(*[g for g in sympy.Mul.make_args(answer) if g not in set_aside])
     if not (_nodes(reference) <= FACTOR_MAX_NODES and _nodes(answer) <= FACTOR_MAX_NODES):
         return None
+    # a = g tan(theta) is a*cos(theta) = g*sin(theta) over cos(theta): only as a quotient does the factor cancel
+    reference, answer = _quotients_written_out(reference), _quotients_written_out(answer)
     try:
         ratio = sympy.together(answer / reference)
         # a root of a number (sqrt(2 g h) = sqrt(2) sqrt(g) sqrt(h)) cancels only in its extension
@@ -1001,6 +1012,21 @@ def _state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: 
     return Comparison(False, "numeric", "your equation is the reference multiplied by a factor that depends on "
                       "the state and could not be shown to be nonzero on the whole declared domain",
                       evidence={"method": "symbolic"})
+
+
+_QUOTIENTS = {sympy.tan: lambda u: sympy.sin(u) / sympy.cos(u), sympy.cot: lambda u: sympy.cos(u) / sympy.sin(u),
+              sympy.sec: lambda u: 1 / sympy.cos(u), sympy.csc: lambda u: 1 / sympy.sin(u),
+              sympy.tanh: lambda u: sympy.sinh(u) / sympy.cosh(u), sympy.coth: lambda u: sympy.cosh(u) / sympy.sinh(u),
+              sympy.sech: lambda u: 1 / sympy.cosh(u), sympy.csch: lambda u: 1 / sympy.sinh(u)}
+
+
+def _quotients_written_out(expr: sympy.Expr) -> sympy.Expr:
+    """``expr`` with tan, cot, sec, csc and their hyperbolic kin written as quotients of sin and cos (sinh
+    and cosh): the same function, defined at the same points."""
+    found = expr.atoms(*_QUOTIENTS)
+    if not found:
+        return expr
+    return expr.xreplace({f: _QUOTIENTS[type(f)](f.args[0]) for f in found})
 
 
 def _without_powers_of(numerator: sympy.Expr, reference: sympy.Expr) -> sympy.Expr:
@@ -1403,6 +1429,8 @@ def _nodes(expr: sympy.Expr, limit: int = FACTOR_MAX_NODES) -> int:
 # Functions that take each real value at most once on the whole real line (and are defined there):
 # f(P) = f(Q) holds exactly where P = Q. log is left out: log P = log Q is undefined where P = Q <= 0.
 _INJECTIVE = (sympy.exp, sympy.sinh, sympy.tanh, sympy.atan, sympy.asinh)
+# Those that are odd too: f(-u) = -f(u).
+_ODD_INJECTIVE = (sympy.sinh, sympy.tanh, sympy.atan, sympy.asinh)
 
 
 def _injective_sides(residual: sympy.Expr) -> sympy.Expr | None:
@@ -1442,6 +1470,14 @@ def _injective_sides(residual: sympy.Expr) -> sympy.Expr | None:
         # f(A) = number: the number's preimage, where f reaches it (2 e^x = 4: x = log 2)
         (c, a), number = ((c1, a), right) if b.is_number else ((c2, b), left)
         return _preimage(a, number / c)
+    if c1 == -c2 and c1 != 0:
+        # f(A) = -f(B) for an odd f is f(A) = f(-B): sympy writes atan(-u) as -atan(u)
+        if type(a) is type(b) and isinstance(a, _ODD_INJECTIVE):
+            return a.args[0] + b.args[0]
+        roots = _odd_root(a), _odd_root(b)
+        if None not in roots and roots[0][1] == roots[1][1]:
+            return roots[0][0] + roots[1][0]
+        return None
     if c1 != c2:
         return None
     if type(a) is type(b) and isinstance(a, _INJECTIVE):
@@ -1450,6 +1486,26 @@ def _injective_sides(residual: sympy.Expr) -> sympy.Expr | None:
     if None not in roots and roots[0][1] == roots[1][1]:
         return roots[0][0] - roots[1][0]
     return None
+
+
+def _logs_exponentiated(residual: sympy.Expr) -> sympy.Expr | None:
+    """``prod(P_i**c_i) - exp(-B)`` for ``residual = sum(c_i log(P_i)) + B``, each ``P_i`` positive on the whole
+    domain (the symbols' assumptions) and each ``c_i`` rational, else None: log is one-to-one on the positive
+    numbers, so ``log(v/v0) = -k t/m`` and ``v/v0 = exp(-k t/m)`` have the same solutions."""
+    if not residual.has(sympy.log):
+        return None
+    powers, rest = [], []
+    for term in sympy.Add.make_args(residual):
+        c, f = term.as_coeff_Mul()
+        if isinstance(f, sympy.log) and c.is_Rational and f.args[0].is_positive:
+            powers.append(f.args[0] ** c)
+        elif term.has(sympy.log):
+            return None  # a log not known to be defined everywhere: log P = log Q is undefined where P = Q <= 0
+        else:
+            rest.append(term)
+    if not powers:
+        return None
+    return sympy.Mul(*powers) - sympy.exp(-sympy.Add(*rest))
 
 
 def _as_exponentials(residual: sympy.Expr) -> sympy.Expr:

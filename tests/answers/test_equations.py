@@ -1009,3 +1009,72 @@ def test_a_reference_whose_equations_fix_untagged_variables_is_a_request_error(r
     expected = "equivalent" if answer in ("x = 1/2; y = 1/2", "a = (m2-m1)*g/(m1+m2); T = 2*m1*m2*g/(m1+m2)") \
         else "not_equivalent"
     assert check(reference, answer, tagged, kind="equation").verdict == expected
+
+
+_INCLINE = {"a": {"dimension": "acceleration", "domain": "real", "kind": "acceleration"},
+            "g": {"dimension": "acceleration", "domain": "positive"},
+            "theta": {"dimension": "angle", "domain": [0.01, 1.5], "kind": "coordinate"}}
+_INCLINE_ALL_ANGLES = {**_INCLINE, "theta": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "coordinate"}}
+_HYPERBOLIC = {"x": {"dimension": "dimensionless", "domain": "real", "kind": "coordinate"},
+               "y": {"dimension": "dimensionless", "domain": "real", "kind": "coordinate"}}
+
+
+@pytest.mark.parametrize("reference, answer, variables, expected", [
+    # tan, cot, sec and the hyperbolic ones are quotients: the factor is cos(theta) (cosh x), nonzero there
+    ("a*cos(theta) = g*sin(theta)", "a = g*tan(theta)", _INCLINE, "equivalent"),
+    ("a*sin(theta) = g*cos(theta)", "a = g*cot(theta)", _INCLINE, "equivalent"),
+    ("a = g*sin(theta)", "a*sec(theta) = g*tan(theta)", _INCLINE, "equivalent"),
+    ("a*sin(theta) = g", "a = g*csc(theta)", _INCLINE, "equivalent"),
+    ("y*cosh(x) = sinh(x)", "y = tanh(x)", _HYPERBOLIC, "equivalent"),
+    ("y = cosh(x)", "y*sech(x) = 1", _HYPERBOLIC, "equivalent"),
+    # wrong ones stay wrong, and a quotient undefined somewhere in the domain (tan at pi/2, coth at 0) too
+    ("a*sin(theta) = g*cos(theta)", "a = g*tan(theta)", _INCLINE, "not_equivalent"),
+    ("a*cos(theta) = g*sin(theta)", "a = g*tan(theta)", _INCLINE_ALL_ANGLES, "not_equivalent"),
+    ("y*cosh(x) = sinh(x)", "y*coth(x) = 1", _HYPERBOLIC, "not_equivalent"),
+    ("y*cosh(x) = sinh(x)", "y = coth(x)", _HYPERBOLIC, "not_equivalent"),
+])
+def test_a_factor_written_with_tan_sec_or_tanh_is_analysed_as_a_quotient(reference, answer, variables, expected):
+    v = check(reference, answer, variables, kind="equation")
+    assert v.verdict == expected, v.reason
+
+
+_DRAG = {"v": {"dimension": "velocity", "domain": "positive", "kind": "coordinate"},
+         "v0": {"dimension": "velocity", "domain": "positive"}, "k": {"dimension": "mass/time", "domain": "positive"},
+         "m": {"dimension": "mass", "domain": "positive"}, "t": {"dimension": "time", "domain": "real", "kind": "time"}}
+_DRAG_REAL_V = {**_DRAG, "v": {"dimension": "velocity", "domain": "real", "kind": "coordinate"}}
+_XY_REAL = {"x": {"domain": "real", "kind": "coordinate"}, "y": {"domain": "real", "kind": "coordinate"}}
+
+
+@pytest.mark.parametrize("reference, answer, variables, expected", [
+    # f(A) = f(-B) for an odd one-to-one f: sympy writes f(-B) as -f(B)
+    (PENDULUM_EOM, "atan(l*thetaddot/g) = atan(-sin(theta))", _PENDULUM_TAGGED, "equivalent"),
+    (PENDULUM_EOM, "sinh(l*thetaddot/g) = -sinh(sin(theta))", _PENDULUM_TAGGED, "equivalent"),
+    (PENDULUM_EOM, "tanh(l*thetaddot/g) = tanh(-sin(theta))", _PENDULUM_TAGGED, "equivalent"),
+    ("x = -y", "asinh(x) = -asinh(y)", _XY_REAL, "equivalent"),
+    (PENDULUM_EOM, "atan(l*thetaddot/g) = atan(sin(theta))", _PENDULUM_TAGGED, "not_equivalent"),
+    (PENDULUM_EOM, "exp(l*thetaddot/g) = -exp(sin(theta))", _PENDULUM_TAGGED, "not_equivalent"),  # exp is not odd
+    ("x = y", "asinh(x) = -asinh(y)", _XY_REAL, "not_equivalent"),
+    ("x = -y", "cos(x) = -cos(y)", _XY_REAL, "not_equivalent"),
+    # log is one-to-one on the positive numbers: where its arguments are positive on the whole domain
+    ("v = v0*exp(-k*t/m)", "log(v/v0) = -k*t/m", _DRAG, "equivalent"),
+    ("v = v0*exp(-k*t/m)", "ln(v) = ln(v0) - k t/m", _DRAG, "equivalent"),
+    ("log(v/v0) = -k*t/m", "v = v0*exp(-k*t/m)", _DRAG, "equivalent"),
+    ("v = v0*exp(-k*t/m)", "log(v/v0) = k*t/m", _DRAG, "not_equivalent"),
+    ("v = v0*exp(-k*t/m)", "log(v/v0) = -k*t/m", _DRAG_REAL_V, "not_equivalent"),   # undefined for v <= 0
+])
+def test_a_one_to_one_function_of_both_sides_on_the_domain_keeps_the_solutions(reference, answer, variables, expected):
+    v = check(reference, answer, variables, kind="equation")
+    assert v.verdict == expected, v.reason
+
+
+_BIG_FACTOR = " + ".join(f"(l*thetaddot/g + sin(theta))*cos(theta)^{k}/{k + 2}" for k in range(12))
+
+
+@pytest.mark.parametrize("answer", [
+    f"{_BIG_FACTOR} = 0",                                                     # right: the factor is positive
+    f"{_BIG_FACTOR} + (l*thetaddot/g + sin(theta))*(cos(theta) - 1/2) = 0",  # the factor vanishes somewhere
+])
+def test_an_answer_too_large_for_the_state_dependent_factor_is_not_refused_as_proved(answer):
+    v = check(PENDULUM_EOM, answer, _PENDULUM_TAGGED, kind="equation")
+    assert v.verdict == "not_equivalent" and v.certainty == "numeric", v.reason
+    assert "too large" in v.reason
