@@ -10,8 +10,10 @@ spellings: ``Nm``, ``m/s2``, ``newtons``). A decimal comma is refused with a mes
 could be either 1.47 or 1470.
 
 Units of one dimension that are still not interchangeable are refused with what to type where the
-scene's ``unit`` says which is asked (`_unit_conflict`): Hz against rad/s (ω = 2πf), J for a torque
-asked in N·m, % for an angle. A bare number for a dimensionless answer is in the unit asked (``30``
+scene's ``unit``, the declared ``dimension`` (``angular_velocity``, ``frequency``, ``torque``, ``angle``)
+or the reference (a variable declared so, an inverse trigonometric function) says which is meant
+(`_meaning`, `_unit_conflict`): Hz against rad/s (ω = 2πf), J for a torque, % for an angle. Where
+nothing says which of rad/s and Hz, the answer is asked in s⁻¹. A bare number for a dimensionless answer is in the unit asked (``30``
 when degrees are asked). Readings that are only a guess are refused, never judged, when they do not
 give the answer's dimension: ``9.8 ms^-2`` (ms is the millisecond; m s^-2 was meant), ``14.7 Nm``.
 
@@ -70,6 +72,8 @@ _NUMBER = re.compile(r"""
 _LABEL = re.compile(r"\s*(?:[^\W\d]\w{0,19}(?:\s*\(\s*\w{0,8}\s*\))?\s*)?(?:=|≈|≃|~|∼)\s*")
 _THOUSANDS = re.compile(r"[-+]?(\d{1,3})((?:,\d{3})+)(?![\d.,])")
 _ANGLE_UNITS = frozenset({"rad", "deg", "°"})
+_PER_TIME = parse_dimension("frequency")  # rad/s and Hz alike: the unit asked or the reference says which
+_ENERGY = parse_dimension("energy")  # a torque's too (N·m), but not in joules
 _UNIT_NAMES = {"s": "second", "N": "newton", "J": "joule", "W": "watt", "Pa": "pascal", "rad": "radian",
                "Hz": "hertz", "g": "gram", "m": "metre"}
 
@@ -533,8 +537,8 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
         return Verdict.invalid(str(error), text, feedback=[{"code": "number", "message": f"{str(error)[:1].upper()}"
                                                                                            f"{str(error)[1:]}."}])
     parsed = {"text": text.strip(), "latex": quantity.latex, "notes": []}
-    angle = expected_dim.is_dimensionless and (bool(_ANGLE_UNITS & set(expected.symbols))
-                                               or str(dimension or "").strip().lower() == "angle")
+    meaning = _meaning(expected.symbols, dimension, _reference_expr(reference, variables_json)[0], variables)
+    angle = expected_dim.is_dimensionless and meaning == "angle"
     if quantity.unit == "" and expected_dim.is_dimensionless and expected.size != 1.0:
         # A bare number for an angle or a ratio is in the unit asked (30 when degrees are asked, 50 when %).
         quantity = Quantity(quantity.number, "", expected.size, quantity.dimension, quantity.sig_figs)
@@ -569,7 +573,7 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
         return Verdict("not_equivalent", "proved", f"wrong unit: {quantity.unit} is {mine}, the answer is {wanted}",
                        parsed=parsed, feedback=[{"code": "dimension", "message": message}],
                        evidence={"method": "units"})
-    conflict = _unit_conflict(expected.symbols, angle, quantity.symbols, expected_dim == parse_dimension("energy"))
+    conflict = _unit_conflict(meaning, quantity.symbols, expected_dim)
     if conflict:
         return Verdict("invalid", "none", _reason(conflict), parsed=parsed,
                        feedback=[{"code": "unit", "message": conflict}])
@@ -578,11 +582,16 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
     figures = tol.get("sig_figs")
     # Zero has no significant figures: a zero answer, or any answer to a zero reference, is judged by
     # its value alone (within_tolerance's rule for a zero reference), never told to give more figures.
-    if figures is not None and quantity.sig_figs < figures and quantity.number != 0 and target != 0:
+    # Too few figures is the slip only where the figures given are right (7 m, -2.5 m and 25 m for 2.5 m
+    # were all told to give more figures); otherwise the value is what is wrong.
+    if (figures is not None and quantity.sig_figs < figures and quantity.number != 0 and target != 0
+            and within_tolerance(quantity.si, target, {**tol, "sig_figs": quantity.sig_figs}, quantity.size)):
         return Verdict("not_equivalent", "proved", f"give at least {figures} significant figures",
                        parsed=parsed, evidence={"method": "numeric_value"},
                        feedback=[{"code": "sig_figs", "message": f"Give your answer to {figures} significant figures."}])
-    if within_tolerance(quantity.si, target, tol, quantity.size):
+    # A zero reference is matched to n decimal places in the unit asked, not the student's: 0.0009 Mm
+    # (900 m) passed for 0 m to 3 places.
+    if within_tolerance(quantity.si, target, tol, quantity.size if target != 0 else expected.size):
         return Verdict("equivalent", "numeric", "within the tolerance of the expected value", parsed=parsed,
                        evidence={"method": "numeric_value", "tolerance": tol})
     items = _numeric_feedback(quantity.si, target, tol, feedback or (), variables_json, values)
@@ -615,23 +624,74 @@ def _reason(message: str) -> str:
     return text
 
 
-def _unit_conflict(asked: Sequence[str], angle: bool, typed: Sequence[str], energy: bool) -> str | None:
+# Declared dimensions (`parse_dimension`'s names) that say which unit of a shared dimension is meant.
+_ANGULAR_NAMES = frozenset({"angular_velocity", "angular_frequency"})
+_CYCLE_NAMES = frozenset({"frequency"})
+_INVERSE_TRIG = (sympy.asin, sympy.acos, sympy.atan, sympy.acot, sympy.asec, sympy.acsc, sympy.atan2)
+
+
+def _named(expr: sympy.Expr, names: frozenset) -> bool:
+    """Whether ``expr`` is a quantity of one of the named kinds: a variable declared so, an inverse
+    trigonometric function for an angle (and π), or a sum of such or a number times one."""
+    if expr.is_Symbol:
+        return expr.name in names
+    if expr is sympy.pi or isinstance(expr, _INVERSE_TRIG):
+        return "angle" in names
+    if expr.is_Add:
+        return all(_named(term, names) for term in expr.args)
+    if expr.is_Mul:
+        coefficient, rest = expr.as_coeff_Mul()
+        return coefficient.is_Rational and rest is not expr and _named(rest, names)
+    return False
+
+
+def _meaning(asked: Sequence[str], dimension: str | None, reference: sympy.Expr, variables: Mapping) -> str | None:
+    """Which of the units a dimension shares the answer is in: ``"angle"`` (rad, °, not %),
+    ``"angular"`` (rad/s), ``"cycles"`` (Hz), ``"torque"`` (N·m, not J), or None where neither the unit
+    asked, the declared dimension nor the reference (a variable declared so, an inverse trigonometric
+    function) says."""
+    asked = set(asked)
+    if asked & _ANGLE_UNITS:
+        return "angular" if asked & {"s", "min", "h", "Hz"} else "angle"
+    if "Hz" in asked:
+        return "cycles"
+    if {"N", "m"} <= asked and "J" not in asked:
+        return "torque"
+    name = str(dimension or "").strip().lower()
+    for names, meaning in ((frozenset({"angle"}), "angle"), (_ANGULAR_NAMES, "angular"), (_CYCLE_NAMES, "cycles"),
+                           (frozenset({"torque"}), "torque")):
+        if name in names:
+            return meaning
+    for meaning, names in (("angle", {"angle"}), ("angular", _ANGULAR_NAMES), ("cycles", _CYCLE_NAMES)):
+        declared = frozenset(n for n, spec in variables.items() if isinstance(spec, Mapping)
+                             and str(spec.get("dimension", "")).strip().lower() in names) | (names & {"angle"})
+        if _named(reference, declared):
+            return meaning
+    return None
+
+
+def _unit_conflict(meaning: str | None, typed: Sequence[str], dimension: Any) -> str | None:
     """Why a unit of the right dimension is still not the one meant; None if it is.
 
     Units the dimensions cannot tell apart: an angular frequency in rad/s is not one in Hz (cycles
     per second, ω = 2πf), a torque is in N·m and not in joules (an energy), an angle is not a
-    percentage. The message says what to type; it never says which number is right.
+    percentage. Where the request does not say which of rad/s and Hz (``unit = ""`` or ``1/s``), a
+    student who names one is asked for s⁻¹: 3.13 Hz was accepted for ω = 3.13 rad/s. The message
+    says what to type; it never says which number is right.
     """
-    asked, typed = set(asked), set(typed)
-    if angle and "%" in typed:
+    typed = set(typed)
+    if meaning == "angle" and "%" in typed:
         return "Give the angle in rad or ° (not in %)."
-    if asked & _ANGLE_UNITS and "Hz" in typed:
+    if meaning == "angular" and "Hz" in typed:
         return ("Hz counts cycles per second (f = ω/2π); give this angular frequency in rad/s "
                 "(or s⁻¹).")
-    if "Hz" in asked and typed & _ANGLE_UNITS:
+    if meaning == "cycles" and typed & _ANGLE_UNITS:
         return ("Give this frequency in Hz (cycles per second, or s⁻¹); rad/s measures an angular "
                 "frequency (ω = 2πf).")
-    if energy and {"N", "m"} <= asked and "J" not in asked and "J" in typed and "rad" not in typed:  # J/rad is fine
+    if meaning is None and dimension == _PER_TIME and (typed & _ANGLE_UNITS or "Hz" in typed):
+        return ("Give this answer in s⁻¹ (type 1/s): the question does not say whether it counts radians "
+                "(rad/s) or cycles (Hz, f = ω/2π).")
+    if meaning == "torque" and dimension == _ENERGY and "J" in typed and "rad" not in typed:  # J/rad is fine
         return "A torque is given in N·m (the joule is for energy): type N*m."
     return None
 
@@ -655,6 +715,9 @@ def _numeric_feedback(value: float, target: float, tol: Mapping[str, Any], feedb
     if target != 0 and value != 0:
         ratio = math.log10(abs(value / target))
         if abs(ratio - round(ratio)) < 0.005 and round(ratio) != 0:
+            if value * target < 0:  # a prefix fixed, the sign is still wrong
+                return [{"code": "power_of_ten", "message": "Your value is off by a power of ten and has the wrong "
+                                                            "sign: check unit prefixes, conversions and the sign."}]
             return [{"code": "power_of_ten", "message": "Your value is off by a power of ten: check unit prefixes "
                                                         "and conversions."}]
     return []

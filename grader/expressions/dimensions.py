@@ -117,6 +117,11 @@ DIMENSIONLESS = Dimension()
 _M, _L, _T = Dimension(1, 0, 0), Dimension(0, 1, 0), Dimension(0, 0, 1)
 
 #: The named dimensions scene files may use (``dimension = "force"``).
+# Words a student adds for a direction ("9.8 m/s^2 down"), which the sign of the number says instead.
+_DIRECTION_WORDS = frozenset({"down", "downward", "downwards", "upward", "upwards", "left", "right", "north", "south",
+                              "east", "west", "negative", "positive", "inward", "inwards", "outward", "outwards",
+                              "forward", "forwards", "backward", "backwards", "clockwise", "anticlockwise",
+                              "counterclockwise", "horizontal", "vertical", "along", "towards", "away"})
 NAMED_DIMENSIONS: dict[str, Dimension] = {
     "dimensionless": DIMENSIONLESS,
     "angle": DIMENSIONLESS,
@@ -455,8 +460,9 @@ class _UnitParser:
         elif name[:1].isupper() and name[1:].islower() and _unit_size(name.lower()) is not None:
             symbols = (name.lower(),)  # Kg, Rad (a capital only where it is no other unit: Ms, Nm)
         elif len(name) >= 4 and name.isalpha() and not _case_hint(name):
-            raise DimensionError(f"{name!r} is not a unit: type only the number and its unit (a direction is the "
-                                 f"sign), in SI units such as kg g m s min h N J W Pa rad Hz deg")
+            direction = " (a direction is the sign)" if name.lower() in _DIRECTION_WORDS else ""
+            raise DimensionError(f"{name!r} is not a unit: type only the number and its unit{direction}, in SI "
+                                 f"units such as kg g m s min h N J W Pa rad Hz deg")
         else:
             raise DimensionError(f"unknown unit {name!r} in {self.text!r}"
                                  + (_case_hint(name) or "; use SI units such as kg g m s min h N J W Pa rad Hz deg, "

@@ -395,7 +395,10 @@ OMEGA = dict(reference="sqrt(k/m)", variables={"m": {"dimension": "mass", "domai
     ("rad/s", "5 Hz", "invalid"), ("rad/s", "0.796 Hz", "invalid"), ("rad/s", "5 kHz", "invalid"),
     ("Hz", "0.796 Hz", "equivalent"), ("Hz", "0.796 s^-1", "equivalent"), ("Hz", "796 mHz", "equivalent"),
     ("Hz", "5 rad/s", "invalid"), ("Hz", "0.796 rad/s", "invalid"),
-    ("s^-1", "5 Hz", "equivalent"), ("s^-1", "5 rad/s", "equivalent"),  # the scene did not say which
+    # the scene did not say which (a unit of 1/s or none): s⁻¹ is taken, Hz and rad/s are refused, since
+    # either may be 2π off (5 Hz for ω = 5 rad/s was accepted); a declared dimension or variable says
+    ("s^-1", "5 s^-1", "equivalent"), ("s^-1", "5 1/s", "equivalent"), ("", "5 s^-1", "equivalent"),
+    ("s^-1", "5 Hz", "invalid"), ("s^-1", "5 rad/s", "invalid"), ("", "5 Hz", "invalid"), ("", "5 rad/s", "invalid"),
 ])
 def test_hertz_and_radians_per_second_are_not_mixed(unit, answer, verdict):
     # 1 Hz is one cycle per second, 2π rad/s: where the scene's unit says which is asked, the other is
@@ -405,6 +408,39 @@ def test_hertz_and_radians_per_second_are_not_mixed(unit, answer, verdict):
     assert reply.verdict == verdict, reply.reason
     if verdict == "invalid":
         assert "2π" in reply.feedback[0]["message"] and "0.796" not in reply.feedback[0]["message"]
+
+
+@pytest.mark.parametrize("dimension, variables, answer, verdict", [
+    ("angular_velocity", {}, "5 rad/s", "equivalent"), ("angular_velocity", {}, "5 Hz", "invalid"),
+    ("frequency", {}, "5 Hz", "equivalent"), ("frequency", {}, "5 rad/s", "invalid"),
+    # a reference that is a variable declared an angular velocity (or a frequency) says it too
+    (None, {"w": {"dimension": "angular_velocity", "domain": "positive"}}, "5 rad/s", "equivalent"),
+    (None, {"w": {"dimension": "angular_velocity", "domain": "positive"}}, "5 Hz", "invalid"),
+    (None, {"w": {"dimension": "frequency", "domain": "positive"}}, "5 Hz", "equivalent"),
+    (None, {"w": {"dimension": "frequency", "domain": "positive"}}, "5 rad/s", "invalid"),
+])
+def test_a_declared_dimension_or_variable_says_which_of_hertz_and_radians_per_second(dimension, variables, answer,
+                                                                                      verdict):
+    request = dict(OMEGA, reference="w", variables=variables, values={"w": 5.0}) if variables else OMEGA
+    reply = check(answer=answer, **dict(request, dimension=dimension))
+    assert reply.verdict == verdict, reply.reason
+
+
+@pytest.mark.parametrize("reference, variables, values, answer, verdict", [
+    # an angle (a variable declared so, an inverse trigonometric function): % is no unit of it
+    ("theta", {"theta": {"dimension": "angle", "domain": "real"}}, {"theta": 0.5236}, "52.36 %", "invalid"),
+    ("theta", {"theta": {"dimension": "angle", "domain": "real"}}, {"theta": 0.5236}, "30°", "equivalent"),
+    ("acos(g/(w^2*R))", {"g": {"dimension": "acceleration", "domain": "positive"},
+                         "R": {"dimension": "length", "domain": "positive"},
+                         "w": {"dimension": "angular_velocity", "domain": "positive"}},
+     {"g": 9.81, "R": 1.0, "w": 4.0}, "52.15 %", "invalid"),
+    # a ratio in % stays a ratio
+    ("m/(m + M)", {"m": {"dimension": "mass", "domain": "positive"}, "M": {"dimension": "mass", "domain": "positive"}},
+     {"m": 1.0, "M": 3.0}, "25 %", "equivalent"),
+])
+def test_an_angle_is_not_given_in_percent(reference, variables, values, answer, verdict):
+    reply = check(reference, answer, variables, kind="numeric", values=values)
+    assert reply.verdict == verdict, reply.reason
 
 
 TORQUE = dict(reference="F*r", variables={"F": {"dimension": "force", "domain": "positive"},
@@ -604,3 +640,53 @@ def test_numbers_in_their_domains_are_graded_ends_included(change):
     values = {**INSIDE, **change}
     answer = f"{1.5 * 9.81 * values['d']:.4g} N"
     assert check(answer=answer, values=values, **HOOP).verdict == "equivalent"
+
+
+LENGTH = {"x": {"dimension": "length", "domain": "real"}}
+
+
+@pytest.mark.parametrize("answer, verdict", [
+    # a zero is matched to n decimal places in the unit asked (m), not in the student's: 0.0009 Mm is 900 m
+    ("0.0009 Mm", "not_equivalent"), ("9e-4 km", "not_equivalent"), ("0.0009 m", "equivalent"),
+    ("0.9 mm", "equivalent"), ("0 m", "equivalent"), ("0.002 m", "not_equivalent"),
+])
+def test_a_zero_reference_is_matched_in_the_unit_asked(answer, verdict):
+    reply = check("x", answer, LENGTH, kind="numeric", values={"x": 0.0}, unit="m", tolerance={"sig_figs": 3})
+    assert reply.verdict == verdict, reply.reason
+
+
+@pytest.mark.parametrize("answer, code", [
+    # too few figures is the slip only where the figures given are right; otherwise the value is wrong
+    ("2.5 m", "sig_figs"), ("2 m", "sig_figs"), ("7 m", None), ("-2.5 m", "sign"), ("25 m", "power_of_ten"),
+    ("-25 m", "power_of_ten"),
+])
+def test_too_few_figures_is_said_only_of_a_value_right_to_its_figures(answer, code):
+    reply = check("x", answer, LENGTH, kind="numeric", values={"x": 2.5}, tolerance={"sig_figs": 3})
+    assert reply.verdict == "not_equivalent"
+    assert [f["code"] for f in reply.feedback] == ([code] if code else [])
+    if answer == "-25 m":  # a prefix fixed, the sign would still be wrong
+        assert "sign" in reply.feedback[0]["message"]
+
+
+SPUN_HOOP = dict(variables={"g": {"dimension": "acceleration", "domain": "positive"},
+                       "R": {"dimension": "length", "domain": "positive"},
+                       "omega": {"dimension": "angular_velocity", "domain": "positive"}},
+            kind="numeric", values={"g": 9.81, "R": 1.0, "omega": 2.0}, unit="rad")  # ω²R < g: no acos(g/ω²R)
+
+
+@pytest.mark.parametrize("alternatives, answer, verdict", [
+    (["acos(g/(omega^2*R))", "0"], "0 rad", "equivalent"), (["0", "acos(g/(omega^2*R))"], "0 rad", "equivalent"),
+    (["acos(g/(omega^2*R))"], "1.0 rad", "not_equivalent"), (["acos(g/(omega^2*R))"], "3.1416 rad", "equivalent"),
+])
+def test_an_accepted_value_that_does_not_exist_at_the_numbers_is_skipped(alternatives, answer, verdict):
+    # the hoop's ±acos(g/ω²R) exists only where ω²R > g; the other accepted values still count
+    reply = check("pi", answer, alternatives=alternatives, **SPUN_HOOP)
+    assert reply.verdict == verdict, reply.reason
+
+
+@pytest.mark.parametrize("answer, direction", [("2.5 cycles", False), ("1.5 micron", False), ("2.5 m down", True),
+                                                ("2.5 m downwards", True)])
+def test_the_sign_is_offered_for_a_direction_only_after_a_direction_word(answer, direction):
+    reply = check("x", answer, LENGTH, kind="numeric", values={"x": 2.5})
+    assert reply.verdict == "invalid"
+    assert ("a direction is the sign" in reply.reason) is direction
