@@ -330,11 +330,15 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
             inner_reference = _injective_sides(reference[0]) or _logs_exponentiated(reference[0])
             for ref_form, answer_form in ((reference[0], inner), (inner_reference, answer[0]),
                                           (inner_reference, inner)):
-                if ref_form is None or answer_form is None or _past(deadline):
+                if ref_form is None or answer_form is None or _past(deadline) or _PEELED.get() >= MAX_PEELED:
                     continue
-                again = compare_equations([ref_form], [answer_form], parameters, states, options, deadline,
-                                          compiled_reference if ref_form is reference[0] else None,
-                                          answer_conditions if answer_form is answer[0] else (), unknowns)
+                token = _PEELED.set(_PEELED.get() + 1)
+                try:
+                    again = compare_equations([ref_form], [answer_form], parameters, states, options, deadline,
+                                              compiled_reference if ref_form is reference[0] else None,
+                                              answer_conditions if answer_form is answer[0] else (), unknowns)
+                finally:
+                    _PEELED.reset(token)
                 if again.equivalent:
                     again.reason = ("the same solutions as the reference: f(A) = f(B), with f taking each value "
                                     "once (an odd power, exp, atan, log of positive quantities; an even power on "
@@ -454,7 +458,7 @@ def _over_determined(reference: list[sympy.Expr], determined: set, parameters: S
     return Comparison(None, "none", f"the reference has {len(reference)} equations but only {len(determined)} "
                       f"variable{'s' * (len(determined) != 1)} to solve for ({names}): its equations also fix "
                       f"parameters, and it cannot be graded as equations. Give the variables the equations determine "
-                      f"a kind (coordinate, force, answer, ...); the reference's variables without one are: "
+                      f"a kind (coordinate, force, answer, ...); the reference's variables read as parameters are: "
                       f"{', '.join(untagged) or 'none'}", evidence={"method": "request"})
 
 
@@ -551,11 +555,12 @@ def _parameter_dependence(reference, answer, refs, anss, parameters: Sampler, st
     def degenerate(base):
         return _degenerate_there(base, reference, answer, state, parameters.domains)
 
-    factor = _parameter_factor(reference, answer, parameters, states, exempt=degenerate)
+    ratio = _state_free_ratio(reference[0], answer[0], state) if k == 1 else None
+    factor = _parameter_factor(reference, answer, parameters, states, exempt=degenerate, ratio=ratio)
     if factor is not None:
         return factor
     if k == 1:
-        if _state_free_ratio(reference[0], answer[0], state) is not None:
+        if ratio is not None:
             return None  # the whole ratio was analysed: a sign change is a degenerate equation's pole
         signs = _multiple_signs(refs[0], anss[0], parameters, states, start, target, signs)
         return _vanishing_multiple(k, signs) if len(signs) == 2 else None
@@ -632,7 +637,7 @@ def _zero_of(base: sympy.Expr) -> dict | None:
 
 
 def _parameter_factor(reference: list[sympy.Expr], answer: list[sympy.Expr], parameters: Sampler,
-                      states: Sampler, exempt=None) -> Comparison | None:
+                      states: Sampler, exempt=None, ratio: sympy.Expr | None = None) -> Comparison | None:
     """A refusal when an equation of the answer is multiplied (or divided) by a factor free of the
     state that cannot be shown nonzero for every value of the parameters, else None.
 
@@ -654,7 +659,7 @@ def _parameter_factor(reference: list[sympy.Expr], answer: list[sympy.Expr], par
     if len(answer) == 1 and len(reference) == 1:
         # The factor as a whole, not only as typed: (m1 - m2)^2 xddot = (m1 - m2)^3 g/(m1 + m2) has none in
         # common, and a square never changes sign between the parameter points.
-        ratio = _state_free_ratio(reference[0], answer[0], state)
+        ratio = ratio if ratio is not None else _state_free_ratio(reference[0], answer[0], state)
         for part in sympy.fraction(ratio) if ratio is not None else ():
             if not part.is_number and _nonzero_on(part, parameters.domains) is not True and not (
                     exempt and all(_nonzero_on(base, parameters.domains) is True or exempt(base)
@@ -679,7 +684,7 @@ def _state_free_ratio(reference: sympy.Expr, answer: sympy.Expr, state: set) -> 
     if _nodes(reference) > FACTOR_MAX_NODES or _nodes(answer) > FACTOR_MAX_NODES:
         return None
     try:
-        ratio = sympy.cancel(sympy.together(answer / reference))
+        ratio = sympy.cancel(sympy.together(_quotients_written_out(answer) / _quotients_written_out(reference)))
         if ratio.free_symbols & state:
             return None
         return sympy.factor(ratio)  # (m1 - m2)**2, as the student wrote it, rather than multiplied out
@@ -1491,15 +1496,16 @@ def _injective_sides(residual: sympy.Expr) -> sympy.Expr | None:
 def _logs_exponentiated(residual: sympy.Expr) -> sympy.Expr | None:
     """``prod(P_i**c_i) - exp(-B)`` for ``residual = sum(c_i log(P_i)) + B``, each ``P_i`` positive on the whole
     domain (the symbols' assumptions) and each ``c_i`` rational, else None: log is one-to-one on the positive
-    numbers, so ``log(v/v0) = -k t/m`` and ``v/v0 = exp(-k t/m)`` have the same solutions."""
+    numbers, so ``log(v/v0) = -k t/m`` and ``v/v0 = exp(-k t/m)`` have the same solutions. A log of a number
+    is a constant of ``B``: taking it out would undo `_preimage` (x = log 2) and loop."""
     if not residual.has(sympy.log):
         return None
     powers, rest = [], []
     for term in sympy.Add.make_args(residual):
         c, f = term.as_coeff_Mul()
-        if isinstance(f, sympy.log) and c.is_Rational and f.args[0].is_positive:
+        if isinstance(f, sympy.log) and c.is_Rational and f.args[0].free_symbols and f.args[0].is_positive:
             powers.append(f.args[0] ** c)
-        elif term.has(sympy.log):
+        elif term.has(sympy.log) and term.free_symbols:
             return None  # a log not known to be defined everywhere: log P = log Q is undefined where P = Q <= 0
         else:
             rest.append(term)
@@ -1724,6 +1730,10 @@ def _nonzero_on(expr: sympy.Expr, domains: dict) -> bool | None:
 
 
 _ORDER: contextvars.ContextVar[dict] = contextvars.ContextVar("declared below", default={})
+# One-to-one functions taken off both sides, nested: each undoes one written by the student (exp of a log of
+# exp ...), and a bound keeps two rewritings that undo each other from looping.
+_PEELED: contextvars.ContextVar[int] = contextvars.ContextVar("one-to-one functions taken off", default=0)
+MAX_PEELED = 4
 
 
 def _signed_by_the_order(expr: sympy.Expr) -> bool:

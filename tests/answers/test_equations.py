@@ -1002,7 +1002,7 @@ def test_a_reference_whose_equations_fix_untagged_variables_is_a_request_error(r
     # more equations than variables to solve for: a mixing free of the state carries any answer onto it
     v = check(reference, answer, variables, kind="equation")
     assert v.verdict == "invalid", v.reason
-    assert "kind" in v.reason and untagged in v.reason.split("without one are:")[1]
+    assert "kind" in v.reason and untagged in v.reason.split("read as parameters are:")[1]
     # with the kind given, the system is graded: the tension without its 2 is wrong, with it right
     tagged = {n: {**spec, "kind": spec.get("kind", "coordinate" if n in "xyT" else None)} for n, spec in variables.items()}
     tagged = {n: {k: w for k, w in spec.items() if w is not None} for n, spec in tagged.items()}
@@ -1078,3 +1078,19 @@ def test_an_answer_too_large_for_the_state_dependent_factor_is_not_refused_as_pr
     v = check(PENDULUM_EOM, answer, _PENDULUM_TAGGED, kind="equation")
     assert v.verdict == "not_equivalent" and v.certainty == "numeric", v.reason
     assert "too large" in v.reason
+
+
+def test_one_to_one_rewritings_that_undo_each_other_do_not_loop(monkeypatch):
+    # x - y - log 2 exponentiated is 1/2 - e^(x - y), whose preimage is x - y + log 2 again: bounded
+    from grader.answers import equations
+
+    monkeypatch.setattr(equations, "_logs_exponentiated", lambda r: sympy_exp_of(r))
+    v = check("x = y", "e^y/e^x = 2", _XY_REAL, kind="equation")
+    assert v.verdict == "not_equivalent", v.reason
+
+
+def sympy_exp_of(residual):
+    """Every residual rewritten as e^r - 1 (the same solutions), so the peeling could go on for ever."""
+    import sympy
+
+    return sympy.exp(residual) - 1
