@@ -348,6 +348,14 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
             if factor is not None:
                 return factor
             if _nodes(reference[0]) > FACTOR_MAX_NODES or _nodes(answer[0]) > FACTOR_MAX_NODES:
+                if unknowns and not answer_conditions:
+                    # Linear in the acceleration, the factor is the ratio of its coefficients: no cancelling
+                    # of the whole residuals (`state_dependent_mixing` with one equation).
+                    mixed = state_dependent_mixing(reference, answer, unknowns, {**parameters.domains,
+                                                                                 **states.domains},
+                                                   (parameters, states), options, deadline)
+                    if mixed is not None:
+                        return mixed
                 # No factor free of the state, proved; one that depends on it was never looked for.
                 return Comparison(False, "numeric", f"{outcome[1]}; it may still be the reference times a factor "
                                   "that depends on the state, but your equation is too large for that factor to be "
@@ -1108,7 +1116,7 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
     (False, 'proved', True)
     """
     k = len(reference)
-    if not (1 < k <= MIXING_MAX_EQUATIONS and len(answer) == k and len(unknowns) == k):
+    if not (1 <= k <= MIXING_MAX_EQUATIONS and len(answer) == k and len(unknowns) == k):
         return None
     if not all(_nodes(e, MIXING_MAX_NODES) <= MIXING_MAX_NODES for e in (*reference, *answer)):
         return None

@@ -1094,3 +1094,18 @@ def sympy_exp_of(residual):
     import sympy
 
     return sympy.exp(residual) - 1
+
+
+_LARGE_FACTOR = " + ".join(f"(l*thetaddot/g + sin(theta))*(sin(theta)^{k % 4}*cos(theta)^{k % 7}/{k + 2} + 1/{k + 5})"
+                           for k in range(16))
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # past the factor search's size, linear in the acceleration: the factor is the ratio of its coefficients
+    (f"{_LARGE_FACTOR} = 0", "equivalent"),                                                    # positive factor
+    (f"{_LARGE_FACTOR} + (l*thetaddot/g + sin(theta))*(cos(theta) - 1) = 0", "not_equivalent"),  # vanishes
+    (f"{_LARGE_FACTOR} + 1e-3*cos(theta)*sin(theta) = 0", "not_equivalent"),                  # no multiple
+])
+def test_a_large_answer_linear_in_the_acceleration_is_decided_by_its_coefficient(answer, expected):
+    v = check(PENDULUM_EOM, answer, _PENDULUM_TAGGED, kind="equation")
+    assert v.verdict == expected and v.certainty == "proved", v.reason
