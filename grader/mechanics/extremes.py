@@ -172,15 +172,39 @@ def _motion_legs(evaluator, u, point: dict, key: str) -> list[tuple[int, float |
     if end is None:
         return [(1, None, None)]
     legs = [(1, min(u0, end), max(u0, end))]
-    if why == "turns back":
+    if why == "turns back" or _at_a_pole(evaluator, u, end, why, u0, point):
         back, again = _travel(u, end, -direction, speed2, skip=True)
         if back is None:
             legs.append((-1, None, None))
         else:
             legs.append((-1, min(end, back), max(end, back)))
-            if again == "turns back":
+            if again == "turns back" or _at_a_pole(evaluator, u, back, again, u0, point):
                 legs.append((1, min(end, back), max(end, back)))
     return legs
+
+
+def _at_a_pole(evaluator, u, end: float, why: str, u0: float, point: dict) -> bool:
+    """Whether the motion leaves u's domain at ``end`` where the coordinates are singular (the mass matrix
+    of the independent velocities is, there), as at the pole of a polar angle: the body goes on through
+    it, and u, on its domain, comes back the way it went with the other sign of u̇ (a spherical pendulum
+    released with no spin swings through θ = 0 and up the other side: its largest θ̇ is there, and came
+    out 0 when the motion was taken to end at the pole). An end where they are regular (a bead at the
+    end of its rod) ends the motion the scene describes."""
+    if why != "leaves the domain":
+        return False
+    reduction = evaluator.reduction
+    matrix = sympy.hessian(reduction.lagrangian, [v.dot for v in reduction.independent.values()])
+    numbers = {s: sympy.Float(v, 30) for s, v in point.items()}
+
+    def size(x: float) -> float | None:
+        entries = matrix.xreplace({**numbers, u.symbol: sympy.Float(x, 30)})
+        if entries.free_symbols:
+            return None  # other coordinates in it: their values along the motion are not known here
+        return abs(float(entries.det()))
+
+    there, start = size(end), size(u0)
+    # (1e-6: an end written to four decimals, 3.1416 for π, leaves sin² of a few 1e-11 there)
+    return there is not None and start is not None and there <= 1e-6 * start
 
 
 def _inside(x: float, low: float | None, high: float | None, periodic: bool) -> bool:

@@ -91,3 +91,27 @@ t, w, c = sympy.symbols("t omega c", positive=True)
 def test_the_period_is_found_only_for_sines_and_cosines_of_commensurate_frequencies(expr, period):
     found = _period(expr, t)
     assert (found is None) if period is None else sympy.simplify(found - period) == 0
+
+
+POLE = Path(__file__).resolve().parent / "scenes" / "spherical_pendulum_through_the_pole.toml"
+# ż = l sin θ θ̇ with θ̇² = 2g(cos θ − cos θ₀)/l is largest in size at cos θ = (c₀ + √(c₀² + 3))/3
+_C = "(cos(theta0) + sqrt(cos(theta0)^2 + 3))/3"
+_RISE = f"sqrt(2*g*l*(1 - ({_C})^2)*({_C} - cos(theta0)))"
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # θ̇ ≤ 0 on the way down to the pole, and on the far side θ rises again with θ̇ > 0: the largest θ̇ is
+    # the speed at the bottom, 2√(g/l) sin(θ₀/2) (it came out 0 when the motion was taken to end at θ = 0)
+    ("thetadot_max", "2*sqrt(g/l)*sin(theta0/2)"),
+    # ż rises on the far side as it falls on the near one
+    ("rise_rate_max", _RISE),
+    ("rise_rate_min", f"-{_RISE}"),
+])
+@pytest.mark.parametrize("theta0", [0.7, 0.2, 1.4])
+def test_a_motion_through_the_pole_of_a_polar_angle_goes_on_up_the_other_side(answer, expected, theta0):
+    derivation = derive(load_scene(POLE))
+    want = parse_expression(expected, derivation.scene.namespace).expr
+    got = derivation.answers[answer]
+    numbers = {"g": 9.81, "l": 0.9, "theta0": theta0}
+    values = {s: numbers[s.name] for s in got.free_symbols | want.free_symbols}
+    assert float(got.xreplace(values)) == pytest.approx(float(want.xreplace(values)), rel=1e-10)

@@ -385,3 +385,22 @@ def test_the_governors_balls_lift_off_the_shaft_only_above_the_least_rate(factor
     model = SceneModel(scene_of("watt_governor", (("value = 12.0 }", f"value = {omega!r} }}"),)))
     thetaddot = snapshot(model.numeric, 0.0, *_governor_state(model, 0.01)).qddot[0]
     assert (thetaddot > 0) == lifts
+
+
+def test_extremes_of_a_spherical_pendulum_swinging_through_the_pole_are_those_of_the_integrated_swing():
+    """Released at rest at θ₀ (θ on [0, π] from the downward vertical), the bob swings through the
+    lowest point, the pole of θ, and up the other side: its largest θ̇ (the speed at the bottom over l,
+    reached with θ rising again) and its largest and least ż along a whole swing are the engine's."""
+    model, answers = engine("spherical_pendulum_through_the_pole")
+    l, theta0 = model.values["l"], model.values["theta0"]
+    times = np.linspace(0.0, 3.0, 6001)  # more than a period (about 2 s)
+    start = [l * math.sin(theta0), 0.0, -l * math.cos(theta0)]
+    motion = simulate(model.numeric, start, [0.0, 0.0, 0.0], float(times[-1]), sample_times=times)
+    assert len(motion.samples) == len(times)
+    assert min(s.q[0] for s in motion.samples) < -0.9 * start[0]  # it did swing through to the other side
+    speed = max(math.sqrt(sum(v * v for v in s.qdot)) for s in motion.samples)
+    rise = [s.qdot[2] for s in motion.samples]
+    # Sampled every 1/4000 of a period: an extreme is missed by at most (π/2000)²/2 of its size.
+    for measured, name in ((speed / l, "thetadot_max"), (max(rise), "rise_rate_max"), (min(rise), "rise_rate_min")):
+        expected = closed_form(model, answers, name)
+        assert abs(measured - expected) < 1e-5 * abs(expected), name
