@@ -236,7 +236,12 @@ class AnswerEvaluator:
         return human_form(value)
 
     def target(self, spec: AnswerSpec, default_state: bool = True) -> set[sympy.Symbol]:
-        """The symbols an answer may keep: its ``in_terms_of``, else parameters, t and the state."""
+        """The symbols an answer may keep: its ``in_terms_of``, else parameters, t and the state; for a
+        special value (``where``), else the parameters alone (all of them, those [initial] uses too):
+        the moment or point the condition names is what the answer is taken at, so the unknown it is
+        solved for (t for ``expr = "t"``) is never left in the answer."""
+        if spec.in_terms_of is None and spec.where is not None and spec.kind != "small_oscillation":
+            return set(self.parameters)
         if spec.in_terms_of is None:
             target = self.parameters | {self.scene.time}
             return target | self.state_symbols() if default_state else target

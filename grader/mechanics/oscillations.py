@@ -38,6 +38,7 @@ from grader.mechanics.special_values import (
     _evaluate,
     _no_leftover,
     _parameter_points,
+    roots_in_domain,
     solve_for,
 )
 
@@ -89,7 +90,7 @@ def small_oscillation_with_cyclic_coordinates(evaluator, spec: AnswerSpec) -> sy
                              f"the equilibrium must be a condition on {u.name} alone (at rest in {u.name}, "
                              "the cyclic velocities given by their momenta)")
     with budget.step(f"solving the condition for {u.name}", spec.name):
-        roots = solve_for(condition, u.symbol, scene.source, key)
+        roots = roots_in_domain(evaluator, condition, u.symbol, solve_for(condition, u.symbol, scene.source, key))
     with budget.step("evaluating the frequency at the equilibrium", spec.name):
         chosen, *_ = _choose_root(evaluator, spec, condition, u.symbol, roots, stiffness, key)
         _check_equilibrium(scene, key, u, acceleration.xreplace({u.symbol: chosen}), chosen)

@@ -191,21 +191,38 @@ class Reduction:
         """With several branches (y = ±√(l² − x²)), take the one the initial state is on."""
         if len(solutions) == 1:
             return solutions[0]
-        initial = {self.scene.coordinates[n].symbol: v for n, v in self.scene.initial.items()
-                   if n in self.scene.coordinates}
+        scene = self.scene
+        initial = {scene.coordinates[n].symbol: v for n, v in scene.initial.items() if n in scene.coordinates}
+        kept = [c for c in scene.coordinates.values() if c not in dependent]
+        if all(c.symbol in initial for c in dependent) and any(c.symbol not in initial for c in kept):
+            # [initial] in the coordinate the answers leave dependent (x of a bead on y = a x², the
+            # answers in y): the kept one's start follows through the constraints when it is their
+            # one solution (y₀ = a x₀²).
+            missing = [c.symbol for c in kept if c.symbol not in initial]
+            equations = [sympy.expand(k.f.xreplace(initial).xreplace({scene.time: sympy.Integer(0)}))
+                         for k in scene.constraints]
+            start = budget.attempt(lambda: _unique_solution(equations, missing), 1.0, fallback=lambda: None)
+            state = {c.symbol for c in scene.coordinates.values()}
+            if start is not None and not any(v.free_symbols & state for v in start.values()):
+                initial = {**initial, **start}
         if all(c.symbol in initial for c in dependent):
-            point = {s: v for s, v in _sample_parameters(self.scene).items()}
+            point = {s: v for s, v in _sample_parameters(scene).items()}
+            point[scene.time] = sympy.Integer(0)
             for solution in solutions:
-                ok = all(
-                    abs(complex(sympy.N((solution[c.symbol] - initial[c.symbol]).xreplace(initial).subs(point))))
-                    < 1e-9
-                    for c in dependent
-                )
+                try:
+                    ok = all(
+                        abs(complex(sympy.N((solution[c.symbol] - initial[c.symbol]).xreplace(initial).subs(point))))
+                        < 1e-9
+                        for c in dependent
+                    )
+                except TypeError:  # a coordinate [initial] does not fix, left in the branch's formula
+                    ok = False
                 if ok:
                     return solution
-        raise SceneError(self.scene.source, "constraints",
+        raise SceneError(scene.source, "constraints",
                          "the constraints have several solution branches; give the initial position of "
-                         f"{', '.join(c.name for c in dependent)} in [initial] or add a [parametrization]")
+                         f"{', '.join(c.name for c in scene.coordinates.values())} in [initial] (the start "
+                         f"of {', '.join(c.name for c in dependent)} picks the branch) or add a [parametrization]")
 
     # -- dynamics in the independent variables ----------------------------------------------------
     def solve(self, eom) -> None:

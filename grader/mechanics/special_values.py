@@ -192,7 +192,7 @@ def _where_moving(evaluator, spec, target: set, key: str, at_rest: bool, signs: 
         condition, unknown = _condition(evaluator, spec, target, key, at_rest, signs)
     with budget.step(f"solving the condition for {unknown}", spec.name):
         try:
-            roots = solve_for(condition, unknown, scene.source, key)
+            roots = roots_in_domain(evaluator, condition, unknown, solve_for(condition, unknown, scene.source, key))
         except SceneError:
             if spec.numeric is None:
                 raise
@@ -297,6 +297,14 @@ def _at_root(value: sympy.Expr, x: sympy.Symbol, root: sympy.Expr) -> sympy.Expr
           and any(isinstance(a, sympy.atan) for a in root.args)):
         v, sign = next(a for a in root.args if isinstance(a, sympy.atan)).args[0], -1
     else:
+        multiple, inverse = root.as_coeff_Mul()
+        if multiple.is_Rational and multiple not in (0, 1) and isinstance(inverse, (sympy.acos, sympy.asin)):
+            # 2 acos c (a spring to a point of a hoop: cos(θ/2) = c): the multiple angles expanded, so
+            # that cos θ there is 2c² − 1 rather than cos(2 acos c).
+            w = sympy.Dummy("w", real=True)
+            value = value.xreplace({x: multiple * w}).replace(
+                lambda e: isinstance(e, (sympy.sin, sympy.cos, sympy.tan)) and w in e.free_symbols, sympy.expand_trig)
+            return _at_root(value, w, inverse)
         if isinstance(root, (sympy.acos, sympy.asin)):
             # sin(β − x) at x = acos c stays sin(β − acos c) unless expanded first: then cos(acos c) = c
             # and sin(acos c) = √(1 − c²) (two beads at θ ± β on a spun hoop, in equilibrium).
@@ -366,9 +374,9 @@ def _turned_back(evaluator, spec, condition, x, roots, chosen, key: str) -> dict
     if variable is None or variable[0] != "coordinate":
         return None
     u = variable[1]
-    if _family_motion(evaluator, spec, u):
+    if _family_motion(evaluator, spec, u, condition):
         return _turned_back_in_family(evaluator, condition, x, variable, roots, chosen, key)
-    if not _one_motion(evaluator, spec, u):
+    if not _one_motion(evaluator, spec, u, condition):
         return None
     start = evaluator.motion_sign(u, pushed=True)
     if start is None:
@@ -653,6 +661,11 @@ def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False,
     lhs, rhs = spec.where
     everything = evaluator.parameters | evaluator.state_symbols() | {scene.time}
     expr = lhs - rhs
+    velocities = {u.dot for u in evaluator.reduction.independent.values()} | {c.dot for c in scene.coordinates.values()}
+    if not at_rest and (expr in velocities or -expr in velocities):
+        # u̇ = 0 (a turning point) as u̇² = 0: with the velocity from energy it is F(u) = 0, a polynomial
+        # in cos θ for a spherical pendulum, where √F = 0 ran out of the solve's budget.
+        expr = expr ** 2
     if at_rest:
         # An equilibrium: at rest.
         expr = expr.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
@@ -1064,7 +1077,7 @@ def _implicit(evaluator, spec, condition, x, target: set, key: str) -> sympy.Exp
     for point in _draws(scene):
         if _implicit_root(evaluator, spec, condition, x, value, variable, point, (lo, hi), key) != chosen:
             raise SceneError(scene.source, key, _depends_on_parameters(point))
-    if variable[0] == "coordinate" and _one_motion(evaluator, spec, variable[1]):
+    if variable[0] == "coordinate" and _one_motion(evaluator, spec, variable[1], condition):
         # Reached after the motion turns back: a velocity in the answer has the other sign there
         # (the same on every draw, or the file is refused).
         start = evaluator.motion_sign(variable[1], pushed=True)
@@ -1224,7 +1237,8 @@ def _select(evaluator, spec, x, roots, value, variable, condition, numeric, poin
         if v is not None:
             values[index] = v
     groups = _groups(values)
-    one_motion = variable is not None and variable[0] == "coordinate" and _one_motion(evaluator, spec, variable[1])
+    one_motion = variable is not None and variable[0] == "coordinate" and _one_motion(evaluator, spec, variable[1],
+                                                                                      condition)
     if one_motion and (spec.kind == "small_oscillation" or at_rest) and len(groups) == 1:
         # An equilibrium need not be reached to oscillate about it, nor to be asked for (the unstable
         # relative equilibrium of a bead on a turning wire, which the motion from [initial] runs away
@@ -1234,7 +1248,7 @@ def _select(evaluator, spec, x, roots, value, variable, condition, numeric, poin
         # Even a single root must be reached: the motion may turn back before it.
         index = _first_reached(evaluator, variable[1], condition, numeric, point, key)
     elif (not at_rest and spec.kind != "small_oscillation" and len(groups) > 1
-          and _family_motion(evaluator, spec, variable[1])
+          and _family_motion(evaluator, spec, variable[1], condition)
           and (index := _reached_in_family(evaluator, variable[1], condition, numeric, point, key)) is not None):
         pass  # the motion at these parameter values reaches that root first (see _family_motion)
     elif len(groups) == 1:
@@ -1311,7 +1325,20 @@ def _must_be_one_value(scene, spec) -> str | None:
     return None
 
 
-def _one_motion(evaluator, spec, u) -> bool:
+def _allowed_for_motion(evaluator, spec, condition) -> set:
+    """The symbols the answer is written in, for telling one motion from a family: its in_terms_of;
+    without one (the parameters, all of them), those the condition depends on, so that a condition
+    in θ₀ through energy (the force on a bead released at ψ₀ vanishes at cos ψ = 2 cos ψ₀/3) is a
+    formula over the family, as with in_terms_of = ["psi0"], while an equilibrium free of θ₀ stays
+    the one the motion from [initial] chooses."""
+    if spec.in_terms_of is not None:
+        return evaluator.target(spec, default_state=False)
+    if spec.kind == "small_oscillation" or condition is None:
+        return set()
+    return evaluator.parameters & condition.free_symbols
+
+
+def _one_motion(evaluator, spec, u, condition=None) -> bool:
     """Whether the answer is about the one motion from [initial] (then that motion must reach it).
 
     An answer in terms of a parameter that [initial] uses (θ₀, v₀) is about a family of motions:
@@ -1321,7 +1348,7 @@ def _one_motion(evaluator, spec, u) -> bool:
     if u.name not in initial:
         return False
     used = set().union(*(e.free_symbols for e in initial.values()))
-    allowed = evaluator.target(spec, default_state=False) if spec.in_terms_of is not None else set()
+    allowed = _allowed_for_motion(evaluator, spec, condition)
     # Another coordinate kept free in the answer (the block y1 beside y2 of an Atwood machine with
     # a spring) makes the root a formula over the states of several degrees of freedom, not a point
     # that the motion along u alone must reach.
@@ -1329,7 +1356,7 @@ def _one_motion(evaluator, spec, u) -> bool:
     return not (used & allowed) and not (others & allowed)
 
 
-def _family_motion(evaluator, spec, u) -> bool:
+def _family_motion(evaluator, spec, u, condition=None) -> bool:
     """Whether the answer is about a family of motions from [initial]: an answer in terms of a
     parameter that [initial] uses (θ₀, v₀), about a coordinate that [initial] gives.
 
@@ -1339,10 +1366,10 @@ def _family_motion(evaluator, spec, u) -> bool:
     from the bottom meets θ = -0.2 on its way back, θ̇ < 0); where it reaches none, nothing does.
     """
     initial = evaluator.scene.initial
-    if u.name not in initial or _one_motion(evaluator, spec, u):
+    if u.name not in initial or _one_motion(evaluator, spec, u, condition):
         return False
     used = set().union(*(e.free_symbols for e in initial.values()))
-    allowed = evaluator.target(spec, default_state=False) if spec.in_terms_of is not None else set()
+    allowed = _allowed_for_motion(evaluator, spec, condition)
     others = {v.symbol for v in evaluator.reduction.independent.values() if v.symbol != u.symbol}
     return bool(used & allowed) and not (others & allowed)
 
@@ -1387,12 +1414,108 @@ def _numeric_roots(roots, point, variable) -> dict[int, float]:
         if v is None:
             continue
         if variable is not None and variable[0] in ("coordinate", "parameter") and not variable[1].domain.contains(v):
-            periodic = variable[0] == "coordinate" and variable[1].dimension.is_dimensionless
+            # An angle declared in an interval has had its roots brought into it (see roots_in_domain):
+            # a formula outside is not a root there, whatever its image.
+            periodic = (variable[0] == "coordinate" and variable[1].dimension.is_dimensionless
+                        and variable[1].domain.kind != "interval")
             images = [v + 2 * math.pi * k for k in (-1, 1)] if periodic else []
             if not any(variable[1].domain.contains(w) for w in images):
                 continue
         result[i] = v
     return result
+
+
+def roots_in_domain(evaluator, condition: sympy.Expr, x: sympy.Symbol, roots: list[sympy.Expr]) -> list[sympy.Expr]:
+    """The roots of a condition in an angle declared in an interval, brought into it: every image
+    r + (2π/n)k inside the interval where the condition holds there (at both parameter points), none
+    outside. A root in θ/2 (a spring to a point of a hoop: cos(θ/2) = c) is solved as 2 acos(±c) +
+    4πk, which may lie outside [0, π) while its image by 2π is the root inside, or may not be one;
+    the condition decides, numerically. A root sympy wrapped in a Piecewise whose other branches are
+    nan takes the branch that holds at the parameter points. Other unknowns: the roots unchanged.
+    """
+    variable = _variable(evaluator, x)
+    if variable is None:
+        return roots
+    points = [_with_state(evaluator, parameters, condition.free_symbols - {x})
+              for parameters in _parameter_points(evaluator.scene)]
+    roots = [_unwrapped(r, points) for r in roots]
+    u = variable[1]
+    if (variable[0] != "coordinate" or not u.dimension.is_dimensionless or u.domain.kind != "interval"
+            or not any(x in f.free_symbols for f in condition.atoms(*_TRIG))):
+        return roots
+    lo, hi = float(u.domain.lo), float(u.domain.hi)
+    n = 1
+    for f in condition.atoms(*_TRIG):
+        ratio = sympy.cancel(f.args[0] / x)
+        if x in f.free_symbols and ratio.is_Rational:
+            n = math.lcm(n, int(abs(ratio.p)))
+    step = 2 * sympy.pi / n
+
+    def holds(candidate, point) -> bool:
+        # zero there, against its size a little to either side (30 digits: ~1e-27 at a simple root)
+        at = _evaluate(condition.xreplace({x: candidate}), point)
+        beside = [_evaluate(condition.xreplace({x: candidate + d}), point) for d in (sympy.Rational(1, 10**4),
+                                                                                     -sympy.Rational(1, 10**4))]
+        if at is None or any(v is None for v in beside):
+            return False
+        return abs(at) <= 1e-12 * max(abs(v) for v in beside)
+
+    result: list[sympy.Expr] = []
+    seen: list[tuple[float, ...]] = []
+    turn = 2 * math.pi
+
+    def add(candidate, numbers, image: bool) -> None:
+        # An image is a new root unless it is a kept one, or (a domain a full turn wide, [-π, π]) the
+        # same configuration as a kept one, a whole turn away: -π beside π.
+        def same(a: float, b: float) -> bool:
+            gap = abs(a - b) / turn if image else abs(a - b)
+            return abs(gap - round(gap)) <= 1e-9 * max(1.0, abs(a)) and (image or round(gap) == 0)
+        if not any(all(same(a, b) for a, b in zip(numbers, other)) for other in seen):
+            seen.append(numbers)
+            result.append(candidate)
+
+    images = []
+    for r in roots:
+        values = [_evaluate(r, point) for point in points]
+        if any(v is None for v in values):
+            result.append(r)  # not real here: the choice of root says so, as before
+            continue
+        if all(lo <= v <= hi for v in values):
+            add(r, tuple(values), image=False)
+        width = float(step)
+        first = math.ceil((lo - values[0]) / width)
+        last = math.floor((hi - values[0]) / width)
+        images += [(r, k, tuple(v + k * width for v in values)) for k in range(first, last + 1) if k != 0]
+    for r, k, numbers in images:  # after every root inside: those come first, as solved
+        if not all(lo <= w <= hi for w in numbers):
+            continue
+        candidate = _tidy_inverse(r + k * step)
+        if all(holds(candidate, point) for point in points):
+            add(candidate, numbers, image=True)
+    return result
+
+
+def _unwrapped(root: sympy.Expr, points: list[dict]) -> sympy.Expr:
+    """A Piecewise((r, cond), (nan, True)) from solve as r, where cond holds at every point."""
+    def unwrap(piecewise):
+        branches = [(e, c) for e, c in piecewise.args if e is not sympy.nan]
+        if len(branches) != 1:
+            return piecewise
+        expr, cond = branches[0]
+        for point in points:
+            value = cond.xreplace({s: sympy.Float(v, 30) for s, v in point.items()})
+            if value is not sympy.true:
+                return piecewise
+        return expr
+    if not root.has(sympy.Piecewise):
+        return root
+    return root.replace(lambda e: isinstance(e, sympy.Piecewise), unwrap)
+
+
+def _tidy_inverse(expr: sympy.Expr) -> sympy.Expr:
+    """acos(−u) as π − acos(u), so that an image 2π − 2 acos(−c) reads 2 acos(c)."""
+    return expr.replace(lambda e: isinstance(e, sympy.acos) and e.args[0].could_extract_minus_sign(),
+                        lambda e: sympy.pi - sympy.acos(-e.args[0]))
 
 
 def _groups(values: dict[int, float]) -> list[set[int]]:
