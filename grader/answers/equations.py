@@ -326,10 +326,17 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
                 return factor
             # exp(x) = exp(y), x^3 = y^3: the same solutions as x = y, but the ratio of the residuals is
             # no factor that cancels; either equation may be the one written so (|x| = |y| against x^2 = y^2)
-            inner = None if answer_conditions else (_injective_sides(answer[0]) or _logs_exponentiated(answer[0]))
-            inner_reference = _injective_sides(reference[0]) or _logs_exponentiated(reference[0])
+            domains = {**parameters.domains, **states.domains}
+            inner = None if answer_conditions else (_injective_sides(answer[0], domains)
+                                                    or _logs_exponentiated(answer[0]))
+            inner_reference = _injective_sides(reference[0], domains) or _logs_exponentiated(reference[0])
+            # θ = atan(X) and tan θ = X, where θ stays in atan's range (an equilibrium angle)
+            inverse = None if answer_conditions else _inverse_applied(answer[0], domains)
+            inverse_reference = _inverse_applied(reference[0], domains)
             for ref_form, answer_form in ((reference[0], inner), (inner_reference, answer[0]),
-                                          (inner_reference, inner)):
+                                          (inner_reference, inner), (inverse_reference, answer[0]),
+                                          (reference[0], inverse), (inverse_reference, inner),
+                                          (inner_reference, inverse)):
                 if ref_form is None or answer_form is None or _past(deadline) or _PEELED.get() >= MAX_PEELED:
                     continue
                 token = _PEELED.set(_PEELED.get() + 1)
@@ -341,9 +348,9 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
                     _PEELED.reset(token)
                 if again.equivalent:
                     again.reason = ("the same solutions as the reference: f(A) = f(B), with f taking each value "
-                                    "once (an odd power, exp, atan, log of positive quantities; an even power on "
-                                    "|A|), holds exactly where "
-                                    f"A = B, and that equation is {again.reason}")
+                                    "once (an odd power, exp, atan, log of positive quantities, a sine or tangent "
+                                    "where its argument stays in one branch; an even power on |A|), holds exactly "
+                                    f"where A = B, and that equation is {again.reason}")
                     return again
             if factor is not None:
                 return factor
@@ -1446,7 +1453,70 @@ _INJECTIVE = (sympy.exp, sympy.sinh, sympy.tanh, sympy.atan, sympy.asinh)
 _ODD_INJECTIVE = (sympy.sinh, sympy.tanh, sympy.atan, sympy.asinh)
 
 
-def _injective_sides(residual: sympy.Expr) -> sympy.Expr | None:
+# Where each of sin, cos and tan takes every value once: its argument in one of these intervals (and
+# its shifts by π), the branch of asin, acos and atan.
+_BRANCHES = {sympy.sin: (-math.pi / 2, math.pi / 2), sympy.cos: (0.0, math.pi), sympy.tan: (-math.pi / 2, math.pi / 2)}
+_INVERSES = {sympy.asin: sympy.sin, sympy.acos: sympy.cos, sympy.atan: sympy.tan}
+_BRANCH_SLACK = 1e-8
+
+
+def _range_over(expr: sympy.Expr, domains: dict) -> tuple[float, float] | None:
+    """An interval that holds every value of ``expr`` over its variables' declared intervals (ball
+    arithmetic over the whole box), or None where a variable's domain is unbounded or it cannot be
+    evaluated."""
+    box = {}
+    for symbol in expr.free_symbols:
+        domain = domains.get(symbol)
+        lo, hi = getattr(domain, "lo", -math.inf), getattr(domain, "hi", math.inf)
+        if domain is None or not (math.isfinite(lo) and math.isfinite(hi)):
+            return None
+        box[symbol] = flint.arb(lo).union(flint.arb(hi))
+    try:
+        with flint.ctx.workprec(64):
+            value = compile_expr(expr, ArbBackend())({**box, SCALE: -math.inf})
+    except (Undefined, Unresolved, Unsupported):
+        return None
+    if not value.is_finite():
+        return None
+    return float(value.lower()), float(value.upper())
+
+
+def _in_one_branch(f, arguments: list[sympy.Expr], domains: dict) -> bool:
+    """Whether every one of ``arguments`` stays, over the domains, inside one and the same interval
+    where ``f`` (sin, cos or tan) takes each value once (`_BRANCHES` shifted by a multiple of π)."""
+    lo, hi = _BRANCHES[f]
+    ranges = [_range_over(a, domains) for a in arguments]
+    if None in ranges:
+        return False
+    low, high = min(r[0] for r in ranges), max(r[1] for r in ranges)
+    # (the balls' radius, ~1e-9, past an end the declared interval has on it: θ in [0, 1.5] for acos)
+    k = math.floor((low - lo) / math.pi + _BRANCH_SLACK)
+    if f is sympy.tan:  # undefined at the branch's ends: strictly inside
+        return lo + k * math.pi < low and high < hi + k * math.pi
+    return lo + k * math.pi - _BRANCH_SLACK <= low and high <= hi + k * math.pi + _BRANCH_SLACK
+
+
+def _inverse_applied(residual: sympy.Expr, domains: dict) -> sympy.Expr | None:
+    """``f(A) - X`` for ``residual`` = c (A - F(X)) with F one of asin, acos, atan and f its inverse, where
+    A stays in F's range over the domains: θ = atan(X) holds exactly where tan θ = X when θ stays in
+    (−π/2, π/2) (the angle of a conical pendulum or a banked curve, written either way), else None."""
+    terms = sympy.Add.make_args(residual)
+    if len(terms) != 2:
+        return None
+    for inverse_term, other in ((terms[0], terms[1]), (terms[1], terms[0])):
+        c, call = inverse_term.as_coeff_Mul()
+        if type(call) not in _INVERSES or not c.is_Rational or c.is_zero:
+            continue
+        # c F(X) + other = 0 is F(X) = A with A = -other/c, which holds exactly where f(A) = X when A
+        # stays in F's range (f's branch, `_in_one_branch`); outside it F(X) = A has no solution at all
+        a = -other / c
+        f = _INVERSES[type(call)]
+        if _in_one_branch(f, [a], domains):
+            return f(a) - call.args[0]
+    return None
+
+
+def _injective_sides(residual: sympy.Expr, domains: dict | None = None) -> sympy.Expr | None:
     """``A - B`` when ``residual = 0`` says ``f(A) = f(B)`` for a function ``f`` that takes each real
     value once (an odd power or root, exp and a power of a positive number, sinh, tanh, atan, asinh;
     a number on one side read as ``f`` of its preimage, 0 too: atan(A) = 0 is A = 0); ``|A| - |B|``
@@ -1483,9 +1553,14 @@ def _injective_sides(residual: sympy.Expr) -> sympy.Expr | None:
         # f(A) = number: the number's preimage, where f reaches it (2 e^x = 4: x = log 2)
         (c, a), number = ((c1, a), right) if b.is_number else ((c2, b), left)
         return _preimage(a, number / c)
+    in_branch = (domains is not None and type(a) is type(b) and type(a) in _BRANCHES
+                 and _in_one_branch(type(a), [a.args[0], b.args[0]], domains))
     if c1 == -c2 and c1 != 0:
         # f(A) = -f(B) for an odd f is f(A) = f(-B): sympy writes atan(-u) as -atan(u)
         if type(a) is type(b) and isinstance(a, _ODD_INJECTIVE):
+            return a.args[0] + b.args[0]
+        if type(a) is type(b) and type(a) in (sympy.sin, sympy.tan) and domains is not None \
+                and _in_one_branch(type(a), [a.args[0], -b.args[0]], domains):
             return a.args[0] + b.args[0]
         roots = _odd_root(a), _odd_root(b)
         if None not in roots and roots[0][1] == roots[1][1]:
@@ -1493,7 +1568,8 @@ def _injective_sides(residual: sympy.Expr) -> sympy.Expr | None:
         return None
     if c1 != c2:
         return None
-    if type(a) is type(b) and isinstance(a, _INJECTIVE):
+    if type(a) is type(b) and isinstance(a, _INJECTIVE) or in_branch:
+        # (sin, cos, tan: where both arguments stay in one branch, `_in_one_branch`)
         return a.args[0] - b.args[0]
     roots = _odd_root(a), _odd_root(b)
     if None not in roots and roots[0][1] == roots[1][1]:

@@ -1067,6 +1067,40 @@ def test_a_one_to_one_function_of_both_sides_on_the_domain_keeps_the_solutions(r
     assert v.verdict == expected, v.reason
 
 
+_CONICAL = {"theta": {"dimension": "angle", "domain": [0, 1.5], "kind": "coordinate"},
+            "omega": {"dimension": "angular_velocity", "domain": "positive"},
+            "r": {"dimension": "length", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"}}
+_CONICAL_WIDE = {**_CONICAL, "theta": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "coordinate"}}
+_XY_SHORT = {"x": {"domain": [-1.5, 1.5], "kind": "coordinate"}, "y": {"domain": [-1.5, 1.5], "kind": "coordinate"}}
+_XY_PAST = {**_XY_SHORT, "x": {"domain": [-1.5, 2.5], "kind": "coordinate"}}
+
+
+@pytest.mark.parametrize("reference, answer, variables, expected", [
+    # an equilibrium angle written with its inverse function or without: the same solutions where the
+    # angle stays in that function's range (θ in [0, 1.5] for atan, asin and acos)
+    ("theta = atan(omega^2*r/g)", "tan(theta) = omega^2*r/g", _CONICAL, "equivalent"),
+    ("tan(theta) = omega^2*r/g", "theta = atan(omega^2*r/g)", _CONICAL, "equivalent"),
+    ("theta = atan(omega^2*r/g)", "g*sin(theta) = omega^2*r*cos(theta)", _CONICAL, "equivalent"),
+    ("theta = acos(g/(omega^2*r))", "omega^2*r*cos(theta) = g", _CONICAL, "equivalent"),
+    ("cos(theta) = g/(omega^2*r)", "theta = acos(g/(omega^2*r))", _CONICAL, "equivalent"),
+    ("theta = asin(omega^2*r/g)", "sin(theta) = omega^2*r/g", _CONICAL, "equivalent"),
+    ("theta = atan(omega^2*r/g)", "tan(theta) = omega^2*r/(2*g)", _CONICAL, "not_equivalent"),
+    ("theta = atan(omega^2*r/g)", "sin(theta) = omega^2*r/g", _CONICAL, "not_equivalent"),
+    # on (−π, π) cos θ = X has ±acos X, tan θ = X has atan X and atan X − π: more solutions
+    ("theta = acos(g/(omega^2*r))", "omega^2*r*cos(theta) = g", _CONICAL_WIDE, "not_equivalent"),
+    ("theta = atan(omega^2*r/g)", "tan(theta) = omega^2*r/g", _CONICAL_WIDE, "not_equivalent"),
+    # sin and tan of both sides, where both arguments stay in one branch (|x|, |y| <= 1.5 < π/2)
+    ("y = x", "tan(y) = tan(x)", _XY_SHORT, "equivalent"),
+    ("y = x", "sin(y) = sin(x)", _XY_SHORT, "equivalent"),
+    ("y = -x", "sin(y) = -sin(x)", _XY_SHORT, "equivalent"),
+    ("y = x", "sin(y) = sin(x)", _XY_PAST, "not_equivalent"),   # x = 2.5: sin x = sin(π − 2.5)
+    ("y = x", "cos(y) = cos(x)", _XY_SHORT, "not_equivalent"),  # cos(−x) = cos x
+])
+def test_a_trigonometric_function_one_to_one_on_the_domain_keeps_the_solutions(reference, answer, variables, expected):
+    v = check(reference, answer, variables, kind="equation")
+    assert v.verdict == expected, v.reason
+
+
 _BIG_FACTOR = " + ".join(f"(l*thetaddot/g + sin(theta))*cos(theta)^{k}/{k + 2}" for k in range(12))
 
 
