@@ -211,7 +211,7 @@ _TABLE = [
              arb=lambda x: x.sin() * _inverse(x.cos(), f"tan at {_HALF_PI}"),
              real=lambda lib, x: lib.sin(x) * _real_inverse(lib.cos(x), f"tan at {_HALF_PI}")),
     Function("cot", sympy.cot, aliases=("ctg", "cotg", "cotan"), sympy_func=sympy.cot, latex=r"\cot",
-             commands=("cot", "ctg"),
+             commands=("cot", "ctg", "cotg"),
              arb=lambda x: x.cos() * _inverse(x.sin(), "cot at a multiple of pi"),
              real=lambda lib, x: lib.cos(x) * _real_inverse(lib.sin(x), "cot at a multiple of pi")),
     Function("sec", sympy.sec, sympy_func=sympy.sec, latex=r"\sec", commands=("sec",),
@@ -230,11 +230,11 @@ _TABLE = [
              commands=("arctan", "arctg"), arb=lambda x: x.atan(), real=lambda lib, x: lib.atan(x)),
     Function("atan2", sympy.atan2, 2, 2, aliases=("arctan2",), sympy_func=sympy.atan2,
              latex=r"\operatorname{atan_{2}}", dimension="same_args", arb=_arb_atan2, real=_real_atan2),
-    Function("sinh", sympy.sinh, aliases=("senh",), sympy_func=sympy.sinh, latex=r"\sinh", commands=("sinh",),
+    Function("sinh", sympy.sinh, aliases=("senh",), sympy_func=sympy.sinh, latex=r"\sinh", commands=("sinh", "sh"),
              arb=lambda x: x.sinh(), real=lambda lib, x: lib.sinh(x)),
-    Function("cosh", sympy.cosh, sympy_func=sympy.cosh, latex=r"\cosh", commands=("cosh",),
+    Function("cosh", sympy.cosh, sympy_func=sympy.cosh, latex=r"\cosh", commands=("cosh", "ch"),
              arb=lambda x: x.cosh(), real=lambda lib, x: lib.cosh(x)),
-    Function("tanh", sympy.tanh, sympy_func=sympy.tanh, latex=r"\tanh", commands=("tanh",),
+    Function("tanh", sympy.tanh, sympy_func=sympy.tanh, latex=r"\tanh", commands=("tanh", "th"),
              arb=lambda x: x.tanh(), real=lambda lib, x: lib.tanh(x)),
     Function("coth", sympy.coth, sympy_func=sympy.coth, latex=r"\coth", commands=("coth",),
              arb=lambda x: x.cosh() * _inverse(x.sinh(), "coth at 0"),
@@ -255,8 +255,8 @@ _TABLE = [
     Function("log", _log, 1, 2, aliases=("ln",), sympy_func=sympy.log, latex=r"\log", commands=("log", "ln"),
              arb=_arb_log, real=_real_log),
     # log10(x) is log(x)/log(10) in sympy: no function class of its own, nothing to evaluate.
-    Function("log10", lambda x: sympy.log(x, 10), aliases=("lg",)),
-    Function("log2", lambda x: sympy.log(x, 2)),
+    Function("log10", lambda x: sympy.log(x, 10), aliases=("lg",), commands=("lg",)),  # KaTeX's \lg, ISO's lg
+    Function("log2", lambda x: sympy.log(x, 2), commands=("lb",)),  # ISO 80000-2's lb, KaTeX's \lb
     Function("sqrt", None),
     # The real cube root, defined for negative numbers too (x**(1/3) is not, over the reals); built
     # from sign and abs, so the evaluators and the dimension rule of a power apply as they are.

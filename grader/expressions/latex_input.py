@@ -30,7 +30,8 @@ from .errors import ExpressionError
 from .functions import latex_commands
 from .names import GREEK_LETTERS, UNIT_SYMBOLS
 
-__all__ = ["classify_command", "subscript_text", "wrapped_text", "GREEK_COMMANDS", "FUNCTION_COMMANDS"]
+__all__ = ["classify_command", "subscript_text", "wrapped_text", "GREEK_COMMANDS", "FUNCTION_COMMANDS",
+           "WRAPPER_COMMANDS"]
 
 #: \theta -> theta; the var- forms are the same letters to a grader.
 GREEK_COMMANDS = {name: name for name, latex in GREEK_LETTERS.items() if latex.startswith("\\")}
@@ -58,11 +59,14 @@ _STRUCTURE = {"frac": "frac", "dfrac": "frac", "tfrac": "frac", "cfrac": "frac",
               "lvert": "lvert", "rvert": "rvert", "vert": "vert", "mid": "vert",
               "lbrace": "lbrace", "rbrace": "rbrace", "lbrack": "lbrack", "rbrack": "rbrack",
               "lparen": "lparen", "rparen": "rparen",  # MathLive's \lparen \rparen
+              "lgroup": "lgroup", "rgroup": "rgroup",  # TeX's \lgroup x \rgroup: round brackets
               **{name: value for name, value in _SIZES.items() if value != "space"}}
 # Commands whose braced text is a name in another font: \boldsymbol{\theta} is θ, as \mathbf{m} is m.
 _WRAPPERS = {"mathrm", "text", "mathit", "operatorname", "rm", "mathbf", "textrm", "boldsymbol", "bm",
              "mathsf", "mathnormal", "textit", "textbf", "textnormal", "mathup", "symbf", "symit", "symup",
              "pmb", "mbox"}
+#: The fonts and boxes around a name (\mathrm{max}, \text{N}): what they hold is the name.
+WRAPPER_COMMANDS = frozenset(_WRAPPERS)
 #: MathLive's \exponentialE and \differentialD are the letters e and d (\frac{\differentialD x}{\differentialD t}).
 LETTER_COMMANDS = {"exponentialE": "e", "differentialD": "d"}
 # How a derivation's last line starts: "⇒ θ̈ = …"; dropped at the start of the answer (see tokens.py).

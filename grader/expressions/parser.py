@@ -174,6 +174,8 @@ class _Parser:
         self.tokens = read_leibniz(tokens, namespace, text)
         self.ns = namespace
         self.text = text
+        # LaTeX (a command or a brace in it): a superscript is one token there, as editors show it
+        self.latex = "\\" in text or "{" in text
         self.i = 0
         self.depth = 0
         self.notes: list[str] = []
@@ -371,8 +373,11 @@ class _Parser:
                           f"^(1/{divisor}) for the power 1/{divisor}")
             if left is sympy.E and base.kind == "name":
                 # e^-kt, e^2x: the factors typed glued to the exponent stay in it, as nobody means
-                # e^(-k)·t (x^2y stays x²·y: only the exponential's exponent is read so).
-                exponent = self.glued_factors(exponent, base.pos, "e^")
+                # e^(-k)·t (x^2y stays x²·y: only the exponential's exponent is read so). Not in LaTeX,
+                # where e^2x is e²·x, as MathQuill and MathLive show what the student typed (read as
+                # e^(2x), an answer e^(2x) was accepted for e²x).
+                if not (self.latex and not bracketed):
+                    exponent = self.glued_factors(exponent, base.pos, "e^")
                 if not bracketed:  # e^(-k) t: the student closed the exponent
                     exponent = self.dimensionless_argument(exponent, base.pos, "e^")
             return self.power(left, exponent, token.pos), "^"

@@ -33,7 +33,7 @@ import sympy
 
 from .errors import ExpressionError
 from .functions import FUNCTIONS
-from .latex_input import classify_command, subscript_text, wrapped_text
+from .latex_input import WRAPPER_COMMANDS, classify_command, subscript_text, wrapped_text
 from .magnitudes import MAX_DIGITS
 from .names import WRITE_INSTEAD
 from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, FULLWIDTH_SYMBOLS, GREEK_CHARS, MATH_LETTERS,
@@ -57,6 +57,12 @@ _DIGITS = frozenset("0123456789")
 _ASCII_ALNUM = frozenset(string.ascii_letters) | _DIGITS
 _ASCII_NAME_START = (_ASCII_ALNUM - _DIGITS) | {"_"}
 _ASCII_ALNUM_RUN = re.compile("[A-Za-z0-9]+")
+_COMMAND_NAME = re.compile(r"\\[A-Za-z]+")
+# A superscript typed before the subscript, m^2_1 or \frac{v^{2}_{0}}{2g}: each one token, as TeX takes
+# them (a bare one-character subscript only where nothing that could continue it follows: m^2_total
+# is left alone).
+_SUPERSCRIPT_FIRST = re.compile(r"(?<=[A-Za-z0-9}])(\s*\^(?:\{[^{}]*\}|\\[A-Za-z]+|[A-Za-z0-9]))"
+                                r"(_(?:\{[^{}]*\}|\\[A-Za-z]+|[A-Za-z0-9](?![A-Za-z0-9])))")
 # What can continue a name or mark its derivative (see _Tokenizer.identifier and finish_name):
 # a plain ASCII name followed by none of these is emitted as it is.
 _NAME_GOES_ON = frozenset(_ASCII_ALNUM | {"_"} | set(GREEK_CHARS) | set(MATH_LETTERS) | set(SUBSCRIPT_DIGITS)
@@ -170,7 +176,8 @@ def _sign(ch: str) -> str:
 
 class _Tokenizer:
     def __init__(self, text: str) -> None:
-        self.text = text.translate(FULLWIDTH_SYMBOLS)  # full-width ＋（２） is +(2), one for one
+        # full-width ＋（２） is +(2), one for one; x^2_1 is x_1^2, as TeX sets both on x (same length)
+        self.text = _SUPERSCRIPT_FIRST.sub(r"\2\1", text.translate(FULLWIDTH_SYMBOLS))
         self.n = len(text)
         self.i = 0
         self.tokens: list[Token] = []
@@ -496,6 +503,8 @@ class _Tokenizer:
                 j = after + 1
                 while j < self.n and text[j].isascii() and text[j].isalpha():
                     j += 1
+                if text[after + 1:j] in WRAPPER_COMMANDS and j < self.n and text[j] == "{":
+                    j = self.matching_brace(j) + 1  # v_\text{max}: the font's braces are the subscript's
                 parts.append("_" + subscript_text(text[after:j], after))
                 i = j
                 break
@@ -656,8 +665,17 @@ class _Tokenizer:
             self.transparent(start, j, text[start + 1:j])
             return
         kind, value = classify_command(text[start + 1:j], start)
-        if kind == "function" and value == "log" and j < self.n and text[j] == "_":
-            self.logarithm_base(start, j)
+        # A subscript on a function, spaced or not (latex2sympy's \log _{a}x, OCR's \log _ { b } x): the
+        # logarithm's base, never the function's argument (read so, \log _{b} x was log(b)·x)
+        k = j
+        while kind == "function" and k < self.n and is_space(text[k]):
+            k += 1
+        subscript = kind == "function" and k < self.n and text[k] == "_"
+        if subscript and text[start + 1:j] == "log":
+            self.logarithm_base(start, k)
+        elif subscript:
+            raise ExpressionError(f"cannot read the subscript on {text[start:j]}: only \\log takes one (its base)",
+                                  k, "syntax", f"write {text[start:j]}(x); for a logarithm to base b, \\log_{{b}} x")
         elif kind == "greek":
             self.identifier(start, value, j)
         elif kind == "function":
@@ -681,7 +699,7 @@ class _Tokenizer:
             self.identifier(start, value, j)
         elif kind == "implication":
             self.implication(start, j, text[start:j])
-        elif value in ("lbrace", "lbrack", "lparen", "rbrace", "rbrack", "rparen"):
+        elif value in ("lbrace", "lbrack", "lparen", "rbrace", "rbrack", "rparen", "lgroup", "rgroup"):
             self.emit("open" if value[0] == "l" else "close", _BRACKET_COMMANDS[value], start, j)
         elif value in ("left", "right"):
             self.delimiter(start, j, value)
@@ -697,6 +715,8 @@ class _Tokenizer:
         student's editor puts in one is read by `wrapped_text`: spacing (``\text{ }``), a full stop or
         comma, ``\text{and}`` between two equations; a unit or words are refused by name."""
         text, k = self.text, j
+        if command == "operatorname" and k < self.n and text[k] == "*":
+            k += 1  # \operatorname*{sin}: the star only moves limits, which a name has none of
         while k < self.n and is_space(text[k]):
             k += 1
         if k >= self.n or text[k] != "{":
@@ -861,12 +881,17 @@ class _Tokenizer:
         self.space = True
         self.i = end
 
-    def logarithm_base(self, start: int, j: int) -> None:
+    def logarithm_base(self, start: int, j: int) -> None:  # j: the index of "_"
         r"""``\log_{10}``, ``\log_2``: a name ``log_10`` that `resolve_name` reads as a logarithm to a base."""
         k = j + 1
+        while k < self.n and is_space(self.text[k]):
+            k += 1
+        command = _COMMAND_NAME.match(self.text, k)
         if k < self.n and self.text[k] == "{":
             close = self.matching_brace(k)
             base, end = subscript_text(self.text[k + 1:close], k + 1), close + 1
+        elif command is not None:  # \log_\theta x: the base is the one command, as LaTeX reads it
+            base, end = subscript_text(command.group(), k), command.end()
         else:
             run = _ASCII_ALNUM_RUN.match(self.text, k)
             if run is None:
@@ -1011,7 +1036,7 @@ _SIDE_ENDS = re.compile(r"\s*(?:$|=|\n|\\\\|[.,;$}]|\\(?:end|\]|\)|quad|qquad|ta
 
 # \left\lvert x \right\rvert, \left\lbrace: the bracket character each command stands for.
 _BRACKET_COMMANDS = {"lvert": "|", "rvert": "|", "vert": "|", "lbrace": "{", "rbrace": "}", "lbrack": "[",
-                     "rbrack": "]", "lparen": "(", "rparen": ")"}
+                     "rbrack": "]", "lparen": "(", "rparen": ")", "lgroup": "(", "rgroup": ")"}
 # Dots set over a letter (\overset{\cdot}{x}): each is one dot.
 _DOT_MARKS = re.compile(r"\\(?:cdot|bullet|ldotp|centerdot)(?![A-Za-z])|[˙·•∙⋅]")
 

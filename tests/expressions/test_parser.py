@@ -917,3 +917,82 @@ def test_a_matlab_index_in_round_brackets_names_the_variable():
     with pytest.raises(ExpressionError) as err:
         parse("m(1) g", ns)
     assert err.value.code == "syntax" and "write m1" in str(err.value)
+
+
+_EXPONENTIAL_NS = Namespace([Variable("x", "dimensionless", "real"), Variable("theta", "angle", "real"),
+                             Variable("A", "length", "positive"), Variable("k", "1/s", "positive"),
+                             Variable("t", "time", "nonnegative")])
+
+
+@pytest.mark.parametrize("student, canonical", [
+    # in LaTeX a superscript is one token: e^2x is e²·x, as MathQuill and MathLive show it (latex2sympy's
+    # 4^26^2, math-expressions' x^47)
+    ("\\exponentialE^2x", "exp(2)*x"), ("e^\\pi x", "exp(pi)*x"), ("A\\,\\mathrm{e}^2\\theta", "A*exp(2)*theta"),
+    ("\\frac{1}{2} e^2x", "exp(2)*x/2"),
+    # braced, the exponent is what the braces hold; one that needs its factors to be dimensionless takes them
+    ("e^{2x}", "exp(2*x)"), ("\\mathrm{e}^{-k t}", "exp(-k*t)"), ("\\mathrm{e}^-kt", "exp(-k*t)"),
+    # typed as plain text, the factors glued to an exponential's exponent stay in it (a note says so)
+    ("e^2x", "exp(2*x)"), ("e^-kt", "exp(-k*t)"),
+])
+def test_an_exponent_in_latex_is_one_token_and_in_plain_text_keeps_its_glued_factors(student, canonical):
+    assert parse(student, _EXPONENTIAL_NS) == parse(canonical, _EXPONENTIAL_NS)
+
+
+_BASES_NS = Namespace([Variable("x", "dimensionless", "positive"), Variable("b", "dimensionless", [2, 5])])
+
+
+@pytest.mark.parametrize("student, canonical", [
+    # a subscript on \log is its base, spaced or not (latex2sympy writes \log _{a}x, OCR \log _ { 2 } x)
+    ("\\log _{2}x", "log(x)/log(2)"), ("\\log _ { 2 } x", "log(x)/log(2)"), ("\\log_{2}x", "log(x)/log(2)"),
+    ("\\log_2 x", "log(x)/log(2)"), ("\\log _{10}(x)", "log(x)/log(10)"),
+])
+def test_a_subscript_on_log_is_its_base_spaced_or_not(student, canonical):
+    assert parse(student, _BASES_NS) == parse(canonical, _BASES_NS)
+
+
+@pytest.mark.parametrize("student, named", [
+    # never the function's argument: \log _{b} x was read as log(b)·x
+    ("\\log _{b}(x)", "logarithm to base b"), ("\\log _ { b } x", "logarithm to base b"),
+    ("\\log_\\theta x", "logarithm to base theta"),
+    ("\\ln _{b}x", "only \\log takes one"), ("\\sin_{b} x", "only \\log takes one"),
+])
+def test_a_subscript_on_a_function_is_never_its_argument(student, named):
+    with pytest.raises(ExpressionError, match=None) as refused:
+        parse_expression(student, Namespace([Variable("x", "dimensionless", "positive"),
+                                             Variable("b", "dimensionless", [2, 5]),
+                                             Variable("theta", "dimensionless", [2, 5])]))
+    assert named in str(refused.value)
+
+
+_SUBSCRIPTED_NS = Namespace([Variable("m1", "mass", "positive"), Variable("v0", "velocity", "positive"),
+                             Variable("g", "acceleration", "positive"), Variable("omega0", "1/s", "positive"),
+                             Variable("v_max", "velocity", "positive"), Variable("F_N", "force", "positive"),
+                             Variable("mu_k", "dimensionless", "positive"), Variable("I_cm", "kg*m^2", "positive"),
+                             Variable("m", "mass", "positive")])
+
+
+@pytest.mark.parametrize("student, canonical", [
+    # a superscript typed before the subscript sets both on the letter, as TeX does (latex2sympy's atom_expr)
+    ("m^2_1", "m1^2"), ("m^{2}_{1}", "m1^2"), ("\\frac{v^2_0}{2g}", "v0^2/(2*g)"), ("\\omega^2_0", "omega0^2"),
+    ("m^2_1 g", "m1^2*g"),
+    # a font around an unbraced subscript is the subscript (KaTeX and TeX read v_\text{max} as v_{max})
+    ("v_\\text{max}", "v_max"), ("v_\\mathrm{max}", "v_max"), ("F_\\text{N}", "F_N"), ("\\mu_\\text{k}mg", "mu_k*m*g"),
+    ("I_\\text{cm}", "I_cm"),
+])
+def test_subscripts_read_as_tex_sets_them(student, canonical):
+    assert parse(student, _SUBSCRIPTED_NS) == parse(canonical, _SUBSCRIPTED_NS)
+
+
+@pytest.mark.parametrize("student, canonical", [
+    # KaTeX's (and ISO 80000-2's, and Russian and German textbooks') names of functions, and TeX's round
+    # \lgroup \rgroup and the starred \operatorname*
+    ("\\lg x", "log10(x)"), ("\\lb x", "log2(x)"), ("\\sh x", "sinh(x)"), ("\\ch x", "cosh(x)"), ("\\th x", "tanh(x)"),
+    ("\\cotg x", "cot(x)"), ("\\operatorname*{sin} x", "sin(x)"), ("\\sin\\lgroup x \\rgroup", "sin(x)"),
+    ("\\left\\lgroup x+2\\right\\rgroup y", "(x + 2)*y"),
+    # a space before the superscript typed first: \alpha ^2_2 is α₂²
+    ("\\theta ^2_1", "theta1^2"),
+])
+def test_katex_function_names_and_brackets_are_read(student, canonical):
+    ns = Namespace([Variable("x", "dimensionless", "positive"), Variable("y", "dimensionless", "real"),
+                    Variable("theta1", "angle", "real")])
+    assert parse(student, ns) == parse(canonical, ns)
