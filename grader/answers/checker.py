@@ -26,7 +26,7 @@ import sympy
 from grader.answers.equations import compare_equations, state_symbols, unknown_symbols
 from grader.answers.equivalence import Comparison, Compiled, Options, compare_expressions
 from grader.answers.evaluate import ArbBackend, Undefined, Unresolved, Unsupported
-from grader.answers.feedback import diagnose
+from grader.answers.feedback import CLOSE, diagnose
 from grader.answers.reference import DETAILS, KINDS
 from grader.answers.sampling import Sampler, UnorderedPoint, seed_for
 from grader.answers.verdict import Verdict
@@ -277,6 +277,25 @@ def _screen_value(expr: sympy.Expr, point: dict, cache: dict | None):
     return value
 
 
+# The points a "close" answer must be close at besides the counterexample (ordinary ones: not the
+# stress points 3, 7, where variables take extreme scales).
+_ORDINARY_POINTS = (0, 1, 2, 4, 5, 6)
+
+
+def _relative_difference(r: sympy.Expr, a: sympy.Expr, point: dict) -> float:
+    """|a − r| at ``point`` relative to the reference's size there, or to its largest term where it cancels
+    (a rounded coefficient is close near a zero of the reference too); infinite where either is not a
+    number there."""
+    try:
+        rv, r_scale = Compiled(r, ArbBackend()).at(point, SCREEN_PREC)
+        av, _ = Compiled(a, ArbBackend()).at(point, SCREEN_PREC)
+        reference, answer = float(rv.mid()), float(av.mid())
+    except (Undefined, Unresolved, Unsupported, TypeError, ValueError, OverflowError):
+        return math.inf
+    size = max(abs(reference), 2.0 ** r_scale if math.isfinite(r_scale) else 0.0)
+    return abs(answer - reference) / size if size else math.inf
+
+
 def _could_be_same(r: sympy.Expr, a: sympy.Expr, point: dict, r_cache: dict | None = None,
                    a_cache: dict | None = None) -> bool:
     """A one-point screen for feedback candidates (most fail it): False only when proved different.
@@ -321,6 +340,12 @@ def _feedback(ref: _Reference, exprs: list[sympy.Expr], comparison: Comparison, 
             a, r = comparison.values
             ratio = a / r if r else None
         rel = (comparison.counterexample or {}).get("relative_difference")
+        if rel is not None and rel < CLOSE:
+            # Close at the ordinary points too, not only at the counterexample: r0 cosh ωt + (v0/ω) cosh ωt
+            # is 6e-6 from r0 cosh ωt + (v0/ω) sinh ωt at ωt = 6, and a third off at t = 0 (a swap, not a
+            # rounded number).
+            worst = max(_relative_difference(ref.exprs[0], exprs[0], ref.sampler.point(i)) for i in _ORDINARY_POINTS)
+            rel = rel if worst < CLOSE else worst  # (the difference stated is the counterexample's)
         return diagnose(ref.exprs[0], exprs[0], same, ref.instructor, ratio, rel, deadline,
                         swap_could_match=swap_could_match, detail=detail)
 

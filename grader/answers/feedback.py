@@ -170,6 +170,10 @@ def _reference_candidates(reference: sympy.Expr) -> tuple[tuple[sympy.Expr, ...]
     return tuple(reference - t for t in terms), tuple(reference - 2 * t for t in terms)
 
 
+# The relative difference below which a wrong answer is "close" (rounded numbers, a tiny extra term).
+CLOSE = 1e-3
+
+
 def diagnose(
     reference: sympy.Expr,
     answer: sympy.Expr,
@@ -260,7 +264,7 @@ def diagnose(
         if test():
             found.append({"code": code, "message": message})
             break
-    if not found and relative_difference is not None and relative_difference < 1e-3:
+    if not found and relative_difference is not None and relative_difference < CLOSE:
         how_close = f" (relative difference {relative_difference:.1g} at a test point)" if detail == "full" else ""
         found.append({
             "code": "close",

@@ -210,3 +210,25 @@ def test_a_constant_with_a_domain_to_check_is_equal_to_its_value(reference, answ
 @pytest.mark.parametrize("reference, answer", [("pi", "2*asin(1) + 10^-50"), ("2", "2*acosh(cosh(1)) + 1")])
 def test_a_constant_with_a_domain_that_differs_is_still_proved_wrong(reference, answer):
     assert check(reference, answer, {}).verdict == "not_equivalent"
+
+
+_ROD = {"r0": {"dimension": "length", "domain": "positive", "below": "L"}, "L": {"dimension": "length", "domain": "positive"},
+        "omega": {"dimension": "angular_velocity", "domain": "positive"}, "v0": {"dimension": "velocity", "domain": "real"},
+        "t": {"dimension": "time", "domain": "nonnegative", "kind": "time"}}
+_ROD_MOTION = "r0*cosh(omega*t) + v0/omega*sinh(omega*t)"
+
+
+@pytest.mark.parametrize("answer, close", [
+    # a sinh/cosh swap or a wrong start agrees with a growing solution where ωt is large, and is far off
+    # at t = 0: never "close" (it was, from the counterexample at ωt = 6 alone)
+    ("r0*cosh(omega*t) + v0/omega*cosh(omega*t)", False),
+    ("r0*sinh(omega*t) + v0/omega*cosh(omega*t)", False),
+    ("(r0 + v0/omega)/2*exp(omega*t) + (r0 + v0/omega)/2*exp(-omega*t)", False),
+    # a rounded coefficient is close everywhere
+    ("r0*cosh(omega*t) + 1.00001*v0/omega*sinh(omega*t)", True),
+    ("1.0001*r0*cosh(omega*t) + v0/omega*sinh(omega*t)", True),
+])
+def test_an_answer_is_called_close_only_where_it_is_close_at_every_ordinary_point(answer, close):
+    verdict = check(_ROD_MOTION, answer, _ROD)
+    assert verdict.verdict == "not_equivalent"
+    assert ("close" in [f["code"] for f in verdict.feedback]) is close
