@@ -1036,6 +1036,17 @@ def _state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: 
                           evidence={"method": "symbolic"})
     numerator = rest
     example = _sign_change(numerator, *samplers) if samplers is not None else None
+    undefined = _where_the_reference_is_undefined(numerator, [reference], domains)
+    if undefined:
+        # sin(theta) against phiddot = -2 thetadot phidot cos(theta)/sin(theta): zero only where the reference is
+        # undefined; "there your equation no longer determines the motion" would be false
+        return Comparison(False, "proved" if example is not None else "numeric",
+                          "your equation is the reference multiplied by a factor that is zero only where the "
+                          f"reference itself is undefined (where {' or '.join(f'{sympy.sstr(f)} = 0' for f in undefined)}"
+                          f", which {'the declared domain includes' if example is not None else 'could not be excluded from the declared domain'}"
+                          "): everywhere else they are the same equation, but there yours still says something "
+                          "where the reference says nothing, so it is not accepted as the reference's on the "
+                          "declared domain", evidence={"method": "symbolic"}, counterexample=example)
     if example is not None:
         return Comparison(False, "proved", "your equation is the reference multiplied by a factor that depends "
                           "on the state and is zero somewhere in the declared domain (it changes sign between "
@@ -1175,6 +1186,19 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
     numerator = _factored(sympy.fraction(det_s)[0])
     if _nonzero_on(numerator, domains) is not True:
         example = _vanishing_factor(numerator, domains, samplers)
+        undefined = _where_the_reference_is_undefined(numerator, [*m_r, *c_r], domains)
+        if undefined:
+            # sin(theta)**2 against phiddot = -2 thetadot phidot cos(theta)/sin(theta): singular only where the
+            # reference says nothing either; "there your equations no longer determine the motion" would be false
+            return Comparison(False, "proved" if example is not None else "numeric",
+                              "your equations are combinations of the reference equations whose mixing matrix is "
+                              "singular only where the reference itself is undefined (where "
+                              f"{' or '.join(f'{sympy.sstr(f)} = 0' for f in undefined)}, which "
+                              f"{'the declared domain includes' if example is not None else 'could not be excluded from the declared domain'}"
+                              "): everywhere else they are the same equations, but there they still say "
+                              "something where the reference says nothing, so they are not accepted as the "
+                              "reference's on the declared domain", evidence={"method": "symbolic"},
+                              counterexample=example)
         if example is not None:
             return Comparison(False, "proved", _SINGULAR_MIXING, evidence={"method": "ball arithmetic"},
                               counterexample=example)
@@ -1296,6 +1320,28 @@ def _determinants_nonzero(m_r: sympy.Matrix, m_s: sympy.Matrix, domains: dict,
         return False
     return (_finite_on(m_r, domains) and _finite_on(m_s, domains)
             and _nonzero_on(_factored(sympy.fraction(det_r)[0]), domains) is True)
+
+
+def _where_the_reference_is_undefined(numerator: sympy.Expr, reference: list, domains: dict) -> list:
+    """The factors of ``numerator`` (a factor's, a mixing determinant's) not proved nonzero, when each of them
+    is also a factor of a denominator of the ``reference``'s terms (so the factor vanishes only where the
+    reference is undefined); else an empty list."""
+    denominators = set()
+    for entry in reference:
+        denominator = sympy.fraction(sympy.together(entry))[1]
+        for factor in sympy.Mul.make_args(_factored(denominator)):
+            base = factor.base if factor.is_Pow and factor.exp.is_Integer and factor.exp > 0 else factor
+            if not base.is_number:
+                denominators |= {base, -base}
+    found = []
+    for factor in sympy.Mul.make_args(sympy.factor_terms(numerator)):
+        base = factor.base if factor.is_Pow and factor.exp.is_Integer and factor.exp > 0 else factor
+        if base.is_number or _nonzero_on(base, domains) is True:
+            continue
+        if base not in denominators:
+            return []
+        found.append(base)
+    return found
 
 
 def _factored(expr: sympy.Expr) -> sympy.Expr:

@@ -1280,3 +1280,39 @@ def test_a_system_too_large_for_the_mixing_proof_is_compared_at_points(change, e
     reference, rows = _triple_pendulum()
     v = check(reference, "; ".join(f"{r} = 0" for r in change(rows)), _TRIPLE, kind="equation")
     assert v.verdict == expected and v.certainty in certainties, v.reason
+
+
+def _spherical(theta_domain):
+    return {"m": {"dimension": "mass", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"},
+            "l": {"dimension": "length", "domain": "positive"},
+            "theta": {"dimension": "angle", "domain": theta_domain, "kind": "coordinate"},
+            "phi": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "coordinate"},
+            "thetadot": {"dimension": "angular_velocity", "domain": "real", "kind": "velocity"},
+            "phidot": {"dimension": "angular_velocity", "domain": "real", "kind": "velocity"},
+            "thetaddot": {"dimension": "angular_acceleration", "domain": "real", "kind": "acceleration"},
+            "phiddot": {"dimension": "angular_acceleration", "domain": "real", "kind": "acceleration"}}
+
+
+_SPHERICAL = ("thetaddot = sin(theta)*cos(theta)*phidot^2 - (g/l)*sin(theta); "
+              "phiddot = -2*thetadot*phidot*cos(theta)/sin(theta)")
+_SPHERICAL_LAGRANGE = ("m*l^2*thetaddot - m*l^2*sin(theta)*cos(theta)*phidot^2 + m*g*l*sin(theta) = 0; "
+                       "d/dt(m*l^2*sin(theta)^2*phidot) = 0")
+
+
+@pytest.mark.parametrize("reference, answer, theta_domain", [
+    (_SPHERICAL, _SPHERICAL_LAGRANGE, [0, 3.1416]),
+    (_SPHERICAL, _SPHERICAL_LAGRANGE, [-3.1416, 3.1416]),
+    ("phiddot = -2*thetadot*phidot*cos(theta)/sin(theta)", "sin(theta)*phiddot + 2*thetadot*phidot*cos(theta) = 0",
+     [-3.1416, 3.1416]),
+])
+def test_a_factor_zero_only_where_the_reference_is_undefined_is_refused_for_that_reason(reference, answer,
+                                                                                       theta_domain):
+    # sin(theta) vanishes only where the reference divides by it: the refusal must not say the reference
+    # determines the motion there
+    v = check(reference, answer, _spherical(theta_domain), kind="equation")
+    assert v.verdict == "not_equivalent" and "reference itself is undefined" in v.reason, v.reason
+
+
+def test_the_spherical_pendulum_off_its_poles_is_its_lagrange_form():
+    v = check(_SPHERICAL, _SPHERICAL_LAGRANGE, _spherical([0.0001, 3.1415]), kind="equation")
+    assert v.verdict == "equivalent" and v.certainty == "proved", v.reason
