@@ -46,12 +46,21 @@ def evaluate_answers(scene: Scene, eom) -> tuple[dict[str, sympy.Expr], dict[str
         # evaluator's own value, which sympy keeps split. The answer is named when the budget runs
         # out anywhere in it, not only in the steps that name themselves.
         with budget.step("deriving its value", spec.name):
-            value = joined_roots(evaluator.evaluate(spec))
+            value = _joined(evaluator.evaluate(spec))
         answers[spec.name] = value
         if spec.kind == "equation":
             equations[spec.name] = sympy.Eq(spec.expr, value, evaluate=False)
-    alternatives = {name: [joined_roots(a) for a in values] for name, values in evaluator.alternatives.items()}
+    alternatives = {name: [_joined(a) for a in values] for name, values in evaluator.alternatives.items()}
     return answers, equations, alternatives, evaluator.implicit
+
+
+#: CPU seconds for joining an answer's roots for print (a frequency at a root of a cubic, Cardano's,
+#: ran past the whole derivation's budget there).
+_JOINED_BUDGET_S = 2.0
+
+
+def _joined(value: sympy.Expr) -> sympy.Expr:
+    return budget.attempt(lambda: joined_roots(value), _JOINED_BUDGET_S, fallback=lambda: value)
 
 
 def _factored(value: sympy.Expr) -> sympy.Expr:
@@ -395,6 +404,49 @@ class AnswerEvaluator:
         solution = matrix.LUsolve(rhs)
         # Cancelled, not tidied for reading: they are only ever substituted into what is.
         return {v: sympy.factor(sympy.cancel(e)) for v, e in zip(unknowns, solution)}
+
+    def resting_coordinates(self) -> dict:
+        """{v: v₀, v̇: 0} for the independent coordinates that the motion from [initial] leaves at rest
+        throughout: each starts at rest (v̇₀ = 0) where its acceleration vanishes identically, whatever
+        the coordinates not in the set do, once every one in it is at its start. The motion then stays
+        on that invariant subset (by uniqueness of the solution), and reduces to the others: an
+        elastic pendulum released from rest hanging straight down (θ₀ = 0, θ̇₀ = 0: θ̈ = −(g sin θ +
+        2 ṙ θ̇)/r = 0 there) only bounces in r, and energy gives ṙ²(r) with θ = 0.
+        """
+        cache = self.__dict__.get("_resting")
+        if cache is not None:
+            return cache
+        initial = self.scene.initial
+        candidates = {}
+        for u in self.reduction.independent.values():
+            start, speed = initial.get(u.name), initial.get(u.dot.name)
+            if start is None or speed is None or start.free_symbols & self.state_symbols():
+                continue
+            if sympy.simplify(speed) == 0:
+                candidates[u] = start
+        changed = True
+        while changed and candidates:
+            changed = False
+            rest = {s: e for u, v0 in candidates.items() for s, e in ((u.symbol, v0), (u.dot, sympy.Integer(0)))}
+            for u in list(candidates):
+                acceleration = self.reduction.accelerations.get(u.ddot)
+                if acceleration is None or not self._vanishes(acceleration.xreplace(rest)):
+                    del candidates[u]
+                    changed = True
+                    break
+        result = {s: e for u, v0 in candidates.items() for s, e in ((u.symbol, v0), (u.dot, sympy.Integer(0)))}
+        self.__dict__["_resting"] = result
+        return result
+
+    @staticmethod
+    def _vanishes(expr: sympy.Expr) -> bool:
+        """Whether ``expr`` is identically zero (cancelled; simplified under a short budget)."""
+        if expr == 0:
+            return True
+        cancelled = sympy.cancel(sympy.expand_trig(expr)) if expr.free_symbols else expr
+        if cancelled == 0:
+            return True
+        return budget.attempt(lambda: sympy.simplify(cancelled) == 0, 1.0, fallback=lambda: False)
 
     def motion_sign(self, u, pushed: bool = False) -> int | None:
         """The sign of u̇ at the start of the motion from [initial], if [initial] fixes it

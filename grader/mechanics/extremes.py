@@ -90,6 +90,7 @@ def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
         squared = _turning_condition(evaluator, u, key)
         if squared is not None:
             candidates += [r for r in solve_for(squared, u.symbol, scene.source, key) if r not in candidates]
+    _one_coordinate_moves(evaluator, spec, u, key)
     periodic = _periodic(value, u.symbol)
     want_max = spec.kind == "maximum"
     chosen = None
@@ -133,6 +134,26 @@ def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
     if leftover:
         raise SceneError(scene.source, key, f"the {spec.kind} still depends on {', '.join(sorted(map(str, leftover)))}")
     return result
+
+
+def _one_coordinate_moves(evaluator, spec: AnswerSpec, u, key: str) -> None:
+    """Refuses, with the true reason, an extreme over a motion in which other coordinates move too: energy
+    then gives u̇² only with them in it, so the range of u the motion covers is not known in closed
+    form (it was said to "run away": an elastic pendulum released tilted swings and bounces, bounded).
+    Coordinates the motion leaves at rest (:meth:`resting_coordinates`: released hanging straight down)
+    do not count: along the motion they stay at their start."""
+    squared = energy_speed_squared(evaluator, u, key, readable=False)
+    if squared is None:
+        return  # no energy integral: as before (a driven plank's drift is found in time)
+    others = sorted({v.name for v in evaluator.reduction.independent.values()
+                     if v is not u and squared.free_symbols & {v.symbol, v.dot}})
+    if others:
+        raise _NotOverOneCoordinate(
+            evaluator.scene.source, key,
+            f"{spec.expr} has no {spec.kind} found in closed form on the motion from [initial]: "
+            f"{', '.join(others)} move{'s' if len(others) == 1 else ''} as well as {u.name}, so energy gives "
+            f"{u.dot.name}^2 only with {', '.join(others)} in it, and the range of {u.name} the motion covers "
+            "is not known in closed form")
 
 
 def _stationary_points(value: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> list[sympy.Expr]:

@@ -32,14 +32,17 @@ from grader.mechanics import budget
 from grader.mechanics.scene import AnswerSpec, SceneError
 from grader.mechanics.simplification import human_form, signs_in_front
 from grader.mechanics.special_values import (
+    FREQUENCY_TIDY_S,
     _check_stable,
     _choose_root,
     _essential,
     _evaluate,
     _no_leftover,
     _parameter_points,
+    frequency_form,
     roots_in_domain,
     solve_for,
+    tidied_within,
 )
 
 __all__ = ["small_oscillation_with_cyclic_coordinates"]
@@ -94,12 +97,11 @@ def small_oscillation_with_cyclic_coordinates(evaluator, spec: AnswerSpec) -> sy
     with budget.step("evaluating the frequency at the equilibrium", spec.name):
         chosen, *_ = _choose_root(evaluator, spec, condition, u.symbol, roots, stiffness, key)
         _check_equilibrium(scene, key, u, acceleration.xreplace({u.symbol: chosen}), chosen)
-        omega_squared = human_form(stiffness.xreplace({u.symbol: chosen}))
+        # Tidied under a budget: at the root of a cubic (Cardano's) tidying ran past the whole 60 s.
+        omega_squared = tidied_within(stiffness.xreplace({u.symbol: chosen}), FREQUENCY_TIDY_S)
         _check_stable(scene, spec, omega_squared)
         # √(g (M + m)/(M l)) as written, rather than sympy's √g·√(M + m)/(√M·√l).
-        candidates = [human_form(sympy.sqrt(omega_squared)),
-                      sympy.Pow(signs_in_front(sympy.factor(omega_squared)), sympy.S.Half, evaluate=False)]
-        result = min(candidates, key=lambda e: (sympy.count_ops(e), len(str(e))))
+        result = frequency_form(omega_squared)
     return _no_leftover(scene, spec, result, evaluator.target(spec, default_state=False))
 
 

@@ -54,6 +54,7 @@ Examples
 from __future__ import annotations
 
 import contextvars
+import itertools
 import math
 
 import numpy
@@ -206,7 +207,7 @@ def _where_moving(evaluator, spec, target: set, key: str, at_rest: bool, signs: 
         if spec.kind == "small_oscillation":
             value = _stiffness(evaluator, spec, key)
             chosen, *others = _choose_root(evaluator, spec, condition, unknown, roots, value, key, at_rest)
-            result = human_form(_at_root(value, unknown, chosen))
+            result = tidied_within(_at_root(value, unknown, chosen), FREQUENCY_TIDY_S)
         else:
             # The answer in the unknown is only evaluated, at the roots, and tidied where it is
             # substituted: as solved first (tidying it in the unknown, which nobody reads, is most
@@ -224,10 +225,7 @@ def _where_moving(evaluator, spec, target: set, key: str, at_rest: bool, signs: 
                 _no_leftover(scene, spec, human_form(_at_root(value, unknown, r)), target) for r in others]
         if spec.kind == "small_oscillation":
             _check_stable(scene, spec, result)
-            # √(2g/(3(R − r))) as written, rather than sympy's √6·√g·√(1/(R − r))/3.
-            candidates = [human_form(sympy.sqrt(result)),
-                          sympy.Pow(signs_in_front(sympy.factor(result)), sympy.S.Half, evaluate=False)]
-            result = min(candidates, key=lambda e: (sympy.count_ops(e), len(str(e))))
+            result = frequency_form(result)
     return _no_leftover(scene, spec, result, target)
 
 
@@ -456,8 +454,9 @@ def _defined_at_roots(evaluator, spec, condition, x, roots, value, key: str) -> 
         if value.xreplace({x: r}).has(sympy.nan, sympy.zoo):
             raise SceneError(scene.source, key, f"undefined at {x} = {r} as solved")
     for parameters in _parameter_points(scene):
-        point = _with_state(evaluator, parameters, (condition.free_symbols | value.free_symbols) - {x})
-        for index in _numeric_roots(roots, point, variable):
+        point, numeric = _with_real_roots(evaluator, parameters, (condition.free_symbols | value.free_symbols) - {x},
+                                          roots, variable)
+        for index in numeric:
             if _evaluate(value.xreplace({x: roots[index]}), point) is None:
                 raise SceneError(scene.source, key, f"undefined at {x} = {roots[index]} as solved")
 
@@ -1187,13 +1186,18 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str, at_rest:
                                             "numbers)")
     chosen = base_count = None
     near = _parameter_points(scene)
+    symbols = (condition.free_symbols | value.free_symbols) - {x}
+    state: dict = {}
     for parameters in near:
-        point = _with_state(evaluator, parameters, (condition.free_symbols | value.free_symbols) - {x})
-        numeric = _numeric_roots(roots, point, variable)
+        point, numeric = _with_real_roots(evaluator, parameters, symbols, roots, variable)
         if not numeric:
+            free = _free_state(evaluator, parameters, symbols)
+            where = (f"anywhere in its domain" if not free else
+                     f"at any of the states tried ({', '.join(sorted(map(str, free)))} across their domains)")
             raise SceneError(scene.source, key,
-                             f"the condition has no real root for {x} anywhere in its domain (closed forms: "
+                             f"the condition has no real root for {x} {where} (closed forms: "
                              f"{', '.join(sympy.sstr(r) for r in roots)})")
+        state = state or {s: v for s, v in point.items() if s not in parameters}
         indices, group_of = _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key,
                                     at_rest)
         if chosen is None:
@@ -1206,7 +1210,7 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str, at_rest:
     # be chosen; a point where the roots are others (no off-axis equilibrium below the critical ω),
     # or where nothing decides, says nothing.
     for parameters in _domain_points(scene, roots):
-        point = _with_state(evaluator, parameters, (condition.free_symbols | value.free_symbols) - {x})
+        point = _with_state(evaluator, {**parameters, **state}, symbols)
         numeric = _numeric_roots(roots, point, variable)
         if _distinct(numeric) != base_count:
             continue
@@ -1214,6 +1218,11 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str, at_rest:
             indices, group_of = _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key,
                                         at_rest)
         except SceneError:
+            continue
+        if len(indices) > 1 or (len(chosen) > 1 and set(indices) <= set(chosen)):
+            # Nothing decides there, or at the scene's values, where every root is an answer: the
+            # one decided here is among them (a top spun fast: slow and fast precession have its
+            # sense; an oblate one drawn: only one has).
             continue
         if _differ(chosen, indices, group_of):
             raise SceneError(scene.source, key, _depends_on_parameters(parameters))
@@ -1259,16 +1268,17 @@ def _select(evaluator, spec, x, roots, value, variable, condition, numeric, poin
         # (m r² (ψ̇ + Ω) of a steady orbit seen from a rotating frame, in which ψ̇ may start at 0 or
         # backwards), rather than the way u̇ starts.
         index = _by_momentum(evaluator, variable[1], roots, numeric, groups, point)
-    elif variable is not None and variable[0] == "velocity" and evaluator.motion_sign(variable[1], True) is not None:
-        sign = evaluator.motion_sign(variable[1], True)
-        matching = [i for i, r in numeric.items() if sign is not None and r * sign > 0]
-        if sign is None or len({min(g) for g in groups for i in matching if i in g}) != 1:
-            raise SceneError(scene.source, key, _ambiguous(x, roots, numeric))
-        index = matching[0]
+    elif variable is not None and variable[0] == "velocity" and _of_the_sign(evaluator, variable[1], numeric,
+                                                                             groups) is not None:
+        # The sign the motion from [initial] gives u̇ singles out one root (of several groups).
+        index = _of_the_sign(evaluator, variable[1], numeric, groups)
     else:
+        # Nothing decides: no [initial], or one whose momentum and velocity have the sign of several
+        # roots (a top's slow and fast steady precessions, both in the sense it is launched in).
         reason = _must_be_one_value(scene, spec)
         if reason is not None:
-            raise SceneError(scene.source, key, f"{_ambiguous(x, roots, numeric)} ({reason})")
+            undecided = variable is not None and variable[0] == "velocity" and scene.initial
+            raise SceneError(scene.source, key, f"{_ambiguous(x, roots, numeric, undecided)} ({reason})")
         index = None
     indices = [index] if index is not None else [min(g) for g in groups]
 
@@ -1388,10 +1398,67 @@ def _with_state(evaluator, point: dict, symbols: set) -> dict:
     return point
 
 
-def _ambiguous(x, roots, numeric) -> str:
+def _free_state(evaluator, parameters: dict, symbols: set) -> list:
+    """The state variables among ``symbols`` that neither the parameter point nor [initial] gives a
+    number: the answer is a formula over them (a steady precession's φ̇ at any tilt θ and spin ψ̇)."""
+    initial = evaluator.scene.initial
+    return sorted((s for s in symbols - set(parameters) if s.name not in initial), key=str)
+
+
+def _state_candidates(evaluator, s) -> list[float]:
+    """Numbers across the domain of a state variable (a coordinate's declared one; a velocity's real)."""
+    domain = None
+    for u in evaluator.reduction.independent.values():
+        if s == u.symbol:
+            domain = getattr(u, "domain", None)
+    kind = domain.kind if domain is not None else "real"
+    if kind == "interval":
+        lo, hi = float(domain.lo), float(domain.hi)
+        return [lo + (hi - lo) * f for f in (0.5, 0.2, 0.8, 0.05, 0.95, 0.35, 0.65)]
+    magnitudes = [0.7, 3.0, 10.0, 100.0, 1000.0]
+    if kind in ("positive", "nonnegative"):
+        return magnitudes
+    return [v for m in magnitudes for v in (m, -m)]
+
+
+def _with_real_roots(evaluator, parameters: dict, symbols: set, roots, variable) -> tuple[dict, dict[int, float]]:
+    """(the point, its real roots in the domain): the parameter point with numbers for the state an
+    answer is written in, as :func:`_with_state` gives them, or, where the roots are not real there
+    and the state is free (in in_terms_of, not given by [initial]), the first of a few states across
+    the state variables' domains where they are. The roots of (A − C) cos θ φ̇² − C ψ̇ φ̇ + M g l = 0
+    are real for a fast spin or cos θ < 0, not at ψ̇ = 0.7: "no real root anywhere" was said there."""
+    point = _with_state(evaluator, parameters, symbols)
+    numeric = _numeric_roots(roots, point, variable)
+    free = _free_state(evaluator, parameters, symbols)
+    if numeric or not free:
+        return point, numeric
+    for numbers in itertools.islice(itertools.product(*(_state_candidates(evaluator, s) for s in free)), 400):
+        trial = {**point, **dict(zip(free, numbers))}
+        numeric = _numeric_roots(roots, trial, variable)
+        if numeric:
+            return trial, numeric
+    return point, {}
+
+
+def _ambiguous(x, roots, numeric, undecided: bool = False) -> str:
     listed = ", ".join(sympy.sstr(roots[i]) for i in sorted(numeric))
+    if undecided:
+        return (f"the condition has several roots for {x} with different answers ({listed}), and the motion from "
+                f"[initial] gives more than one of them the sign it gives {x}; narrow the domain of the unknown")
     return (f"the condition has several roots for {x} with different answers ({listed}); narrow the domain "
             "of the unknown or give [initial] so that the motion decides")
+
+
+def _of_the_sign(evaluator, u, numeric, groups) -> int | None:
+    """The root of u̇ with the sign the motion from [initial] gives it, when exactly one group of
+    equal roots has it; else None (no sign, none of that sign, or several: nothing decides)."""
+    sign = evaluator.motion_sign(u, True)
+    if sign is None:
+        return None
+    matching = [i for i, r in numeric.items() if r * sign > 0]
+    if len({min(g) for g in groups for i in matching if i in g}) != 1:
+        return None
+    return matching[0]
 
 
 def _variable(evaluator, x):
@@ -1414,13 +1481,9 @@ def _numeric_roots(roots, point, variable) -> dict[int, float]:
         if v is None:
             continue
         if variable is not None and variable[0] in ("coordinate", "parameter") and not variable[1].domain.contains(v):
-            # An angle declared in an interval has had its roots brought into it (see roots_in_domain):
-            # a formula outside is not a root there, whatever its image.
-            periodic = (variable[0] == "coordinate" and variable[1].dimension.is_dimensionless
-                        and variable[1].domain.kind != "interval")
-            images = [v + 2 * math.pi * k for k in (-1, 1)] if periodic else []
-            if not any(variable[1].domain.contains(w) for w in images):
-                continue
+            # An angle's roots have been brought into its declared domain (see roots_in_domain): a
+            # formula outside is not a root there, whatever its image.
+            continue
         result[i] = v
     return result
 
@@ -1440,25 +1503,21 @@ def roots_in_domain(evaluator, condition: sympy.Expr, x: sympy.Symbol, roots: li
               for parameters in _parameter_points(evaluator.scene)]
     roots = [_unwrapped(r, points) for r in roots]
     u = variable[1]
-    if (variable[0] != "coordinate" or not u.dimension.is_dimensionless or u.domain.kind != "interval"
+    if (variable[0] != "coordinate" or not u.dimension.is_dimensionless or u.domain.kind == "real"
             or not any(x in f.free_symbols for f in condition.atoms(*_TRIG))):
         return roots
-    lo, hi = float(u.domain.lo), float(u.domain.hi)
     n = 1
     for f in condition.atoms(*_TRIG):
         ratio = sympy.cancel(f.args[0] / x)
         if x in f.free_symbols and ratio.is_Rational:
             n = math.lcm(n, int(abs(ratio.p)))
     step = 2 * sympy.pi / n
+    if u.domain.kind != "interval":
+        return _onto_half_line(u.domain, condition, x, roots, points, step)
+    lo, hi = float(u.domain.lo), float(u.domain.hi)
 
     def holds(candidate, point) -> bool:
-        # zero there, against its size a little to either side (30 digits: ~1e-27 at a simple root)
-        at = _evaluate(condition.xreplace({x: candidate}), point)
-        beside = [_evaluate(condition.xreplace({x: candidate + d}), point) for d in (sympy.Rational(1, 10**4),
-                                                                                     -sympy.Rational(1, 10**4))]
-        if at is None or any(v is None for v in beside):
-            return False
-        return abs(at) <= 1e-12 * max(abs(v) for v in beside)
+        return _holds(condition, x, candidate, point)
 
     result: list[sympy.Expr] = []
     seen: list[tuple[float, ...]] = []
@@ -1492,6 +1551,54 @@ def roots_in_domain(evaluator, condition: sympy.Expr, x: sympy.Symbol, roots: li
         candidate = _tidy_inverse(r + k * step)
         if all(holds(candidate, point) for point in points):
             add(candidate, numbers, image=True)
+    return result
+
+
+def _holds(condition, x, candidate, point) -> bool:
+    """Whether ``condition`` vanishes at x = candidate: zero there, against its size a little to
+    either side (30 digits: ~1e-27 at a simple root)."""
+    at = _evaluate(condition.xreplace({x: candidate}), point)
+    beside = [_evaluate(condition.xreplace({x: candidate + d}), point) for d in (sympy.Rational(1, 10**4),
+                                                                                 -sympy.Rational(1, 10**4))]
+    if at is None or any(v is None for v in beside):
+        return False
+    return abs(at) <= 1e-12 * max(abs(v) for v in beside)
+
+
+def _onto_half_line(domain, condition, x, roots, points, step) -> list[sympy.Expr]:
+    """The roots of a condition in an angle declared ``positive`` or ``nonnegative``, each inside:
+    a root outside (θ = 0 for θ > 0; 2 acos c − 4π) is replaced by its least image r + (2π/n)k
+    inside where the condition holds there (θ = 2π, the same configuration), and dropped where none
+    does within two turns; never returned as it is. Several images inside the half-line are the
+    same configuration turns apart: as for a real angle, solve's one root (brought inside) stands for
+    them. Roots that coincide once inside are one."""
+    result: list[sympy.Expr] = []
+    seen: list[tuple[float, ...]] = []
+
+    def add(candidate, numbers) -> None:
+        if not any(all(abs(a - b) <= 1e-9 * max(1.0, abs(a)) for a, b in zip(numbers, other)) for other in seen):
+            seen.append(numbers)
+            result.append(candidate)
+
+    width = float(step)
+    for r in roots:
+        values = [_evaluate(r, point) for point in points]
+        if any(v is None for v in values):
+            result.append(r)  # not real here: the choice of root says so, as before
+            continue
+        if all(domain.contains(v) for v in values):
+            add(r, tuple(values))
+            continue
+        first = max(1, math.ceil(-max(values) / width))
+        turns = 2 * round(2 * math.pi / width)
+        for k in range(first, first + turns + 1):
+            numbers = tuple(v + k * width for v in values)
+            if not all(domain.contains(w) for w in numbers):
+                continue
+            candidate = _tidy_inverse(r + k * step)
+            if all(_holds(condition, x, candidate, point) for point in points):
+                add(candidate, numbers)
+                break
     return result
 
 
@@ -1812,9 +1919,13 @@ def energy_speed_squared(evaluator, u, key: str, readable: bool = True) -> sympy
     if h is None or reduction.initial_value(h) is None:
         return None
     try:
-        return evaluator.velocity_squared(u, key, evaluator.momentum_substitution(set(), key), readable=readable)
+        squared = evaluator.velocity_squared(u, key, evaluator.momentum_substitution(set(), key), readable=readable)
     except SceneError:
         return None
+    # Coordinates the motion leaves at rest (at a start where their acceleration vanishes) stay at
+    # their start: u̇² along the motion has them so (an elastic pendulum hanging straight down).
+    rest = {s: e for s, e in evaluator.resting_coordinates().items() if s not in (u.symbol, u.dot)}
+    return squared.xreplace(rest) if rest else squared
 
 
 def _speed_squared(evaluator, u, point: dict, key: str):
@@ -1860,6 +1971,29 @@ def _numeric(expr: sympy.Expr, symbol: sympy.Symbol):
 
 
 # -- small oscillations ------------------------------------------------------------------------------
+#: CPU seconds for tidying a small-oscillation frequency at its equilibrium, and for each of its
+#: square root's forms: at the root of a cubic (Cardano's, 458 operations for a particle on a cone
+#: held by a −k/s attraction) tidying ran past the whole derivation's 60 s budget.
+FREQUENCY_TIDY_S = 4.0
+FREQUENCY_FORM_S = 1.0
+
+
+def tidied_within(expr: sympy.Expr, seconds: float) -> sympy.Expr:
+    """``human_form(expr)`` if it finishes within ``seconds`` of CPU time, else ``expr`` as it is
+    (a closed form all the same, only not tidied)."""
+    return budget.attempt(lambda: human_form(expr), seconds, fallback=lambda: expr)
+
+
+def frequency_form(omega_squared: sympy.Expr) -> sympy.Expr:
+    """ω = √(ω²) in its shortest form, each candidate under a budget: √(2g/(3(R − r))) as written,
+    rather than sympy's √6·√g·√(1/(R − r))/3; the plain square root where tidying runs out."""
+    plain = sympy.sqrt(omega_squared)
+    candidates = [tidied_within(plain, FREQUENCY_FORM_S),
+                  budget.attempt(lambda: sympy.Pow(signs_in_front(sympy.factor(omega_squared)), sympy.S.Half,
+                                                   evaluate=False), FREQUENCY_FORM_S, fallback=lambda: plain)]
+    return min(candidates, key=lambda e: (sympy.count_ops(e), len(str(e))))
+
+
 def _stiffness(evaluator, spec, key: str) -> sympy.Expr:
     """ω² = −∂ü/∂u at rest, from the solved equation of motion (linearisation)."""
     reduction = evaluator.reduction

@@ -404,3 +404,41 @@ def test_extremes_of_a_spherical_pendulum_swinging_through_the_pole_are_those_of
     for measured, name in ((speed / l, "thetadot_max"), (max(rise), "rise_rate_max"), (min(rise), "rise_rate_min")):
         expected = closed_form(model, answers, name)
         assert abs(measured - expected) < 1e-5 * abs(expected), name
+
+
+def test_extremes_of_an_elastic_pendulum_released_hanging_straight_down_are_those_of_the_integrated_bounce():
+    """Released at rest at θ = 0 with the spring at r0: θ stays 0 and r bounces; its largest length and
+    least tension over more than a period of the integrated motion are the engine's."""
+    model, answers = engine("elastic_pendulum_hanging")
+    m, k, r0 = model.values["m"], model.values["k"], model.values["r0"]
+    l0 = model.values["l0"]
+    period = 2 * math.pi * math.sqrt(m / k)
+    times = np.linspace(0.0, 1.5 * period, 6001)
+    motion = simulate(model.numeric, [r0, 0.0], [0.0, 0.0], float(times[-1]), sample_times=times)
+    assert len(motion.samples) == len(times)
+    assert max(abs(s.q[1]) for s in motion.samples) < 1e-9  # it stays on θ = 0
+    lengths = [s.q[0] for s in motion.samples]
+    # Sampled every 1/4000 of a period: an extreme is missed by at most (π/2000)²/2 of the amplitude.
+    assert abs(max(lengths) - closed_form(model, answers, "r_max")) < 1e-6
+    assert abs(k * (min(lengths) - l0) - closed_form(model, answers, "tension_min")) < 1e-6 * k
+
+
+def test_a_nudged_orbit_on_a_cone_oscillates_at_the_engines_rate():
+    """With the angular momentum [initial] gives, the circular orbit is where the radial acceleration
+    vanishes (found numerically); released 10⁻⁴ beyond it, s oscillates about it at the engine's ω."""
+    model, answers = engine("cone_orbit_inverse_attraction")
+    m, alpha, s0, om = (model.values[n] for n in ("m", "alpha", "s0", "Om"))
+    momentum = m * s0 ** 2 * math.sin(alpha) ** 2 * om
+
+    def state(s):  # coordinates (x, y, z) at φ = 0 on the cone, φ̇ from the momentum
+        phidot = momentum / (m * s ** 2 * math.sin(alpha) ** 2)
+        return [s * math.sin(alpha), 0.0, s * math.cos(alpha)], [0.0, s * math.sin(alpha) * phidot, 0.0]
+
+    # At φ = 0, z̈ = s̈ cos α: the orbit is where it vanishes.
+    orbit = brentq(lambda s: snapshot(model.numeric, 0.0, *state(s)).qddot[2], 0.05, 2.0, xtol=1e-15)
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    q0, qdot0 = state(orbit + 1e-4)
+    measured = _frequency_from_crossings(
+        model, q0, qdot0,
+        lambda s: math.sqrt(s.q[0] ** 2 + s.q[1] ** 2 + s.q[2] ** 2) - orbit, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
