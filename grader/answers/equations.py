@@ -1171,14 +1171,11 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
         return _out_of_time()  # not a wrong answer for want of time: the Lagrange form takes this path
     if screened != "agree":
         return None
-    try:
-        det_s = sympy.cancel(sympy.together(m_s.det(method="berkowitz")))
-    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+    det_s = _determinant(m_s)
+    if det_s is None:
         return None
     if det_s == 0:
-        return Comparison(False, "proved", "your equations are not independent: they are combinations of the "
-                          "reference equations that together say less than the reference equations",
-                          evidence={"method": "symbolic"})
+        return _not_independent()
     if not _finite_on(m_s, domains):
         return Comparison(False, "numeric", "your equations are combinations of the reference equations with "
                           "coefficients that could not be shown finite on the whole declared domain",
@@ -1295,6 +1292,21 @@ def _mixing_at_points(reference: list[sympy.Expr], answer: list[sympy.Expr], unk
                                                                      "mixing": "numeric (too large)"})
 
 
+def _determinant(matrix: sympy.Matrix) -> sympy.Expr | None:
+    """``det(matrix)`` as one cancelled fraction, or None where sympy cannot build it."""
+    try:
+        return sympy.cancel(sympy.together(matrix.det(method="berkowitz")))
+    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+        return None
+
+
+def _not_independent() -> Comparison:
+    """The verdict on answer equations whose mixing matrix has a zero determinant."""
+    return Comparison(False, "proved", "your equations are not independent: they are combinations of the "
+                      "reference equations that together say less than the reference equations",
+                      evidence={"method": "symbolic"})
+
+
 def _determinants_nonzero(m_r: sympy.Matrix, m_s: sympy.Matrix, domains: dict,
                           samplers: tuple[Sampler, Sampler]) -> bool | Comparison:
     """True when ``det M_r`` and ``det M_s`` are proved finite and nonzero on the whole domain, a refusal when
@@ -1302,15 +1314,11 @@ def _determinants_nonzero(m_r: sympy.Matrix, m_s: sympy.Matrix, domains: dict,
     fails (the caller then checks the determinant at its sample points)."""
     if not all(_nodes(e, MIXING_MAX_NODES) <= MIXING_MAX_NODES for e in (*m_r, *m_s)):
         return False
-    try:
-        det_r = sympy.cancel(sympy.together(m_r.det(method="berkowitz")))
-        det_s = sympy.cancel(sympy.together(m_s.det(method="berkowitz")))
-    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+    det_r, det_s = _determinant(m_r), _determinant(m_s)
+    if det_r is None or det_s is None:
         return False
     if det_s == 0:
-        return Comparison(False, "proved", "your equations are not independent: they are combinations of the "
-                          "reference equations that together say less than the reference equations",
-                          evidence={"method": "symbolic"})
+        return _not_independent()
     numerator = _factored(sympy.fraction(det_s)[0])
     if _nonzero_on(numerator, domains) is not True:
         example = _vanishing_factor(numerator, domains, samplers)

@@ -859,16 +859,28 @@ def _in_sign_regions(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, opti
         kinks = [Compiled(argument, options.backend()) for argument in arguments]
     except Unsupported:
         return None
-    seen: set = set()
-    for i in range(options.points + SIGN_REGION_DRAWS):
-        point = sampler.point(i)
-        pattern = _sign_pattern(kinks, point)
-        if pattern is None or pattern in seen:
-            continue
-        seen.add(pattern)
-        if len(seen) > MAX_PATTERNS:
-            return None
-        result = compare_at(ref, ans, point, i, options, deadline)
+
+    def new_patterns():
+        seen: set = set()
+        for i in range(options.points + SIGN_REGION_DRAWS):
+            point = sampler.point(i)
+            pattern = _sign_pattern(kinks, point)
+            if pattern is None or pattern in seen:
+                continue
+            seen.add(pattern)
+            if len(seen) > MAX_PATTERNS:
+                return
+            yield point, i
+
+    return _first_difference(ref, ans, sampler, new_patterns(), options, deadline)
+
+
+def _first_difference(ref: Compiled, ans: Compiled, sampler: Sampler, points, options: Options,
+                      deadline: float | None) -> Comparison | None:
+    """The verdict at the first of ``points`` (pairs of a point and its cache key) where a difference is
+    proved (`_proved_there`), or None (also when the budget runs out)."""
+    for point, key in points:
+        result = compare_at(ref, ans, point, key, options, deadline)
         if result.kind == "budget":
             return None
         found = _proved_there(ref, ans, sampler, point, result, options, deadline)
@@ -905,24 +917,18 @@ def _has_branch(exprs) -> bool:
 
 def _past_the_branches(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, options: Options,
                        deadline: float | None) -> Comparison | None:
-    """A counterexample among the first `BRANCH_POINTS` points where the expressions have a branch and
-    a variable of theirs ranges over a finite interval, or None."""
+    """A counterexample among the first `BRANCH_POINTS` points (those past ``options.points``) and at the
+    ends of the intervals, where the expressions have a branch and a variable of theirs ranges over a
+    finite interval, or None."""
     symbols = set().union(*(e.free_symbols for e in exprs))
-    if options.points >= BRANCH_POINTS or not sampler.banded & symbols or not _has_branch(exprs):
+    if not sampler.banded & symbols or not _has_branch(exprs):
         return None
     points = [(sampler.point(i), i) for i in range(options.points, BRANCH_POINTS)]
     for symbol in sorted(sampler.banded & symbols, key=str):
         domain = sampler.domains[symbol]
         step = END_OFFSET * (domain.hi - domain.lo)
         points += [({**sampler.point(0), symbol: end}, None) for end in (domain.lo + step, domain.hi - step)]
-    for point, key in points:
-        result = compare_at(ref, ans, point, key, options, deadline)
-        if result.kind == "budget":
-            return None
-        found = _proved_there(ref, ans, sampler, point, result, options, deadline)
-        if found is not None:
-            return found
-    return None
+    return _first_difference(ref, ans, sampler, points, options, deadline)
 
 
 def _sum_denominator(expr: sympy.Expr) -> bool:
