@@ -28,7 +28,7 @@ import sympy
 from grader.mechanics import budget
 from grader.mechanics.reduction import Reduction, without_hidden_coordinates
 from grader.mechanics.scene import AnswerSpec, Scene, SceneError
-from grader.mechanics.simplification import factored_sums, human_form, joined_roots
+from grader.mechanics.simplification import TIDY_MAX_OPS, factored_sums, human_form, joined_roots
 
 __all__ = ["AnswerEvaluator", "evaluate_answers"]
 
@@ -60,6 +60,8 @@ _JOINED_BUDGET_S = 2.0
 
 
 def _joined(value: sympy.Expr) -> sympy.Expr:
+    if sympy.count_ops(value) > TIDY_MAX_OPS:
+        return value  # (Cardano's root of a cubic: nothing to join that makes it readable)
     return budget.attempt(lambda: joined_roots(value), _JOINED_BUDGET_S, fallback=lambda: value)
 
 

@@ -92,6 +92,11 @@ def _weight(expr: sympy.Expr, allowed_multiples: tuple[int, int], sine_cost: int
     return sympy.count_ops(expr, visual=False) + sine_cost * extra_sines + 4 * extra_others + negative, len(printed)
 
 
+# Operations past which no readable form is looked for (Cardano's root of a cubic, 459 of them: no
+# rewriting makes it readable, and trying spent seconds of a derivation).
+TIDY_MAX_OPS = 300
+
+
 def forget_forms() -> None:
     """Empty the memory of readable forms (:func:`human_form` and its parts), as in a fresh worker.
 

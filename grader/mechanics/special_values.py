@@ -64,7 +64,7 @@ from grader.expressions.functions import FUNCTIONS
 from grader.expressions.implicit import real_roots
 from grader.mechanics import budget
 from grader.mechanics.scene import AnswerSpec, SceneError
-from grader.mechanics.simplification import human_form, signs_in_front
+from grader.mechanics.simplification import TIDY_MAX_OPS, human_form, signs_in_front
 
 __all__ = ["special_value", "solve_for"]
 
@@ -1976,11 +1976,18 @@ def _numeric(expr: sympy.Expr, symbol: sympy.Symbol):
 #: held by a −k/s attraction) tidying ran past the whole derivation's 60 s budget.
 FREQUENCY_TIDY_S = 4.0
 FREQUENCY_FORM_S = 1.0
+QUICK_CANCEL_S = 0.5  # for an expression too long to tidy: whether it cancels to a short one
 
 
 def tidied_within(expr: sympy.Expr, seconds: float) -> sympy.Expr:
     """``human_form(expr)`` if it finishes within ``seconds`` of CPU time, else ``expr`` as it is
-    (a closed form all the same, only not tidied)."""
+    (a closed form all the same, only not tidied). Not tried past `TIDY_MAX_OPS` operations: no
+    rewriting makes Cardano's root of a cubic readable, and trying spent the whole budget."""
+    if sympy.count_ops(expr) > TIDY_MAX_OPS:
+        # (unless it cancels to a short one: a rotating frame's 462 operations are √(3Ω² + k/m))
+        cancelled = budget.attempt(lambda: sympy.cancel(expr), QUICK_CANCEL_S, fallback=lambda: expr)
+        if sympy.count_ops(cancelled) > TIDY_MAX_OPS:
+            return expr
     return budget.attempt(lambda: human_form(expr), seconds, fallback=lambda: expr)
 
 
@@ -1988,6 +1995,8 @@ def frequency_form(omega_squared: sympy.Expr) -> sympy.Expr:
     """ω = √(ω²) in its shortest form, each candidate under a budget: √(2g/(3(R − r))) as written,
     rather than sympy's √6·√g·√(1/(R − r))/3; the plain square root where tidying runs out."""
     plain = sympy.sqrt(omega_squared)
+    if sympy.count_ops(omega_squared) > TIDY_MAX_OPS:
+        return plain
     candidates = [tidied_within(plain, FREQUENCY_FORM_S),
                   budget.attempt(lambda: sympy.Pow(signs_in_front(sympy.factor(omega_squared)), sympy.S.Half,
                                                    evaluate=False), FREQUENCY_FORM_S, fallback=lambda: plain)]
