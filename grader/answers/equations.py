@@ -85,7 +85,8 @@ def unknown_symbols(variables: dict[str, dict], symbols: dict[str, sympy.Symbol]
 
     Taken from each variable's ``kind`` ("acceleration"); with no kinds at all, from names ending
     in ``ddot``. With accelerations, the multipliers and constraint forces (kinds "multiplier" and
-    "force") too: the Lagrange equations with multipliers are one linear system in both. They are state variables whatever ``state`` lists (`state_symbols`).
+    "force") too: the Lagrange equations with multipliers are one linear system in both. They are
+    state variables whatever ``state`` lists (`state_symbols`).
 
     Examples
     --------
@@ -1164,9 +1165,7 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
         return None
     screened = _combination_at_points(m_r, c_r, m_s, c_s, unknowns, samplers, options, deadline)
     if isinstance(screened, dict) and screened:
-        return Comparison(False, "proved", "your equations are not combinations of the reference equations, not "
-                          "even with coefficients that depend on the state: they give other accelerations (see "
-                          "the counterexample)", evidence={"method": "ball arithmetic"}, counterexample=screened)
+        return _other_accelerations(screened)
     if _past(deadline):
         return _out_of_time()  # not a wrong answer for want of time: the Lagrange form takes this path
     if screened != "agree":
@@ -1218,6 +1217,13 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
 MIXING_NUMERIC_MAX_NODES = 20000
 
 
+def _other_accelerations(example: dict) -> Comparison:
+    """The verdict where the answer's rows, solved for the unknowns at a point, give other accelerations."""
+    return Comparison(False, "proved", "your equations are not combinations of the reference equations, not "
+                      "even with coefficients that depend on the state: they give other accelerations (see "
+                      "the counterexample)", evidence={"method": "ball arithmetic"}, counterexample=example)
+
+
 def _mixing_at_points(reference: list[sympy.Expr], answer: list[sympy.Expr], unknowns: tuple, domains: dict,
                       samplers: tuple[Sampler, Sampler], options: Options, deadline: float | None) -> Comparison:
     """`state_dependent_mixing` for systems too large for its symbolic proof (a triple pendulum's solved
@@ -1226,8 +1232,9 @@ def _mixing_at_points(reference: list[sympy.Expr], answer: list[sympy.Expr], unk
     arithmetic, confirmed at `CONFIRM_BITS` at one point), and the mixing matrix must be invertible: its
     determinant ``det M_s / det M_r`` proved nonzero on the whole domain when both matrices are small enough
     (the mass matrix of the Lagrange form, the identity of the solved form), else nonzero and of one sign at
-    the sample points. Never a proof of equivalence: accepted with certainty "numeric"; a point where the accelerations differ proves the systems different; anything else is an
-    honest "numeric" refusal that names the size."""
+    the sample points. Never a proof of equivalence: accepted with certainty "numeric"; a point where
+    the accelerations differ proves the systems different; anything else is an honest "numeric"
+    refusal that names the size."""
     too_large = Comparison(False, "numeric", "your equations are not combinations of the reference equations "
                            "with coefficients free of the state; they may still be combinations with coefficients "
                            "that depend on the state, but the system is too large to analyse for that (simplify "
@@ -1241,9 +1248,7 @@ def _mixing_at_points(reference: list[sympy.Expr], answer: list[sympy.Expr], unk
     (m_r, c_r), (m_s, c_s) = split_r, split_s
     screened = _combination_at_points(m_r, c_r, m_s, c_s, unknowns, samplers, options, deadline)
     if isinstance(screened, dict) and screened:
-        return Comparison(False, "proved", "your equations are not combinations of the reference equations, not "
-                          "even with coefficients that depend on the state: they give other accelerations (see "
-                          "the counterexample)", evidence={"method": "ball arithmetic"}, counterexample=screened)
+        return _other_accelerations(screened)
     if _past(deadline):
         return _out_of_time()
     if screened != "agree":
