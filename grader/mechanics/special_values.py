@@ -1544,6 +1544,9 @@ def roots_in_domain(evaluator, condition: sympy.Expr, x: sympy.Symbol, roots: li
         width = float(step)
         first = math.ceil((lo - values[0]) / width)
         last = math.floor((hi - values[0]) / width)
+        # (a domain of many periods, θ in [0, 10⁶]: the images nearest its low end; each costs a tidy-up and
+        # checks, and one a whole turn away from a kept one is the same configuration)
+        last = min(last, first + _MOST_IMAGES)
         images += [(r, k, tuple(v + k * width for v in values)) for k in range(first, last + 1) if k != 0]
     for r, k, numbers in images:  # after every root inside: those come first, as solved
         if not all(lo <= w <= hi for w in numbers):
@@ -1552,6 +1555,10 @@ def roots_in_domain(evaluator, condition: sympy.Expr, x: sympy.Symbol, roots: li
         if all(holds(candidate, point) for point in points):
             add(candidate, numbers, image=True)
     return result
+
+
+# The most images of one root looked at in an angle's interval (a few turns' worth).
+_MOST_IMAGES = 64
 
 
 def _holds(condition, x, candidate, point) -> bool:

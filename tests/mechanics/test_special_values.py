@@ -755,3 +755,33 @@ def test_a_numeric_answer_whose_closed_form_needs_complex_numbers_is_found_numer
     text = text[:start] + block.replace('where = "wall_force = 0"', 'where = "wall_force = 0"\nkind = "numeric"')
     d = derive(parse_scene(text, "t.toml"))
     assert d.implicit["leave_sin"]["unknown"] == "theta" and "I" not in str(d.answers["leave_sin"])
+
+
+_PENDULUM_RESTING_OFF_VERTICAL = '''
+id = "pendulum_held_off_vertical"
+title = "t"
+statement = "s"
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 1.0 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+l = { dimension = "length", domain = "positive", value = 1.0 }
+[coordinates]
+theta = { dimension = "angle", domain = [0.1, HIGH] }
+[energy]
+kinetic = "m*l^2/2*thetadot^2"
+potential = "-m*g*l*cos(theta)"
+[[answers]]
+name = "angle"
+prompt = "p"
+expr = "theta"
+where = "thetaddot = g/(2*l)"
+'''
+
+
+@pytest.mark.parametrize("high", ["30", "1000000"])
+def test_the_roots_of_an_angle_over_many_turns_are_its_configurations_found_within_the_budget(high):
+    # sin θ = −1/2: 7π/6 and 11π/6 (−π/6 brought in), each a turn away from the rest; over a million
+    # radians the images of each root were all tried and the derivation ran out of its budget
+    derivation = derive(parse_scene(_PENDULUM_RESTING_OFF_VERTICAL.replace("HIGH", high), source="p.toml"), budget_s=20)
+    assert derivation.answers["angle"] == 7 * sympy.pi / 6
+    assert derivation.alternatives["angle"] == [11 * sympy.pi / 6]
