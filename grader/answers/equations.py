@@ -1288,13 +1288,90 @@ def _mixing_at_points(reference: list[sympy.Expr], answer: list[sympy.Expr], unk
                           "mixing matrix's determinant changes sign between sample points: it is singular "
                           "somewhere in the declared domain, where your equations no longer determine the motion",
                           evidence={"method": "ball arithmetic"})
-    where = "on the whole declared domain (proved)" if proved else "at those points"
+    if not proved:
+        # One sign at the sample points says nothing of a factor that touches zero without changing sign
+        # ((1 + cos θ₁), (θ₁ − θ₂)², (m₁ − m₂)²): look where such factors vanish.
+        base = states.joint(parameters.point(0), states.point(0))
+        singular = _singular_at_special_points(m_s, determinants, k, base, domains, _below_pairs(samplers))
+        if singular is not None:
+            return Comparison(False, "numeric", "your equations are combinations of the reference equations whose "
+                              "mixing matrix is singular at the state in the counterexample (a factor of its "
+                              "determinant vanishes there without changing sign): there they no longer determine "
+                              "the motion", evidence={"method": "ball arithmetic"},
+                              counterexample={"values": _named(singular)})
+    where = "on the whole declared domain (proved)" if proved else "at those points and where its factors could vanish"
     return Comparison(True, "numeric", "combinations of the reference equations with coefficients that depend on "
                       "the state: solved for the accelerations, your equations give the reference's at every sample "
                       f"point ({MIXING_POINTS * MIXING_STATES} states, ball arithmetic, one confirmed at "
                       f"{CONFIRM_BITS} bits), and the mixing matrix is invertible {where}; the system is too large "
                       "for a symbolic proof of the rest", evidence={"method": "ball arithmetic",
                                                                      "mixing": "numeric (too large)"})
+
+
+# Precision of the search for a singular mixing matrix at special points, and how much smaller than at an
+# ordinary point its determinant must be there to count as zero (a float π leaves 1 + cos π at ~1e-32).
+SPECIAL_BITS = 256
+SPECIAL_SMALLNESS = 1e-20
+# Values a trigonometric argument is set to: where sines, cosines and their sums and differences vanish.
+_SPECIAL_ANGLES = (0.0, math.pi / 2, -math.pi / 2, math.pi, -math.pi)
+
+
+def _singular_at_special_points(matrix: sympy.Matrix, compiled: list, k: int, base: dict, domains: dict,
+                                below: dict) -> dict | None:
+    """A point of the domain where ``det(matrix)`` vanishes, among the special points of `_special_points`,
+    or None. ``compiled`` are the matrix's entries, compiled; ``base`` an ordinary point, whose
+    determinant sets the scale of "vanishes"."""
+    def determinant(point):
+        try:
+            values = [c.at(point, SPECIAL_BITS)[0] for c in compiled]
+        except (Undefined, Unresolved):
+            return None
+        with flint.ctx.workprec(SPECIAL_BITS):
+            return flint.arb_mat(k, k, values).det()
+
+    scale = determinant(base)
+    if scale is None or not scale.is_finite() or scale.contains(0):
+        return None
+    size = abs(float(scale.mid()))
+    for point in _special_points(base, matrix, domains, below):
+        det = determinant(point)
+        if det is not None and det.is_finite() and (det.contains(0) or abs(float(det.mid())) < SPECIAL_SMALLNESS * size):
+            return point
+    return None
+
+
+def _special_points(base: dict, exprs, domains: dict, below: dict):
+    """``base`` with one variable moved to where factors of ``exprs`` typically vanish, each inside its domain
+    and keeping every ``below`` order: the variable at zero, equal to another variable, and each
+    trigonometric argument linear in it at 0, ±π/2 or ±π (so sin θ, 1 + cos θ, cos(θ₁ − θ₂) and
+    (θ₁ − θ₂)² each vanish at one of them)."""
+    arguments = {f.args[0] for e in exprs for f in e.atoms(sympy.sin, sympy.cos, sympy.tan)}
+    symbols = sorted(base, key=lambda s: s.name)
+    moves = [(s, 0.0) for s in symbols]
+    moves += [(s, base[t]) for s in symbols for t in symbols if t is not s]
+    for argument in sorted(arguments, key=sympy.default_sort_key):
+        for s in sorted(argument.free_symbols & set(base), key=lambda s: s.name):
+            slope = sympy.diff(argument, s)
+            if not slope.is_number or slope == 0:
+                continue
+            try:
+                value = float(argument.xreplace({x: sympy.Float(v, 30) for x, v in base.items()}))
+            except (TypeError, ValueError):
+                continue
+            moves += [(s, base[s] + (angle - value) / float(slope)) for angle in _SPECIAL_ANGLES]
+    seen = set()
+    for s, value in moves:
+        if (s, value) in seen or value == base[s] or s not in domains or not domains[s].contains(value):
+            continue
+        seen.add((s, value))
+        point = {**base, s: value}
+        if all(point[a] < point[b] for a, b in below.items() if a in point and b in point):
+            yield point
+
+
+def _below_pairs(samplers: tuple[Sampler, Sampler]) -> dict:
+    """Every ``below`` order ``{a: R}`` the samplers keep."""
+    return {a: b for sampler in samplers for a, b in (*sampler.below.items(), *sampler.across.items())}
 
 
 def _determinant(matrix: sympy.Matrix) -> sympy.Expr | None:

@@ -1270,6 +1270,13 @@ _TRIPLE = {**{f"{p}{i}": {"dimension": d, "domain": "positive"} for i in (1, 2, 
     (lambda rows: [rows[2], rows[0], rows[1]], "equivalent", {"numeric"}),            # reordered
     (lambda rows: [f"(2 + cos(theta1))*({rows[0]})", *rows[1:]], "equivalent", {"numeric"}),
     (lambda rows: [f"cos(theta1)*({rows[0]})", *rows[1:]], "not_equivalent", {"proved", "numeric"}),
+    # factors that touch zero without changing sign: one sign at every sample point, singular where they vanish
+    (lambda rows: [f"(1 + cos(theta1))*({rows[0]})", *rows[1:]], "not_equivalent", {"numeric"}),
+    (lambda rows: [rows[0], f"(1 + cos(theta1 - theta2))*({rows[1]})", rows[2]], "not_equivalent", {"numeric"}),
+    (lambda rows: [f"(theta1 - theta2)^2*({rows[0]})", *rows[1:]], "not_equivalent", {"numeric"}),
+    (lambda rows: [f"(m1 - m2)^2*({rows[0]})", *rows[1:]], "not_equivalent", {"numeric"}),
+    (lambda rows: [*rows[:2], f"(1 - sin(theta3))*({rows[2]})"], "not_equivalent", {"numeric"}),
+    (lambda rows: [f"(1 + (theta1 - theta2)^2)*({rows[0]})", *rows[1:]], "equivalent", {"numeric"}),
     (lambda rows: [rows[0].replace("theta3dot**2*sin(theta1 - theta3)", "theta3dot**2*sin(theta3 - theta1)"),
                    *rows[1:]], "not_equivalent", {"proved"}),                          # a sign slip
     # off below the judge's digits: the 1024-bit check refuses, but without claiming a proof
