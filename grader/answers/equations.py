@@ -330,7 +330,7 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
 
     def differ(outcome) -> Comparison:
         """The verdict where the answer is not the state-free multiple the other points found."""
-        if k == 1 and options.factors and outcome[1].startswith(_NOT_A_MULTIPLE):
+        if k == 1 and options.factors and outcome[1].startswith((_NOT_A_MULTIPLE, _UNDEFINED_WHERE)):
             # Not a constant multiple; it may still be the reference times a factor that depends
             # on the state and is nonzero on the whole domain (r**2 with r > 0, 1 + x**2).
             factor = state_dependent_factor(reference[0], answer[0], {**parameters.domains, **states.domains},
@@ -866,7 +866,7 @@ def _try_precision(refs, anss, params, states, p, k, prec, target):
             s, ss = _values(anss, point, prec, None)
         except Undefined as error:
             example = {"values": _named(point), "answer": "undefined", "reference": [as_float(v) for v in r]}
-            return ("differ", f"your equation is undefined at a state where the reference is not ({error.reason})", example)
+            return ("differ", f"{_UNDEFINED_WHERE} ({error.reason})", example)
         except Unresolved:
             return None
         R.append(r)
@@ -922,6 +922,7 @@ def _not_a_multiple(k, points, R, S, j, i):
 
 
 _NOT_A_MULTIPLE = "your equation is not the reference multiplied by a factor free of the state"
+_UNDEFINED_WHERE = "your equation is undefined at a state where the reference is not"
 _NOT_A_COMBINATION = ("your equations are not combinations of the reference equations with coefficients free of "
                       "the state")
 # Largest residuals (in nodes) whose ratio is worth a symbolic cancellation.
@@ -1714,7 +1715,9 @@ _ODD_INJECTIVE = (sympy.sinh, sympy.tanh, sympy.atan, sympy.asinh)
 # its shifts by π), the branch of asin, acos and atan.
 _BRANCHES = {sympy.sin: (-math.pi / 2, math.pi / 2), sympy.cos: (0.0, math.pi), sympy.tan: (-math.pi / 2, math.pi / 2)}
 _INVERSES = {sympy.asin: sympy.sin, sympy.acos: sympy.cos, sympy.atan: sympy.tan}
-_BRANCH_SLACK = 1e-8
+# How far past a branch's end a declared interval may reach: an end written to four decimals (3.1416 for π,
+# 1.5708 for π/2) means the multiple of π it rounds, as the sampler's ends do.
+_BRANCH_SLACK = 5e-5
 
 
 def _range_over(expr: sympy.Expr, domains: dict) -> tuple[float, float] | None:
@@ -1841,6 +1844,7 @@ def _logs_exponentiated(residual: sympy.Expr) -> sympy.Expr | None:
     is a constant of ``B``: taking it out would undo `_preimage` (x = log 2) and loop."""
     if not residual.has(sympy.log):
         return None
+    residual = _log_coefficient_divided(residual)
     powers, rest = [], []
     for term in sympy.Add.make_args(residual):
         c, f = term.as_coeff_Mul()
@@ -1853,6 +1857,21 @@ def _logs_exponentiated(residual: sympy.Expr) -> sympy.Expr | None:
     if not powers:
         return None
     return sympy.Mul(*powers) - sympy.exp(-sympy.Add(*rest))
+
+
+def _log_coefficient_divided(residual: sympy.Expr) -> sympy.Expr:
+    """``residual`` divided by the factor its log terms share, when that factor is nonzero (the symbols'
+    assumptions) and each log term is a rational multiple of it: ``t - (m/k) log(v0/v)`` is
+    ``log(v0/v) - k t/m`` times ``-m/k``, the same equation, with a log of rational coefficient. Else
+    ``residual`` itself."""
+    terms = sympy.Add.make_args(residual)
+    shares = [term.as_independent(sympy.log, as_Add=False)[0] for term in terms if term.has(sympy.log)]
+    common = shares[0]
+    if common.is_Rational or common.is_nonzero is not True:
+        return residual
+    if not all((share / common).is_Rational for share in shares[1:]):
+        return residual
+    return sympy.Add(*(term / common for term in terms))
 
 
 def _as_exponentials(residual: sympy.Expr) -> sympy.Expr:

@@ -1061,6 +1061,16 @@ _XY_REAL = {"x": {"domain": "real", "kind": "coordinate"}, "y": {"domain": "real
     ("log(v/v0) = -k*t/m", "v = v0*exp(-k*t/m)", _DRAG, "equivalent"),
     ("v = v0*exp(-k*t/m)", "log(v/v0) = k*t/m", _DRAG, "not_equivalent"),
     ("v = v0*exp(-k*t/m)", "log(v/v0) = -k*t/m", _DRAG_REAL_V, "not_equivalent"),   # undefined for v <= 0
+    # solved for the time: the log's coefficient (a nonzero factor of the parameters or the state) divided out
+    ("v = v0*exp(-k*t/m)", "t = m*log(v0/v)/k", _DRAG, "equivalent"),
+    ("v = v0*exp(-k*t/m)", "t = -(m/k)*ln(v/v0)", _DRAG, "equivalent"),
+    ("v = v0*exp(-k*t/m)", "t = (m/k)*ln(v0) - (m/k)*ln(v)", _DRAG, "equivalent"),
+    ("t = m*log(v0/v)/k", "v = v0*exp(-k*t/m)", _DRAG, "equivalent"),
+    ("v = v0*exp(-k*t/m)", "t*v = m*v*log(v0/v)/k", _DRAG, "equivalent"),
+    ("v = v0*exp(-k*t/m)", "t = m*log(v/v0)/k", _DRAG, "not_equivalent"),
+    ("v = v0*exp(-k*t/m)", "t = (m/k)*ln(v0) - (m/(2*k))*ln(v)", _DRAG, "not_equivalent"),
+    ("v = v0*exp(-k*t/m)", "t = (m/k)*log(v0/v)^2", _DRAG, "not_equivalent"),
+    ("v = v0*exp(-k*t/m)", "t = m*log(v0/v)/k", _DRAG_REAL_V, "not_equivalent"),     # undefined for v <= 0
 ])
 def test_a_one_to_one_function_of_both_sides_on_the_domain_keeps_the_solutions(reference, answer, variables, expected):
     v = check(reference, answer, variables, kind="equation")
@@ -1073,6 +1083,12 @@ _CONICAL = {"theta": {"dimension": "angle", "domain": [0, 1.5], "kind": "coordin
 _CONICAL_WIDE = {**_CONICAL, "theta": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "coordinate"}}
 _XY_SHORT = {"x": {"domain": [-1.5, 1.5], "kind": "coordinate"}, "y": {"domain": [-1.5, 1.5], "kind": "coordinate"}}
 _XY_PAST = {**_XY_SHORT, "x": {"domain": [-1.5, 2.5], "kind": "coordinate"}}
+_ENERGY = "thetadot^2 = 2*(g/l)*(cos(theta) - cos(theta0))"
+_SWING = {"theta": {"dimension": "angle", "domain": [0, 3.1416], "kind": "coordinate"},
+          "theta0": {"dimension": "angle", "domain": [0, 3.1416]},
+          "thetadot": {"dimension": "angular_velocity", "domain": "real", "kind": "velocity"},
+          "g": {"dimension": "acceleration", "domain": "positive"}, "l": {"dimension": "length", "domain": "positive"}}
+_SWING_PAST_PI = {**_SWING, "theta": {"dimension": "angle", "domain": [0, 3.2], "kind": "coordinate"}}
 
 
 @pytest.mark.parametrize("reference, answer, variables, expected", [
@@ -1095,6 +1111,11 @@ _XY_PAST = {**_XY_SHORT, "x": {"domain": [-1.5, 2.5], "kind": "coordinate"}}
     ("y = -x", "sin(y) = -sin(x)", _XY_SHORT, "equivalent"),
     ("y = x", "sin(y) = sin(x)", _XY_PAST, "not_equivalent"),   # x = 2.5: sin x = sin(π − 2.5)
     ("y = x", "cos(y) = cos(x)", _XY_SHORT, "not_equivalent"),  # cos(−x) = cos x
+    # the angle solved from an energy equation: undefined where cos θ = X has no solution either, and an
+    # end written 3.1416 is π
+    (_ENERGY, "theta = acos(cos(theta0) + l*thetadot^2/(2*g))", _SWING, "equivalent"),
+    (_ENERGY, "theta = acos(cos(theta0) - l*thetadot^2/(2*g))", _SWING, "not_equivalent"),
+    (_ENERGY, "theta = acos(cos(theta0) + l*thetadot^2/(2*g))", _SWING_PAST_PI, "not_equivalent"),  # θ in (π, 3.2]
 ])
 def test_a_trigonometric_function_one_to_one_on_the_domain_keeps_the_solutions(reference, answer, variables, expected):
     v = check(reference, answer, variables, kind="equation")
