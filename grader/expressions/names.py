@@ -319,6 +319,23 @@ def _lookup(raw: str, ns: "Namespace"):
 _DOTS_BEFORE_INDEX = re.compile(r"^([A-Za-z_]*?[A-Za-z])_?(d?dot)_?(\d+)$")
 
 
+def is_constant(symbol, ns: "Namespace") -> bool:
+    """Whether a declared variable is constant in time: a parameter (the default kind) that is no derivative and
+    has no declared rate, as `leibniz.time_derivative` takes it (d/dt(m l² θ̇) is m l² θ̈)."""
+    if symbol is None or ns[symbol.name].kind != "parameter" or symbol.name.endswith("dot"):
+        return False
+    return all(_lookup(derivative_name(symbol.name, k), ns) is None for k in (1, 2))
+
+
+def constant_derivative_error(name: str, typed: str, position: int) -> ExpressionError:
+    """The refusal of a time derivative of a constant on its own (ġ, d/dt(g), diff(g, t)): not "this problem has
+    no variable gdot", but why, since the student may have meant something else (θ under a stray dot)."""
+    shown = "" if typed == name else f" ('{typed}')"
+    return ExpressionError(f"{name} is a constant of this problem, so its time derivative{shown} is 0", position,
+                           "unknown_name", f"leave the term out or write 0, or write {name} without the derivative "
+                           "if that is what you meant")
+
+
 def _resolve_derivative(raw: str, ns: "Namespace", order: int, typed: str, position: int) -> Resolved:
     base_symbol = _lookup(raw, ns)
     base = base_symbol.name if base_symbol is not None else raw.replace("_", "")
@@ -327,6 +344,8 @@ def _resolve_derivative(raw: str, ns: "Namespace", order: int, typed: str, posit
                               position, "unknown_name", "write at most two dots or primes")
     name = derivative_name(base, order)
     symbol = _lookup(name, ns)
+    if symbol is None and is_constant(base_symbol, ns):
+        raise constant_derivative_error(base, typed, position)
     if symbol is None:
         hint = _suggestion(name, ns)
         flattened = _DOT_THEN_DIGITS.search(typed)

@@ -207,7 +207,8 @@ def test_a_t_that_is_not_the_time_is_refused(text, position):
     ("d/dt(dθ/dt)^2", "'d/dt(dθ/dt)^2' is ambiguous", "(d/dt(dθ/dt))^2", "ambiguous"),
     ("d/dt(d/dt(d/dt(θ)))", "'d/dt(d/dt(d/dt(θ)))' is a third or higher", "at most two dots", "unknown_name"),
     ("d/dt(d²θ/dt)", "'d²θ/dt' has d² on top but dt below", "d²θ/dt²", "syntax"),
-    ("d/dt m", "'d/dt m' means mdot", "did you mean", "unknown_name"),
+    ("d/dt m", "m is a constant of this problem, so its time derivative ('d/dt m') is 0", "leave the term out",
+     "unknown_name"),
 ])
 def test_every_refusal_names_the_text_and_the_fix(ns, text, named, fix, code):
     with pytest.raises(ExpressionError) as caught:
@@ -241,7 +242,8 @@ def test_an_unbraced_d_over_a_braced_dt_reads_as_the_braced_form(ns, text, name)
     (r"\frac d dt\theta", r"'\frac d dt' needs braces around dt", r"\frac{d}{dt}", "syntax"),
     (r"\frac d{dt^2}\theta", r"'\frac d{dt^2}' has d on top but dt² below", "d²/dt²", "syntax"),
     (r"\frac d{dt}\theta^2", r"'\frac d{dt}\theta^2' is ambiguous", r"(d\theta/dt)^2", "ambiguous"),
-    (r"\frac d{dt}m", r"'\frac d{dt}m' means mdot", "did you mean", "unknown_name"),
+    (r"\frac d{dt}m", r"m is a constant of this problem, so its time derivative ('\frac d{dt}m') is 0",
+     "leave the term out", "unknown_name"),
 ])
 def test_unbraced_leibniz_refusals_name_the_text_and_the_fix(ns, text, named, fix, code):
     with pytest.raises(ExpressionError) as caught:
@@ -396,3 +398,23 @@ def test_d_dt_of_a_long_product_is_refused_at_once(ns, text):
         parse_expression(text, ns)
     assert time.monotonic() - started < 0.5
     assert caught.value.code == "too_large" and "with dots" in caught.value.hint
+
+
+@pytest.mark.parametrize("text, shown, position", [
+    ("d/dt(g)", "('d/dt(g)') ", 0), ("dg/dt", "('dg/dt') ", 0), (r"\frac{dg}{dt}", r"('\frac{dg}{dt}') ", 0),
+    ("ġ", "('ġ') ", 0), ("g'", "('g'') ", 0), (r"\dot{g}", "", 5), ("dot(g)", "", 4), ("d²l/dt²", "('d²l/dt²') ", 0),
+    ("m l^2 θ̈ + d/dt(l) θ̇", "('d/dt(l)') ", 11),  # (θ̈ is two code points)
+])
+def test_a_parameters_time_derivative_is_refused_saying_it_is_constant(ns, text, shown, position):
+    # not "this problem has no variable gdot": g is constant, so its derivative is 0, and the student may have
+    # meant g itself (a stray dot over θ in an editor); a CAS's diff(l, t) still computes 0
+    with pytest.raises(ExpressionError) as caught:
+        parse_expression(text, ns)
+    error = caught.value
+    assert f"a constant of this problem, so its time derivative {shown}is 0" in error.message, error.message
+    assert error.position == position and "leave the term out" in error.hint
+
+
+def test_a_parameter_with_a_declared_rate_is_not_constant():
+    ns = _ns(Variable("L", "length", "positive"), Variable("Ldot", "velocity"))
+    assert str(parse_expression("dL/dt", ns).expr) == "Ldot"

@@ -65,9 +65,15 @@ def test_refusals(ns, typed, called, code):
 
 
 def test_missing_derivative_says_which_variable_is_missing():
-    ns = Namespace([Variable("x", "length")])
+    ns = Namespace([Variable("x", "length", "real", "coordinate")])
     with pytest.raises(ExpressionError, match="no variable xdot"):
         resolve_name("x", ns, order=1, typed="x'")
+
+
+def test_a_parameters_derivative_says_it_is_constant():
+    # a parameter (the default kind) is constant in time, as d/dt(m x) takes it
+    with pytest.raises(ExpressionError, match="x is a constant of this problem"):
+        resolve_name("x", Namespace([Variable("x", "length")]), order=1, typed="x'")
 
 
 def test_unknown_long_name_is_shortened_in_the_message(ns):
