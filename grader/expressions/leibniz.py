@@ -38,7 +38,7 @@ from .errors import ExpressionError
 from .names import derivative_name, resolve_name
 # The parser's own lookups of a declared name and of a coordinate's derivative, so a Leibniz
 # derivative resolves (and fails) exactly as θ̇ does; resolve_name would also try glued readings.
-from .names import _lookup, _resolve_derivative
+from .names import _lookup, _resolve_derivative, is_constant
 from .tokens import Token
 
 __all__ = ["read_leibniz", "dotted", "time_derivative"]
@@ -542,9 +542,7 @@ def _rate(symbol: sympy.Symbol, ns, shown: str, position: int) -> sympy.Expr:
     found = _lookup(wanted, ns) if not name.endswith("ddot") else None
     if found is not None:
         return found
-    moving = (variable is None or variable.kind not in ("parameter",) or name.endswith("dot")
-              or _lookup(derivative_name(name, 2), ns) is not None)
-    if not moving:
+    if variable is not None and is_constant(symbol, ns):
         return sympy.S.Zero  # a parameter: constant in time
     raise ExpressionError(f"'{shown}' needs the time derivative of {name}, which this problem has no "
                           "variable for", position, "unknown_name",
