@@ -444,8 +444,8 @@ def check(
                          feedback_detail)
         _partial_credit(verdict, feedback)
         if alternatives is not None:
-            verdict = _alternatives(verdict, alternatives, answer, variables, kind, feedback, budget_s, state,
-                                    options, started, feedback_detail)
+            verdict = _alternatives(verdict, reference, alternatives, answer, variables, kind, feedback, budget_s,
+                                    state, options, started, feedback_detail)
     except (_RequestError, UnorderedPoint) as error:
         verdict = Verdict.invalid(str(error), text)
     except RecursionError:
@@ -514,11 +514,19 @@ def _partial_credit(verdict: Verdict, feedback) -> None:
             verdict.score = max(item["score"], verdict.score or 0.0)
 
 
-def _alternatives(verdict: Verdict, alternatives, answer, variables, kind, feedback, budget_s, state, options,
-                  started, detail) -> Verdict:
+def _alternatives(verdict: Verdict, reference, alternatives, answer, variables, kind, feedback, budget_s, state,
+                  options, started, detail) -> Verdict:
     """The first accepted reference the answer matches, or the verdict against the main one."""
     if not isinstance(alternatives, (list, tuple)) or not all(isinstance(a, str) for a in alternatives):
         raise _RequestError("'alternatives' must be a list of reference texts")
+    if kind == "equation" and "=" in reference:
+        # A student's bare expression is read as "... = 0"; an instructor's bare alternative to an equation is
+        # most likely its right-hand side ("g*sin(theta)" for "thetaddot = g*sin(theta)"), and "= 0" would
+        # make a wrong reference of it.
+        for index, alternative in enumerate(alternatives, 2):
+            if "=" not in alternative:
+                raise _RequestError(f"accepted answer {index} ({alternative[:60]!r}) is not an equation: write it "
+                                    "whole, with its '=', as the reference is written")
     if verdict.verdict == "not_equivalent":
         for index, alternative in enumerate(alternatives, 1):
             other = _check(alternative, answer, variables, kind, feedback, budget_s, state, options, started,

@@ -32,6 +32,25 @@ def test_alternatives_must_be_texts():
     assert check(EQUILIBRIUM, "x", HOOP, alternatives="-theta").verdict == "invalid"
 
 
+PENDULUM = {"g": {"dimension": "acceleration", "domain": "positive"}, "l": {"dimension": "length", "domain": "positive"},
+            "theta": {"dimension": "angle", "domain": "real", "kind": "coordinate"},
+            "thetaddot": {"dimension": "angular_acceleration", "domain": "real", "kind": "acceleration"}}
+
+
+@pytest.mark.parametrize("answer", ["thetaddot = -g/l*sin(theta)", "thetaddot = g/l*sin(theta)", "g/l*sin(theta) = 0"])
+def test_a_bare_alternative_to_an_equation_is_a_request_error(answer):
+    # "g/l*sin(theta)" beside "thetaddot = -g/l*sin(theta)" is the other sign's right-hand side, not
+    # "g/l*sin(theta) = 0": whatever the answer, the request is refused, naming the alternative
+    v = check("thetaddot = -g/l*sin(theta)", answer, PENDULUM, kind="equation", alternatives=["g/l*sin(theta)"])
+    assert v.verdict == "invalid" and "accepted answer 2 ('g/l*sin(theta)') is not an equation" in v.reason
+
+
+def test_a_residual_reference_may_have_residual_alternatives():
+    v = check("thetaddot + g/l*sin(theta)", "thetaddot = g/l*sin(theta)", PENDULUM, kind="equation",
+              alternatives=["thetaddot - g/l*sin(theta)"])
+    assert v.verdict == "equivalent" and v.evidence["matched"] == 1
+
+
 SCENE = '''
 id = "hoop_equilibrium"
 title = "Bead on a rotating hoop: where it rests"
