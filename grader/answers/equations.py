@@ -2010,13 +2010,31 @@ def _same_polynomial_ideal(reference: list[sympy.Expr], answer: list[sympy.Expr]
         # A basis can take seconds even at these sizes (degree 3 with one parameter: 13 s), and a
         # wrong system comes here too: the work is cut off in CPU time, the verdict then stays.
         ring = gens + sorted(parameters, key=lambda s: s.name)
-        bases = budget.attempt(
-            lambda: [sympy.groebner([p.as_expr() for p in system], *ring, order="grevlex") for system in polys],
-            GROEBNER_BUDGET_S, fallback=lambda: None)
+        bases = budget.attempt(lambda: [_real_basis([p.as_expr() for p in system], ring, domains or {})
+                                        for system in polys], GROEBNER_BUDGET_S, fallback=lambda: None)
     except (sympy.PolynomialError, sympy.polys.polyerrors.CoercionFailed, NotImplementedError, ValueError,
             TypeError):
         return False
     return bases is not None and list(bases[0].exprs) == list(bases[1].exprs) and not bases[0].exprs == [1]
+
+
+# Rounds of a basis's elements cleaned by `_real_zeros_only` and the basis computed again.
+REAL_BASIS_ROUNDS = 4
+
+
+def _real_basis(polynomials: list[sympy.Expr], ring: list, domains: dict):
+    """The reduced Gröbner basis of ``polynomials``, each of its elements then reduced to what decides its real
+    zeros on the domain (`_real_zeros_only`) and the basis computed again, until nothing changes: the real
+    solutions on the domain stay the same at each step. ``(x - y)(x + y) = 0, x + y = 2L`` has the element
+    ``L (L - y)``, and with L > 0 its basis is that of ``x = y, x + y = 2L``; ``x = y, x³ + y³ = 2L³`` has
+    ``y³ - L³``, whose factor ``y² + yL + L²`` is nonzero there."""
+    basis = sympy.groebner(polynomials, *ring, order="grevlex")
+    for _ in range(REAL_BASIS_ROUNDS):
+        cleaned = [_real_zeros_only(element, domains) for element in basis.exprs]
+        if cleaned == list(basis.exprs):
+            break
+        basis = sympy.groebner(cleaned, *ring, order="grevlex")
+    return basis
 
 
 def _real_zeros_only(residual: sympy.Expr, domains: dict) -> sympy.Expr:
@@ -2039,10 +2057,12 @@ def _real_zeros_only(residual: sympy.Expr, domains: dict) -> sympy.Expr:
     return sympy.Mul(*kept) if kept else residual
 
 
-def _positive_quadratic(expr: sympy.Expr) -> bool:
+def _positive_quadratic(expr: sympy.Expr, domains: dict | None = None) -> bool:
     """Whether ``expr`` is a quadratic polynomial with numeric coefficients that is positive (or
     negative) on the whole space: a definite Hessian and a minimum of that sign (``x**2 + x*y + y**2 + 1``,
-    the factor of ``x**3 + x = y**3 + y`` against ``x = y``, which no box over the real line bounds)."""
+    the factor of ``x**3 + x = y**3 + y`` against ``x = y``, which no box over the real line bounds), or
+    a minimum of zero at a point outside the declared ``domains`` (``y**2 + y*L + L**2`` with L > 0, the
+    factor of ``y**3 = L**3``)."""
     symbols = sorted(expr.free_symbols, key=lambda s: s.name)
     if not symbols or _nodes(expr) > FACTOR_MAX_NODES:
         return False
@@ -2060,7 +2080,11 @@ def _positive_quadratic(expr: sympy.Expr) -> bool:
         gradient = sympy.Matrix([sympy.diff(f, s) for s in symbols])
         at_zero = dict(zip(symbols, [0] * len(symbols)))
         lowest = -hessian.LUsolve(gradient.subs(at_zero))
-        return bool(f.subs(dict(zip(symbols, lowest))) > 0)
+        minimum = f.subs(dict(zip(symbols, lowest)))
+        if minimum == 0 and domains:
+            # zero only at the minimum: nonzero wherever that point is not
+            return any(s in domains and not domains[s].contains(float(v)) for s, v in zip(symbols, lowest))
+        return bool(minimum > 0)
     return False
 
 
@@ -2082,7 +2106,7 @@ def _nonzero_on(expr: sympy.Expr, domains: dict) -> bool | None:
                 continue
             return None
         if factor.is_positive or factor.is_negative or _signed_as_squares(factor) or _no_real_root(factor, domains) \
-                or _positive_quadratic(factor) or _signed_by_the_order(factor):
+                or _positive_quadratic(factor, domains) or _signed_by_the_order(factor):
             continue
         if _nonzero_in_balls(factor, domains) is not True:
             return None

@@ -682,6 +682,12 @@ def test_equations_with_the_same_solutions_through_a_one_to_one_function_are_rig
     ("x = y; y = 2", "(x^2 + 1)(x - y)^3 = 0; y^3 = 8", "equivalent"),
     ("x = y; y = 1", "(x^2 - 1)(x - y) = 0; y = 1", "not_equivalent"),   # x^2 - 1 has real zeros
     ("x = y; y = 1", "x (x - y) = 0; y = 1", "not_equivalent"),
+    # a factor that only the other equations keep from vanishing: the basis's elements are cleaned too
+    ("x = y; x + y = 2 a", "(x - y)(x + y) = 0; x + y = 2 a", "equivalent"),           # x + y = 2a > 0
+    ("x = y; x + y = 2 a", "(x - y)(x + y - a) = 0; x + y = 2 a", "equivalent"),       # x + y = a needs a = 0
+    ("x = y; x + y = 2 a", "x = y; x^3 + y^3 = 2 a^3", "equivalent"),                  # y^2 + a y + a^2 > 0
+    ("x = y; x + y = 2 a", "(x - y)(x + y - 2) = 0; x + y = 2 a", "not_equivalent"),   # x ≠ y where a = 1
+    ("x = y; x + y = 2 a", "x = y; x^2 + y^2 = 2 a^2", "not_equivalent"),              # x = y = -a
 ])
 def test_polynomial_systems_with_the_same_solutions_are_right(reference, answer, expected):
     variables = {"x": {"domain": "real", "kind": "coordinate"}, "y": {"domain": "real", "kind": "coordinate"},
