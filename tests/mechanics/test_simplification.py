@@ -350,6 +350,26 @@ def test_a_determinant_is_written_as_people_write_it(determinant, printed):
     assert str(simplification.readable_denominator(determinant)) == printed
 
 
+def test_the_answers_of_a_scene_share_their_determinant_and_its_form():
+    # A rod between a floor and an inclined wall: each force and the acceleration sit over
+    # 4 sin²β + 12 cos β cos θ cos(β − θ); it is written once, and the same form every time.
+    simplification.forget_forms()
+    determinant = 4 * sin(beta) ** 2 + 12 * cos(beta) * cos(theta) * cos(beta - theta)
+    first = simplification.readable_denominator(determinant)
+    assert simplification.readable_denominator(determinant) is first
+    assert simplification.readable_denominator.cache_info().hits == 1
+    assert _equal(first, determinant)
+
+
+@pytest.mark.parametrize("expr, nonzero", [
+    (m * g * (sin(theta) ** 2 + cos(theta) ** 2 - 1), False),  # zero: only simplify can say so
+    (g * sin(theta) / l - w ** 2 * sin(theta) * cos(theta), True),  # a pendulum on a turntable
+    (sqrt(sympy.Symbol("x", negative=True) ** 2) + 1, False),  # a negative symbol: no point tried
+])
+def test_a_nonzero_acceleration_is_seen_without_simplify(expr, nonzero):
+    assert simplification.seen_nonzero(expr) is nonzero
+
+
 @pytest.mark.parametrize("root, printed", [
     # a dumbbell's equilibrium: the radicand by powers of tan β, each coefficient a square
     (sqrt(-2 * m1 * m2 * (sympy.tan(beta) ** 2 - 1) + (m1 ** 2 + m2 ** 2) * (sympy.tan(beta) ** 2 + 1)),
