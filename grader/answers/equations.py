@@ -40,6 +40,7 @@ from grader.answers.equivalence import (
     _kink_arguments,
     _sign_pattern,
     as_float,
+    kink_region_states,
 )
 from grader.answers.sampling import Sampler
 from grader.mechanics import budget
@@ -428,6 +429,14 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
         # |x| + y = z and ||x| + y| = z agree wherever y > -|x|: the points may all lie there.
         for p in _sign_region_points(reference + answer, parameters, states, examined, k + 2, backend):
             outcome = _one_parameter_point(refs, anss, parameters, states, p, target, options, deadline)
+            if outcome[0] == "differ":
+                return differ(outcome)
+        # and in each region between the boundaries of a kink or branch (sign((x - 5y)(x - 6y)), θ past π)
+        fresh = None  # the reference compiled again: these points are not the shared cache's (p, j)
+        regions = kink_region_states(reference + answer, parameters, states, k + 2, deadline)
+        for n, (given, at) in enumerate(regions):
+            fresh = fresh or [Compiled(r, backend) for r in reference]
+            outcome = _one_parameter_point(fresh, anss, given, at, n, target, options, deadline)
             if outcome[0] == "differ":
                 return differ(outcome)
     if agreed >= min(needed, 3) and unknowns:

@@ -27,6 +27,7 @@ from typing import Any, Callable
 
 import flint
 import mpmath
+import numpy as np
 import sympy
 
 from grader.answers.evaluate import (
@@ -40,7 +41,7 @@ from grader.answers.evaluate import (
     _log2_mag,
     compile_expr,
 )
-from grader.answers.sampling import Sampler
+from grader.answers.sampling import GivenPoints, Sampler
 
 __all__ = ["Options", "Comparison", "Compiled", "PointResult", "compare_expressions", "expansion_terms",
            "symbolic_zero", "SYMBOLIC_MAX_TERMS"]
@@ -679,7 +680,8 @@ def compare_expressions(
                 or _below_the_digits(ref, ans, sampler, options)
                 or _at_landmarks(ref, ans, sampler, (reference, answer), options, deadline)
                 or _past_the_branches(ref, ans, sampler, (reference, answer), options, deadline)
-                or _in_sign_regions(ref, ans, sampler, (reference, answer), options, deadline) or result)
+                or _in_sign_regions(ref, ans, sampler, (reference, answer), options, deadline)
+                or _across_the_kinks(ref, ans, sampler, (reference, answer), options, deadline) or result)
     return result
 
 
@@ -819,14 +821,40 @@ MAX_PATTERNS = 16
 def _kink_arguments(exprs) -> list[sympy.Expr]:
     """The arguments of abs and sign in ``exprs`` that depend on the variables, each once."""
     found: list[sympy.Expr] = []
-    for expr in exprs:
-        stack = [expr]  # preorder, as sympy.preorder_traversal, without its generator's cost
+    for node in _branch_nodes(exprs):
+        if isinstance(node, (sympy.Abs, sympy.sign)) and node.args[0].free_symbols and node.args[0] not in found:
+            found.append(node.args[0])
+    return found[:MAX_KINKS]
+
+
+# Functions whose formula changes somewhere along their argument (see `_boundaries`).
+_BRANCH_FUNCTIONS = frozenset({sympy.Abs, sympy.sign, sympy.log, sympy.coth, sympy.csch, sympy.asin, sympy.acos,
+                               sympy.atanh, sympy.acosh, sympy.atan2, sympy.tan, sympy.sec, sympy.cot, sympy.csc})
+_last_walk: tuple = ((), [])  # the expressions last walked by `_branch_nodes`, and what it found
+
+
+def _branch_nodes(exprs) -> list[sympy.Expr]:
+    """The nodes of ``exprs`` (in preorder, as sympy.preorder_traversal, without its generator's cost) that are a
+    kink or a branch: a function of `_BRANCH_FUNCTIONS`, or a non-integer power of an expression in the variables.
+    One walk serves every search after agreement (the last expressions' nodes are remembered)."""
+    global _last_walk
+    key = tuple(exprs)
+    walked, found = _last_walk  # one read: another thread may replace it
+    if key and len(walked) == len(key) and all(a is b for a, b in zip(walked, key)):
+        return found
+    found = []
+    for expr in key:
+        stack = [expr]
         while stack:
             node = stack.pop()
-            if isinstance(node, (sympy.Abs, sympy.sign)) and node.args[0].free_symbols and node.args[0] not in found:
-                found.append(node.args[0])
-            stack.extend(reversed(node.args))
-    return found[:MAX_KINKS]
+            args = node.args
+            if not args:
+                continue
+            if node.func in _BRANCH_FUNCTIONS or (node.is_Pow and not args[1].is_Integer and args[0].free_symbols):
+                found.append(node)
+            stack.extend(reversed(args))
+    _last_walk = (key, found)
+    return found
 
 
 def _sign_pattern(kinks: list[Compiled], point: dict) -> tuple | None:
@@ -929,6 +957,319 @@ def _past_the_branches(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, op
         step = END_OFFSET * (domain.hi - domain.lo)
         points += [({**sampler.point(0), symbol: end}, None) for end in (domain.lo + step, domain.hi - step)]
     return _first_difference(ref, ans, sampler, points, options, deadline)
+
+
+# -- regions between the points where a kink or a branch changes formula ------------------------------
+#
+# The points compared lie at a variable's ordinary scale (|v| in 0.5 .. 3, and a few stress points): √((1 +
+# cos θ)/2) passed for cos(θ/2) with θ real, |(x − 3)(x − 4)| for (x − 3)(x − 4) with x > 0, and x sign((x −
+# 40)(x − 41)) for x on [0, 100], each wrong only between two points no sample came near. Along each variable
+# (the others as at the first point) the places where the argument of a kink or branch crosses its boundary,
+# or touches it (an extremum), are located, and the two expressions compared once inside each region between
+# them and past the outermost: a region where they differ proves them different.
+
+# Where each function changes formula, as the values of its argument (or of cos/sin of it) at the boundary.
+_KINK_ZERO = (sympy.Abs, sympy.sign, sympy.log, sympy.coth, sympy.csch)
+_KINK_UNIT = (sympy.asin, sympy.acos, sympy.atanh)
+# The most kink arguments followed, variables scanned, breakpoints kept along one variable, and points compared.
+MAX_BOUNDARIES = 8
+MAX_SCANNED = 6
+MAX_BREAKS = 24
+MAX_REGION_POINTS = 48
+# Kink arguments larger than this (in nodes) are not scanned.
+BOUNDARY_MAX_NODES = 120
+# The scan along an unbounded variable: a linear grid over several periods of the argument's own scale (4π
+# times the largest of its constants, their inverses, and the other variables' values, at most `SCAN_REACH`),
+# and magnitudes 10⁻³ .. 10⁶ a quarter decade apart.
+SCAN_POINTS = 256
+SCAN_REACH = 1e4
+SCAN_DECADES = (-3.0, 6.0, 0.25)
+# Where inside a region it is compared: off its middle, where special values (cos θ = 0 at 3π/2) sit.
+REGION_SHARE = (3 - math.sqrt(5)) / 2
+_FLOAT = None
+
+
+def _boundaries(exprs) -> list[tuple[sympy.Expr, tuple]]:
+    """The arguments ``u`` at which a kink or branch of ``exprs`` changes formula, each with the values of ``u``
+    where it does: 0 for abs, sign, log and a root (a non-integer power); ±1 for asin, acos, atanh; 1 for acosh;
+    each argument of atan2 at 0; cos u (tan, sec) or sin u (cot, csc) at 0. An argument whose sign sympy's
+    assumptions decide (the root of 2 g h with g, h > 0) is left out: its formula never changes."""
+    found: dict = {}
+
+    def add(u, values):
+        if not u.free_symbols or _size(u) > BOUNDARY_MAX_NODES:
+            return
+        if values == (0,) and (u.is_positive or u.is_negative):
+            return
+        found[u] = tuple(sorted(set(found.get(u, ())) | set(values)))
+
+    for node in _branch_nodes(exprs):
+        if isinstance(node, _KINK_ZERO):
+            add(node.args[0], (0,))
+        elif node.is_Pow and not node.exp.is_Integer and node.base.free_symbols:
+            add(node.base, (0,))
+        elif isinstance(node, _KINK_UNIT):
+            add(node.args[0], (-1, 1))
+        elif isinstance(node, sympy.acosh):
+            add(node.args[0], (1,))
+        elif isinstance(node, sympy.atan2):
+            add(node.args[0], (0,))
+            add(node.args[1], (0,))
+        elif isinstance(node, (sympy.tan, sympy.sec)):
+            add(sympy.cos(node.args[0]), (0,))
+        elif isinstance(node, (sympy.cot, sympy.csc)):
+            add(sympy.sin(node.args[0]), (0,))
+        if len(found) >= MAX_BOUNDARIES:
+            break
+    return list(found.items())
+
+
+def _size(expr: sympy.Expr, limit: int = BOUNDARY_MAX_NODES) -> int:
+    nodes, stack = 0, [expr]
+    while stack and nodes <= limit:
+        node = stack.pop()
+        nodes += 1
+        stack.extend(node.args)
+    return nodes
+
+
+def _span(domain) -> tuple[float, float] | None:
+    kind = getattr(domain, "kind", None)
+    if kind == "interval":
+        return float(domain.lo), float(domain.hi)
+    if kind in ("positive", "nonnegative"):
+        return 0.0, math.inf
+    if kind == "real":
+        return -math.inf, math.inf
+    return None
+
+
+def _reach(u: sympy.Expr, base: dict) -> float:
+    """4π times the scale of ``u``'s constants (and their inverses, a frequency's period) and of the values of
+    its other variables, at least 1 and at most `SCAN_REACH`: several periods of a trigonometric argument."""
+    scale = 1.0
+    stack = [u]
+    while stack:
+        node = stack.pop()
+        if node.is_Number and node != 0 and node.is_finite:
+            c = abs(float(node))
+            scale = max(scale, c, 1 / c)
+        elif node.is_Symbol and isinstance(base.get(node), float) and base[node]:
+            c = abs(base[node])
+            scale = max(scale, c, 1 / c)
+        else:
+            stack.extend(node.args)
+    return 4 * math.pi * min(scale, SCAN_REACH)
+
+
+def _scan_grid(lo: float, hi: float, reach: float) -> list[float]:
+    """Values along a variable on (lo, hi): linear across the reach (or the interval), and log-spaced magnitudes."""
+    a, b = max(lo, -reach), min(hi, reach)
+    grid = {a + (b - a) * i / SCAN_POINTS for i in range(SCAN_POINTS + 1)} if b > a else set()
+    first, last, step = SCAN_DECADES
+    for n in range(int(round((last - first) / step)) + 1):
+        m = 10.0 ** (first + n * step)
+        grid.update(v for v in (m, -m) if lo < v < hi)
+    return sorted(v for v in grid if lo <= v <= hi and math.isfinite(v))
+
+
+def _float_at(f, env: dict, symbol, t: float) -> float | None:
+    env[symbol] = t
+    env[SCALE] = -math.inf
+    try:
+        value = f(env)
+    except (Undefined, Unresolved, ValueError, OverflowError, ZeroDivisionError, TypeError):
+        return None
+    if isinstance(value, complex) or not math.isfinite(value):
+        return None
+    return value
+
+
+def _bisect(f, env: dict, symbol, a: float, b: float, fa: float) -> float:
+    """A point where ``f`` (of sign ``fa`` at ``a``) changes sign between ``a`` and ``b`` (or stops being defined)."""
+    for _ in range(60):
+        m = (a + b) / 2
+        if not a < m < b or b - a <= 1e-12 * max(1.0, abs(m)):
+            break
+        fm = _float_at(f, env, symbol, m)
+        if fm is not None and (fm > 0) == (fa > 0) and fm != 0:
+            a = m
+        else:
+            b = m
+    return (a + b) / 2
+
+
+def _crossings(values: list, grid: list, f, env: dict, symbol) -> list[float]:
+    """Where the grid's values change sign (or definedness), refined by bisection."""
+    found = []
+    for (t0, v0), (t1, v1) in zip(zip(grid, values), zip(grid[1:], values[1:])):
+        if v0 is None and v1 is None:
+            continue
+        if v0 is None or v1 is None:
+            found.append(_bisect(_defined(f), env, symbol, t0, t1, 1.0 if v0 is not None else -1.0))
+        elif v0 == 0:
+            found.append(t0)
+        elif (v0 > 0) != (v1 > 0) and v1 != 0:
+            found.append(_bisect(f, env, symbol, t0, t1, v0))
+    return found
+
+
+def _defined(f):
+    def indicator(env):
+        try:
+            f(env)
+        except Exception:
+            return -1.0
+        return 1.0
+    return indicator
+
+
+def _breakpoints(u: sympy.Expr, values: tuple, symbol, base: dict, span: tuple[float, float]) -> list[float]:
+    """Where along ``symbol`` (the others as in ``base``) ``u`` crosses or touches one of ``values``: the sign
+    changes of ``u - c`` on a grid, and the extrema of ``u`` (the zeros of its derivative), between which ``u``
+    is monotonic, so that a narrow dip past a value between two grid points is found too; exactly, for a
+    polynomial in ``symbol``."""
+    global _FLOAT
+    _FLOAT = _FLOAT or FloatBackend()
+    try:
+        f = compile_expr(u, _FLOAT)
+    except Unsupported:
+        return []
+    lo, hi = span
+    grid = _scan_grid(lo, hi, _reach(u, base))
+    env = {s: float(v) for s, v in base.items()}
+    found = _polynomial_roots(u, values, symbol, base, span)
+    try:
+        derivative = compile_expr(sympy.diff(u, symbol), _FLOAT)
+    except (Unsupported, ValueError, TypeError):
+        derivative = None
+    if derivative is not None:
+        slopes = [_float_at(derivative, env, symbol, t) for t in grid]
+        extrema = [t for t in _crossings(slopes, grid, derivative, env, symbol) if lo < t < hi]
+        found += extrema
+        grid = sorted(set(grid) | set(extrema))
+    at = [_float_at(f, env, symbol, t) for t in grid]
+    for c in values:
+        found += _crossings([None if v is None else v - c for v in at], grid,
+                            (lambda e, c=c: f(e) - c), env, symbol)
+    return sorted(t for t in found if lo < t < hi and math.isfinite(t))
+
+
+POLYNOMIAL_MAX_DEGREE = 12
+
+
+def _polynomial_roots(u, values, symbol, base, span) -> list[float]:
+    """The real roots of ``u - c`` and of its derivative, where ``u`` is a polynomial in ``symbol`` of degree 2 to
+    `POLYNOMIAL_MAX_DEGREE` (numpy's companion-matrix roots, a double root's tiny imaginary part allowed)."""
+    if not u.is_polynomial(symbol):
+        return []
+    try:
+        poly = sympy.Poly(u, symbol)
+        if not 2 <= poly.degree() <= POLYNOMIAL_MAX_DEGREE:
+            return []
+        point = {s: sympy.Float(v) for s, v in base.items() if s != symbol}
+        coefficients = [complex(c.xreplace(point).evalf()) for c in poly.all_coeffs()]
+    except (sympy.PolynomialError, TypeError, ValueError):
+        return []
+    if not all(math.isfinite(c.real) and math.isfinite(c.imag) for c in coefficients) or coefficients[0] == 0:
+        return []
+    roots = []
+    derivative = list(np.polyder(np.array(coefficients)))
+    for polynomial in [coefficients[:-1] + [coefficients[-1] - c] for c in values] + [derivative]:
+        try:
+            found = np.roots(np.array(polynomial))
+        except (np.linalg.LinAlgError, ValueError):
+            continue
+        roots += [float(r.real) for r in found if abs(r.imag) <= 1e-6 * max(1.0, abs(r.real))]
+    return roots
+
+
+def _test_values(breaks: list[float], span: tuple[float, float], near: float) -> list[float]:
+    """One value inside each region between consecutive breakpoints and past the outermost (the regions at an
+    interval's ends narrower than `END_OFFSET` of it left out: an end written to a few digits means its round
+    value); of many breakpoints, the `MAX_BREAKS` nearest ``near``."""
+    lo, hi = span
+    margin = END_OFFSET * (hi - lo) if math.isfinite(hi - lo) else 0.0
+    kept: list[float] = []
+    for b in sorted(breaks):
+        if not kept or b - kept[-1] > 1e-9 * max(1.0, abs(b)):
+            kept.append(b)
+    if len(kept) > MAX_BREAKS:  # those nearest the ordinary values (a periodic argument's near periods)
+        kept = sorted(sorted(kept, key=lambda b: abs(b - near))[:MAX_BREAKS])
+    values = []
+    edges = [lo] + kept + [hi]
+    for a, b in zip(edges, edges[1:]):
+        if math.isinf(a) and math.isinf(b):
+            continue
+        if math.isinf(a):
+            t = b - max(1.0, abs(b)) * REGION_SHARE
+        elif math.isinf(b):
+            t = a + max(1.0, abs(a)) * REGION_SHARE
+        else:
+            if (a == lo or b == hi) and b - a <= margin:
+                continue
+            t = a + (b - a) * REGION_SHARE
+        if lo + margin < t < hi - margin:
+            values.append(t)
+    return values
+
+
+def kink_region_points(exprs, domains: dict, base: dict, below: dict | None = None,
+                       deadline: float | None = None) -> list[dict]:
+    """Points that meet every region between the places where a kink or branch of ``exprs`` changes formula,
+    along each variable in turn (the others as in ``base``), at most `MAX_REGION_POINTS`; none where there is no
+    kink or branch. Only points inside the domains that keep the declared orders (``below``: a < R); those found
+    so far once ``deadline`` passes."""
+    boundaries = _boundaries(exprs)
+    if not boundaries:
+        return []
+    symbols = sorted({s for u, _ in boundaries for s in u.free_symbols if s in domains and s in base},
+                     key=lambda s: s.name)[:MAX_SCANNED]
+    points: list[dict] = []
+    seen = set()
+    for symbol in symbols:
+        span = _span(domains[symbol])
+        if span is None:
+            continue
+        breaks: list[float] = []
+        for u, values in boundaries:
+            if deadline is not None and time.monotonic() > deadline:
+                return points[:MAX_REGION_POINTS]
+            if symbol in u.free_symbols:
+                breaks += _breakpoints(u, values, symbol, base, span)
+        for t in _test_values(breaks, span, base[symbol]):
+            if (symbol, t) in seen or not domains[symbol].contains(t):
+                continue
+            seen.add((symbol, t))
+            point = {**base, symbol: t}
+            if all(point[a] < point[b] for a, b in (below or {}).items() if a in point and b in point):
+                points.append(point)
+    return points[:MAX_REGION_POINTS]
+
+
+def _across_the_kinks(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, options: Options,
+                      deadline: float | None) -> Comparison | None:
+    """A counterexample in a region between the boundaries of a kink or branch that the points compared missed
+    (`kink_region_points`), or None."""
+    points = kink_region_points(exprs, sampler.domains, sampler.point(0), {**sampler.below, **sampler.across},
+                                deadline)
+    # keyed by the point's values: the reference's cache is shared by every answer to it
+    keyed = ((p, ("region", tuple(sorted((s.name, v) for s, v in p.items())))) for p in points)
+    return _first_difference(ref, ans, sampler, keyed, options, deadline)
+
+
+def kink_region_states(exprs, parameters: Sampler, states: Sampler, n_states: int, deadline: float | None = None):
+    """For equations: pairs (parameters, states) of `GivenPoints`, one per point of `kink_region_points` (over
+    both samplers' variables, from their first joint point), whose states are the ordinary first ``n_states -
+    1`` and that point's as the last: a multiple fixed by the first is checked in the region."""
+    domains = {**parameters.domains, **states.domains}
+    base = states.joint(parameters.point(0), states.point(0))
+    below = {**parameters.below, **states.below, **parameters.across, **states.across}
+    for point in kink_region_points(exprs, domains, base, below, deadline):
+        params = {s: v for s, v in point.items() if s in parameters.domains}
+        state = {s: v for s, v in point.items() if s in states.domains}
+        yield (GivenPoints(parameters, [params]),
+               GivenPoints(states, [states.point(j) for j in range(n_states - 1)] + [state]))
 
 
 def _sum_denominator(expr: sympy.Expr) -> bool:

@@ -16,7 +16,7 @@ from typing import Any, Mapping
 import numpy as np
 import sympy
 
-__all__ = ["Sampler", "UnorderedPoint", "seed_for"]
+__all__ = ["GivenPoints", "Sampler", "UnorderedPoint", "seed_for"]
 
 # Every STRESS_EVERY-th point puts the unbounded positive variables at extreme scales
 # (1e-6 .. 1e6), where float64 cancels badly and where an answer off by a small term shows.
@@ -238,3 +238,30 @@ class Sampler:
                     value = self._stratum_value(symbol, domain, i)
             point[symbol] = value
         return point
+
+
+class GivenPoints:
+    """A stand-in for a `Sampler` whose points are given: the i-th is ``points[i % len(points)]``,
+    with the sampler's domains and orders, and its way of joining another sampler's point (`Sampler.joint`).
+
+    >>> class Positive:
+    ...     kind = "positive"
+    ...     def contains(self, v): return v > 0
+    >>> x = sympy.Symbol("x")
+    >>> given = GivenPoints(Sampler({x: Positive()}, seed=1), [{x: 2.0}, {x: 5.0}])
+    >>> given.point(0)[x], given.point(7)[x]
+    (2.0, 5.0)
+    """
+
+    def __init__(self, sampler: Sampler, points: list[dict]):
+        self._sampler = sampler
+        self._points = list(points)
+        self.domains = sampler.domains
+        self.below = sampler.below
+        self.across = sampler.across
+
+    def point(self, i: int) -> dict[sympy.Symbol, float]:
+        return self._points[i % len(self._points)]
+
+    def joint(self, given: Mapping[sympy.Symbol, float], point: Mapping[sympy.Symbol, float]) -> dict:
+        return self._sampler.joint(given, point)

@@ -353,3 +353,105 @@ def test_the_ends_of_an_interval_are_compared_however_many_points_are_asked(poin
     variables = {"x": {"dimension": "dimensionless", "domain": [-1.5 if hi < 2 else -3.14, hi]}}
     verdict = check(reference, answer, variables, options=Options(points=points, symbolic=False))
     assert verdict.verdict == "not_equivalent", verdict.reason
+
+
+# Red team, 2026-11-27 (s11): a kink or branch whose other regions lie beyond the sampled scale (|v| in 0.5 .. 3)
+# or between two close roots. Each answer is right on the regions the samples meet and wrong on another one,
+# which the points between the boundaries of its kink or branch arguments (along each variable) must meet,
+# however the reference is scaled (a scale is another seed, so other sample points).
+THETA_REAL = {"theta": {"dimension": "angle", "domain": "real"}}
+X_POSITIVE = {"x": {"dimension": "dimensionless", "domain": "positive"}}
+XD_LENGTHS = {"x": {"dimension": "length", "domain": "positive"}, "d": {"dimension": "length", "domain": "positive"}}
+_PAST_THE_KINKS = [
+    ("cos(theta/2)", "sqrt((1+cos(theta))/2)", THETA_REAL),        # differ for theta in (pi, 3 pi)
+    ("theta", "atan2(sin(theta), cos(theta))", THETA_REAL),         # past pi
+    ("sin(theta)*cos(theta)", "sign(theta)*sqrt(1-cos(theta)^2)*cos(theta)", THETA_REAL),
+    ("(x-3)*(x-4)", "abs((x-3)*(x-4))", X_POSITIVE),                 # between the close roots 3 and 4
+    ("(x-50)*(x-60)", "abs((x-50)*(x-60))", X_POSITIVE),
+    ("x^2+1", "(x^2+1)*sign((x-4)*(x-6))", X_POSITIVE),
+    ("(x-5*d)*(x-6*d)", "abs((x-5*d)*(x-6*d))", XD_LENGTHS),
+    ("x", "10*acos(cos(x/10))", X_POSITIVE),                         # past 10 pi
+    ("cos(x/3)", "sqrt(1-sin(x/3)^2)", X_POSITIVE),                  # past 3 pi/2
+    ("x", "x*sign((x-40)*(x-41))", {"x": {"dimension": "dimensionless", "domain": [0, 100]}}),
+]
+_RIGHT_ACROSS_THE_KINKS = [
+    ("abs(cos(theta/2))", "sqrt((1+cos(theta))/2)", THETA_REAL),
+    ("abs(sin(theta))", "sqrt(1-cos(theta)^2)", THETA_REAL),
+    ("atan2(sin(theta), cos(theta))", "atan2(2*sin(theta), 2*cos(theta))", THETA_REAL),
+    ("cos(theta/2)", "sqrt((1+cos(theta))/2)", {"theta": {"dimension": "angle", "domain": [-3.1416, 3.1416]}}),
+    ("abs((x-3)*(x-4))", "abs(x-3)*abs(x-4)", X_POSITIVE),
+    ("(x^2+1)*sign((x-4)*(x-6))", "(x^2+1)*sign(x-4)*sign(x-6)", X_POSITIVE),
+    ("abs((x-5*d)*(x-6*d))", "abs(x-5*d)*abs(6*d-x)", XD_LENGTHS),
+    ("x", "10*acos(cos(x/10))", {"x": {"dimension": "dimensionless", "domain": [0, 30]}}),
+    ("abs(cos(x/3))", "sqrt(1-sin(x/3)^2)", X_POSITIVE),
+    ("x*sign((x-40)*(x-41))", "x*sign(x-40)*sign(x-41)", {"x": {"dimension": "dimensionless", "domain": [0, 100]}}),
+]
+_SCALES = ["1", "3", "7/2", "10", "1/9"]
+
+
+def _scaled(scale: str, text: str) -> str:
+    return text if scale == "1" else f"{scale}*({text})"
+
+
+@pytest.mark.parametrize("scale", _SCALES)
+@pytest.mark.parametrize("reference, answer, variables", _PAST_THE_KINKS)
+def test_an_answer_wrong_only_in_a_region_of_its_kink_beyond_the_samples_is_refused(reference, answer, variables,
+                                                                                  scale):
+    from grader.answers.checker import check
+
+    verdict = check(_scaled(scale, reference), _scaled(scale, answer), variables)
+    assert verdict.verdict == "not_equivalent" and verdict.certainty == "proved", verdict.reason
+
+
+@pytest.mark.parametrize("scale", _SCALES)
+@pytest.mark.parametrize("reference, answer, variables", _RIGHT_ACROSS_THE_KINKS)
+def test_the_same_kinks_written_otherwise_stay_equivalent(reference, answer, variables, scale):
+    from grader.answers.checker import check
+
+    verdict = check(_scaled(scale, reference), _scaled(scale, answer), variables)
+    assert verdict.verdict == "equivalent", verdict.reason
+
+
+_PENDULUM = {"m": {"dimension": "mass", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"},
+             "l": {"dimension": "length", "domain": "positive"},
+             "theta": {"dimension": "angle", "domain": "real", "kind": "coordinate"},
+             "thetadot": {"dimension": "angular_velocity", "domain": "real", "kind": "velocity"},
+             "thetaddot": {"dimension": "angular_acceleration", "domain": "real", "kind": "acceleration"}}
+_SPRINGS = {"m": {"dimension": "mass", "domain": "positive"}, "k": {"dimension": "stiffness", "domain": "positive"},
+            **{q: {"dimension": "length", "domain": "real", "kind": "coordinate"} for q in ("x", "y")},
+            **{f"{q}dot": {"dimension": "velocity", "domain": "real", "kind": "velocity"} for q in ("x", "y")},
+            **{f"{q}ddot": {"dimension": "acceleration", "domain": "real", "kind": "acceleration"} for q in ("x", "y")}}
+
+
+@pytest.mark.parametrize("reference, answer, variables, expected", [
+    ("thetaddot = -g/l*sin(theta)", "thetaddot = -g/l*sqrt(1-cos(theta)^2)*sign(theta)", _PENDULUM, "not_equivalent"),
+    ("thetaddot = -g/l*sin(theta)", "thetaddot = -g/l*sin(acos(cos(theta)))*sign(theta)", _PENDULUM,
+     "not_equivalent"),
+    ("thetaddot + g/l*sin(theta) = 0", "thetaddot + g/l*sin(theta)*sign(cos(theta) + 0.999) = 0", _PENDULUM,
+     "not_equivalent"),                                          # wrong only within 0.045 of theta = pi
+    ("m*xddot = -k*x; m*yddot = -k*y", "m*xddot = -k*x*sign((x-5*y)*(x-6*y)); m*yddot = -k*y", _SPRINGS,
+     "not_equivalent"),                                          # wrong only between x = 5y and x = 6y
+    ("thetaddot = -g/l*sin(theta)", "thetaddot = -g/l*sqrt(1-cos(theta)^2)*sign(sin(theta))", _PENDULUM,
+     "equivalent"),
+    ("thetaddot + g/l*sin(theta) = 0", "thetaddot + g/l*sin(theta)*sign(cos(theta) + 1.001) = 0", _PENDULUM,
+     "equivalent"),
+    ("m*xddot = -k*x*sign((x-5*y)*(x-6*y)); m*yddot = -k*y",
+     "m*xddot = -k*x*sign(x-5*y)*sign(x-6*y); m*yddot = -k*y", _SPRINGS, "equivalent"),
+])
+def test_equations_are_compared_in_the_regions_of_their_kinks_too(reference, answer, variables, expected):
+    from grader.answers.checker import check
+
+    assert check(reference, answer, variables, kind="equation").verdict == expected
+
+
+def test_the_regions_of_a_kink_are_located_between_close_and_narrow_boundaries():
+    from grader.answers.equivalence import kink_region_points
+
+    x = sympy.Symbol("x", positive=True)
+    points = kink_region_points([sympy.sign((x - 40) * (x - 41))], {x: POS}, {x: 1.0})
+    assert any(40 < p[x] < 41 for p in points) and any(p[x] > 41 for p in points)
+    # cos θ + 0.999 < 0 only within 0.045 of odd multiples of π, between two points of any grid
+    near_pi = kink_region_points([sympy.sign(sympy.cos(theta) + sympy.Float("0.999"))], {theta: parse_domain("real")},
+                                 {theta: 1.0})
+    assert any(abs(p[theta] - sympy.pi.evalf()) < 0.045 for p in near_pi)
+    assert kink_region_points([m * g * sympy.sqrt(2 * l / g)], {m: POS, g: POS, l: POS}, {m: 1.0, g: 1.0, l: 1.0}) == []
