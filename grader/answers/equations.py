@@ -27,9 +27,11 @@ import time
 
 import flint
 import mpmath
+import numpy as np
 import sympy
 
-from grader.answers.evaluate import SCALE, ArbBackend, Undefined, Unresolved, Unsupported, _log2_mag, compile_expr
+from grader.answers.evaluate import (SCALE, ArbBackend, FloatBackend, Undefined, Unresolved, Unsupported, _log2_mag,
+                                     compile_expr)
 from grader.answers.equivalence import (
     CONFIRM_BITS,
     LOG2_10,
@@ -1298,18 +1300,27 @@ def _mixing_at_points(reference: list[sympy.Expr], answer: list[sympy.Expr], unk
                           "mixing matrix's determinant changes sign between sample points: it is singular "
                           "somewhere in the declared domain, where your equations no longer determine the motion",
                           evidence={"method": "ball arithmetic"})
-    if not proved:
+    if proved is not True:
         # One sign at the sample points says nothing of a factor that touches zero without changing sign
-        # ((1 + cos θ₁), (θ₁ − θ₂)², (m₁ − m₂)²): look where such factors vanish.
+        # ((1 + cos θ₁), (θ₁ − θ₂)², (m₁ − m₂)², θ̇₁² + θ̇₂²): look where such factors, or the determinant, vanish.
         base = states.joint(parameters.point(0), states.point(0))
-        singular = _singular_at_special_points(m_s, determinants, k, base, domains, _below_pairs(samplers))
-        if singular is not None:
-            return Comparison(False, "numeric", "your equations are combinations of the reference equations whose "
-                              "mixing matrix is singular at the state in the counterexample (a factor of its "
-                              "determinant vanishes there without changing sign): there they no longer determine "
-                              "the motion", evidence={"method": "ball arithmetic"},
-                              counterexample={"values": _named(singular)})
-    where = "on the whole declared domain (proved)" if proved else "at those points and where its factors could vanish"
+        below = _below_pairs(samplers)
+        # each factor of det M_s not proved nonzero, or where there is no symbolic determinant, det M_s itself
+        for entries, size in ([([f], 1) for f in proved] if proved else [(list(m_s), k)]):
+            try:
+                singular = _singular_near(entries, size, base, domains, below, deadline)
+            except Unsupported:
+                singular = None
+            if singular == "out of time":
+                return _out_of_time()
+            if singular is not None:
+                return Comparison(False, "numeric", "your equations are combinations of the reference equations "
+                                  "whose mixing matrix is singular at the state in the counterexample (its "
+                                  "determinant vanishes there, or comes within a billionth of its size elsewhere, "
+                                  "without changing sign): there they no longer determine the motion",
+                                  evidence={"method": "ball arithmetic"}, counterexample={"values": _named(singular)})
+    where = ("on the whole declared domain (proved)" if proved is True
+             else "at those points, and no zero of its determinant was found where its factors could vanish")
     return Comparison(True, "numeric", "combinations of the reference equations with coefficients that depend on "
                       "the state: solved for the accelerations, your equations give the reference's at every sample "
                       f"point ({MIXING_POINTS * MIXING_STATES} states, ball arithmetic, one confirmed at "
@@ -1318,63 +1329,173 @@ def _mixing_at_points(reference: list[sympy.Expr], answer: list[sympy.Expr], unk
                                                                      "mixing": "numeric (too large)"})
 
 
-# Precision of the search for a singular mixing matrix at special points, and how much smaller than at an
-# ordinary point its determinant must be there to count as zero (a float π leaves 1 + cos π at ~1e-32).
+# Precision of the search for a singular mixing matrix at special points, and how small against its size
+# (`_singular_near`) its determinant must be there to count as zero (a float π leaves 1 + cos π at ~1e-32).
 SPECIAL_BITS = 256
 SPECIAL_SMALLNESS = 1e-20
 # Values a trigonometric argument is set to: where sines, cosines and their sums and differences vanish.
 _SPECIAL_ANGLES = (0.0, math.pi / 2, -math.pi / 2, math.pi, -math.pi)
 
 
-def _singular_at_special_points(matrix: sympy.Matrix, compiled: list, k: int, base: dict, domains: dict,
-                                below: dict) -> dict | None:
-    """A point of the domain where ``det(matrix)`` vanishes, among the special points of `_special_points`,
-    or None. ``compiled`` are the matrix's entries, compiled; ``base`` an ordinary point, whose
-    determinant sets the scale of "vanishes"."""
-    def determinant(point):
+# CPU seconds for factoring a mixing determinant too large for `_factored`.
+LARGE_FACTOR_BUDGET_S = 0.3
+# How small against its size (`_singular_near`) a determinant found by descent must be to count as zero: a
+# touching zero ((cos θ − 1/2)²) is reached to about the square root of float precision.
+DESCENT_SMALLNESS = 1e-9
+# Starting points and evaluations of each descent.
+DESCENT_STARTS, DESCENT_EVALUATIONS = 4, 400
+
+
+def _singular_near(entries: list, k: int, base: dict, domains: dict, below: dict,
+                   deadline: float | None) -> dict | str | None:
+    """A point of the domain where the determinant of the k×k matrix of ``entries`` (one entry: a factor)
+    vanishes, None if none was found, or "out of time": first at the special points of `_special_points`
+    (256 bits), then by a descent in float64 from the ordinary point and the first special points, over the
+    variables of the entries within their domains (a zero of (cos(x/l) − 1/2)² is no special point).
+
+    Vanishing is measured against the size of what makes the determinant (the product of the rows' norms;
+    a factor's largest term), so that a determinant that only shrinks with the scale of the variables (all
+    lengths a thousandth) is not taken for a singular one."""
+    balls = [Compiled(e, ArbBackend()) for e in entries]
+    # in float64, a factor is measured against its largest term, each term compiled on its own
+    floats = [Compiled(e, FloatBackend()) for e in (entries if k > 1 else sympy.Add.make_args(entries[0]))]
+
+    def relative(point, prec=SPECIAL_BITS) -> flint.arb | None:
+        """|det| over the rows' norms (a factor: over its largest term), as a ball; 0 where it is 0."""
         try:
-            values = [c.at(point, SPECIAL_BITS)[0] for c in compiled]
+            values = [c.at(point, prec) for c in balls]
         except (Undefined, Unresolved):
             return None
-        with flint.ctx.workprec(SPECIAL_BITS):
-            return flint.arb_mat(k, k, values).det()
+        with flint.ctx.workprec(prec):
+            if k == 1:
+                value, scale = values[0]
+                size = 2.0 ** scale if math.isfinite(scale) else 0.0
+            else:
+                value = flint.arb_mat(k, k, [v for v, _ in values]).det()
+                size = _rows_norm([float(v.mid()) for v, _ in values], k)
+            if not value.is_finite():
+                return None
+            return abs(value) / size if size > 0 else flint.arb(0) if value.contains(0) else None
 
-    scale = determinant(base)
-    if scale is None or not scale.is_finite() or scale.contains(0):
+    def float_relative(point) -> float | None:
+        try:
+            numbers = [c.at(point, 53)[0] for c in floats]
+        except (Undefined, Unresolved, OverflowError, ValueError, ZeroDivisionError):
+            return None
+        if k == 1:
+            largest = max(abs(v) for v in numbers)
+            return abs(math.fsum(numbers)) / largest if largest > 0 else 0.0
+        size = _rows_norm(numbers, k)
+        return abs(float(np.linalg.det(np.array(numbers, dtype=float).reshape(k, k)))) / size if size > 0 else 0.0
+
+    at_base = relative(base)
+    if at_base is None or at_base.contains(0):
         return None
-    size = abs(float(scale.mid()))
-    for point in _special_points(base, matrix, domains, below):
-        det = determinant(point)
-        if det is not None and det.is_finite() and (det.contains(0) or abs(float(det.mid())) < SPECIAL_SMALLNESS * size):
+    specials = []
+    for point in _special_points(base, entries, domains, below):
+        ratio = relative(point)
+        if ratio is not None and (ratio.contains(0) or float(ratio.mid()) < SPECIAL_SMALLNESS):
             return point
+        specials.append(point)
+        if _past(deadline):
+            return "out of time"
+    symbols = set().union(*(e.free_symbols for e in entries))
+    moving = sorted((s for s in symbols if s in base and s in domains), key=lambda s: s.name)
+    for start in [base, *specials[:DESCENT_STARTS - 1]]:
+        if _past(deadline):
+            return "out of time"
+        found = _descent(float_relative, start, moving, domains, below)
+        if found is not None:
+            return found
     return None
 
 
+def _rows_norm(values: list, k: int) -> float:
+    """The product of the Euclidean norms of the rows of a k×k matrix given row by row (Hadamard's bound on
+    its determinant)."""
+    return math.prod(math.sqrt(sum(v * v for v in values[i * k:(i + 1) * k])) for i in range(k))
+
+
+def _descent(relative, start: dict, moving: list, domains: dict, below: dict) -> dict | None:
+    """A point where ``relative`` (a function of a point: |det| over its size, or None) is below
+    `DESCENT_SMALLNESS`, found by minimizing it over the ``moving`` variables from ``start``, inside their
+    domains (bounds a thousandfold around the start for unbounded ones; a value only tending to zero at such
+    a bound is no zero), keeping the ``below`` orders; or None."""
+    from scipy.optimize import minimize
+
+    if not moving:
+        return None
+    bounds = [_descent_bounds(domains[s], start[s]) for s in moving]
+
+    def at(values):
+        return {**start, **{s: float(v) for s, v in zip(moving, values)}}
+
+    def objective(values):
+        ratio = relative(at(values))
+        return 1e300 if ratio is None or not math.isfinite(ratio) else ratio
+
+    result = minimize(objective, [start[s] for s in moving], method="Powell", bounds=bounds,
+                      options={"maxfev": DESCENT_EVALUATIONS, "xtol": 1e-12, "ftol": 1e-30})
+    if not result.fun < DESCENT_SMALLNESS:
+        return None
+    point = at(result.x)
+    interior = not any(_open_end_pushed(domains[s], point[s], lo, hi) for s, (lo, hi) in zip(moving, bounds))
+    keeps_order = all(point[a] < point[b] for a, b in below.items() if a in point and b in point)
+    return point if interior and keeps_order and all(domains[s].contains(point[s]) for s in moving) else None
+
+
+def _descent_bounds(domain, value: float) -> tuple[float, float]:
+    """Where a descent may move a variable: its interval, or a thousandfold around ``value`` inside an
+    unbounded domain."""
+    spread = 1000.0 * max(abs(value), 1.0)
+    lo, hi = getattr(domain, "lo", None), getattr(domain, "hi", None)
+    if domain.kind == "interval":
+        return lo, hi
+    if domain.kind in ("positive", "nonnegative"):
+        low = 0.0 if domain.kind == "nonnegative" else abs(value) / 1000.0
+        return low, abs(value) * 1000.0
+    return value - spread, value + spread
+
+
+def _open_end_pushed(domain, value: float, lo: float, hi: float) -> bool:
+    """Whether a descent stopped at a bound that only stands for an open or far end (a positive variable's
+    thousandth, an unbounded variable's far bound): a determinant that only tends to zero there has no zero."""
+    if domain.kind == "interval" or (domain.kind == "nonnegative" and value <= lo == 0.0):
+        return False  # a true end of the domain: a zero there is in it
+    margin = 1e-3 * abs(lo) if domain.kind in ("positive", "nonnegative") else 1e-6 * (hi - lo)
+    return value <= lo + margin or value >= hi - 1e-3 * abs(hi)
+
+
 def _special_points(base: dict, exprs, domains: dict, below: dict):
-    """``base`` with one variable moved to where factors of ``exprs`` typically vanish, each inside its domain
-    and keeping every ``below`` order: the variable at zero, equal to another variable, and each
-    trigonometric argument linear in it at 0, ±π/2 or ±π (so sin θ, 1 + cos θ, cos(θ₁ − θ₂) and
-    (θ₁ − θ₂)² each vanish at one of them)."""
+    """``base`` with one or two variables moved to where factors of ``exprs`` typically vanish, each inside its
+    domain and keeping every ``below`` order: a variable at zero, two at zero at once (θ̇₁² + θ̇₂²), a variable
+    equal to another, and each trigonometric argument linear in a variable at 0, ±π/2 or ±π (so sin θ,
+    1 + cos(x/l), cos(θ₁ − θ₂) and (θ₁ − θ₂)² each vanish at one of them)."""
     arguments = {f.args[0] for e in exprs for f in e.atoms(sympy.sin, sympy.cos, sympy.tan)}
-    symbols = sorted(base, key=lambda s: s.name)
-    moves = [(s, 0.0) for s in symbols]
-    moves += [(s, base[t]) for s in symbols for t in symbols if t is not s]
+    symbols = sorted(set().union(*(e.free_symbols for e in exprs)) & set(base), key=lambda s: s.name)
+    at_base = {x: sympy.Float(v, 30) for x, v in base.items()}
+    moves = [{s: 0.0} for s in symbols]
+    moves += [{s: 0.0, t: 0.0} for i, s in enumerate(symbols) for t in symbols[i + 1:]]
+    moves += [{s: base[t]} for s in symbols for t in symbols if t is not s]
     for argument in sorted(arguments, key=sympy.default_sort_key):
         for s in sorted(argument.free_symbols & set(base), key=lambda s: s.name):
-            slope = sympy.diff(argument, s)
-            if not slope.is_number or slope == 0:
-                continue
             try:
-                value = float(argument.xreplace({x: sympy.Float(v, 30) for x, v in base.items()}))
+                # the slope at the base point: x/l is linear in x with slope 1/l
+                slope = float(sympy.diff(argument, s).xreplace(at_base))
+                value = float(argument.xreplace(at_base))
             except (TypeError, ValueError):
                 continue
-            moves += [(s, base[s] + (angle - value) / float(slope)) for angle in _SPECIAL_ANGLES]
+            if slope == 0 or not math.isfinite(slope) or sympy.diff(argument, s, 2) != 0:
+                continue
+            moves += [{s: base[s] + (angle - value) / slope} for angle in _SPECIAL_ANGLES]
     seen = set()
-    for s, value in moves:
-        if (s, value) in seen or value == base[s] or s not in domains or not domains[s].contains(value):
+    for move in moves:
+        key = tuple(sorted((s.name, v) for s, v in move.items()))
+        if key in seen or all(base[s] == v for s, v in move.items()) \
+                or not all(s in domains and domains[s].contains(v) for s, v in move.items()):
             continue
-        seen.add((s, value))
-        point = {**base, s: value}
+        seen.add(key)
+        point = {**base, **move}
         if all(point[a] < point[b] for a, b in below.items() if a in point and b in point):
             yield point
 
@@ -1400,15 +1521,16 @@ def _not_independent() -> Comparison:
 
 
 def _determinants_nonzero(m_r: sympy.Matrix, m_s: sympy.Matrix, domains: dict,
-                          samplers: tuple[Sampler, Sampler]) -> bool | Comparison:
+                          samplers: tuple[Sampler, Sampler]) -> bool | list | Comparison:
     """True when ``det M_r`` and ``det M_s`` are proved finite and nonzero on the whole domain, a refusal when
-    a factor of ``det M_s`` provably changes sign there, False when the matrices are too large or the proof
-    fails (the caller then checks the determinant at its sample points)."""
+    a factor of ``det M_s`` provably changes sign there, else the factors of ``det M_s`` not proved nonzero
+    (empty when the matrices are too large or the proof fails elsewhere): the caller then looks for their
+    zeros, and checks the determinant at its sample points."""
     if not all(_nodes(e, MIXING_MAX_NODES) <= MIXING_MAX_NODES for e in (*m_r, *m_s)):
-        return False
+        return []
     det_r, det_s = _determinant(m_r), _determinant(m_s)
     if det_r is None or det_s is None:
-        return False
+        return []
     if det_s == 0:
         return _not_independent()
     numerator = _factored(sympy.fraction(det_s)[0])
@@ -1417,9 +1539,13 @@ def _determinants_nonzero(m_r: sympy.Matrix, m_s: sympy.Matrix, domains: dict,
         if example is not None:
             return Comparison(False, "proved", _SINGULAR_MIXING, evidence={"method": "ball arithmetic"},
                               counterexample=example)
-        return False
+        if numerator == sympy.fraction(det_s)[0]:
+            # too large for `_factored`: a student's factor ((m₁ − 2m₂)²) multiplied into the mass matrix's
+            # determinant is found far more surely on its own
+            numerator = budget.attempt(lambda: sympy.factor(numerator), LARGE_FACTOR_BUDGET_S, lambda: numerator)
+        return [base for base in _bases(numerator) if not base.is_number and _nonzero_on(base, domains) is not True]
     return (_finite_on(m_r, domains) and _finite_on(m_s, domains)
-            and _nonzero_on(_factored(sympy.fraction(det_r)[0]), domains) is True)
+            and _nonzero_on(_factored(sympy.fraction(det_r)[0]), domains) is True) or []
 
 
 def _where_the_reference_is_undefined(numerator: sympy.Expr, reference: list, domains: dict) -> list:
