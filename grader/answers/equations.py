@@ -2323,6 +2323,8 @@ def _nonzero_in_balls(expr: sympy.Expr, domains: dict) -> bool | None:
     half_lines = sorted((s for s in expr.free_symbols if _half_line(domains.get(s))), key=lambda s: s.name)
     bounds = {}
     if half_lines:
+        if _nodes(expr) > FACTOR_MAX_NODES:
+            return None  # no polynomial to bring onto [0, 1] without expanding it (a page-long row took minutes)
         expr, half_lines = _dehomogenized(expr, half_lines, domains)
         compact = _compactified(expr, half_lines)
         if compact is None:

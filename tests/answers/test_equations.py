@@ -1264,7 +1264,7 @@ def test_a_drive_in_time_is_reduced_with_sin_squared_plus_cos_squared(reference,
     assert v.verdict == expected, v.reason
 
 
-def _triple_pendulum():
+def _triple_pendulum(as_expressions=False):
     """The solved accelerations of a triple pendulum (the reference, ~1000 nodes a row) and its Lagrange rows."""
     import sympy
 
@@ -1280,6 +1280,8 @@ def _triple_pendulum():
                     - sum(m[i:]) * g * l[i] * sympy.sin(q[i]))
     rows = [sympy.sstr(sum(mass[i, j] * a[j] for j in range(3)) - force[i]) for i in range(3)]
     solved = mass.LUsolve(force)
+    if as_expressions:
+        return list(solved)
     return "; ".join(f"{a[i]} = {sympy.sstr(solved[i])}" for i in range(3)), rows
 
 
@@ -1385,3 +1387,19 @@ def test_a_factor_zero_only_where_the_reference_is_undefined_is_refused_for_that
 def test_the_spherical_pendulum_off_its_poles_is_its_lagrange_form():
     v = check(_SPHERICAL, _SPHERICAL_LAGRANGE, _spherical([0.0001, 3.1415]), kind="equation")
     assert v.verdict == "equivalent" and v.certainty == "proved", v.reason
+
+
+def test_a_page_long_factor_is_not_expanded_to_be_proved_nonzero(monkeypatch):
+    # a triple pendulum's row times (2 + cos θ1) as one equation: bringing the row onto [0, 1] as a
+    # polynomial expanded it for two minutes; past the size limit the ball proof is not tried that way
+    from grader.answers import equations
+    from grader.expressions import parse_domain
+
+    def expanded(*args):
+        raise AssertionError("a large expression was made a polynomial")
+
+    monkeypatch.setattr(equations, "_compactified", expanded)
+    row = _triple_pendulum(as_expressions=True)[0]  # theta1ddot solved: ~1000 nodes
+    positive = {s: parse_domain("positive") for s in row.free_symbols if s.name[0] in "mlg"}
+    domains = {**{s: parse_domain("real") for s in row.free_symbols}, **positive}
+    assert equations._nonzero_in_balls(row, domains) is None
