@@ -36,9 +36,8 @@ from grader.mechanics.special_values import (
     _check_stable,
     _choose_root,
     _essential,
-    _evaluate,
+    check_equilibrium,
     _no_leftover,
-    _parameter_points,
     frequency_form,
     roots_in_domain,
     solve_for,
@@ -96,23 +95,10 @@ def small_oscillation_with_cyclic_coordinates(evaluator, spec: AnswerSpec) -> sy
         roots = roots_in_domain(evaluator, condition, u.symbol, solve_for(condition, u.symbol, scene.source, key))
     with budget.step("evaluating the frequency at the equilibrium", spec.name):
         chosen, *_ = _choose_root(evaluator, spec, condition, u.symbol, roots, stiffness, key)
-        _check_equilibrium(scene, key, u, acceleration.xreplace({u.symbol: chosen}), chosen)
+        check_equilibrium(scene, key, u, acceleration.xreplace({u.symbol: chosen}), chosen, momenta=True)
         # Tidied under a budget: at the root of a cubic (Cardano's) tidying ran past the whole 60 s.
         omega_squared = tidied_within(stiffness.xreplace({u.symbol: chosen}), FREQUENCY_TIDY_S)
         _check_stable(scene, spec, omega_squared)
         # √(g (M + m)/(M l)) as written, rather than sympy's √g·√(M + m)/(√M·√l).
         result = frequency_form(omega_squared)
     return _no_leftover(scene, spec, result, evaluator.target(spec, default_state=False))
-
-
-def _check_equilibrium(scene, key: str, u, acceleration: sympy.Expr, root: sympy.Expr) -> None:
-    """Refuse a point where u would not stay at rest with the momenta [initial] gives."""
-    for point in _parameter_points(scene):
-        value = _evaluate(acceleration, point)
-        scale = max(1.0, abs(_evaluate(root, point) or 0.0))
-        if value is not None and abs(value) > 1e-9 * scale:
-            raise SceneError(scene.source, key,
-                             f"{u.name} = {sympy.sstr(root)} is not an equilibrium of the motion with the "
-                             f"conserved momenta from [initial] ({u.ddot.name} = {value:.6g} there at rest); "
-                             "start [initial] on the steady motion, or name its condition "
-                             f"(\"{u.ddot.name} = 0\")")

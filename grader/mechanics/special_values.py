@@ -207,6 +207,10 @@ def _where_moving(evaluator, spec, target: set, key: str, at_rest: bool, signs: 
         if spec.kind == "small_oscillation":
             value = _stiffness(evaluator, spec, key)
             chosen, *others = _choose_root(evaluator, spec, condition, unknown, roots, value, key, at_rest)
+            u = next(v for v in evaluator.reduction.independent.values() if v.symbol == spec.expr)
+            for root in (chosen, *others):
+                # −∂ü/∂u anywhere is no frequency: only about a point where ü = 0 at rest
+                check_equilibrium(scene, key, u, _at_root(_rest_acceleration(evaluator, u), unknown, root), root)
             result = tidied_within(_at_root(value, unknown, chosen), FREQUENCY_TIDY_S)
         else:
             # The answer in the unknown is only evaluated, at the roots, and tidied where it is
@@ -1698,6 +1702,7 @@ def _first_reached_on(evaluator, u, condition, numeric: dict[int, float], point:
     # The path depends on the motion only: remembered for the other answers and conditions.
     path = _path(evaluator, u, u0, point, key)
     best = None
+    at_start = None  # a root at [initial] itself: the answer only when the motion reaches no other
     start = u0
     moving = _MOVING.get()
     for leg, (d, stop, _) in enumerate(path):
@@ -1708,6 +1713,8 @@ def _first_reached_on(evaluator, u, condition, numeric: dict[int, float], point:
             images = [r] if not periodic else _images_ahead(r, start, d, stop)
             for image in images:
                 distance = d * (image - start)
+                if leg == 0 and abs(distance) <= 1e-12 and at_start is None:
+                    at_start = (index, d)
                 if distance < -1e-12 or (distance <= 1e-12 and leg == 0):
                     continue  # behind (the start itself does not count: the motion leaves it)
                 if stop is not None and distance > d * (stop - start) + 1e-12:
@@ -1717,6 +1724,9 @@ def _first_reached_on(evaluator, u, condition, numeric: dict[int, float], point:
         if best is not None:
             return best[1], d
         start = stop if stop is not None else start
+    if at_start is not None:
+        # launched from the top of a sphere, y = R only at the start: the value there, not a refusal
+        return at_start
     stops = ", then ".join(f"{why} at {u.name} = {stop:.6g}" for _, stop, why in path if stop is not None)
     roots = ", ".join(f"{u.name} = {r:.6g}" for r in numeric.values())
     if path[-1][2] == LEAVES_THE_BRANCH:
@@ -2022,6 +2032,28 @@ def _stiffness(evaluator, spec, key: str) -> sympy.Expr:
     rest = {v.dot: 0 for v in reduction.independent.values()}
     acceleration = reduction.accelerations[u.ddot]
     return sympy.cancel(-sympy.diff(acceleration, u.symbol).xreplace(rest))
+
+
+def _rest_acceleration(evaluator, u) -> sympy.Expr:
+    """ü of the one coordinate ``u`` at rest (its equation of motion, solved)."""
+    rest = {v.dot: 0 for v in evaluator.reduction.independent.values()}
+    return evaluator.reduction.accelerations[u.ddot].xreplace(rest)
+
+
+def check_equilibrium(scene, key: str, u, acceleration: sympy.Expr, root: sympy.Expr, momenta: bool = False) -> None:
+    """Refuse a point where ``u`` would not stay at rest: ``acceleration`` (ü at rest there) nonzero at a
+    point of the parameters' values. ``momenta``: the other coordinates' velocities are those their
+    conserved momenta from [initial] give (Routh's reduction)."""
+    for point in _parameter_points(scene):
+        value = _evaluate(acceleration, point)
+        scale = max(1.0, abs(_evaluate(root, point) or 0.0))
+        if value is not None and abs(value) > 1e-9 * scale:
+            given = " with the conserved momenta from [initial]" if momenta else ""
+            fix = "start [initial] on the steady motion, or name its condition" if momenta else "name its condition"
+            raise SceneError(scene.source, key,
+                             f"{u.name} = {sympy.sstr(root)} is not an equilibrium of the motion{given} "
+                             f"({u.ddot.name} = {value:.6g} there at rest), so it has no small oscillations about "
+                             f"it; {fix} (\"{u.ddot.name} = 0\")")
 
 
 def _check_stable(scene, spec, omega_squared: sympy.Expr) -> None:

@@ -47,3 +47,40 @@ def test_a_point_that_is_not_an_equilibrium_for_the_initial_momenta_is_refused()
     text = edited("conical_pendulum", 'phidot = "sqrt(g/(l*cos(theta0)))"', 'phidot = "2*sqrt(g/(l*cos(theta0)))"')
     with pytest.raises(SceneError, match="theta = theta0 is not an equilibrium of the motion with the conserved"):
         derive(parse_scene(text, source="conical_pendulum.toml"))
+
+
+_SWING = '''
+id = "swing"
+title = "Pendulum"
+[parameters]
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+l = { dimension = "length", domain = "positive", value = 1.0 }
+m = { dimension = "mass", domain = "positive", value = 1.0 }
+theta1 = { dimension = "angle", domain = [0.2, 0.5], value = 0.3 }
+[coordinates]
+theta = { dimension = "angle", domain = [-3.1416, 3.1416] }
+[energy]
+kinetic = "m*l^2/2*thetadot^2"
+potential = "-m*g*l*cos(theta)"
+[[answers]]
+name = "omega_small"
+kind = "small_oscillation"
+expr = "theta"
+where = "WHERE"
+'''
+
+
+@pytest.mark.parametrize("where, refused", [
+    ("theta = 0.3", "theta = 3/10 is not an equilibrium of the motion (thetaddot = "),
+    ("theta = theta1", "theta = theta1 is not an equilibrium of the motion (thetaddot = "),
+    ("theta = pi", "the equilibrium is unstable"),   # an equilibrium, but the top one
+])
+def test_one_coordinate_oscillates_only_about_an_equilibrium(where, refused):
+    # −∂θ̈/∂θ at θ = 0.3 is g cos(0.3)/l, but the pendulum does not rest there: no small oscillations
+    with pytest.raises(SceneError, match=refused.replace("(", r"\(")):
+        derive(parse_scene(_SWING.replace("WHERE", where), source="swing.toml"))
+
+
+def test_one_coordinate_about_its_equilibrium_has_its_frequency():
+    derivation = derive(parse_scene(_SWING.replace("WHERE", "theta = 0"), source="swing.toml"))
+    assert_same(derivation, "omega_small", "sqrt(g/l)")

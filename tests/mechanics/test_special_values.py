@@ -785,3 +785,84 @@ def test_the_roots_of_an_angle_over_many_turns_are_its_configurations_found_with
     derivation = derive(parse_scene(_PENDULUM_RESTING_OFF_VERTICAL.replace("HIGH", high), source="p.toml"), budget_s=20)
     assert derivation.answers["angle"] == 7 * sympy.pi / 6
     assert derivation.alternatives["angle"] == [11 * sympy.pi / 6]
+
+
+_LAUNCHED = '''
+id = "sphere_launched_top_x"
+title = "Particle launched horizontally from the top of a smooth sphere (Cartesian)"
+
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 1.0 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+R = { dimension = "length", domain = "positive", value = 1.0 }
+v0 = { dimension = "velocity", domain = "positive", value = 1.5 }
+
+[coordinates]
+x = { dimension = "length" }
+y = { dimension = "length" }
+
+[energy]
+kinetic = "m/2*(xdot^2 + ydot^2)"
+potential = "m*g*y"
+
+[[constraints]]
+name = "surface"
+f = "sqrt(x^2 + y^2) - R"
+kind = "unilateral"
+
+[initial]
+x = 0
+y = "R"
+xdot = "v0"
+ydot = 0
+
+[[answers]]
+name = "normal_force"
+expr = "lambda_surface"
+in_terms_of = ["m", "g", "R", "v0", "y"]
+dimension = "force"
+
+[[answers]]
+name = "nx"
+expr = "lambda_surface"
+in_terms_of = ["m", "g", "R", "x", "xdot"]
+
+[[answers]]
+name = "leave_height"
+expr = "y"
+where = "normal_force = 0"
+
+[[answers]]
+name = "normal_top"
+expr = "normal_force"
+where = "y = R"
+in_terms_of = ["m", "g", "R", "v0"]
+
+[[answers]]
+name = "v0_crit"
+expr = "v0"
+where = "normal_top = 0"
+in_terms_of = ["g", "R"]
+
+[[answers]]
+name = "speed_at_leave"
+expr = "sqrt(xdot^2 + ydot^2)"
+where = "normal_force = 0"
+in_terms_of = ["g", "R", "v0"]
+dimension = "velocity"
+
+[[answers]]
+name = "xdot_at_leave"
+expr = "xdot"
+where = "normal_force = 0"
+in_terms_of = ["g", "R", "v0"]
+dimension = "velocity"
+'''
+
+
+def test_a_condition_that_only_the_start_meets_is_the_start():
+    # y = R only at the launch (x = 0): the motion never comes back, so the value there, m (g − v0²/R), is
+    # the answer; it was refused as "reaches the end of the branch before a root of the condition"
+    from tests.mechanics.test_lagrange import assert_same
+
+    assert_same(derive(parse_scene(_LAUNCHED, "launched.toml")), "normal_top", "m*(g - v0**2/R)")
