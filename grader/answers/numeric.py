@@ -71,7 +71,7 @@ _NUMBER = re.compile(r"""
 # "F = 14.7 N", "≈ 14.7 N", "~14.7 N": a name the student gives the quantity, or "about", before the number.
 _LABEL = re.compile(r"\s*(?:[^\W\d]\w{0,19}(?:\s*\(\s*\w{0,8}\s*\))?\s*)?(?:=|≈|≃|~|∼)\s*")
 _THOUSANDS = re.compile(r"[-+]?(\d{1,3})((?:,\d{3})+)(?![\d.,])")
-_ANGLE_UNITS = frozenset({"rad", "deg", "°"})
+_ANGLE_UNITS = frozenset({"rad", "deg", "°", "rev", "arcmin", "arcsec", "gon", "grad"})
 _PER_TIME = parse_dimension("frequency")  # rad/s and Hz alike: the unit asked or the reference says which
 _ENERGY = parse_dimension("energy")  # a torque's too (N·m), but not in joules
 _UNIT_NAMES = {"s": "second", "N": "newton", "J": "joule", "W": "watt", "Pa": "pascal", "rad": "radian",

@@ -179,8 +179,14 @@ UNITS: dict[str, tuple[float, Dimension, bool]] = {
     "rad": (1.0, DIMENSIONLESS, True), "Hz": (1.0, DIMENSIONLESS / _T, True),
     "deg": (math.pi / 180, DIMENSIONLESS, False), "°": (math.pi / 180, DIMENSIONLESS, False),
     "%": (0.01, DIMENSIONLESS, False),
+    # angles in turns and their parts, and forces outside SI that textbooks still print
+    "rev": (2 * math.pi, DIMENSIONLESS, False), "arcmin": (math.pi / 10800, DIMENSIONLESS, False),
+    "arcsec": (math.pi / 648000, DIMENSIONLESS, False), "gon": (math.pi / 200, DIMENSIONLESS, False),
+    "grad": (math.pi / 200, DIMENSIONLESS, False),
+    "dyn": (1e-5, _M * _L / _T ** 2, False), "kgf": (9.80665, _M * _L / _T ** 2, False),
+    "lbf": (4.4482216152605, _M * _L / _T ** 2, False),
 }
-PREFIXES: dict[str, float] = {"T": 1e12, "G": 1e9, "M": 1e6, "k": 1e3, "h": 1e2, "d": 1e-1, "c": 1e-2,
+PREFIXES: dict[str, float] = {"T": 1e12, "G": 1e9, "M": 1e6, "k": 1e3, "h": 1e2, "da": 1e1, "d": 1e-1, "c": 1e-2,
                               "m": 1e-3, "µ": 1e-6, "μ": 1e-6, "u": 1e-6, "n": 1e-9, "p": 1e-12}
 _SI_UNITS: dict[str, Dimension] = {name: dim for name, (size, dim, _) in UNITS.items()
                                    if size == 1.0 and name != "g"}
@@ -192,8 +198,11 @@ _UNIT_WORDS: dict[str, str] = {
     "second": "s", "sec": "s", "metre": "m", "meter": "m", "gram": "g", "gramme": "g", "newton": "N",
     "joule": "J", "watt": "W", "pascal": "Pa", "radian": "rad", "rad": "rad", "degree": "deg", "deg": "deg",
     "hertz": "Hz", "minute": "min", "min": "min", "hour": "h", "hr": "h", "percent": "%", "kg": "kg", "kilo": "kg",
+    "revolution": "rev", "rev": "rev", "turn": "rev", "arcminute": "arcmin", "arcsecond": "arcsec",
+    "gradian": "grad", "dyne": "dyn",
 }
-_PREFIX_WORDS: dict[str, str] = {"tera": "T", "giga": "G", "mega": "M", "kilo": "k", "hecto": "h", "deci": "d",
+_PREFIX_WORDS: dict[str, str] = {"tera": "T", "giga": "G", "mega": "M", "kilo": "k", "hecto": "h", "deca": "da",
+                                 "deka": "da", "deci": "d",
                                  "centi": "c", "milli": "m", "micro": "µ", "nano": "n", "pico": "p"}
 _PURE_WORDS = ("dimensionless", "unitless")
 # Look-alikes of the degree sign and of the multiplication dot.
@@ -267,7 +276,8 @@ def parse_unit(text: str) -> tuple[float, Dimension]:
     """Read a unit as a student writes it after a number: (size in SI units, dimension).
 
     Units are ``kg g m s min h N J W Pa rad Hz deg ° %`` with SI prefixes (``kN``, ``cm``, ``ms``,
-    ``µs``), combined with ``* / ^ **``, ``·``, a space (``kg m/s^2``), parentheses and
+    ``µs``, ``daN``), the turn and parts of a degree (``rev arcmin arcsec grad gon``) and forces outside SI
+    (``dyn kgf lbf``), combined with ``* / ^ **``, ``·``, a space (``kg m/s^2``), parentheses and
     superscripts (``m/s²``); an empty text is a pure number. Also as students type them: symbols
     written together (``Nm``, ``kgm/s^2``; refused where two readings differ, ``Nms``), an exponent
     right after its unit (``m/s2``, ``m s-2``), a hyphen between units (``N-m``), a unit in words

@@ -85,6 +85,12 @@ def test_unreadable_numbers_are_refused_with_what_to_type(text, message):
     ("1 [N]", 1.0, "force"), ("1 [kg m/s^2]", 1.0, "force"),  # a unit in brackets, as in a table's header
     ("1·10³ m", 1000.0, "length"),
     ("180 deg", math.pi, "angle"), ("180°", math.pi, "angle"), ("1 mrad", 1e-3, "angle"), ("2", 2.0, "dimensionless"),
+    # units outside SI that textbooks still print, and the prefix deca
+    ("1 rev", 2 * math.pi, "angle"), ("2 revolutions", 4 * math.pi, "angle"), ("60 arcmin", math.pi / 180, "angle"),
+    ("3600 arcsec", math.pi / 180, "angle"), ("100 grad", math.pi / 2, "angle"), ("100 gon", math.pi / 2, "angle"),
+    ("1 rev/min", math.pi / 30, "angular_velocity"), ("1 daN", 10.0, "force"), ("1 decanewton", 10.0, "force"),
+    ("1e5 dyn", 1.0, "force"), ("1 dynes", 1e-5, "force"), ("1 kgf", 9.80665, "force"),
+    ("1 lbf", 4.4482216152605, "force"),
 ])
 def test_units_convert_to_si(text, si, dimension):
     from grader.expressions import parse_dimension
@@ -126,7 +132,7 @@ def test_significant_figures_are_counted_in_the_students_unit():
 # -- verdicts ------------------------------------------------------------------------------------
 
 @pytest.mark.parametrize("answer", ["14.7 N", "14.715 N", "1.47e1 kg*m/s^2", "0.0147 kN", "1471.5 cN", "14.7 kg m/s²",
-                                    "1.4715×10^1 N"])
+                                    "1.4715×10^1 N", "1.4715 daN", "1.4715e6 dyn", "1.5005 kgf", "3.308 lbf"])
 def test_right_values_in_any_unit_of_a_force_are_equivalent(answer):
     verdict = check(answer=answer, **WEIGHT)
     assert (verdict.verdict, verdict.certainty) == ("equivalent", "numeric"), verdict.reason
