@@ -361,6 +361,31 @@ def test_the_answers_of_a_scene_share_their_determinant_and_its_form():
     assert _equal(first, determinant)
 
 
+@pytest.mark.parametrize("answer, tried", [
+    # a rod with both ends on a circle, its equation of motion: short expanded, where trigsimp
+    # finishes well within the budget
+    ("equation_of_motion", True),
+    # the force at its trailing end: 84 operations expanded, where trigsimp only ran out the budget
+    # (and the Pythagorean forms after it were never tried)
+    ("trailing_end_force", False),
+])
+def test_trigsimp_is_tried_only_on_a_short_expanded_form(monkeypatch, answer, tried):
+    p, pdot = sympy.symbols("phi phidot", real=True)
+    forms = {
+        "equation_of_motion": 3 * g * (sin(beta - p) - sin(beta + p)) / (2 * R * (cos(2 * beta) + 2)),
+        "trailing_end_force": m * (2 * R * pdot ** 2 * (cos(2 * beta) + 1) * (cos(2 * beta) + 2)
+                                   + 3 * g * cos(2 * beta) * cos(beta - p) + g * cos(2 * beta) * cos(beta + p)
+                                   + 5 * g * cos(beta - p) + 3 * g * cos(beta + p))
+                              / (4 * (cos(2 * beta) + 1) * (cos(2 * beta) + 2)),
+    }
+    calls = []
+    monkeypatch.setattr(sympy, "trigsimp", lambda e, **hints: calls.append(sympy.count_ops(e)) or e)
+    simplification.forget_forms()
+    simplification._simplified_forms(sympy.cancel(forms[answer]), 30.0)  # a budget nothing runs out of
+    assert bool(calls) is tried
+    assert all(n <= simplification._TRIGSIMP_MAX_OPS for n in calls)
+
+
 @pytest.mark.parametrize("expr, nonzero", [
     (m * g * (sin(theta) ** 2 + cos(theta) ** 2 - 1), False),  # zero: only simplify can say so
     (g * sin(theta) / l - w ** 2 * sin(theta) * cos(theta), True),  # a pendulum on a turntable
