@@ -373,9 +373,11 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
             if _nodes(reference[0]) > FACTOR_MAX_NODES or _nodes(answer[0]) > FACTOR_MAX_NODES:
                 if unknowns and not answer_conditions:
                     # Linear in the acceleration, the factor is the ratio of its coefficients: no cancelling
-                    # of the whole residuals (`state_dependent_mixing` with one equation).
-                    mixed = state_dependent_mixing(reference, answer, unknowns, {**parameters.domains,
-                                                                                 **states.domains},
+                    # of the whole residuals (`state_dependent_mixing` with one equation, in the one
+                    # acceleration it is solved for where the system declares several).
+                    present = tuple(u for u in unknowns if u in reference[0].free_symbols)
+                    mixed = state_dependent_mixing(reference, answer, present if len(present) == 1 else unknowns,
+                                                   {**parameters.domains, **states.domains},
                                                    (parameters, states), options, deadline)
                     if mixed is not None:
                         return mixed
@@ -1163,7 +1165,7 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
         return None
     if k > MIXING_MAX_EQUATIONS or not all(_nodes(e, MIXING_MAX_NODES) <= MIXING_MAX_NODES
                                            for e in (*reference, *answer)):
-        return _mixing_at_points(reference, answer, unknowns, domains, samplers, options, deadline) if k > 1 else None
+        return _mixing_at_points(reference, answer, unknowns, domains, samplers, options, deadline)
     split_r, split_s = _linear_in(reference, unknowns), _linear_in(answer, unknowns)
     if split_r is None or split_s is None:
         return None

@@ -42,6 +42,7 @@ from grader.answers.evaluate import (
     compile_expr,
 )
 from grader.answers.sampling import GivenPoints, Sampler
+from grader.expressions.magnitudes import node_count
 
 __all__ = ["Options", "Comparison", "Compiled", "PointResult", "compare_expressions", "expansion_terms",
            "symbolic_zero", "SYMBOLIC_MAX_TERMS"]
@@ -997,7 +998,7 @@ def _boundaries(exprs) -> list[tuple[sympy.Expr, tuple]]:
     found: dict = {}
 
     def add(u, values):
-        if not u.free_symbols or _size(u) > BOUNDARY_MAX_NODES:
+        if not u.free_symbols or node_count(u, BOUNDARY_MAX_NODES) > BOUNDARY_MAX_NODES:
             return
         if values == (0,) and (u.is_positive or u.is_negative):
             return
@@ -1022,15 +1023,6 @@ def _boundaries(exprs) -> list[tuple[sympy.Expr, tuple]]:
         if len(found) >= MAX_BOUNDARIES:
             break
     return list(found.items())
-
-
-def _size(expr: sympy.Expr, limit: int = BOUNDARY_MAX_NODES) -> int:
-    nodes, stack = 0, [expr]
-    while stack and nodes <= limit:
-        node = stack.pop()
-        nodes += 1
-        stack.extend(node.args)
-    return nodes
 
 
 def _span(domain) -> tuple[float, float] | None:

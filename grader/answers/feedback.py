@@ -24,6 +24,7 @@ from typing import Callable, Iterator, Sequence
 import sympy
 
 from grader.answers.equivalence import SYMBOLIC_MAX_TERMS, expansion_terms
+from grader.expressions.magnitudes import node_count
 
 __all__ = ["diagnose", "factor_message"]
 
@@ -100,6 +101,8 @@ def _splits(factor: sympy.Expr) -> bool:
 
 # Products distributed by hand at most this far; beyond, expand (rare: several nested sums).
 MAX_DISTRIBUTED = 64
+# Largest expression (in nodes) worth expanding for its terms.
+EXPAND_MAX_NODES = 400
 
 
 def _terms_without_expanding(expr: sympy.Expr) -> tuple[sympy.Expr, ...] | None:
@@ -154,8 +157,10 @@ def _terms(expr: sympy.Expr) -> tuple[sympy.Expr, ...]:
     if len(terms) < 2:
         terms = _terms_without_expanding(expr)
         if terms is None:
-            # powers of sums that multiply out to thousands of terms are not expanded (no feedback by terms)
-            terms = sympy.Add.make_args(sympy.expand(expr)) if expansion_terms(expr) <= SYMBOLIC_MAX_TERMS else ()
+            # powers of sums that multiply out to thousands of terms are not expanded (no feedback by terms),
+            # nor a page of nested quotients (a triple pendulum's solved row: minutes in expand)
+            small = expansion_terms(expr) <= SYMBOLIC_MAX_TERMS and node_count(expr, EXPAND_MAX_NODES) <= EXPAND_MAX_NODES
+            terms = sympy.Add.make_args(sympy.expand(expr)) if small else ()
     return terms if 2 <= len(terms) <= MAX_TERMS else ()
 
 

@@ -35,6 +35,7 @@ import sympy
 
 from .dimensions import parse_dimension
 from .errors import ExpressionError
+from .magnitudes import node_count
 from .names import derivative_name, resolve_name
 # The parser's own lookups of a declared name and of a coordinate's derivative, so a Leibniz
 # derivative resolves (and fails) exactly as θ̇ does; resolve_name would also try glued readings.
@@ -522,15 +523,6 @@ def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
 _MAX_OPERAND = {1: 150, 2: 60}
 
 
-def _size(expr: sympy.Expr, limit: int) -> int:
-    """Nodes of ``expr``, counted up to just past ``limit``."""
-    count, stack = 0, [expr]
-    while stack and count <= limit:
-        count += 1
-        stack.extend(stack.pop().args)
-    return count
-
-
 def _rate(symbol: sympy.Symbol, ns, shown: str, position: int) -> sympy.Expr:
     """``d symbol/dt`` in the namespace: the declared derivative (θ -> θ̇, θ̇ -> θ̈), 1 for the time,
     0 for a parameter; an error for a quantity of the motion whose derivative is not declared."""
@@ -565,7 +557,7 @@ def time_derivative(expr: sympy.Expr, order: int, ns, shown: str, position: int)
     True
     """
     limit = _MAX_OPERAND.get(order, _MAX_OPERAND[2])
-    if _size(expr, limit) > limit:
+    if node_count(expr, limit) > limit:
         # the product rule multiplies a product's size by its length, at each order: a 500-character
         # product of 80 factors would take a minute to differentiate twice
         raise ExpressionError(f"'{shown}' is applied to an expression too long to differentiate here", position,

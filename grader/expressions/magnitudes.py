@@ -14,7 +14,7 @@ import sympy
 
 from .errors import ExpressionError
 
-__all__ = ["MAX_DIGITS", "MAX_EXPONENT", "digits", "guarded_pow", "checked", "not_real"]
+__all__ = ["MAX_DIGITS", "MAX_EXPONENT", "digits", "guarded_pow", "checked", "not_real", "node_count"]
 
 #: Largest number of decimal digits any exact number may have.
 MAX_DIGITS = 1000
@@ -29,6 +29,21 @@ _UNDEFINED = (sympy.zoo, sympy.nan, sympy.oo, -sympy.oo)
 _UNDEFINED_IDS = frozenset(map(id, _UNDEFINED))
 _I = sympy.I
 _SMALL = 10 ** 300
+
+
+def node_count(expr: sympy.Expr, limit: int) -> int:
+    """Nodes of ``expr``, counted up to just past ``limit`` (so that a huge expression costs no more than
+    ``limit`` steps to be found too large).
+
+    >>> x = sympy.Symbol("x")
+    >>> node_count(x + 1, 10), node_count(sum(x**k for k in range(50)), 10)
+    (3, 11)
+    """
+    count, stack = 0, [expr]
+    while stack and count <= limit:
+        count += 1
+        stack.extend(stack.pop().args)
+    return count
 
 
 def digits(number: sympy.Rational) -> float:
