@@ -234,7 +234,14 @@ def _bound(value, what: str) -> float:
         expr = parse_expression(value, Namespace([])).expr
         if not expr.is_number or not expr.is_real:
             raise ValueError(f"domain {what} end {value!r} is not a real number")
-        return float(expr)
+        # Rounded outward, so that the interval holds its true end: with "pi/2" rounded down, cos θ had no
+        # zero on [0, "pi/2"], and a factor that vanishes there was proved nonzero.
+        end, exact = float(expr), expr.evalf(40)
+        if what == "upper" and end < exact:
+            return math.nextafter(end, math.inf)
+        if what == "lower" and end > exact:
+            return math.nextafter(end, -math.inf)
+        return end
     raise ValueError(f"domain {what} end must be a number, got {value!r}")
 
 

@@ -1418,3 +1418,24 @@ def test_one_large_equation_of_several_accelerations_is_compared_in_the_one_it_s
     lhs, rhs = reference.split("=")
     v = check(reference, f"({factor})*({lhs} - ({rhs})) = 0", _TRIPLE, kind="equation")
     assert v.verdict == expected, v.reason
+
+
+def _pendulum_on(domain):
+    return {"theta": {"dimension": "angle", "domain": domain, "kind": "coordinate"},
+    "thetadot": {"dimension": "angular_velocity", "domain": "real", "kind": "velocity"},
+    "thetaddot": {"dimension": "angular_acceleration", "domain": "real", "kind": "acceleration"},
+    "g": {"dimension": "acceleration", "domain": "positive"}, "l": {"dimension": "length", "domain": "positive"}}
+
+
+@pytest.mark.parametrize("answer, domain, expected", [
+    # a factor zero at an end typed "pi/2" or "pi": the float of the end was just inside it
+    ("cos(theta)*(l*thetaddot + g*sin(theta)) = 0", ["0", "pi/2"], "not_equivalent"),
+    ("l*thetaddot*cos(theta) + g*sin(theta)*cos(theta) = 0", ["0", "pi/2"], "not_equivalent"),
+    ("cos(theta/2)*(l*thetaddot + g*sin(theta)) = 0", ["-pi", "pi"], "not_equivalent"),
+    ("(pi + theta)*(l*thetaddot + g*sin(theta)) = 0", ["-pi", "pi"], "not_equivalent"),
+    ("(2 + cos(theta))*(l*thetaddot + g*sin(theta)) = 0", ["-pi", "pi"], "equivalent"),
+    ("cos(theta)*(l*thetaddot + g*sin(theta)) = 0", ["0", "pi/3"], "equivalent"),
+])
+def test_a_factor_zero_at_an_end_written_with_pi_is_refused(answer, domain, expected):
+    v = check("thetaddot = -g/l*sin(theta)", answer, _pendulum_on(domain), kind="equation")
+    assert v.verdict == expected, v.reason

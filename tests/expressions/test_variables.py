@@ -122,3 +122,15 @@ def test_namespace_tables_are_handed_out_as_copies(ns):
     ns.latex_names()[ns.symbol("m")] = "M"
     assert ns.dimensions()[ns.symbol("m")].describe() == "a mass (kg)"
     assert ns.latex_names()[ns.symbol("m")] == "m"
+
+
+@pytest.mark.parametrize("spec", [["0", "pi/2"], ["-pi", "pi"], ["pi/6", "5*pi/6"], ["-pi/2", "pi/3"]])
+def test_an_end_written_with_pi_is_held_by_the_interval(spec):
+    # float("pi/2") is 6e-17 below π/2: rounded outward, the interval holds its true ends, so that cos θ is
+    # not proved nonzero on [0, "pi/2"]
+    import sympy
+
+    domain = parse_domain(spec)
+    lo, hi = (sympy.sympify(s) for s in spec)  # the test's own text
+    assert sympy.Float(domain.lo, 40) <= lo.evalf(40) and hi.evalf(40) <= sympy.Float(domain.hi, 40)
+    assert parse_domain([0, 1.5]).hi == 1.5 and parse_domain(["0", "1/2"]).hi == 0.5  # exact ends stay
