@@ -473,6 +473,10 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
                 if k > 1:
                     hidden.reason = f"equation {i + 1}: {hidden.reason}"
                 return hidden
+        if k == 1:
+            special = _multiple_at_special_points(reference[0], answer[0], parameters, states, unknowns)
+            if special is not None:
+                return special
         confirmed = _try_precision(refs, anss, parameters.point(0), states, 0, k, CONFIRM_BITS + 64, CONFIRM_BITS)
         if confirmed is not None and confirmed[0] == "differ":
             # θ̈ = −(g/l) sin(θ(1 + 10⁻⁴⁰)) is a multiple of the reference to 40 digits, not at 300
@@ -1470,13 +1474,15 @@ def _open_end_pushed(domain, value: float, lo: float, hi: float) -> bool:
 
 def _special_points(base: dict, exprs, domains: dict, below: dict):
     """``base`` with one or two variables moved to where factors of ``exprs`` typically vanish, each inside its
-    domain and keeping every ``below`` order: a variable at zero, two at zero at once (θ̇₁² + θ̇₂²), a variable
-    equal to another, and each trigonometric argument linear in a variable at 0, ±π/2 or ±π (so sin θ,
+    domain and keeping every ``below`` order: a variable at zero or at an end of its interval, two at zero at
+    once (θ̇₁² + θ̇₂²), a variable equal to another, and each trigonometric argument linear in a variable at 0, ±π/2 or ±π (so sin θ,
     1 + cos(x/l), cos(θ₁ − θ₂) and (θ₁ − θ₂)² each vanish at one of them)."""
     arguments = {f.args[0] for e in exprs for f in e.atoms(sympy.sin, sympy.cos, sympy.tan)}
     symbols = sorted(set().union(*(e.free_symbols for e in exprs)) & set(base), key=lambda s: s.name)
     at_base = {x: sympy.Float(v, 30) for x, v in base.items()}
     moves = [{s: 0.0} for s in symbols]
+    moves += [{s: end} for s in symbols if getattr(domains.get(s), "kind", None) == "interval"
+              for end in (domains[s].lo, domains[s].hi)]
     moves += [{s: 0.0, t: 0.0} for i, s in enumerate(symbols) for t in symbols[i + 1:]]
     moves += [{s: base[t]} for s in symbols for t in symbols if t is not s]
     for argument in sorted(arguments, key=sympy.default_sort_key):
@@ -1500,6 +1506,55 @@ def _special_points(base: dict, exprs, domains: dict, below: dict):
         point = {**base, **move}
         if all(point[a] < point[b] for a, b in below.items() if a in point and b in point):
             yield point
+
+
+# Precision of the multiple at special points, and the digits to which it must stay what it is elsewhere.
+MULTIPLE_BITS, MULTIPLE_DIGITS_BITS = 192, 120
+
+
+def _multiple_at_special_points(reference: sympy.Expr, answer: sympy.Expr, parameters: Sampler,
+                                states: Sampler, unknowns: tuple) -> Comparison | None:
+    """The refusal of an answer the sample points took for ``c × reference`` with ``c`` free of the state, when
+    at a special point (`_special_points`: a variable at zero or at an end of its interval, equal to another,
+    an angle where a sine or cosine vanishes) the two are no multiple of each other: ``c`` is zero there (the
+    answer holds where the reference does not: sign(θ)² is 0 at θ = 0, sin 2α written out at α = 0), or,
+    with accelerations, it changes with them (the answer gives another acceleration there: F0 cos ωt sign t
+    is 0 at t = 0). A factor that only changes there ((2 + sign(θ)²): 3, and 2 at θ = 0) is no refusal.
+    Points where the reference is zero or undefined are passed over; None otherwise."""
+    domains = {**parameters.domains, **states.domains}
+    base = states.joint(parameters.point(0), states.point(0))
+    compiled = [Compiled(e, ArbBackend()) for e in (reference, answer)]
+
+    def multiple(point):
+        try:
+            r, a = (c.at(point, MULTIPLE_BITS)[0] for c in compiled)
+        except (Undefined, Unresolved):
+            return None
+        with flint.ctx.workprec(MULTIPLE_BITS):
+            return None if r.contains(0) or not (a / r).is_finite() else a / r
+
+    def apart(c, d) -> bool:  # two multiples that differ beyond the precision's noise
+        with flint.ctx.workprec(MULTIPLE_BITS):
+            return not (c - d).contains(0) and _log2_mag(c - d) > _log2_mag(d) - MULTIPLE_DIGITS_BITS
+
+    usual = multiple(base)
+    if usual is None or usual.contains(0):
+        return None
+    for point in _special_points(base, [reference, answer], domains, _below_pairs((parameters, states))):
+        c = multiple(point)
+        if c is None:
+            continue
+        with flint.ctx.workprec(MULTIPLE_BITS):
+            vanishes = c.contains(0) or _log2_mag(c) < _log2_mag(usual) - MULTIPLE_DIGITS_BITS
+        other = [multiple({**point, u: point[u] + 1.0 + abs(point[u])}) for u in unknowns if u in point]
+        moves_with_acceleration = any(d is not None and apart(d, c) for d in other)
+        if vanishes or moves_with_acceleration:
+            return Comparison(False, "proved" if moves_with_acceleration else "numeric",
+                              f"{_NOT_A_MULTIPLE} everywhere: it agrees with a multiple of the reference at the "
+                              "sample points, but not where a factor or term of it vanishes or jumps (see the "
+                              "counterexample)", evidence={"method": "ball arithmetic"},
+                              counterexample={"values": _named(point)})
+    return None
 
 
 def _below_pairs(samplers: tuple[Sampler, Sampler]) -> dict:

@@ -1439,3 +1439,33 @@ def _pendulum_on(domain):
 def test_a_factor_zero_at_an_end_written_with_pi_is_refused(answer, domain, expected):
     v = check("thetaddot = -g/l*sin(theta)", answer, _pendulum_on(domain), kind="equation")
     assert v.verdict == expected, v.reason
+
+
+_DRIVEN = {**{n: {"domain": "positive"} for n in ("m", "b", "k", "F0", "w", "mu", "g")},
+           "x": {"domain": "real", "kind": "coordinate"}, "xdot": {"domain": "real", "kind": "velocity"},
+           "xddot": {"domain": "real", "kind": "acceleration"}, "t": {"domain": "nonnegative", "kind": "time"}}
+_INCLINE_ALPHA = {"alpha": {"domain": [0, 1.4]}, "g": {"domain": "positive"},
+                  "x": {"domain": "real", "kind": "coordinate"}, "xdot": {"domain": "real", "kind": "velocity"},
+                  "xddot": {"domain": "real", "kind": "acceleration"}}
+
+
+@pytest.mark.parametrize("reference, answer, variables, expected", [
+    # agreeing with a multiple at every sample point, but not where a factor or term vanishes or jumps
+    (PENDULUM_EOM, "sign(theta)^2*(l*thetaddot + g*sin(theta)) = 0", _PENDULUM_TAGGED, "not_equivalent"),
+    (PENDULUM_EOM, "abs(sign(thetadot))*(l*thetaddot + g*sin(theta)) = 0", _PENDULUM_TAGGED, "not_equivalent"),
+    ("m*xddot + b*xdot + k*x = F0*cos(w*t)", "m*xddot + b*xdot + k*x = F0*cos(w*t)*sign(t)", _DRIVEN,
+     "not_equivalent"),                                                                     # no force at t = 0
+    ("m*xddot = -k*x - mu*m*g*sign(xdot)", "m*xddot = -k*x - mu*m*g*sign(xdot) + mu*m*g*(1 - abs(sign(xdot)))",
+     _DRIVEN, "not_equivalent"),                                                             # at rest
+    ("m*xddot = -k*x - mu*m*g*sign(xdot)", "m*xddot = -k*x - mu*m*g*sign(xdot)*sign(x)^2", _DRIVEN,
+     "not_equivalent"),
+    ("xddot = g*sin(alpha)", "sin(2*alpha)*xddot = 2*g*sin(alpha)^2*cos(alpha)", _INCLINE_ALPHA,
+     "not_equivalent"),                                                                      # zero at α = 0
+    # right ones stay right
+    ("m*xddot = -k*x - mu*m*g*sign(xdot)", "xddot = -k*x/m - mu*g*sign(xdot)", _DRIVEN, "equivalent"),
+    ("xddot = g*sin(alpha)", "2*cos(alpha)*xddot = g*sin(2*alpha)", _INCLINE_ALPHA, "equivalent"),
+    (PENDULUM_EOM, "(2 + sign(theta)^2)*(l*thetaddot + g*sin(theta)) = 0", _PENDULUM_TAGGED, "equivalent"),
+])
+def test_a_multiple_only_at_the_sample_points_is_checked_where_factors_vanish(reference, answer, variables, expected):
+    v = check(reference, answer, variables, kind="equation")
+    assert v.verdict == expected, v.reason
