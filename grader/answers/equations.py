@@ -368,6 +368,12 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
                                     "where its argument stays in one branch; an even power on |A|), holds exactly "
                                     f"where A = B, and that equation is {again.reason}")
                     return again
+            if not unknowns and not answer_conditions:
+                # an equilibrium condition in one coordinate on an interval (tan θ = a/g, θ = atan(a/g),
+                # sin θ = a/√(a² + g²)): its solutions, found on the interval, decide
+                roots = _same_roots_on_the_interval(reference[0], answer[0], parameters, states)
+                if roots is not None and roots.equivalent:
+                    return roots  # (a difference is left to the reasons below)
             if factor is not None:
                 return factor
             if _nodes(reference[0]) > FACTOR_MAX_NODES or _nodes(answer[0]) > FACTOR_MAX_NODES:
@@ -1555,6 +1561,125 @@ def _multiple_at_special_points(reference: sympy.Expr, answer: sympy.Expr, param
                               "counterexample)", evidence={"method": "ball arithmetic"},
                               counterexample={"values": _named(point)})
     return None
+
+
+# Grid of the root search on an interval, the parameter points it is done at, and the relative distance
+# within which two roots are one.
+ROOT_GRID, ROOT_PARAMETER_POINTS, ROOT_TOLERANCE = 2000, 3, 1e-9
+ROOT_SPECIAL_POINTS = 12
+
+
+def _same_roots_on_the_interval(reference: sympy.Expr, answer: sympy.Expr, parameters: Sampler,
+                                states: Sampler) -> Comparison | None:
+    """Whether two equations in one state variable x, declared on an interval, have the same solutions there,
+    at a few parameter points: each one's roots are found on a fine grid (sign changes refined by bisection,
+    and the grid's local minima of |f| refined for roots that touch zero), a pole or a point where an
+    equation is undefined being no root. None where it does not apply (another state variable, an unbounded
+    domain, an expression that cannot be evaluated in float64)."""
+    variables = (reference.free_symbols | answer.free_symbols) & set(states.domains)
+    if len(variables) != 1:
+        return None
+    x = variables.pop()
+    domain = states.domains[x]
+    if getattr(domain, "kind", None) != "interval":
+        return None
+    try:
+        functions = [Compiled(e, FloatBackend()) for e in (reference, answer)]
+    except Unsupported:
+        return None
+    # random parameter points, and special ones (two parameters equal, one at zero or an end): (a − g) times
+    # the equation is 0 = 0 at a = g
+    base = parameters.point(0)
+    special = list(itertools.islice(_special_points(base, [reference, answer], parameters.domains,
+                                                    _below_pairs((parameters, states))), ROOT_SPECIAL_POINTS))
+    for point in [parameters.point(p) for p in range(ROOT_PARAMETER_POINTS)] + special:
+        found = [_roots_on(f, x, point, domain.lo, domain.hi) for f in functions]
+        if None in found:
+            return None
+        width = domain.hi - domain.lo
+        for mine, theirs, whose in ((found[1], found[0], "your equation"), (found[0], found[1], "the reference")):
+            extra = [r for r in mine if all(abs(r - t) > ROOT_TOLERANCE * max(width, abs(r)) for t in theirs)]
+            if extra:
+                example = {"values": {**_named(point), x.name: extra[0]}}
+                return Comparison(False, "numeric", f"{whose} holds at {x.name} = {extra[0]:.6g} on the declared "
+                                  f"interval, where {'the reference' if whose == 'your equation' else 'yours'} "
+                                  "does not (see the counterexample)", evidence={"method": "roots on the interval"},
+                                  counterexample=example)
+    return Comparison(True, "numeric", f"the same solutions for {x.name} on its declared interval as the reference, "
+                      f"found on a grid of {ROOT_GRID} points at {ROOT_PARAMETER_POINTS} parameter points and where "
+                      "parameters are equal, zero or at an end of their intervals",
+                      evidence={"method": "roots on the interval"})
+
+
+def _roots_on(function: Compiled, x, point: dict, lo: float, hi: float) -> list[float] | None:
+    """The roots of ``function`` in x over [lo, hi] (the other variables at ``point``), or None where it is
+    not a number at most grid points."""
+    def value(t):
+        try:
+            return function.at({**point, x: t}, 53)[0]
+        except (Undefined, Unresolved, OverflowError, ValueError, ZeroDivisionError):
+            return None
+
+    grid = np.linspace(lo, hi, ROOT_GRID)
+    values = [value(t) for t in grid]
+    finite = [v for v in values if v is not None and math.isfinite(v)]
+    if len(finite) < ROOT_GRID // 2:
+        return None
+    scale = float(np.median([abs(v) for v in finite])) or 1.0  # (the largest could be beside a pole)
+    roots = []
+    for i in range(ROOT_GRID - 1):
+        a, b = values[i], values[i + 1]
+        if a is None or b is None:
+            continue
+        if a == 0:
+            roots.append(float(grid[i]))
+        elif a * b < 0 or (0 < i and values[i - 1] is not None and abs(a) <= min(abs(values[i - 1]), abs(b))
+                           and abs(a) < 1e-3 * scale):
+            root = _refined(value, float(grid[max(i - 1, 0)]), float(grid[i + 1]), a * b < 0, scale)
+            if root is not None:
+                roots.append(root)
+    if values[-1] == 0:
+        roots.append(float(grid[-1]))
+    merged = []
+    for r in sorted(roots):
+        if not merged or abs(r - merged[-1]) > ROOT_TOLERANCE * max(hi - lo, abs(r)):
+            merged.append(r)
+    return merged
+
+
+def _refined(value, a: float, b: float, sign_change: bool, scale: float) -> float | None:
+    """A root in [a, b]: by bisection where the value changes sign, else by a golden-section search of |value|
+    (a root that touches zero); None where it is a pole (a sign change with huge values at it) or a minimum
+    above zero. ``scale`` is the value's typical size on the interval."""
+    if sign_change:
+        fa = value(a)
+        for _ in range(80):
+            m = (a + b) / 2
+            fm = value(m)
+            if fm is None:
+                return None
+            if fm == 0:
+                return m
+            if (fm < 0) == (fa < 0):
+                a, fa = m, fm
+            else:
+                b = m
+        m = (a + b) / 2
+        fm = value(m)
+        return m if fm is not None and abs(fm) <= 1e-8 * scale else None
+    ratio = (math.sqrt(5) - 1) / 2
+    for _ in range(120):
+        c, d = b - ratio * (b - a), a + ratio * (b - a)
+        fc, fd = value(c), value(d)
+        if fc is None or fd is None:
+            return None
+        if abs(fc) < abs(fd):
+            b = d
+        else:
+            a = c
+    m = (a + b) / 2
+    fm = value(m)
+    return m if fm is not None and abs(fm) <= 1e-10 * scale else None
 
 
 def _below_pairs(samplers: tuple[Sampler, Sampler]) -> dict:

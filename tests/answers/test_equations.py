@@ -1469,3 +1469,25 @@ _INCLINE_ALPHA = {"alpha": {"domain": [0, 1.4]}, "g": {"domain": "positive"},
 def test_a_multiple_only_at_the_sample_points_is_checked_where_factors_vanish(reference, answer, variables, expected):
     v = check(reference, answer, variables, kind="equation")
     assert v.verdict == expected, v.reason
+
+
+_TILT = {"theta": {"dimension": "angle", "domain": [0, 1.5], "kind": "coordinate"},
+         "a": {"dimension": "acceleration", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"}}
+
+
+@pytest.mark.parametrize("reference, answer, domain, expected", [
+    # an equilibrium angle written another way: the same solutions on the interval, though no multiple
+    ("tan(theta) = a/g", "theta = atan(a/g)", ["0", "pi/2"], "equivalent"),
+    ("g*sin(theta) = a*cos(theta)", "sin(theta) = a/sqrt(a^2+g^2)", [0, 1.5], "equivalent"),
+    ("g*sin(theta) = a*cos(theta)", "cos(theta) = g/sqrt(a^2+g^2)", [0, 1.5], "equivalent"),
+    ("g*sin(theta) = a*cos(theta)", "tan(theta) = a/g", [-3.1416, 3.1416], "equivalent"),  # undefined where no root
+    # and other solutions stay wrong, at random parameters or where two are equal
+    ("g*sin(theta) = a*cos(theta)", "sin(2*theta) = 2*a*g/(a^2+g^2)", [0, 1.5], "not_equivalent"),  # π/2 − θ* too
+    ("g*sin(theta) = a*cos(theta)", "(tan(theta) - a/g)*(theta - 1)^2 = 0", [0, 1.5], "not_equivalent"),
+    ("g*sin(theta) = a*cos(theta)", "sin(theta) = a/g", [0, 1.5], "not_equivalent"),
+    ("g*sin(theta) = a*cos(theta)", "(a-g)^2*sin(theta) = (a-g)^2*a/sqrt(a^2+g^2)", [0, 1.5], "not_equivalent"),
+])
+def test_an_equilibrium_in_one_coordinate_is_decided_by_its_solutions_on_the_interval(reference, answer, domain,
+                                                                                       expected):
+    v = check(reference, answer, {**_TILT, "theta": {**_TILT["theta"], "domain": domain}}, kind="equation")
+    assert v.verdict == expected, v.reason
