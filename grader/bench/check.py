@@ -197,13 +197,15 @@ def _baseline_verdict(item: dict) -> str:
         standard_transformations,
     )
 
+    from grader.expressions import parse_domain
+
     transformations = standard_transformations + (implicit_multiplication_application, convert_xor)
     assumptions = {"positive": {"positive": True}, "nonnegative": {"nonnegative": True}}
     local = {}
     for name, spec in item["variables"].items():
         domain = spec.get("domain", "real")
         kw = assumptions.get(domain, {"real": True}) if isinstance(domain, str) else (
-            {"positive": True} if float(domain[0]) > 0 else {"real": True})
+            {"positive": True} if parse_domain(domain).lo > 0 else {"real": True})  # ends may be "pi/2"
         local[name] = sympy.Symbol(name, **kw)
 
     def read(text):
