@@ -409,9 +409,14 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
                                            (parameters, states), options, deadline)
             if mixed is not None:
                 return mixed
+        certainty = outcome[3] if len(outcome) > 3 else "proved"
+        if k == 1 and not unknowns and outcome[1].startswith((_NOT_A_MULTIPLE, _UNDEFINED_WHERE)):
+            # A relation between state variables with the reference's solutions need be no multiple of it
+            # (|v| = √(2gh) against v² = 2gh): a changing ratio proves no difference of solutions.
+            certainty = "numeric"
         return Comparison(
             False,
-            outcome[3] if len(outcome) > 3 else "proved",
+            certainty,
             outcome[1],
             evidence={"method": "ball arithmetic", "points": agreed + 1},
             counterexample=outcome[2],
