@@ -277,7 +277,7 @@ def compare_equations(
     >>> ref = [thdd + g / l * sympy.sin(th)]
     >>> compare_equations(ref, [m*l**2*thdd + m*g*l*sympy.sin(th)], P, S).equivalent
     True
-    >>> compare_equations(ref, [thdd + g / l * sympy.cos(th)], P, S).certainty
+    >>> compare_equations(ref, [thdd + g / l * sympy.cos(th)], P, S, unknowns=(thdd,)).certainty
     'proved'
     """
     # The declared orders (x below L) for the proofs that a factor is nonzero (`_nonzero_on`).
@@ -349,10 +349,13 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
             # θ = atan(X) and tan θ = X, where θ stays in atan's range (an equilibrium angle)
             inverse = None if answer_conditions else _inverse_applied(answer[0], domains)
             inverse_reference = _inverse_applied(reference[0], domains)
+            # |v| = √(2gh) and v² = 2gh: squared, whatever the answer's own domain (where 2gh < 0 neither holds)
+            squared, squared_reference = _nonnegative_sides_squared(answer[0]), _nonnegative_sides_squared(reference[0])
             for ref_form, answer_form in ((reference[0], inner), (inner_reference, answer[0]),
                                           (inner_reference, inner), (inverse_reference, answer[0]),
                                           (reference[0], inverse), (inverse_reference, inner),
-                                          (inner_reference, inverse)):
+                                          (inner_reference, inverse), (reference[0], squared),
+                                          (squared_reference, answer[0]), (squared_reference, squared)):
                 if ref_form is None or answer_form is None or _past(deadline) or _PEELED.get() >= MAX_PEELED:
                     continue
                 token = _PEELED.set(_PEELED.get() + 1)
@@ -2179,6 +2182,58 @@ def _logs_exponentiated(residual: sympy.Expr) -> sympy.Expr | None:
     if not powers:
         return None
     return sympy.Mul(*powers) - sympy.exp(-sympy.Add(*rest))
+
+
+def _nonnegative_sides_squared(residual: sympy.Expr) -> sympy.Expr | None:
+    """``P² − Q²`` for ``residual = P − Q`` with both sides nonnegative wherever they are defined (absolute
+    values, square roots, even powers, positive symbols, and products of them): P = Q exactly where P² = Q²,
+    and where a root's radicand is negative P² = Q² has no real solution either. A product of absolute
+    values equal to zero is the product without its bars. None otherwise.
+
+    >>> v, g, h = sympy.symbols("v g h", real=True)
+    >>> _nonnegative_sides_squared(sympy.Abs(v) - sympy.sqrt(2*g*h))
+    -2*g*h + v**2
+    """
+    terms = sympy.Add.make_args(residual)
+    if len(terms) == 1:
+        factors = sympy.Mul.make_args(residual)
+        if any(isinstance(f, sympy.Abs) for f in factors) and all(_nonnegative_by_form(f) or f.is_number
+                                                                   for f in factors):
+            return sympy.Mul(*(f.args[0] if isinstance(f, sympy.Abs) else f for f in factors))
+        return None
+    if len(terms) != 2:
+        return None
+    positive = [t for t in terms if not t.could_extract_minus_sign()]
+    negative = [-t for t in terms if t.could_extract_minus_sign()]
+    if len(positive) != 1 or len(negative) != 1:
+        return None
+    p, q = positive[0], negative[0]
+    if not (_nonnegative_by_form(p) and _nonnegative_by_form(q)) or not (p.has(sympy.Abs) or q.has(sympy.Abs)
+                                                                       or p.is_Pow or q.is_Pow):
+        return None
+    # Where a root is undefined its square is negative: no solution of P² = Q² is gained there only if the
+    # other side is defined everywhere (|v| = √(2gh)); √x = √y is not x = y, which also holds at x = y < 0.
+    if not (_without_roots(p) or _without_roots(q)):
+        return None
+    return sympy.expand(p**2 - q**2) if _nodes(p) + _nodes(q) <= FACTOR_MAX_NODES else None
+
+
+def _without_roots(expr: sympy.Expr) -> bool:
+    """Whether no power of ``expr`` has a fractional exponent (so it is defined wherever its variables are)."""
+    return not any(power.exp.is_Rational and not power.exp.is_integer for power in expr.atoms(sympy.Pow))
+
+
+def _nonnegative_by_form(expr: sympy.Expr) -> bool:
+    """Whether ``expr`` is nonnegative wherever it is defined, by its form alone."""
+    if expr.is_nonnegative:
+        return True
+    if isinstance(expr, sympy.Abs):
+        return True
+    if expr.is_Pow and expr.exp.is_Rational and expr.exp > 0 and (expr.exp.q % 2 == 0 or expr.exp.p % 2 == 0):
+        return True  # √x, x², x^(3/2)
+    if expr.is_Mul:
+        return all(_nonnegative_by_form(f) for f in expr.args)
+    return False
 
 
 def _log_coefficient_divided(residual: sympy.Expr) -> sympy.Expr:

@@ -1502,3 +1502,23 @@ def test_a_relation_refused_for_want_of_a_multiple_is_not_claimed_proved(referen
     # |v| = √(2gh) has v² = 2gh's solutions: the checker cannot show it yet, and must not say it proved otherwise
     v = check(reference, answer, variables, kind="equation")
     assert v.verdict == "equivalent" or v.certainty != "proved", v.reason
+
+
+_ENERGY_VARIABLES = {"v": {"dimension": "velocity", "domain": "real", "kind": "coordinate"},
+                     "g": {"dimension": "acceleration", "domain": "positive"},
+                     "h": {"dimension": "length", "domain": "positive", "kind": "coordinate"}}
+
+
+@pytest.mark.parametrize("reference, answer, expected", [
+    # both sides nonnegative wherever defined: equal exactly where their squares are
+    ("v^2 = 2*g*h", "abs(v) = sqrt(2*g*h)", "equivalent"),
+    ("v^2 = 2*g*h", "sqrt(v^2) = sqrt(2*g*h)", "equivalent"),
+    ("abs(v) = sqrt(2*g*h)", "v^2 = 2*g*h", "equivalent"),
+    ("v^2 = 2*g*h", "v = sqrt(2*g*h)", "not_equivalent"),            # v may be negative
+    ("v^2 = 2*g*h", "abs(v) = sqrt(g*h)", "not_equivalent"),
+    ("v^2 = 2*g*h", "abs(v) = -sqrt(2*g*h)", "not_equivalent"),
+    ("v = h*g/v", "sqrt(v) = sqrt(g*h/v)", "not_equivalent"),             # both roots: v = gh/v < 0 is lost
+])
+def test_nonnegative_sides_are_compared_by_their_squares(reference, answer, expected):
+    v = check(reference, answer, _ENERGY_VARIABLES, kind="equation")
+    assert v.verdict == expected, v.reason
