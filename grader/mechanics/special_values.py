@@ -10,10 +10,13 @@ integrals), it must leave exactly one **unknown**: a symbol that the answer's ``
 - a parameter: a threshold, such as the least launch speed v₀ for which the normal force at the top
   of a loop is zero.
 
-An acceleration set to zero (``thetaddot = 0``) is followed along the motion first; when that makes
-the answer depend on what ``[initial]`` gives and ``in_terms_of`` leaves out (θ̈ has a θ̇² term, as
-when the mass depends on the configuration), the condition can only name an equilibrium, and is read
-at rest: the relative equilibrium of a governor turning steadily.
+An acceleration set to zero (``thetaddot = 0``) names an equilibrium, whatever the coordinates: it is
+read at rest (every velocity 0; a cyclic coordinate's velocity from its conserved momentum, as
+Routh's reduction writes it), never along the motion with energy, which would make a velocity term
+in the acceleration depend on the start (ẋ² in ẍ of a bead on a spinning hoop in Cartesian x, y).
+Only a velocity that ``in_terms_of`` leaves free, or that the answer asks for, is kept: a steady
+motion (r̈ = 0 solved for the orbit's φ̇ at r). The answer there is taken as the motion passes through
+the equilibrium where [initial] gives one, else at rest.
 
 The condition is solved **algebraically** first, under a time budget (a condition in sin θ alone is
 solved as a polynomial in S = sin θ, which is instant where a direct solve can hang), and the
@@ -90,23 +93,21 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
             return _at_time(evaluator, spec, target, key)
         except SceneError:
             pass  # no motion in closed form: read as before
-    # An acceleration set to zero names an equilibrium; without a motion to follow ([initial] does not
-    # give it), an answer there is taken at rest (the force on a bead resting at a spinning hoop's
-    # relative equilibrium). With one, as the body passes through it (a pendulum in an accelerating car).
-    # (A velocity left free by in_terms_of' coordinates is a steady motion instead: r̈ = 0 for φ̇ at r.)
+    # An acceleration set to zero names an equilibrium, always read at rest (see _condition); without a
+    # motion to follow ([initial] does not give it), an answer there is taken at rest too (the force on
+    # a bead resting at a spinning hoop's relative equilibrium). With one, as the body passes through it
+    # (a pendulum in an accelerating car). (A velocity left free by in_terms_of' coordinates is a steady
+    # motion instead: r̈ = 0 for φ̇ at r.)
     at_rest = spec.kind == "small_oscillation" or (_sets_an_acceleration_to_zero(evaluator, spec)
                                                    and _no_motion_given(evaluator)
                                                    and not target & evaluator.state_symbols())
     try:
         return _where(evaluator, spec, target, key, at_rest=at_rest)
     except SceneError as error:
-        # θ̈ = 0 with θ̇² in θ̈ (a mass that depends on the configuration), read along the motion,
-        # depends on where the motion starts; when in_terms_of leaves the start out, the condition
-        # can only name an equilibrium (see _condition, which tries that reading before the motion's);
-        # if the motion's reading was taken and failed, read it at rest.
-        # With several degrees of freedom the motion's reading cannot remove every velocity (energy
-        # removes one: a bead in a hoop rolling down an incline keeps ṡ or θ̇), so an acceleration
-        # set to zero that it cannot read names an equilibrium too: read it at rest.
+        # The equilibrium's answer as the body passes through it failed (with several degrees of freedom
+        # energy removes one velocity, not every one: a bead in a hoop rolling down an incline keeps ṡ
+        # or θ̇; or the motion, whose start in_terms_of leaves out, runs away from the equilibrium):
+        # take it at rest.
         several = len(evaluator.reduction.independent) > 1
         if at_rest or not (_sets_an_acceleration_to_zero(evaluator, spec)
                            and (several or _start_left_out(evaluator, target))):
@@ -258,7 +259,17 @@ def _at_roots(evaluator, spec, condition, unknown, roots, target: set, key: str,
     if not readable:
         _defined_at_roots(evaluator, spec, condition, unknown, roots, value, key)
     chosen, *others = _choose_root(evaluator, spec, condition, unknown, roots, value, key, at_rest)
-    turned = None if at_rest else _turned_back(evaluator, spec, condition, unknown, roots, chosen, key)
+    try:
+        turned = None if at_rest else _turned_back(evaluator, spec, condition, unknown, roots, chosen, key)
+    except LeavesTheBranch:
+        raise
+    except SceneError:
+        # Which way the motion passes the root differs across the domains (the circular orbit's radius
+        # with the angular momentum a particle in a paraboloid starts with: reached moving out or in):
+        # no matter for an answer without a velocity in it.
+        if not _without_velocities(evaluator, spec):
+            raise
+        turned = None
     if turned is not None:
         # Reached after the motion has turned back: u̇ there has the other sign than at the start
         # (θ̇ < 0 where a bob launched upwards comes back down through θ = 0.1).
@@ -270,6 +281,19 @@ def _at_roots(evaluator, spec, condition, unknown, roots, target: set, key: str,
             raise SceneError(evaluator.scene.source, key, "undefined at the root as solved")
         _no_leftover(evaluator.scene, spec, result, target)
     return value, chosen, others, result
+
+
+def _without_velocities(evaluator, spec) -> bool:
+    """Whether the answer, with the dynamics solved, has no velocity in it (nor another answer's value,
+    which may have one eliminated at an odd power): then the way the motion passes a root is no matter."""
+    if spec.expr.free_symbols & set(evaluator.values):
+        return False
+    everything = evaluator.parameters | evaluator.state_symbols() | {evaluator.scene.time}
+    try:
+        value = evaluator.reduce(spec.expr, everything, f"answers ({spec.name}).expr", readable=False)
+    except SceneError:
+        return False
+    return not value.free_symbols & {u.dot for u in evaluator.reduction.independent.values()}
 
 
 def _velocity_the_condition_fixes(evaluator, spec) -> dict:
@@ -674,28 +698,40 @@ def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False,
         expr = expr.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
         expr = expr.xreplace({c.dot: 0 for c in scene.coordinates.values()})
     along_motion = target | evaluator.parameters | evaluator.state_symbols(velocities=False)
-    attempts = [(everything, at_rest, {}), (along_motion, at_rest, {})]
-    if not at_rest and _sets_an_acceleration_to_zero(evaluator, spec) and _start_left_out(evaluator, target):
-        # θ̈ = 0 that leaves θ and θ̇ (θ̇² in θ̈): along the motion it would depend on the start, which
-        # in_terms_of leaves out, so it names an equilibrium: read it at rest before the motion's way.
-        attempts.insert(1, (everything, True, {}))
+    # (allowed, at rest, velocities set first, velocities from conserved momenta)
+    attempts = [(everything, at_rest, {}, {}), (along_motion, at_rest, {}, {})]
+    if not at_rest and _sets_an_acceleration_to_zero(evaluator, spec):
+        # An acceleration set to zero names an equilibrium, never a moment of the motion: read along
+        # the motion, its velocity terms would be written with energy from [initial] (ẋ² in ẍ of a
+        # bead on a spinning hoop in the hoop's own x, y: x* then depended on x₀). Read as it stands
+        # (θ̈ of a pendulum in a car has no velocity; r̈ = 0 solved for φ̇ at r, a steady orbit), else
+        # at rest with the velocities of cyclic coordinates from their conserved momenta (Routh's
+        # reduction: the radius of a particle's circular orbit in a paraboloid, with the angular
+        # momentum it starts with), else as a steady motion (r constant, the orbit's φ̇ free, where
+        # in_terms_of leaves out what [initial] gives the momentum), else at rest in every coordinate.
+        attempts = [(everything, False, {}, {})]
+        momenta = _routh_momenta(evaluator, target, key)
+        if momenta:
+            attempts.append((everything, True, {}, momenta))
         steady = _steady(evaluator, spec)
         if steady:
-            # r̈ = 0 with ṙ² in r̈ (a particle on a paraboloid): a steady motion, r constant, the other
-            # velocities (the orbit's φ̇) free: read it so before at rest.
-            attempts.insert(1, (everything, False, steady))
+            attempts.append((everything, False, steady, {}))
+        attempts.append((everything, True, {}, {}))
     found = []
     deferred = False
-    for allowed, resting, still in attempts:
+    for allowed, resting, still, momenta in attempts:
         here = expr.xreplace(still)
         if resting and not at_rest:
-            here = expr.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
-            here = here.xreplace({c.dot: 0 for c in scene.coordinates.values()})
+            kept = set(momenta)
+            here = expr.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values() if u.dot not in kept})
+            here = here.xreplace({c.dot: 0 for c in scene.coordinates.values() if c.dot not in kept})
         try:
             condition = evaluator.reduce(here, allowed, key, signs=signs)
         except SceneError:
             continue
         condition = condition.xreplace(still)
+        if momenta:
+            condition = condition.xreplace(momenta)
         if resting:
             condition = condition.xreplace({u.dot: 0 for u in evaluator.reduction.independent.values()})
         condition = _essential(condition)
@@ -706,7 +742,7 @@ def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False,
             # along it (the velocity from energy, the coordinate the unknown) before as it stands,
             # which would solve θ̇ = 0 for θ̇ and leave the answer in θ.
             deferred = True
-            attempts.append((allowed, resting, still))
+            attempts.append((allowed, resting, still, momenta))
             continue
         # A state variable is the unknown when there is one (the condition picks a configuration;
         # parameters outside in_terms_of may still cancel from the answer); else a parameter
@@ -720,6 +756,20 @@ def _condition(evaluator, spec, target: set, key: str, at_rest: bool = False,
     raise SceneError(scene.source, key,
                      f"the condition must leave exactly one unknown that in_terms_of does not allow; it "
                      f"leaves {names}")
+
+
+def _routh_momenta(evaluator, target: set, key: str) -> dict:
+    """{u̇: its value from the conserved momentum} for the cyclic coordinates [initial] gives a momentum
+    (as Routh's reduction writes them), or {} where there are none or a momentum is written with a
+    parameter that [initial] uses and in_terms_of leaves out: then the equilibrium is read at rest."""
+    try:
+        momenta = evaluator.momentum_substitution(target, key)
+    except SceneError:
+        return {}
+    used = set().union(*(v.free_symbols for v in evaluator.scene.initial.values())) & evaluator.parameters
+    if any((v.free_symbols & used) - target for v in momenta.values()):
+        return {}
+    return momenta
 
 
 def _steady(evaluator, spec) -> dict:
