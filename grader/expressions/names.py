@@ -195,6 +195,10 @@ def resolve_name(raw: str, ns: "Namespace", *, order: int = 0, typed: str | None
     if raw.startswith("_"):
         raise ExpressionError(f"'{typed}' is not allowed in an expression", position,
                               "unsupported_function", "write a formula, not program code")
+    if raw in WRITE_INSTEAD:
+        # acot(k) or acot k with a variable a declared is the inverse cotangent the student meant, refused with
+        # how to write it, not a·cot(k)
+        _raise_unknown(raw, ns, typed, position, called)
     parts = _split(raw, ns, typed, position)
     if parts:
         return Resolved("split", parts, [f"read '{typed}' as {_reading(parts)}"])

@@ -186,3 +186,15 @@ def test_the_dots_typed_before_the_index_name_the_indexed_derivative(typed, cano
 def test_the_dots_before_an_index_do_not_shadow_a_declared_name():
     ns = Namespace([Variable("thetadot1", "1/s"), Variable("theta1dot", "1/s")])
     assert resolve_name("thetadot1", ns).value == ns.symbol("thetadot1")
+
+
+@pytest.mark.parametrize("text", ["acot(k)", "acot k", "asec(k)", "arccsc(k)", "acoth(k)"])
+def test_a_function_refused_by_name_is_not_split_into_a_declared_variable(text):
+    # with a variable a declared, acot(k) was read as a·cot(k): it is the inverse cotangent, refused saying how
+    # to write it
+    from grader.expressions import parse_expression
+
+    ns = Namespace([Variable("a", "length"), Variable("k", "dimensionless")])
+    with pytest.raises(ExpressionError) as caught:
+        parse_expression(text, ns)
+    assert "is not a function you can use here" in caught.value.message
