@@ -54,7 +54,8 @@ def extreme_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
         try:
             return _extreme_in_time(evaluator, spec, f"answers ({spec.name})")
         except SceneError:
-            raise refused from None
+            # (as a SceneError: the private class is no part of what the author reads)
+            raise SceneError(refused.source, refused.key, refused.problem) from None
 
 
 class _NotOverOneCoordinate(SceneError):
@@ -118,6 +119,17 @@ def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
         if best is None:
             low, high = legs[0][1], legs[0][2]
             if low is None or high is None:
+                coupled = (_coupled_in_the_energy(evaluator, u)
+                           if energy_speed_squared(evaluator, u, key, readable=False) is None else [])
+                if coupled:
+                    # (it was said to run away: energy gave no u̇²(u) to follow the motion with)
+                    raise _NotOverOneCoordinate(
+                        scene.source, key,
+                        f"{spec.expr} has no {spec.kind} found in closed form on the motion from [initial]: the "
+                        f"energy couples {u.dot.name} with {', '.join(v.dot.name for v in coupled)} "
+                        f"({', '.join(v.name for v in coupled)} move{'s' if len(coupled) == 1 else ''} as well as "
+                        f"{u.name}), so it does not give {u.dot.name}^2 as a function of {u.name} alone, and the "
+                        f"range of {u.name} the motion covers is not known in closed form")
                 raise _NotOverOneCoordinate(scene.source, key, f"{spec.expr} has no {spec.kind} on the motion from "
                                                                "[initial]: the motion runs away")
             raise SceneError(scene.source, key,
@@ -154,6 +166,17 @@ def _one_coordinate_moves(evaluator, spec: AnswerSpec, u, key: str) -> None:
             f"{', '.join(others)} move{'s' if len(others) == 1 else ''} as well as {u.name}, so energy gives "
             f"{u.dot.name}^2 only with {', '.join(others)} in it, and the range of {u.name} the motion covers "
             "is not known in closed form")
+
+
+def _coupled_in_the_energy(evaluator, u) -> list:
+    """The other independent coordinates whose velocities multiply u̇ in the conserved energy (none where
+    energy is not conserved or [initial] does not give it)."""
+    reduction = evaluator.reduction
+    h = reduction.jacobi_integral()
+    if h is None or reduction.initial_value(h) is None:
+        return []
+    cross = sympy.expand(sympy.diff(h, u.dot))
+    return [v for v in reduction.independent.values() if v is not u and v.dot in cross.free_symbols]
 
 
 def _stationary_points(value: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> list[sympy.Expr]:

@@ -1985,13 +1985,19 @@ def energy_speed_squared(evaluator, u, key: str, readable: bool = True) -> sympy
     h = reduction.jacobi_integral()
     if h is None or reduction.initial_value(h) is None:
         return None
+    # Coordinates the motion leaves at rest (at a start where their acceleration vanishes) stay at
+    # their start: u̇² along the motion has them so (an elastic pendulum hanging straight down). They
+    # are put in the energy before it is solved for u̇²: a cross term u̇ v̇ in it (ż² on a saddle
+    # z = (x² − y²)/(2a) has x y ẋ ẏ) vanishes with v̇, and energy is then a u̇² + c (it was refused,
+    # and the motion in x along y = 0, turning back at v₀√(a/g), was said to run away).
+    rest = {s: e for s, e in evaluator.resting_coordinates().items() if s not in (u.symbol, u.dot)}
+    momenta = evaluator.momentum_substitution(set(), key)
+    if rest:
+        momenta = {**{v: e.xreplace(rest) for v, e in momenta.items()}, **rest}
     try:
-        squared = evaluator.velocity_squared(u, key, evaluator.momentum_substitution(set(), key), readable=readable)
+        squared = evaluator.velocity_squared(u, key, momenta, readable=readable)
     except SceneError:
         return None
-    # Coordinates the motion leaves at rest (at a start where their acceleration vanishes) stay at
-    # their start: u̇² along the motion has them so (an elastic pendulum hanging straight down).
-    rest = {s: e for s, e in evaluator.resting_coordinates().items() if s not in (u.symbol, u.dot)}
     return squared.xreplace(rest) if rest else squared
 
 
