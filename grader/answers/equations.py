@@ -374,7 +374,7 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
             if not unknowns and not answer_conditions:
                 # an equilibrium condition in one coordinate on an interval (tan θ = a/g, θ = atan(a/g),
                 # sin θ = a/√(a² + g²)): its solutions, found on the interval, decide
-                roots = _same_roots_on_the_interval(reference[0], answer[0], parameters, states)
+                roots = _same_roots_on_the_interval(reference[0], answer[0], parameters, states, deadline)
                 if roots is not None and roots.equivalent:
                     return roots  # (a difference is left to the reasons below)
             if factor is not None:
@@ -1578,15 +1578,15 @@ ROOT_SPECIAL_POINTS = 12
 
 
 def _same_roots_on_the_interval(reference: sympy.Expr, answer: sympy.Expr, parameters: Sampler,
-                                states: Sampler) -> Comparison | None:
+                                states: Sampler, deadline: float | None = None) -> Comparison | None:
     """Whether two equations in one state variable x, declared on an interval, have the same solutions there,
     at a few parameter points: each one's roots are found on a fine grid (sign changes refined by bisection,
     and the grid's local minima of |f| refined for roots that touch zero), a pole or a point where an
     equation is undefined being no root. None where it does not apply (another state variable, an unbounded
     domain, an expression that cannot be evaluated in float64)."""
     variables = (reference.free_symbols | answer.free_symbols) & set(states.domains)
-    if len(variables) != 1:
-        return None
+    if len(variables) != 1 or _nodes(reference) > FACTOR_MAX_NODES or _nodes(answer) > FACTOR_MAX_NODES:
+        return None  # (tens of thousands of evaluations: only for conditions of a few terms)
     x = variables.pop()
     domain = states.domains[x]
     if getattr(domain, "kind", None) != "interval":
@@ -1601,6 +1601,8 @@ def _same_roots_on_the_interval(reference: sympy.Expr, answer: sympy.Expr, param
     special = list(itertools.islice(_special_points(base, [reference, answer], parameters.domains,
                                                     _below_pairs((parameters, states))), ROOT_SPECIAL_POINTS))
     for point in [parameters.point(p) for p in range(ROOT_PARAMETER_POINTS)] + special:
+        if _past(deadline):
+            return None
         found = [_roots_on(f, x, point, domain.lo, domain.hi) for f in functions]
         if None in found:
             return None
