@@ -139,6 +139,8 @@ def _remembered_form(expr: sympy.Expr, seconds: float, bounds: tuple = (), order
 
     if expr.has(sympy.Abs):
         expr = signed_abs(expr, bounds, order)
+    if expr.has(sympy.atan, sympy.asin, sympy.acos):
+        expr = inverses_undone(expr, bounds)
     allowed = _multiple_angles(expr)
     cancelled = sympy.cancel(expr)
     if cancelled == 0 or identically_zero(expr, bounds, seconds):
@@ -944,6 +946,38 @@ def _bounds_of(symbols) -> tuple:
     """The declared bounds of ``symbols``, in a fixed order (part of :func:`human_form`'s memory)."""
     domains = _DOMAINS.get()
     return tuple(sorted(((s, *domains[s]) for s in symbols if s in domains), key=lambda b: str(b[0])))
+
+
+# Where each inverse undoes its function: the argument's declared range inside its principal branch.
+_BRANCHES = {sympy.atan: (sympy.tan, -math.pi / 2, math.pi / 2, False),
+             sympy.asin: (sympy.sin, -math.pi / 2, math.pi / 2, True),
+             sympy.acos: (sympy.cos, 0.0, math.pi, True)}
+
+
+def inverses_undone(expr: sympy.Expr, bounds: tuple = ()) -> sympy.Expr:
+    """``expr`` with atan(tan u), asin(sin u) and acos(cos u) written u where u's declared range lies in the
+    inverse's principal branch (an incline's angle α on [0.05, 1.5]: −atan(tan α) is −α).
+
+    >>> a = sympy.Symbol("alpha", positive=True)
+    >>> inverses_undone(-sympy.atan(sympy.tan(a)), ((a, 0.05, 1.5),))
+    -alpha
+    >>> inverses_undone(sympy.acos(sympy.cos(a)), ((a, 0.05, 4.0),))
+    acos(cos(alpha))
+    """
+    ranges = {s: (lo, hi) for s, lo, hi in bounds}
+
+    def undone(node):
+        function, lo, hi, closed = _BRANCHES[type(node)]
+        inner = node.args[0]
+        if not isinstance(inner, function):
+            return node
+        interval = _interval(inner.args[0], ranges)
+        if interval is None:
+            return node
+        inside = (lo <= interval[0] and interval[1] <= hi) if closed else (lo < interval[0] and interval[1] < hi)
+        return inner.args[0] if inside else node
+
+    return expr.replace(lambda n: isinstance(n, tuple(_BRANCHES)), undone)
 
 
 def inverse_hyperbolic(expr: sympy.Expr) -> sympy.Expr:

@@ -451,3 +451,21 @@ def test_the_roots_of_a_product_are_joined_where_exact(expr, domains, below, pri
     assert str(joined) == printed
     bounds = tuple((s, lo, hi) for s, (lo, hi) in domains.items())
     _assert_same_value_on(expr, joined, bounds)
+
+
+_ALPHA = sympy.Symbol("alpha", positive=True)
+
+
+@pytest.mark.parametrize("expr, interval, printed", [
+    # a block on an incline: the steady angle came out as −atan(tan α)
+    (-sympy.atan(sympy.tan(_ALPHA)), (0.05, 1.5), "-alpha"),
+    (sympy.asin(sympy.sin(_ALPHA)) / 2, (0.05, 1.5), "alpha/2"),
+    (sympy.acos(sympy.cos(_ALPHA)), (0.05, 3.0), "alpha"),
+    # past the principal branch the inverse does not undo its function
+    (sympy.acos(sympy.cos(_ALPHA)), (0.05, 4.0), "acos(cos(alpha))"),
+    (sympy.atan(sympy.tan(_ALPHA)), (0.05, 2.0), "atan(tan(alpha))"),
+])
+def test_an_inverse_of_its_function_is_its_argument_inside_the_branch(expr, interval, printed):
+    simplification._remembered_form.cache_clear()
+    with simplification.declared_domains({_ALPHA: interval}):
+        assert sympy.sstr(human_form(expr)) == printed
