@@ -30,7 +30,6 @@ import sympy
 
 from grader.mechanics import budget
 from grader.mechanics.scene import AnswerSpec, SceneError
-from grader.mechanics.simplification import human_form, signs_in_front
 from grader.mechanics.special_values import (
     FREQUENCY_TIDY_S,
     _check_stable,
