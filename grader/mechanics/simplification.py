@@ -1123,8 +1123,12 @@ def _joined_product(factors: list, bounds: tuple, order: tuple) -> sympy.Expr | 
         root = sympy.Pow(denominator / numerator, -sympy.S.Half, evaluate=False)
     else:
         root = sympy.Pow(radicand, sympy.S.Half, evaluate=False)
-    leading = [whole * sympy.sign(coefficient)] if whole * sympy.sign(coefficient) != 1 else []
-    return sympy.Mul(*leading, *others, root, evaluate=False) if leading or others else root
+    product = [whole] if whole != 1 else []
+    product = sympy.Mul(*product, *others, root, evaluate=False) if product or others else root
+    # A minus sign as a factor of its own: sympy splits a negative number into −1 and the rest in an
+    # unevaluated product, and its printer then multiplies the rest out, splitting the joined root
+    # again (−√(2gl/3)/3 printed as −√6·√g·√l/3/3).
+    return sympy.Mul(sympy.S.NegativeOne, product, evaluate=False) if coefficient < 0 else product
 
 
 def _one_sum_negated(expr: sympy.Expr) -> sympy.Expr | None:

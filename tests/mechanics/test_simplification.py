@@ -439,6 +439,13 @@ _k = sympy.Symbol("k", positive=True)
     (w * sqrt(6 * R ** 2 - 6 * r ** 2) / 3, {}, {}, "omega*sqrt(2*(R**2 - r**2)/3)"),
     (sqrt(16 * g * m * _d / (3 * M + 8 * m)), {}, {}, "4*sqrt(d*g*m/(3*M + 8*m))"),
     (2 * sqrt(g * l), {}, {}, "2*sqrt(g*l)"),  # nothing to tidy
+    # a negative product prints joined too: the minus is a factor of its own (a spherical pendulum's
+    # fastest descent printed as −√6·√g·√l·√(…)/3/3)
+    (-sqrt(6) * sqrt(R) * sqrt(g) / 9, {}, {}, "-sqrt(2*R*g/3)/3"),
+    (-2 * sqrt(6) * sqrt(R) * sqrt(g) / 3, {}, {}, "-2*sqrt(2*R*g/3)"),
+    (-sqrt(6) * sqrt(R) * sqrt(g) * m / 3, {}, {}, "-m*sqrt(2*R*g/3)"),
+    (-sqrt(R) * sqrt(g), {}, {}, "-sqrt(R*g)"),
+    (-2 * m / (sqrt(M) * sqrt(3 * M + 2 * m)), {}, {}, "-2*m/sqrt(M*(3*M + 2*m))"),
     # one radicand of unknown sign over the line is joined (√a√b = √(ab) for a ≥ 0) ...
     (sqrt(g) * sqrt(_s), {}, {}, "sqrt(g*s)"),
     # ... but not two, nor one under a division: √s/√g is not √(s/g) ... and 1/√s is not √(1/s) for s < 0
