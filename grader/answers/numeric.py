@@ -182,6 +182,78 @@ def parse_quantity(text: str) -> Quantity:
     ...
     grader.answers.numeric.QuantityError: write a decimal point, not a comma: 14.7, not 14,7
     """
+    try:
+        return _read_quantity(text)
+    except QuantityError:
+        better = _written_form(text) if isinstance(text, str) and len(text) <= _MAX_TEXT else None
+        if better is None:
+            raise
+        raise QuantityError(better) from None
+
+
+# Ways of writing a number that are not one decimal number; refused (never judged), each with what to
+# type instead. Looked for only once the text has been refused: they cost the answers read nothing.
+_DECIMAL = r"[-+]?(?:\d+(?:\.\d*)?|\.\d+)"
+_PI_MULTIPLE = re.compile(rf"\s*(?:[^\W\d]\w{{0,19}}\s*(?:=|≈)\s*)?(?P<n>{_DECIMAL})?\s*[*·×⋅]?\s*"
+                          r"(?:π|\\pi(?![A-Za-z])|(?<![A-Za-z])pi(?![A-Za-z]))\s*(?P<rest>[^*/^()π\d]*)$", re.IGNORECASE)
+_PI = re.compile(r"π|\\pi(?![A-Za-z])|(?<![A-Za-z])pi(?![A-Za-z])", re.IGNORECASE)
+_DMS = re.compile(r"\s*(?P<sign>[-+])?\s*(?P<d>\d+(?:\.\d+)?)\s*(?:°|deg\b|degrees?\b)\s*"
+                  r"(?P<m>\d+(?:\.\d+)?)\s*(?:'|′|’|min\b|arcmin\b)\s*"
+                  r"(?:(?P<s>\d+(?:\.\d+)?)\s*(?:\"|″|''|′′|’’|”|s\b|sec\b|arcsec\b))?\s*\.?\s*$")
+_VULGAR = {"½": 1 / 2, "⅓": 1 / 3, "⅔": 2 / 3, "¼": 1 / 4, "¾": 3 / 4, "⅕": 1 / 5, "⅖": 2 / 5, "⅗": 3 / 5,
+           "⅘": 4 / 5, "⅙": 1 / 6, "⅚": 5 / 6, "⅐": 1 / 7, "⅛": 1 / 8, "⅜": 3 / 8, "⅝": 5 / 8, "⅞": 7 / 8,
+           "⅑": 1 / 9, "⅒": 1 / 10}
+_VULGAR_NUMBER = re.compile("(?P<whole>\\d*)\\s*(?P<part>[" + "".join(_VULGAR) + "])")
+_DECIMAL_POWER = re.compile(r"\d\s*(?:[eE]|[×xX*·⋅∙]?\s*10\s*(?:\^|\*\*)\s*\(?)\s*[-+]?\d*\.\d"
+                            r"|^\s*[-+]?10\s*(?:\^|\*\*)\s*\(?\s*[-+]?\d*\.\d")
+_PLUS_MINUS = re.compile(r"±|∓|\+\s*/\s*-|\+\s*-(?=\s*\d)|\\pm(?![A-Za-z])")
+_NOTE = re.compile(r"(?<![A-Za-z])(?:s\.\s?f\.?|sf|s\.f|sig\.?\s*figs?|significant\s+(?:figures?|digits?)|"
+                   r"d\.\s?p\.?|dp|decimal\s+places?)(?![A-Za-z])", re.IGNORECASE)
+
+
+def _written_form(text: str) -> str | None:
+    """What to type instead of a refused number written as a multiple of π, in degrees, minutes and
+    seconds, with a vulgar fraction, with a power of ten that is not whole, with an uncertainty, with
+    a note of its figures or after a formula (W = mg = 14.7 N); None for any other text.
+
+    >>> _written_form("0.337π rad")
+    'type the value as one decimal number, not in terms of π: 1.059 rad (0.337π rad)'
+    >>> _written_form("60°39′36″")
+    'type the angle as one number in decimal degrees: 60.66° (60°39′36″); degrees, minutes and seconds are not read'
+    """
+    plain = _plain_quantity(text.translate(_MINUSES)).strip()
+    dms = _DMS.match(plain)
+    if dms:
+        value = float(dms["d"]) + float(dms["m"]) / 60 + float(dms["s"] or 0) / 3600
+        sign = "-" if dms["sign"] == "-" else ""
+        return (f"type the angle as one number in decimal degrees: {sign}{value:.6g}° ({text.strip()}); degrees, "
+                f"minutes and seconds are not read")
+    if _PI.search(plain):
+        multiple = _PI_MULTIPLE.match(plain)
+        if multiple and not _PI.search(multiple["rest"]):
+            value = float(multiple["n"] or 1) * math.pi
+            unit = multiple["rest"].strip()
+            shown = f"{value:.4g} {unit}".strip()
+            return f"type the value as one decimal number, not in terms of π: {shown} ({text.strip()})"
+        return "type the value as one decimal number (such as 0.524), not in terms of π"
+    vulgar = _VULGAR_NUMBER.search(plain)
+    if vulgar:
+        value = float(vulgar["whole"] or 0) + _VULGAR[vulgar["part"]]
+        return (f"type the number as a decimal: {value:.6g}, not {vulgar['whole']}{vulgar['part']} "
+                f"(fractions are not read)")
+    if _DECIMAL_POWER.search(plain):
+        return "a power of ten is a whole number (1.47e3, 1.47×10^3): type the value as one decimal number"
+    if _PLUS_MINUS.search(plain):
+        return "type one value (such as 14.7 N), without its uncertainty (±)"
+    if _NOTE.search(plain):
+        return "type only the number and its unit, without a note of its figures (such as 3 s.f.)"
+    if re.search(r"=|≈", plain):  # W = mg = 14.7 N, |F| = 14.7 N, 14.7 N = F: one name before '=' is read, no more
+        return ("type only the number and its unit (such as 14.7 N), or one name then '=' before it (F = 14.7 N); "
+                "a formula or a second '=' is not read")
+    return None
+
+
+def _read_quantity(text: str) -> Quantity:
     if not isinstance(text, str) or not text.strip():
         raise QuantityError("type a number, such as 14.7 or 1.47e1, with its unit")
     if len(text) > _MAX_TEXT:

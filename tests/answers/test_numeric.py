@@ -696,3 +696,59 @@ def test_the_sign_is_offered_for_a_direction_only_after_a_direction_word(answer,
     reply = check("x", answer, LENGTH, kind="numeric", values={"x": 2.5})
     assert reply.verdict == "invalid"
     assert ("a direction is the sign" in reply.reason) is direction
+
+
+# -- numbers written in other ways than one decimal: refused, never judged, with what to type -------
+TURNED = dict(reference="a", variables={"a": {"dimension": "angle", "domain": "positive"}}, kind="numeric",
+             values={"a": 1.0587}, unit="rad")  # 60.66°, 0.337π rad
+
+
+@pytest.mark.parametrize("question, answer, said, instead", [
+    # a multiple of π, however it is typed: its value in decimals, the unit kept
+    (TURNED, "0.337π rad", "not in terms of π: 1.059 rad", "1.059 rad"),
+    (TURNED, "0.337*pi rad", "not in terms of π: 1.059 rad", "1.059 rad"),
+    (TURNED, "0.337 pi rad", "not in terms of π: 1.059 rad", "1.059 rad"),
+    (TURNED, r"0.337\pi\,\mathrm{rad}", "not in terms of π: 1.059 rad", "1.059 rad"),
+    (TURNED, "θ = 0.337·π rad", "not in terms of π: 1.059 rad", "1.059 rad"),
+    (WEIGHT, "4.684π N", "not in terms of π: 14.72 N", "14.72 N"),
+    (TURNED, "π/3 rad", "not in terms of π", None),
+    # degrees, minutes and seconds: the decimal degrees
+    (dict(TURNED, unit="deg"), "60°39′36″", "decimal degrees: 60.66°", "60.66°"),
+    (dict(TURNED, unit="deg"), "60° 39' 36\"", "decimal degrees: 60.66°", "60.66°"),
+    (dict(TURNED, unit="deg"), "60°39.6'", "decimal degrees: 60.66°", "60.66°"),
+    (dict(TURNED, unit="deg"), "60 deg 39.6 min", "decimal degrees: 60.66°", "60.66°"),
+    # a vulgar fraction: the decimal
+    (WEIGHT, "14¾ N", "as a decimal: 14.75", "14.75 N"),
+    # a power of ten that is not whole; an uncertainty; a note of the figures
+    (WEIGHT, "1e1.168 N", "a power of ten is a whole number", None),
+    (WEIGHT, "10^1.168 N", "a power of ten is a whole number", None),
+    (WEIGHT, "14.7 ± 0.1 N", "without its uncertainty (±)", "14.7 N"),
+    (WEIGHT, "14.7±0.1 N", "without its uncertainty (±)", "14.7 N"),
+    (WEIGHT, "14.7 +/- 0.1 N", "without its uncertainty (±)", "14.7 N"),
+    (WEIGHT, "(14.7 ± 0.1) N", "without its uncertainty (±)", "14.7 N"),
+    (WEIGHT, "14.7 N (3 s.f.)", "without a note of its figures", "14.7 N"),
+    (WEIGHT, "14.7 N to 3 sf", "without a note of its figures", "14.7 N"),
+    # a formula, or a second '=', around the value: one name before '=' is read (F = 14.7 N), no more
+    (WEIGHT, "W = mg = 14.7 N", "a formula or a second '=' is not read", "W = 14.7 N"),
+    (WEIGHT, "m*g = 14.7 N", "a formula or a second '=' is not read", "14.7 N"),
+    (WEIGHT, "|F| = 14.7 N", "a formula or a second '=' is not read", "F = 14.7 N"),
+    (WEIGHT, "14.7 N = F", "a formula or a second '=' is not read", "14.7 N"),
+])
+def test_a_number_written_otherwise_is_refused_with_what_to_type(question, answer, said, instead):
+    reply = check(answer=answer, **question)
+    assert reply.verdict == "invalid"
+    if said is not None:
+        assert said in reply.reason, reply.reason
+    if instead is not None:  # what the message says to type is read, and is the student's own value
+        assert check(answer=instead, **question).verdict == "equivalent"
+
+
+@pytest.mark.parametrize("text", ["14.7 N", "1.47e1 N", "1.47×10^1 N", "F = 14.7 N", "60.66°", "14.7 N.", "25 %"])
+def test_the_written_forms_refused_are_never_looked_for_in_a_number_read(text, monkeypatch):
+    import grader.answers.numeric as numeric
+
+    def looked_for(text):
+        raise AssertionError(f"{text!r} was read, yet its refusal was explained")
+
+    monkeypatch.setattr(numeric, "_written_form", looked_for)
+    assert numeric.parse_quantity(text).number > 0  # read without reaching the explanations of refusals
