@@ -515,6 +515,9 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
     if raw in _UNIT_WORDS or (raw in _UPRIGHT_UNITS and typed.startswith("\\")):  # \mathrm{s}: upright, as units are
         raise ExpressionError(f"unknown name '{typed}': units are not part of the answer", position, "unknown_name",
                               f"write the answer in the problem's symbols and delete '{typed}'")
+    if raw.lower() in ("deg", "degs", "degree", "degrees"):  # sin(30 deg): the degree sign is read, the word is not
+        raise ExpressionError(f"unknown name '{typed}': degrees are written with the degree sign", position,
+                              "unknown_name", "write 30° (a number then °) for 30 degrees, or the angle in radians (π/6)")
     if raw in ("dot", "ddot"):  # Typst's "theta dot", or "dot theta" without brackets: which name is dotted?
         marked = "θ̇, thetadot" if raw == "dot" else "θ̈, thetaddot"
         product = "; for a product (Typst's m dot g) write m*g" if raw == "dot" else ""

@@ -552,6 +552,11 @@ def test_a_spelling_of_another_tradition_is_a_product_when_its_letters_are_decla
     ("log_b(x)", "'log_b' is a logarithm to base b", "log(x)/log(b)"),
     ("m g N", "units are not part of the answer", "delete 'N'"),
     ("cos θ°", "DEGREE SIGN", "only follow a number"),
+    # degrees in words after a number: the degree sign is read, the word is not (30° is)
+    ("sin(30 deg)", "'deg': degrees are written with the degree sign", "30°"),
+    ("sin(30deg)", "'deg': degrees are written with the degree sign", "radians"),
+    ("x sin(30 degrees)", "'degrees': degrees are written with the degree sign", "30°"),
+    ("cos 45 Deg", "'Deg': degrees are written with the degree sign", "30°"),
     ("2 m g newtons", "units are not part of the answer", "delete 'newtons'"),
     ("1½ x", "'1½' mixes a number and a fraction", "3/2 or 1 + 1/2"),
     ("θ̇̇̇", "third or higher time derivative", "at most two dots"),
