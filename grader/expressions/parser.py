@@ -1273,6 +1273,29 @@ def parse_equation(text: str, namespace: Namespace, *, printed: bool = True) -> 
     return _equation(_Parser(tokens, namespace, text), printed)
 
 
+def _joins_equations(tokens: list[Token], i: int, namespace: Namespace, before: list[Token]) -> bool:
+    """Whether ``tokens[i]`` is the word ``and`` between two equations (``m ẍ = -k x and m ÿ = -k y``),
+    read as ``;`` is, as ``\\text{ and }`` already was: an undeclared name ``and`` at the top level, with
+    an ``=`` before it in this equation (or right after a separator, ``, and``) and one after it before the
+    next separator."""
+    token = tokens[i]
+    if token.kind != "name" or token.order or str(token.value).lower() != "and" \
+            or str(token.value) in namespace:
+        return False
+    if before and not any(t.kind == "op" and t.value == "=" for t in before):
+        return False
+    if not before and (i == 0 or tokens[i - 1].kind not in ("newline", "op")):  # ", and" after an equation
+        return False
+    depth = 0
+    for after in tokens[i + 1:]:
+        depth += (after.kind == "open") - (after.kind == "close")
+        if depth == 0 and (after.kind in ("newline", "end") or (after.kind == "op" and after.value in ",;")):
+            return False
+        if depth == 0 and after.kind == "op" and after.value == "=":
+            return True
+    return False
+
+
 def parse_system(text: str, namespace: Namespace, *, printed: bool = True) -> list[ParsedEquation]:
     """Parse several equations separated by ``;``, ``,`` or new lines (at top level).
 
@@ -1297,12 +1320,13 @@ def parse_system(text: str, namespace: Namespace, *, printed: bool = True) -> li
         tokens = tokens[:-2] + tokens[-1:]
     chunks: list[list[Token]] = [[]]
     depth = 0
-    for token in tokens[:-1]:
+    for i, token in enumerate(tokens[:-1]):
         if token.kind == "open":
             depth += 1
         elif token.kind == "close":
             depth -= 1
-        if depth == 0 and (token.kind == "newline" or (token.kind == "op" and token.value in ",;")):
+        if depth == 0 and (token.kind == "newline" or (token.kind == "op" and token.value in ",;")
+                           or token.kind == "name" and _joins_equations(tokens, i, namespace, chunks[-1])):
             chunks.append([])
         else:
             chunks[-1].append(token)

@@ -353,6 +353,28 @@ def test_parse_system_splits_at_top_level(ns):
     assert len(equations) == 4
 
 
+@pytest.mark.parametrize("text", [
+    "x = l sin(theta) and y = -l cos(theta)", "x = l sin(theta) AND y = -l cos(theta)",
+    "x = l sin(theta), and y = -l cos(theta)", "x = l sin(theta);and y = -l cos(theta)",
+    "x = l sin(theta)\nand y = -l cos(theta)", r"x = l \sin\theta \text{ and } y = -l \cos\theta",
+])
+def test_the_word_and_between_two_equations_joins_them_as_a_semicolon_does(ns, text):
+    assert [eq.text for eq in parse_system(text, ns)] == ["x = l*sin(theta)", "y = -l*cos(theta)"]
+
+
+@pytest.mark.parametrize("text", ["x = l sin(theta) and", "and x = l sin(theta)", "x and y = l"])
+def test_the_word_and_without_an_equation_on_each_side_is_still_refused(ns, text):
+    with pytest.raises(ExpressionError, match="'and' is not allowed"):
+        parse_system(text, ns)
+
+
+def test_a_declared_and_is_a_name_not_a_joint():
+    and_ns = Namespace([Variable(n, "length", "positive") for n in ("x", "y", "and")])
+    assert len(parse_system("x = and", and_ns)) == 1
+    with pytest.raises(ExpressionError, match="exactly one '='"):
+        parse_system("x = and and y = x", and_ns)
+
+
 def test_parse_system_reports_positions_in_the_whole_text(ns):
     with pytest.raises(ExpressionError) as err:
         parse_system("x = l; y = thta", ns)
