@@ -492,7 +492,8 @@ def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
     if "d" not in text and _ITALIC_D not in text:  # most answers: nothing to look at
         return tokens
     memo: dict = {}
-    tokens = _operator_first(tokens, ns, memo)
+    typed = tokens
+    tokens = _operator_first(_unbraced_powers(tokens), ns, memo)
     out: list[Token] | None = None
     i, n = 0, len(tokens)
     while i < n:
@@ -515,7 +516,27 @@ def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
             # The parser stops at this token (or at an error before it): nothing after it is read.
             out.extend(tokens[i:])
             break
-    return out if out is not None else tokens
+    return out if out is not None else typed
+
+
+def _unbraced_powers(tokens: list[Token]) -> list[Token]:
+    """The tokens with the braces WIRIS and MathType put around a base before its power dropped
+    (``\\frac{{d}^{2}\\theta}{d{t}^{2}}``: ``{d}^{2}`` is ``d^{2}``), for `read_leibniz` to match;
+    ``tokens`` itself when there are none. Only a brace opened at the start, after a bracket, an
+    operator or a ``d``, so a command's argument (``\\sqrt{x}^{2}``, ``\\dot{t}^2``, ``\\frac{a}{b}^2``) is kept.
+    """
+    out: list[Token] | None = None
+    n = len(tokens)
+    for i, token in enumerate(tokens):
+        if (_is(token, "open", "{") and i + 3 < n and _plain_name(tokens[i + 1]) and _is(tokens[i + 2], "close", "}")
+                and (tokens[i + 3].kind == "sup" or _is(tokens[i + 3], "op", "^"))):
+            before = tokens[i - 1] if i else None
+            if (before is None or before.kind == "open" or (before.kind == "op" and before.value not in ("^", "_"))
+                    or (_plain_name(before) and before.value == "d" and not before.order)):
+                if out is None:
+                    out = list(tokens)
+                out[i] = out[i + 2] = None
+    return [t for t in out if t is not None] if out is not None else tokens
 
 
 # Largest operand (in nodes) of d/dt (first order) and d²/dt² (second order): the Lagrangian's

@@ -418,3 +418,39 @@ def test_a_parameters_time_derivative_is_refused_saying_it_is_constant(ns, text,
 def test_a_parameter_with_a_declared_rate_is_not_constant():
     ns = _ns(Variable("L", "length", "positive"), Variable("Ldot", "velocity"))
     assert str(parse_expression("dL/dt", ns).expr) == "Ldot"
+
+
+# WIRIS / MathType brace a base before its power: {d}^{2} and d{t}^{2}.
+@pytest.mark.parametrize("text, name", [
+    (r"\frac{{d}^{2}\theta }{d{t}^{2}}", "thetaddot"),
+    (r"\frac{{\mathrm{d}}^{2}\theta }{\mathrm{d}{t}^{2}}", "thetaddot"),
+    (r"\frac{{d}^{2}\mathrm{\theta }}{d{t}^{2}}", "thetaddot"),
+    (r"\frac{{d}^{2}x}{d{t}^{2}}", "xddot"),
+    (r"\frac{{d}^{2}}{d{t}^{2}}\theta ", "thetaddot"),
+    (r"\frac{{d}^{2}}{d{t}^{2}}\left(x\right)", "xddot"),
+    (r"{d}^{2}\theta /d{t}^{2}", "thetaddot"),
+    (r"{d}^{2}x/d{t}^{2}", "xddot"),
+])
+def test_the_braced_bases_of_wiris_are_leibniz_too(ns, text, name):
+    parsed = parse_expression(text, ns)
+    assert parsed.expr == ns.symbol(name)
+
+
+@pytest.mark.parametrize("text, top, below", [
+    (r"\frac{{d}^{2}\theta }{dt}", "d²", "dt below"),
+    (r"\frac{d\theta }{d{t}^{2}}", "d on top", "dt²"),
+])
+def test_wiris_braced_orders_that_disagree_are_refused(ns, text, top, below):
+    with pytest.raises(ExpressionError) as error:
+        parse_expression(text, ns)
+    assert top in str(error.value) and below in str(error.value)
+
+
+def test_braced_bases_keep_their_meaning_when_d_is_declared():
+    declared = Namespace([Variable("d", "length", "positive"), Variable("t", "time", "positive"),
+                          Variable("x", "length", "positive")])
+    d, t, x = (declared.symbol(n) for n in "dtx")
+    assert parse(r"\frac{{d}^{2}x}{d{t}^{2}}", declared) == d * x / t**2
+    # a command's braced argument before a power is not unbraced: \sqrt{x}^{2} is (√x)², not √(x²)
+    assert parse(r"\frac{{d}^{2}\theta }{d{t}^{2}} + \sqrt{x}^{2}", _ns()) == \
+        _ns().symbol("thetaddot") + _ns().symbol("x")
