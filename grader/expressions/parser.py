@@ -168,9 +168,28 @@ def _real_domain(expr: sympy.Expr, nodes: list[tuple[sympy.Expr, sympy.Expr]]) -
     return tuple(conditions)
 
 
+def _empty_group_before_power(tokens: list[Token]) -> list[Token]:
+    """The tokens without each empty group ``{}`` between an operand and its power: editors (Word's
+    LaTeX, Mathpix's ``{ }^{2}``, MathType) write ``x{}^{2}`` and ``\\dot{\\theta}{}^{2}`` for x² and θ̇², the
+    group only carrying the superscript. One with nothing before it (``{}^{2}x``, a prescript) is kept,
+    and refused as empty brackets."""
+    keep: list[Token] | None = None
+    for i in range(1, len(tokens) - 2):
+        opener, closer, power = tokens[i], tokens[i + 1], tokens[i + 2]
+        if (opener.kind == "open" and opener.value == "{" and closer.kind == "close" and closer.value == "}"
+                and power.kind == "op" and power.value == "^"
+                and tokens[i - 1].kind in ("name", "number", "close", "derivative")):
+            if keep is None:
+                keep = list(tokens)
+            keep[i] = keep[i + 1] = None
+    return tokens if keep is None else [t for t in keep if t is not None]
+
+
 class _Parser:
     def __init__(self, tokens: list[Token], namespace: Namespace, text: str) -> None:
         # dθ/dt, \frac{d^2x}{dt^2}, d/dt(θ): one derivative token each (see leibniz.py).
+        if "{" in text and "^" in text:
+            tokens = _empty_group_before_power(tokens)
         self.tokens = read_leibniz(tokens, namespace, text)
         self.ns = namespace
         self.text = text

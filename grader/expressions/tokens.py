@@ -97,6 +97,11 @@ def _is_digit(ch: str) -> bool:
 # Spellings of "not equal" in other languages and graders ('!=' has its own branch, '≠' and \ne theirs).
 _NOT_EQUAL = re.compile(r"=/=|/=|<>|=\\=")
 
+# A MathML or HTML tag (<math>, <mi>, </mrow>, <mo stretchy="false">, <sup>, <span ...>) at a '<'.
+_MARKUP_TAG = re.compile(r"</?(math|mi|mn|mo|ms|mrow|msup|msub|msubsup|mfrac|msqrt|mroot|mover|munder|munderover"
+                         r"|mtext|mspace|mstyle|mfenced|mtable|mtr|mtd|semantics|annotation|annotation-xml|mathml"
+                         r"|sup|sub|span|div|p|i|b|em|strong|br)\b[^<>]{0,200}/?>", re.IGNORECASE)
+
 # Printable ASCII the grammar does not use, and what to tell the student.
 _PUNCTUATION = {
     "!": ("factorial (!) is not supported", "unsupported_function", "write the product out, as in 2*3"),
@@ -395,6 +400,13 @@ class _Tokenizer:
             # LaTeX's non-breaking space (Mathpix: g~\sin\theta); set apart, x ~ \frac{l}{2} means 'about' 
             self.space = True
             self.i += 1
+        elif ch == "<" and (tag := _MARKUP_TAG.match(self.text, start)):
+            # MathML (or HTML) pasted from Word, an editor or a web page: a tag, not 'less than'
+            self.emit("bad", ch, start, tag.end(), error=ExpressionError(
+                f"'{tag.group(0)}' is {'MathML' if tag.group(1).lower().startswith('m') else 'HTML'} markup, "
+                "not a formula", start, "syntax",
+                "paste the formula as plain text or LaTeX (in Word: Equation, then Convert to Linear or "
+                "copy as LaTeX), or type it, as in m*g*sin(theta)"))
         elif ch in _PUNCTUATION:
             message, code, hint = _PUNCTUATION[ch]
             self.emit("bad", ch, start, start + 1, error=ExpressionError(message, start, code, hint))

@@ -385,3 +385,45 @@ def test_a_caption_after_the_start_is_still_text(ns):
     with pytest.raises(ExpressionError) as err:
         parse_expression(r"m g \text{ so: }", ns)
     assert "is text" in str(err.value)
+
+
+# -- red team 2026-11-10b: an empty group carrying a superscript -----------------------------------
+
+@pytest.mark.parametrize("latex, plain", [
+    (r"x{}^{2}", "x^2"), (r"x{ }^{2}", "x^2"), (r"x{}^2", "x^2"), (r"m l\dot{\theta}{}^{2}", "m l thetadot^2"),
+    (r"\left(x+l\right){}^{2}", "(x + l)^2"), (r"x{}^{2}l", "x^2 l"), (r"2{}^{3}x", "8 x"),
+    (r"m g\cos\theta+m l\dot{\theta}{}^{2}", "m g cos(theta) + m l thetadot^2"),
+])
+def test_an_empty_group_between_an_operand_and_its_power_is_nothing(ns, latex, plain):
+    assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
+
+
+@pytest.mark.parametrize("latex", [r"{}^{2}x", r"x+{}^{2}l", r"x{}", r"x{}l"])
+def test_an_empty_group_carrying_nothing_or_a_prescript_is_refused(ns, latex):
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(latex, ns)
+    assert "empty" in str(err.value)
+
+
+# -- red team 2026-11-10b: MathML or HTML pasted as text is named, not read as inequalities ----------
+
+@pytest.mark.parametrize("text, tag, kind", [
+    ("<math><mi>x</mi><mo>+</mo><mn>1</mn></math>", "'<math>'", "MathML"),
+    ('<math xmlns="http://www.w3.org/1998/Math/MathML"><mi>l</mi></math>', "'<math xmlns=", "MathML"),
+    ("<mrow><mi>m</mi><mi>g</mi></mrow>", "'<mrow>'", "MathML"),
+    ("<msup><mi>x</mi><mn>2</mn></msup>", "'<msup>'", "MathML"),
+    ("m g <mo>+</mo> l", "'<mo>'", "MathML"),
+    ("x<sup>2</sup>", "'<sup>'", "HTML"),
+    ("<p>m g l</p>", "'<p>'", "HTML"),
+])
+def test_pasted_markup_is_refused_naming_the_tag(ns, text, tag, kind):
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text, ns)
+    assert tag in str(err.value) and f"{kind} markup" in str(err.value) and "LaTeX" in err.value.hint
+
+
+@pytest.mark.parametrize("text", ["x < l", "x<l", "m<g", "x <> l", "x <= l"])
+def test_a_less_than_sign_is_still_an_inequality(ns, text):
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text, ns)
+    assert "markup" not in str(err.value)
