@@ -965,13 +965,18 @@ class _Parser:
         plain = token.text.isascii() and token.text.isalnum() and token.order == 0
         if token.kind in ("number", "name") and plain and len(token.text) > 1:
             first, rest = token.text[0], token.text[1:]
-            if not (token.text.isdigit() or token.text.isalpha()):
-                raise ExpressionError(f"{command.text} needs braces, as in {_BRACED_EXAMPLE.get(command.value, '')}",
-                                      token.pos, "syntax")
-            pieces = [replace(token, value=sympy.Integer(int(part)) if part.isdigit() else part, text=part,
-                              pos=token.pos + k, end=token.pos + k + len(part),
-                              space_before=token.space_before if k == 0 else False)
-                      for k, part in ((0, first), (1, rest))]
+            if token.text.isdigit() or token.text.isalpha():
+                pieces = [replace(token, value=sympy.Integer(int(part)) if part.isdigit() else part, text=part,
+                                  pos=token.pos + k, end=token.pos + k + len(part),
+                                  space_before=token.space_before if k == 0 else False)
+                          for k, part in ((0, first), (1, rest))]
+            else:
+                # letters and digits glued (\frac x2, \frac 1x2, \frac a2b): TeX too takes the first
+                # character, and what follows is read afresh (x/2, (1/x)·2, (a/2)·b)
+                pieces = [replace(token, value=sympy.Integer(int(first)) if first.isdigit() else first, text=first,
+                                  end=token.pos + 1, decimal=False)]
+                for piece in tokenize(rest)[:-1]:  # plain ASCII letters and digits
+                    pieces.append(replace(piece, pos=piece.pos + token.pos + 1, end=piece.end + token.pos + 1))
             self.tokens[self.i:self.i + 1] = pieces
             token = pieces[0]
         single = plain and len(token.text) == 1

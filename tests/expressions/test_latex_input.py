@@ -427,3 +427,20 @@ def test_a_less_than_sign_is_still_an_inequality(ns, text):
     with pytest.raises(ExpressionError) as err:
         parse_expression(text, ns)
     assert "markup" not in str(err.value)
+
+
+# -- red team 2026-11-10b: \frac's unbraced arguments over letters and digits glued ----------------
+
+@pytest.mark.parametrize("latex, plain", [
+    (r"\frac x2", "x/2"), (r"\frac l2", "l/2"), (r"\frac g2l", "g/2 l"), (r"\frac x2 l", "x/2 l"),
+    (r"m\frac g2", "m g/2"), (r"\frac12 m \frac x2", "m x/4"), (r"\frac x2x", "x^2/2"),
+])
+def test_an_unbraced_frac_argument_is_one_character_also_before_a_digit(ns, latex, plain):
+    assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
+
+
+@pytest.mark.parametrize("latex", [r"\frac 1x2", r"\frac 2l3"])
+def test_a_number_right_after_an_unbraced_frac_needs_an_operator(ns, latex):
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(latex, ns)
+    assert "missing operator" in str(err.value)
