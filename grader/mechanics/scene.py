@@ -50,6 +50,7 @@ from grader.expressions import (
     parse_expression,
 )
 from grader.expressions.dimensions import parse_unit
+from grader.expressions.functions import FUNCTIONS
 from grader.mechanics.geometry import Geometry, read_geometry
 from grader.mechanics.scene_schema import structure_problems
 
@@ -70,6 +71,11 @@ __all__ = [
 ENERGY = parse_dimension("energy")
 TIME = parse_dimension("time")
 _NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_]*$")
+
+
+def _is_function_name(name: str) -> bool:
+    """Whether expressions read ``name`` as a function (sin, ln, dot, ddot): no variable may be named so."""
+    return name in FUNCTIONS or name in ("dot", "ddot")
 _MAX_SOURCE_BYTES = 256 * 1024
 _MAX_ITEMS = 64
 
@@ -281,6 +287,8 @@ class _SceneReader:
         if not _NAME.match(name) or name.startswith(("lambda_", "Q_")) or name == "t":
             raise self.fail(key, f"'{name}' is not a usable name (letters, digits and _; "
                                  "not t, lambda_..., Q_...)")
+        if _is_function_name(name):
+            raise self.fail(key, f"'{name}' is the name of a function in expressions; choose another name")
 
     def add(self, variable: Variable) -> sympy.Symbol:
         if any(v.name == variable.name for v in self.variables):
@@ -449,6 +457,13 @@ class _SceneReader:
         for name, spec in table.items():
             key = f"{where}.{name}"
             dim, dom = self.declared(key, name, spec)
+            # Its velocity and acceleration are named {name}dot and {name}ddot: a coordinate d would
+            # have the acceleration ddot, which expressions read as the function ddot(x).
+            clash = next((f"{name}{s}" for s in ("dot", "ddot") if _is_function_name(f"{name}{s}")), None)
+            if clash is not None:
+                raise self.fail(key, f"the coordinate '{name}' would have a velocity or acceleration named "
+                                     f"'{clash}', which is the name of a function in expressions (ddot(x) is "
+                                     "ẍ); choose another name for it")
             real = parse_domain("real")
             q = self.add(Variable(name, dim, dom, "coordinate"))
             qd = self.add(Variable(f"{name}dot", dim / TIME, real, "velocity"))
