@@ -1,4 +1,5 @@
-"""Small oscillations of one coordinate when the others are cyclic (Routh's reduction).
+"""Small oscillations of one coordinate when the others are cyclic (Routh's reduction) or absent
+from its equation.
 
 ``kind = "small_oscillation"`` in a scene of one degree of freedom is a special value
 (:mod:`grader.mechanics.special_values`): ω² = −∂ü/∂u at the equilibrium. With more degrees of
@@ -15,6 +16,11 @@ So the pendulum on a cart oscillates with ω² = (M + m) g/(M ℓ), faster than 
 and a conical pendulum at θ₀ with ω² = g (1 + 3 cos²θ₀)/(ℓ cos θ₀). The equilibrium is a relative
 one when momenta are not zero (the steady conical motion), and it must be one for those momenta:
 ``where = "theta = theta0"`` is refused if [initial] does not start a steady motion there.
+
+A coordinate that is not cyclic but leaves ü free of itself and its velocity does not matter either:
+a pendulum hung from a block sliding down a smooth incline (the block's s enters only through the
+uniform force of gravity along the slope) swings about the normal to the incline with
+ω² = (M + m) g cos α/(M ℓ), whatever the block does.
 
 Examples
 --------
@@ -58,17 +64,25 @@ def small_oscillation_with_cyclic_coordinates(evaluator, spec: AnswerSpec) -> sy
                          f"({', '.join(reduction.independent)}): the one that oscillates")
     others = [v for v in reduction.independent.values() if v is not u]
     cyclic = evaluator.cyclic_coordinates()
-    not_cyclic = [v.name for v in others if v not in cyclic]
-    if not_cyclic:
-        raise SceneError(scene.source, f"answers ({spec.name}).expr",
-                         f"small oscillations of {u.name} with other degrees of freedom are computed when the "
-                         "others are cyclic (their momenta conserved, Routh's reduction); "
-                         f"{', '.join(not_cyclic)} {'is' if len(not_cyclic) == 1 else 'are'} not: the "
-                         "Lagrangian depends on it. Normal modes of several coupled coordinates are not "
-                         "computed")
+    not_cyclic = [v for v in others if v not in cyclic]
     with budget.step("reducing to one coordinate with the conserved momenta", spec.name):
         momenta = evaluator.momentum_substitution(set(), key)
-        missing = [v.name for v in others if v.dot not in momenta]
+        if not_cyclic:
+            # A coordinate the Lagrangian depends on does not matter when ü, the others' accelerations
+            # eliminated, is free of it and its velocity: a pendulum hung from a block sliding down an
+            # incline (the block's s enters only as the uniform force's potential, ü = f(u, u̇)).
+            coupled = {s for v in not_cyclic for s in (v.symbol, v.dot)} | {scene.time}
+            full = reduction.accelerations[u.ddot].xreplace(momenta)
+            if full.free_symbols & coupled and sympy.cancel(full).free_symbols & coupled:
+                names = ", ".join(v.name for v in not_cyclic)
+                raise SceneError(scene.source, f"answers ({spec.name}).expr",
+                                 f"small oscillations of {u.name} with other degrees of freedom are computed "
+                                 "when the others are cyclic (their momenta conserved, Routh's reduction) or "
+                                 f"absent from {u.ddot.name} (a block sliding down an incline under a pendulum); "
+                                 f"{names} {'is' if len(not_cyclic) == 1 else 'are'} not: the Lagrangian "
+                                 f"depends on it, and so does {u.ddot.name}. Normal modes of several coupled "
+                                 "coordinates are not computed")
+        missing = [v.name for v in others if v in cyclic and v.dot not in momenta]
         if missing:
             raise SceneError(scene.source, key,
                              f"the conserved momenta of {', '.join(missing)} come from [initial]; give the "

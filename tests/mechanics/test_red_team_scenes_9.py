@@ -1,5 +1,10 @@
 """The twelfth engine red team (2026-11-28): scenes from the constraints chapters of the textbooks.
 
+0. Small oscillations of one coordinate when another is not cyclic but only feels a uniform force (a
+   pendulum hung from a block sliding down a smooth incline, or from a cart pushed by a constant force)
+   were refused ("the others are not cyclic"): the pendulum's φ̈, the block's s̈ eliminated, depends on φ
+   and φ̇ alone, so its frequency is well posed. It is computed now whenever ü is free of the other
+   coordinates and their velocities.
 3. A coordinate named d has the acceleration ddot, a parameter named ln is a function: both crashed the
    scene reader with a traceback (ValueError); they are refused naming the name to change.
 
@@ -19,6 +24,71 @@ from grader.expressions import parse_expression
 from grader.mechanics.lagrange import derive
 from grader.mechanics.scene import SceneError, parse_scene
 from tests.mechanics.test_red_team_scenes_7 import at
+
+# -- 0. small oscillations beside a uniformly forced coordinate ----------------------------------------
+# Block M at distance s along a rail of inclination α (down the rail), pendulum m, l at φ from the
+# downward vertical, and a constant force P pushing the block down the rail. T = (M + m) ṡ²/2 +
+# m l cos(φ + α) ṡ φ̇ + m l² φ̇²/2, V = −(M + m) g s sin α − P s − m g l cos φ. With s̈ eliminated,
+# φ̈ depends on φ, φ̇ only: in the frame that moves with the uniform force's acceleration along the rail,
+# the pendulum swings as on a free cart on a level rail, under an effective gravity. With ψ = φ + α (the angle from the normal to the rail) the effective potential is
+# −m l (g cos α cos ψ − (P/(M + m)) sin ψ) = −m l G cos(ψ − ψ*), G = √(g² cos²α + (P/(M + m))²),
+# tan ψ* = −P/((M + m) g cos α), and the inertia m l² (M + m sin²ψ)/(M + m), so
+#     ω² = G (M + m)/(l (M + m sin²ψ*)),
+# (P = 0, the incline: ω² = (M + m) g cos α/(M l), about φ = −α; α = 0: a cart pushed on level ground).
+_PUSHED = '''
+id = "pendulum_on_pushed_block"
+title = "Pendulum hung from a block on a rail"
+[parameters]
+m = {{ dimension = "mass", domain = "positive", value = 0.5 }}
+M = {{ dimension = "mass", domain = "positive", value = 2.0 }}
+g = {{ dimension = "acceleration", domain = "positive", value = 9.81 }}
+l = {{ dimension = "length", domain = "positive", value = 0.8 }}
+{extra}
+[coordinates]
+s = {{ dimension = "length" }}
+phi = {{ dimension = "angle", domain = [-1.55, 1.55] }}
+[energy]
+kinetic = "(M + m)/2*sdot^2 + m*l*cos(phi + {alpha})*sdot*phidot + m*l^2/2*phidot^2"
+potential = "-(M + m)*g*s*sin({alpha}) - {push}*s - m*g*l*cos(phi)"
+[[answers]]
+name = "frequency"
+prompt = "frequency of small oscillations"
+kind = "small_oscillation"
+expr = "phi"
+where = "{where}"
+'''
+
+
+@pytest.mark.parametrize("case", ["incline", "pushed_on_level", "pushed_down_incline"])
+def test_small_oscillations_beside_a_uniformly_forced_coordinate(case):
+    alpha = {"incline": "alpha", "pushed_on_level": "0", "pushed_down_incline": "alpha"}[case]
+    push = {"incline": "0", "pushed_on_level": "P", "pushed_down_incline": "P"}[case]
+    extra = ('alpha = { dimension = "angle", domain = [0.05, 1.5], value = 0.5 }\n' if alpha == "alpha" else "") + \
+        ('P = { dimension = "force", domain = "positive", value = 3.0 }\n' if push == "P" else "")
+    where = {"incline": "phi = -alpha", "pushed_on_level": "phiddot = 0",
+             "pushed_down_incline": "phiddot = 0"}[case]
+    text = _PUSHED.format(alpha=alpha, push=push, extra=extra, where=where)
+    derivation = derive(parse_scene(text, source=f"{case}.toml"))
+    for point in ({"m": 0.5, "M": 2.0, "g": 9.81, "l": 0.8, "alpha": 0.5, "P": 3.0},
+                  {"m": 3.0, "M": 1.0, "g": 1.6, "l": 2.5, "alpha": 1.1, "P": 0.7}):
+        a = point["alpha"] if alpha == "alpha" else 0.0
+        p = point["P"] if push == "P" else 0.0
+        total = point["M"] + point["m"]
+        G = math.hypot(point["g"] * math.cos(a), p / total)
+        psi = math.atan2(-p / total, point["g"] * math.cos(a))
+        expected = math.sqrt(G * total / (point["l"] * (point["M"] + point["m"] * math.sin(psi) ** 2)))
+        declared = {k: v for k, v in point.items() if k in derivation.scene.namespace.names}
+        assert at(derivation, derivation.answers["frequency"], declared) == pytest.approx(expected, rel=1e-12)
+
+
+# A coordinate that feels more than a uniform force still refuses, naming it: the block on a spring.
+def test_small_oscillations_beside_a_coupled_coordinate_are_still_refused():
+    text = _PUSHED.format(alpha="0", push="0", extra='k = { dimension = "stiffness", domain = "positive", '
+                                                      'value = 5.0 }\n', where="phi = 0")
+    text = text.replace('- m*g*l*cos(phi)"', '- m*g*l*cos(phi) + k*s^2/2"')
+    with pytest.raises(SceneError, match="s is not: the Lagrangian depends on it, and so does phiddot"):
+        derive(parse_scene(text, source="spring.toml"))
+
 
 # -- 3. names the expression grammar reads as functions --------------------------------------------------
 _NAMED = '''
