@@ -112,6 +112,11 @@ def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
         if at_rest or not (_sets_an_acceleration_to_zero(evaluator, spec)
                            and (several or _start_left_out(evaluator, target))):
             raise
+        if _asked_velocities_in_condition(evaluator, spec, target, key):
+            # At rest would set to zero a velocity the answer is asked in and the condition depends on
+            # (θ where θ̈ = 0, in terms of φ̇, for a pendulum whose support is driven round a circle: the
+            # φ̇² sin θ cos θ term dropped): a wrong value wherever that velocity is not zero.
+            raise
         try:
             return _where(evaluator, spec, target, key, at_rest=True)
         except SceneError:
@@ -138,6 +143,21 @@ def _condition_in_time(evaluator, spec, key: str) -> bool:
     except SceneError:
         return False
     return evaluator.scene.time in condition.free_symbols
+
+
+def _asked_velocities_in_condition(evaluator, spec, target: set, key: str) -> bool:
+    """Whether the condition, in the independent variables, depends on a velocity that in_terms_of
+    names (so it cannot be read at rest)."""
+    velocities = {u.dot for u in evaluator.reduction.independent.values()} & target
+    if not velocities:
+        return False
+    lhs, rhs = spec.where
+    everything = evaluator.parameters | evaluator.state_symbols() | {evaluator.scene.time}
+    try:
+        condition = evaluator.reduce(lhs - rhs, everything, key, readable=False)
+    except SceneError:
+        return False
+    return bool(condition.free_symbols & velocities)
 
 
 def _sets_an_acceleration_to_zero(evaluator, spec) -> bool:

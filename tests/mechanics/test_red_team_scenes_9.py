@@ -5,6 +5,11 @@
    were refused ("the others are not cyclic"): the pendulum's φ̈, the block's s̈ eliminated, depends on φ
    and φ̇ alone, so its frequency is well posed. It is computed now whenever ü is free of the other
    coordinates and their velocities.
+1. θ where θ̈ = 0, asked in terms of φ̇, for a spherical pendulum whose support is driven round a
+   horizontal circle: the condition has a φ̇² sin θ cos θ term; solving it along the motion ran out of
+   budget and the engine fell back to reading it at rest, silently setting φ̇ = 0: atan(a ω² cos(ωt − φ)/g),
+   wrong wherever φ̇ ≠ 0. A velocity that in_terms_of names and the condition depends on is never read at
+   rest now; the answer is refused with the reason instead.
 3. A coordinate named d has the acceleration ddot, a parameter named ln is a function: both crashed the
    scene reader with a traceback (ValueError); they are refused naming the name to change.
 
@@ -88,6 +93,54 @@ def test_small_oscillations_beside_a_coupled_coordinate_are_still_refused():
     text = text.replace('- m*g*l*cos(phi)"', '- m*g*l*cos(phi) + k*s^2/2"')
     with pytest.raises(SceneError, match="s is not: the Lagrangian depends on it, and so does phiddot"):
         derive(parse_scene(text, source="spring.toml"))
+
+
+# -- 1. a velocity in in_terms_of is not set to zero by reading the condition at rest ------------------
+# Support at (a cos ωt, a sin ωt, 0) (circle) or (a cos ωt, 0, 0) (line); bob at support + l (sin θ cos φ,
+# sin θ sin φ, −cos θ). θ̈ = φ̇² sin θ cos θ − g sin θ/l + (cos θ/l) (−A_s)·(cos φ, sin φ, 0) with A_s the
+# support's acceleration. θ where θ̈ = 0 in terms of φ̇: the answer, if given, must make θ̈ vanish at
+# states with φ̇ ≠ 0 (at rest it was atan(a ω² cos(ωt − φ)/g), which does not).
+_DRIVEN = '''
+id = "spherical_pendulum_driven_support"
+title = "Spherical pendulum with a driven support"
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 0.3 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+l = { dimension = "length", domain = "positive", value = 0.9 }
+a = { dimension = "length", domain = "positive", value = 0.15 }
+omega = { dimension = "angular_velocity", domain = "positive", value = 2.5 }
+[coordinates]
+theta = { dimension = "angle", domain = [0.01, 3.1] }
+phi = { dimension = "angle" }
+[energy]
+kinetic = "m/2*((-a*omega*sin(omega*t) + l*(cos(theta)*cos(phi)*thetadot - sin(theta)*sin(phi)*phidot))^2 + (YS + l*(cos(theta)*sin(phi)*thetadot + sin(theta)*cos(phi)*phidot))^2 + (l*sin(theta)*thetadot)^2)"
+potential = "-m*g*l*cos(theta)"
+[[answers]]
+name = "steady_angle"
+prompt = "theta where thetaddot = 0"
+expr = "theta"
+where = "thetaddot = 0"
+in_terms_of = ["g", "l", "a", "omega", "phi", "phidot", "t"]
+'''
+
+
+@pytest.mark.parametrize("support", ["circle", "line"])
+def test_a_velocity_asked_in_is_not_dropped_by_reading_the_condition_at_rest(support):
+    text = _DRIVEN.replace("YS", "a*omega*cos(omega*t)" if support == "circle" else "0")
+    try:
+        derivation = derive(parse_scene(text, source=f"{support}.toml"))
+    except SceneError as error:
+        assert "steady_angle" in str(error)
+        return
+    for point in ({"g": 9.81, "l": 0.9, "a": 0.15, "omega": 2.5, "phi": 0.3, "phidot": 2.0, "t": 0.4},
+                  {"g": 9.81, "l": 0.9, "a": 0.15, "omega": 2.5, "phi": -0.7, "phidot": 4.0, "t": 1.3}):
+        theta = at(derivation, derivation.answers["steady_angle"], point)
+        ys = 1.0 if support == "circle" else 0.0
+        drive = point["a"] * point["omega"] ** 2 * (math.cos(point["omega"] * point["t"]) * math.cos(point["phi"])
+                                                    + ys * math.sin(point["omega"] * point["t"]) * math.sin(point["phi"]))
+        thetaddot = (point["phidot"] ** 2 * math.sin(theta) * math.cos(theta) - point["g"] * math.sin(theta) / point["l"]
+                     + math.cos(theta) * drive / point["l"])
+        assert thetaddot == pytest.approx(0, abs=1e-9)
 
 
 # -- 3. names the expression grammar reads as functions --------------------------------------------------
