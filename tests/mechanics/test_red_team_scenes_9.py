@@ -10,6 +10,10 @@
    budget and the engine fell back to reading it at rest, silently setting φ̇ = 0: atan(a ω² cos(ωt − φ)/g),
    wrong wherever φ̇ ≠ 0. A velocity that in_terms_of names and the condition depends on is never read at
    rest now; the answer is refused with the reason instead.
+2. A numeric answer (the angle where a cylinder leaves another cylinder that itself rolls on the floor)
+   whose closed form is longer than the checker reads (Ferrari's root of a quartic in cos θ, 4,154
+   characters) was refused ("cannot be checked: the text is too long"); it is found numerically now, as
+   at a root nobody can type.
 3. A coordinate named d has the acceleration ddot, a parameter named ln is a function: both crashed the
    scene reader with a traceback (ValueError); they are refused naming the name to change.
 
@@ -141,6 +145,79 @@ def test_a_velocity_asked_in_is_not_dropped_by_reading_the_condition_at_rest(sup
         thetaddot = (point["phidot"] ** 2 * math.sin(theta) * math.cos(theta) - point["g"] * math.sin(theta) / point["l"]
                      + math.cos(theta) * drive / point["l"])
         assert thetaddot == pytest.approx(0, abs=1e-9)
+
+
+# -- 2. a numeric answer whose closed form is too long to check ------------------------------------------
+# A cylinder (m, r, I = k m r²) on top of a solid cylinder (M, R) that rolls on the floor, both rolling
+# without slipping, released at the top with a tiny push. With θ the line of centres' angle from the upward
+# vertical and X the bottom cylinder's position (cyclic: p_X = 0), T = (3M/4 + (1 + k) m/2) Ẋ² +
+# m (R + r)(cos θ − k) Ẋ θ̇ + (1 + k) m (R + r)² θ̇²/2, and the normal force vanishes at a root of a quartic
+# in cos θ. The angles below come from integrating the
+# Cartesian equations with Lagrange multipliers (scipy, from θ₀ = 1e-7 at rest) to where the normal
+# force changes sign: 57.174091° (k = 1/2, M = 3 m) and 65.024912° (k = 1, M = 1.5 m).
+_ON_ROLLING = '''
+id = "cylinder_on_rolling_cylinder"
+title = "Cylinder on a cylinder that rolls"
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 1.0 }
+M = { dimension = "mass", domain = "positive", value = MASS }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+R = { dimension = "length", domain = "positive", value = 0.5 }
+r = { dimension = "length", domain = "positive", value = 0.2 }
+[coordinates]
+theta = { dimension = "angle", domain = [-3.1416, 3.1416] }
+rho = { dimension = "length", domain = "positive" }
+X = { dimension = "length" }
+beta = { dimension = "angle" }
+psi = { dimension = "angle" }
+[energy]
+kinetic = "M/2*Xdot^2 + M*R^2/4*betadot^2 + m/2*((Xdot + rhodot*sin(theta) + rho*cos(theta)*thetadot)^2 + (rhodot*cos(theta) - rho*sin(theta)*thetadot)^2) + K*m*r^2/2*psidot^2"
+potential = "m*g*rho*cos(theta)"
+[[constraints]]
+name = "contact"
+f = "rho - R - r"
+kind = "unilateral"
+[[constraints]]
+name = "floor"
+f = "X + R*beta"
+[[constraints]]
+name = "top"
+f = "(R + r)*theta + r*psi + R*beta"
+[initial]
+theta = 0
+thetadot = 0
+X = 0
+Xdot = 0
+[[answers]]
+name = "normal_force"
+prompt = "normal force as a function of theta"
+expr = "lambda_contact"
+in_terms_of = ["m", "M", "g", "theta"]
+dimension = "force"
+[[answers]]
+name = "separation_angle"
+prompt = "angle where the top cylinder leaves (deg)"
+kind = "numeric"
+expr = "theta"
+where = "normal_force = 0"
+unit = "deg"
+'''
+
+
+@pytest.mark.parametrize("k, mass, degrees", [("1/2", "3.0", 57.174091439), ("1", "1.5", 65.024911775)])
+def test_a_numeric_answer_too_long_in_closed_form_is_found_numerically(k, mass, degrees):
+    text = _ON_ROLLING.replace("MASS", mass).replace("K*", f"({k})*")
+    derivation = derive(parse_scene(text, source="on_rolling.toml"))
+    implicit = derivation.implicit["separation_angle"]
+    theta = derivation.scene.namespace.symbol("theta")
+    point = {"m": 1.0, "M": float(mass), "g": 9.81, "R": 0.5, "r": 0.2}
+    condition = parse_expression(implicit["condition"], derivation.scene.namespace).expr.subs(
+        {derivation.scene.namespace.symbol(n): v for n, v in point.items()})
+    f = sympy.lambdify(theta, condition)
+    grid = [-3.1416 + 6.2832 * i / 4000 for i in range(4001)]
+    roots = [brentq(f, a, b, xtol=1e-14) for a, b in zip(grid, grid[1:]) if f(a) * f(b) < 0]
+    assert math.degrees(roots[implicit["root"]]) == pytest.approx(degrees, abs=1e-6)
+    assert derivation.answers["separation_angle"] == theta
 
 
 # -- 3. names the expression grammar reads as functions --------------------------------------------------
