@@ -144,7 +144,7 @@ def _arrow_error(position: int, arrow: str) -> ExpressionError:
 # Primes as LaTeX writes them: ^\prime, ^{\prime}, ^{\prime\prime}
 # (and ^′, as Wolfram|Alpha prints θ′ in a superscript)
 # (MathLive writes two primes as ^{\doubleprime})
-_LATEX_PRIMES = re.compile(r"\^\s*(?:\{\s*(?:\\(?:prime|doubleprime|dprime)\s*)+(?P<power>[0-9]{1,3})?\s*\}"
+_LATEX_PRIMES = re.compile(r"\^\s*(?:\{\s*(?:(?:\\(?:prime|doubleprime|dprime)|['′″])\s*)+(?P<power>[0-9]{1,3})?\s*\}"
                            r"|\\(?:prime|doubleprime|dprime)(?![A-Za-z])|[′″]+)")
 
 # After a middle dot between digits: 1·10⁻³, 2·10^3 is a mantissa times a power of ten, not 1.10.
@@ -198,6 +198,32 @@ class _Tokenizer:
         self.i = end
         return token
 
+    def braced_name(self, start: int) -> bool:
+        """Whether the last tokens are one name in braces right before ``start`` (``{\\theta}`` in
+        MathType's ``{\\theta }^{\\prime }``), the braces no command's argument (``\\dot{x}``, the
+        ``{b}`` of ``\\frac{a}{b}``, an exponent's ``^{x}``)."""
+        tokens = self.tokens
+        if len(tokens) < 3 or self.text[tokens[-1].end:start].strip():
+            return False
+        opener, name, closer = tokens[-3:]
+        if not (opener.kind == "open" and opener.value == "{" and name.kind == "name"
+                and closer.kind == "close" and closer.value == "}"):
+            return False
+        before = tokens[-4] if len(tokens) > 3 else None
+        return before is None or before.kind in ("name", "number", "open") \
+            or (before.kind == "op" and before.value not in ("^", "_"))
+
+    def unbrace_name(self) -> Token:
+        """Drop the braces of `braced_name`; the name then spans them, as typed."""
+        closer = self.tokens.pop()
+        name = self.tokens.pop()
+        opener = self.tokens.pop()
+        name.pos, name.end = opener.pos, closer.end
+        name.text = self.text[name.pos:name.end]
+        name.space_before = opener.space_before
+        self.tokens.append(name)
+        return name
+
     def peek(self, offset: int = 0) -> str:
         j = self.i + offset
         return self.text[j] if j < self.n else ""
@@ -243,15 +269,17 @@ class _Tokenizer:
             self.emit("op", "=", start, start + 2)
         elif ch == "|" or ch == "∣":  # ∣ (DIVIDES) is the bar some editors and PDFs give
             self.emit("bar", None, start, start + 1)
-        elif ch == "^" and self.tokens and self.tokens[-1].kind == "name" \
+        elif ch == "^" and self.tokens and (self.tokens[-1].kind == "name" or self.braced_name(start)) \
                 and not self.text[self.tokens[-1].end:start].strip() and _LATEX_PRIMES.match(self.text, start):
+            if self.tokens[-1].kind != "name":
+                self.unbrace_name()
             # (\theta ^{\prime}: LaTeX ignores the space)
             # x^{\prime}, \theta^\prime, x^{\prime\prime}: LaTeX's own spelling of x', θ', x''; and
             # \theta^{\prime 2}, θ' squared (the prime and the power share one superscript)
             marks = _LATEX_PRIMES.match(self.text, start)
             name = self.tokens[-1]
             typed = marks.group()
-            name.order += (typed.count("\\prime") + typed.count("′")
+            name.order += (typed.count("\\prime") + typed.count("′") + typed.count("'")
                            + 2 * (typed.count("″") + typed.count("\\doubleprime") + typed.count("\\dprime")))
             name.end, self.i = marks.end(), marks.end()
             name.text = self.text[name.pos:name.end]
@@ -354,6 +382,15 @@ class _Tokenizer:
             self.vulgar_fraction(start)
         elif ch == "°" and self.tokens and self.tokens[-1].kind == "number":
             self.degrees(start, start + 1)
+        elif ch in PRIME_CHARS and self.braced_name(start):
+            # {\theta}'' (MathType braces a base): the primes of the name in the braces
+            name = self.unbrace_name()
+            end = start
+            while end < self.n and self.text[end] in PRIME_CHARS:
+                name.order += PRIME_CHARS[self.text[end]]
+                end += 1
+            name.end, self.i = end, end
+            name.text = self.text[name.pos:name.end]
         elif ch in PRIME_CHARS:
             self.emit("prime", PRIME_CHARS[ch], start, start + 1)
         elif ch == "." and self.peek(1) in ("*", "/", "^") and self.tokens \

@@ -444,3 +444,23 @@ def test_a_number_right_after_an_unbraced_frac_needs_an_operator(ns, latex):
     with pytest.raises(ExpressionError) as err:
         parse_expression(latex, ns)
     assert "missing operator" in str(err.value)
+
+
+# -- red team 2026-11-10b: MathType's braced base before primes, and primes typed in a superscript ---
+
+@pytest.mark.parametrize("latex, plain", [
+    (r"{\theta }^{\prime \prime }", "thetaddot"), (r"{\theta}^{\prime}", "thetadot"),
+    (r"{\theta}''", "thetaddot"), (r"{\theta}'", "thetadot"), (r"{\theta }^{''}", "thetaddot"),
+    (r"\theta^{''}", "thetaddot"), (r"\theta^{'}", "thetadot"), (r"\theta^{'2}", "thetadot^2"),
+    (r"m l{\theta }^{\prime }{}^{2}", "m l thetadot^2"), (r"m l\left({\theta }^{\prime }\right)^{2}", "m l thetadot^2"),
+    (r"{\theta }^{\prime \prime }+\frac{g}{l}\sin\theta", "thetaddot + g/l sin(theta)"),
+])
+def test_primes_on_a_braced_name_or_in_a_superscript_are_its_derivatives(ns, latex, plain):
+    assert parse_expression(latex, ns).expr == parse_expression(plain, ns).expr
+
+
+@pytest.mark.parametrize("latex", [r"\dot{\theta}^{\prime}", r"\frac{g}{\theta}^{\prime}", r"\sqrt{\theta}''",
+                                   r"{\theta+l}''"])
+def test_primes_on_a_command_argument_or_a_group_stay_refused(ns, latex):
+    with pytest.raises(ExpressionError):
+        parse_expression(latex, ns)
