@@ -1635,7 +1635,9 @@ def _roots_on(function: Compiled, x, point: dict, lo: float, hi: float) -> list[
     finite = [v for v in values if v is not None and math.isfinite(v)]
     if len(finite) < ROOT_GRID // 2:
         return None
-    scale = float(np.median([abs(v) for v in finite])) or 1.0  # (the largest could be beside a pole)
+    # The middle magnitude, not np.median: that averages the two middle ones, which overflows when the
+    # values are near the largest float (sin(θ)·1.7e308 = 0). (The largest could be beside a pole.)
+    scale = sorted(abs(v) for v in finite)[len(finite) // 2] or 1.0
     roots = []
     for i in range(ROOT_GRID - 1):
         a, b = values[i], values[i + 1]

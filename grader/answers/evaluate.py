@@ -268,6 +268,10 @@ class _ScalarBackend:
         return apply
 
 
+def _overflowed(env):
+    raise Undefined("overflow in float64")
+
+
 class FloatBackend(_ScalarBackend):
     """IEEE float64 through :mod:`math`; overflow and NaN count as undefined."""
 
@@ -282,6 +286,22 @@ class FloatBackend(_ScalarBackend):
 
     def convert_float(self, f: sympy.Float) -> float:
         return float(f)
+
+    # A constant beyond the largest float (1.5e308·(y - 1.5) expands to one) is an overflow where it
+    # is evaluated, as any other (`check`), not an OverflowError while compiling.
+    def integer(self, n: int):
+        try:
+            value = float(n)
+        except OverflowError:
+            return _overflowed
+        return lambda env: value
+
+    def rational(self, p: int, q: int):
+        try:
+            value = int(p) / int(q)  # correctly rounded however large p and q are
+        except OverflowError:
+            return _overflowed
+        return lambda env: value
 
     def pi(self):
         return lambda env: math.pi

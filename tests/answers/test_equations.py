@@ -1522,3 +1522,23 @@ _ENERGY_VARIABLES = {"v": {"dimension": "velocity", "domain": "real", "kind": "c
 def test_nonnegative_sides_are_compared_by_their_squares(reference, answer, expected):
     v = check(reference, answer, _ENERGY_VARIABLES, kind="equation")
     assert v.verdict == expected, v.reason
+
+
+# -- red team 2026-11-10b: values near the largest float in the root search -------------------------
+
+_HUGE = {"theta": {"dimension": "angle", "domain": [-3.1416, 3.1416]}, "y": {"dimension": "dimensionless", "domain": [0, 2]},
+         "x": {"dimension": "dimensionless", "domain": "real"}}
+
+
+@pytest.mark.parametrize("reference, answer, expected", [
+    ("theta = 0", "sin(theta)*1.7e308 = 0", "not_equivalent"),      # also the roots ±π, inside the domain
+    ("theta = 0", "1.7*10^308*sin(theta) = 0", "not_equivalent"),
+    ("sin(theta) = 0", "sin(theta)*1.7e308 = 0", "equivalent"),
+    ("theta = 0", "theta*1.7e308 = 0", "equivalent"),
+    ("y = 1", "1.5e308*(y - 1) = 0", "equivalent"),
+    ("y = 1", "1.5e308*(y - 1.5) = 0", "not_equivalent"),
+])
+def test_a_factor_near_the_largest_float_is_no_internal_error(reference, answer, expected):
+    verdict = check(reference, answer, _HUGE, kind="equation")
+    assert verdict.verdict == expected, verdict.reason
+    assert "internal error" not in verdict.reason

@@ -149,3 +149,19 @@ def test_comparing_any_two_valid_texts_gives_a_comparison(reference, answer):
     c = compare_expressions(r.expr, a.expr, FUZZ_SAMPLER, Options(points=3, max_bits=512),
                             answer_conditions=a.conditions, reference_conditions=r.conditions)
     assert c.equivalent in (True, False, None) and c.reason
+
+
+# -- red team 2026-11-10b: constants beyond the largest float -------------------------------------
+
+@pytest.mark.parametrize("constant", [sympy.Integer(10) ** 400, sympy.Integer(-3) * sympy.Integer(10) ** 308,
+                                      sympy.Rational(10 ** 400, 3)])
+def test_a_float64_constant_beyond_the_largest_float_is_undefined_where_evaluated(constant):
+    t = sympy.Symbol("t")
+    f = compile_expr(constant * t + 1, FloatBackend())  # compiling does not raise
+    with pytest.raises(Undefined):
+        f({t: 2.0})
+
+
+def test_a_float64_rational_of_huge_integers_is_its_correctly_rounded_value():
+    f = compile_expr(sympy.Rational(10 ** 400 + 1, 4 * 10 ** 399), FloatBackend())
+    assert f({}) == 2.5
