@@ -102,6 +102,9 @@ _MARKUP_TAG = re.compile(r"</?(math|mi|mn|mo|ms|mrow|msup|msub|msubsup|mfrac|msq
                          r"|mtext|mspace|mstyle|mfenced|mtable|mtr|mtd|semantics|annotation|annotation-xml|mathml"
                          r"|sup|sub|span|div|p|i|b|em|strong|br)\b[^<>]{0,200}/?>", re.IGNORECASE)
 
+# A subscript between a braced name and its primes ({x}_{1}^{\prime}): the name inside carries it already.
+_SUBSCRIPT_GAP = re.compile(r"\s*_\s*(?:\{[^{}]{1,40}\}|[A-Za-z0-9])\s*")
+
 # Printable ASCII the grammar does not use, and what to tell the student.
 _PUNCTUATION = {
     "!": ("factorial (!) is not supported", "unsupported_function", "write the product out, as in 2*3"),
@@ -198,26 +201,34 @@ class _Tokenizer:
         self.i = end
         return token
 
-    def braced_name(self, start: int) -> bool:
-        """Whether the last tokens are one name in braces right before ``start`` (``{\\theta}`` in
-        MathType's ``{\\theta }^{\\prime }``), the braces no command's argument (``\\dot{x}``, the
-        ``{b}`` of ``\\frac{a}{b}``, an exponent's ``^{x}``)."""
+    def braced_name(self, start: int) -> int:
+        """How many pairs of braces hold one name right before ``start`` (``{\\theta}`` in MathType's
+        ``{\\theta }^{\\prime }``, ``{x}_{1}`` and ``{{x}_{1}}`` of ``x_1''``), 0 for none or when the
+        braces are a command's argument (``\\dot{x}``, the ``{b}`` of ``\\frac{a}{b}``, an exponent's ``^{x}``)."""
         tokens = self.tokens
-        if len(tokens) < 3 or self.text[tokens[-1].end:start].strip():
-            return False
-        opener, name, closer = tokens[-3:]
-        if not (opener.kind == "open" and opener.value == "{" and name.kind == "name"
-                and closer.kind == "close" and closer.value == "}"):
-            return False
-        before = tokens[-4] if len(tokens) > 3 else None
-        return before is None or before.kind in ("name", "number", "open") \
+        depth = 0
+        while depth < 3 and len(tokens) > depth and tokens[-1 - depth].kind == "close" \
+                and tokens[-1 - depth].value == "}":
+            depth += 1
+        at = len(tokens) - 1 - depth  # the name
+        if not depth or at - depth < 0 or tokens[at].kind != "name" \
+                or any(not (t.kind == "open" and t.value == "{") for t in tokens[at - depth:at]):
+            return 0
+        gap = self.text[tokens[-1].end:start]
+        if gap.strip() and not ("_" in tokens[at].value and _SUBSCRIPT_GAP.fullmatch(gap)):
+            return 0  # only {x}_{1}'s subscript, which the name inside already carries, may come between
+        before = tokens[at - depth - 1] if at - depth > 0 else None
+        ok = before is None or before.kind in ("name", "number", "open") \
             or (before.kind == "op" and before.value not in ("^", "_"))
+        return depth if ok else 0
 
     def unbrace_name(self) -> Token:
         """Drop the braces of `braced_name`; the name then spans them, as typed."""
-        closer = self.tokens.pop()
-        name = self.tokens.pop()
-        opener = self.tokens.pop()
+        depth = self.braced_name(self.i)
+        closer = self.tokens[-1]
+        name = self.tokens[-1 - depth]
+        opener = self.tokens[-1 - 2 * depth]
+        del self.tokens[-1 - 2 * depth:]
         name.pos, name.end = opener.pos, closer.end
         name.text = self.text[name.pos:name.end]
         name.space_before = opener.space_before
@@ -269,8 +280,9 @@ class _Tokenizer:
             self.emit("op", "=", start, start + 2)
         elif ch == "|" or ch == "∣":  # ∣ (DIVIDES) is the bar some editors and PDFs give
             self.emit("bar", None, start, start + 1)
-        elif ch == "^" and self.tokens and (self.tokens[-1].kind == "name" or self.braced_name(start)) \
-                and not self.text[self.tokens[-1].end:start].strip() and _LATEX_PRIMES.match(self.text, start):
+        elif ch == "^" and self.tokens and ((self.tokens[-1].kind == "name"
+                                             and not self.text[self.tokens[-1].end:start].strip())
+                                            or self.braced_name(start)) and _LATEX_PRIMES.match(self.text, start):
             if self.tokens[-1].kind != "name":
                 self.unbrace_name()
             # (\theta ^{\prime}: LaTeX ignores the space)

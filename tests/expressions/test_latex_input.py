@@ -460,7 +460,18 @@ def test_primes_on_a_braced_name_or_in_a_superscript_are_its_derivatives(ns, lat
 
 
 @pytest.mark.parametrize("latex", [r"\dot{\theta}^{\prime}", r"\frac{g}{\theta}^{\prime}", r"\sqrt{\theta}''",
-                                   r"{\theta+l}''"])
+                                   r"{\theta+l}''", r"\frac{g}{x}_{1}^{\prime}", r"{x}l^{\prime}"])
 def test_primes_on_a_command_argument_or_a_group_stay_refused(ns, latex):
     with pytest.raises(ExpressionError):
         parse_expression(latex, ns)
+
+
+@pytest.mark.parametrize("latex, plain", [
+    (r"{x}_{1}^{\prime }", "x1dot"), (r"{{x}_{1}}^{\prime }", "x1dot"),
+    (r"{x}_{1}^{\prime \prime }", "x1ddot"), (r"m{x}_{1}^{\prime }{x}_{2}^{\prime }", "m x1dot x2dot"),
+])
+def test_primes_on_a_braced_subscripted_name_are_its_derivatives(latex, plain):
+    from grader.expressions import Namespace, Variable
+    two = Namespace([Variable("m", "mass", "positive"), Variable("x1", "length"), Variable("x1dot", "velocity"),
+                     Variable("x1ddot", "acceleration"), Variable("x2", "length"), Variable("x2dot", "velocity")])
+    assert parse_expression(latex, two).expr == parse_expression(plain, two).expr
