@@ -105,6 +105,9 @@ _MARKUP_TAG = re.compile(r"</?(math|mi|mn|mo|ms|mrow|msup|msub|msubsup|mfrac|msq
 # A subscript between a braced name and its primes ({x}_{1}^{\prime}): the name inside carries it already.
 _SUBSCRIPT_GAP = re.compile(r"\s*_\s*(?:\{[^{}]{1,40}\}|[A-Za-z0-9])\s*")
 
+# The extra space a line break may take: \\[2pt], \\[1ex], \\[0.5em]
+_BREAK_SPACE = re.compile(r"\s*\[\s*-?(?:\d+\.?\d*|\.\d+)\s*(?:pt|ex|em|mm|cm|in|bp|pc|mu|sp|dd|cc)\s*\]")
+
 # Printable ASCII the grammar does not use, and what to tell the student.
 _PUNCTUATION = {
     "!": ("factorial (!) is not supported", "unsupported_function", "write the product out, as in 2*3"),
@@ -711,6 +714,9 @@ class _Tokenizer:
         if text[start + 1:j] in ("begin", "end"):
             self.environment(start, j, text[start + 1:j])
             return
+        if text[start + 1:j] == "newline":  # LaTeX's other line break, as \\ is
+            self.emit("newline", "\n", start, j)
+            return
         label = _LABEL_AFTER_SPACE.match(text, j) if text[start + 1:j] in ("quad", "qquad") else None
         if text[start + 1:j] in ("tag", "label"):  # \label{eq:1} names the equation, as \tag{1} numbers it
             label = _TAG.match(text, j)
@@ -925,7 +931,9 @@ class _Tokenizer:
         name = self.text[k + 1:close].strip() if close > k else ""
         shown = self.text[start:close + 1] if close > k else self.text[start:j]
         name = name.rstrip("*")
-        if name not in _LAYOUT_ENVIRONMENTS and name not in _SYSTEM_ENVIRONMENTS:
+        # MathType and WIRIS set a system in a brace as \left\{ \begin{matrix} … \end{matrix} \right.
+        braced_matrix = name == "matrix" and (self.system_braces if which == "begin" else self.environments[-1:] == [name])
+        if name not in _LAYOUT_ENVIRONMENTS and name not in _SYSTEM_ENVIRONMENTS and not braced_matrix:
             raise ExpressionError(f"the LaTeX environment {shown} is not supported", start, "unsupported_function",
                                   "type the equations one per line, or separated by ';', without \\begin and "
                                   "\\end (\\begin{aligned} … \\end{aligned} is read)")
@@ -974,7 +982,9 @@ class _Tokenizer:
         elif ch in ("{", "}"):
             self.emit("open" if ch == "{" else "close", ch, start, start + 2)
         elif ch == "\\":
-            self.emit("newline", "\n", start, start + 2)
+            # \\[2pt]: the line break's extra space, nothing to read
+            space = _BREAK_SPACE.match(self.text, start + 2)
+            self.emit("newline", "\n", start, space.end() if space else start + 2)
         elif ch == "|":  # \|x\|: a norm
             raise ExpressionError("'‖…‖' (a norm) is not supported", start, "unsupported_function",
                                   "write |x| for the absolute value of a number")

@@ -475,3 +475,22 @@ def test_primes_on_a_braced_subscripted_name_are_its_derivatives(latex, plain):
     two = Namespace([Variable("m", "mass", "positive"), Variable("x1", "length"), Variable("x1dot", "velocity"),
                      Variable("x1ddot", "acceleration"), Variable("x2", "length"), Variable("x2dot", "velocity")])
     assert parse_expression(latex, two).expr == parse_expression(plain, two).expr
+
+
+# -- red team 2026-11-10b: MathType's brace of a system, and LaTeX's other line breaks -------------
+
+@pytest.mark.parametrize("latex", [
+    r"\left\{\begin{matrix}x=l \\ y=2l\end{matrix}\right.", r"\left\{ \begin{matrix} x&=l \\ y&=2 l \\ \end{matrix} \right.",
+    r"x = l \newline y = 2 l", r"x = l \\[2pt] y = 2 l", r"x = l \\ [1ex] y = 2 l", r"x = l \\[0.5em] y = 2 l",
+    r"\begin{aligned} x &= l \\[3mm] y &= 2 l \end{aligned}",
+])
+def test_a_matrix_in_a_brace_and_spaced_or_spelled_line_breaks_separate_equations(ns, latex):
+    assert [(eq.lhs, eq.rhs) for eq in parse_system(latex, ns)] == \
+        [(eq.lhs, eq.rhs) for eq in parse_system("x = l; y = 2 l", ns)]
+
+
+@pytest.mark.parametrize("latex", [r"\begin{matrix}x=l \\ y=2l\end{matrix}", r"\begin{pmatrix}x \\ y\end{pmatrix} = 0"])
+def test_a_matrix_outside_a_brace_is_still_refused_by_name(ns, latex):
+    with pytest.raises(ExpressionError) as err:
+        parse_system(latex, ns)
+    assert "matrix}" in str(err.value)
