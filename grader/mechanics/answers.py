@@ -22,6 +22,8 @@ g*m*(3*cos(theta) - 2)
 from __future__ import annotations
 
 import cmath
+import contextlib
+import contextvars
 
 import sympy
 
@@ -29,6 +31,22 @@ from grader.mechanics import budget
 from grader.mechanics.reduction import Reduction, without_hidden_coordinates
 from grader.mechanics.scene import AnswerSpec, Scene, SceneError
 from grader.mechanics.simplification import TIDY_MAX_OPS, factored_sums, human_form, joined_roots, seen_nonzero
+
+# Whether u̇² may come from the motion of u alone beside coordinates that feel only a uniform force
+# (AnswerEvaluator._uniformly_forced_squared). Off while an acceleration set to zero is solved: that
+# names an equilibrium, read at rest where energy gave no u̇²(u) before (a bead resting relative to a
+# hoop that rolls down an incline), and it stays so.
+_UNIFORM_FORCE: contextvars.ContextVar[bool] = contextvars.ContextVar("uniform_force", default=True)
+
+
+@contextlib.contextmanager
+def without_uniform_force():
+    """Within it, u̇² beside a uniformly forced coordinate is not formed (see _UNIFORM_FORCE)."""
+    token = _UNIFORM_FORCE.set(False)
+    try:
+        yield
+    finally:
+        _UNIFORM_FORCE.reset(token)
 
 __all__ = ["AnswerEvaluator", "evaluate_answers"]
 
@@ -486,7 +504,8 @@ class AnswerEvaluator:
         ``readable=False``: as solved from the energy, not tidied, for a caller that only evaluates
         it numerically (tidying it is much of the cost, and is then done only if something shows it).
         """
-        cache_key = (u.name, tuple(sorted((str(k), str(v)) for k, v in (momenta or {}).items())))
+        cache_key = (u.name, tuple(sorted((str(k), str(v)) for k, v in (momenta or {}).items())),
+                     _UNIFORM_FORCE.get())
         cache = self.__dict__.setdefault("_squared_cache", {})
         if (cache_key, False) not in cache:
             cache[cache_key, False] = self._velocity_squared(u, key, momenta)
@@ -510,6 +529,11 @@ class AnswerEvaluator:
                              f"values for {names}")
         if momenta:
             h = sympy.expand(h.xreplace(momenta))
+        others = {v.dot for v in self.reduction.independent.values() if v is not u} & h.free_symbols
+        if others and not momenta and _UNIFORM_FORCE.get():
+            squared = self._uniformly_forced_squared(u)
+            if squared is not None:
+                return squared
         poly = sympy.Poly(h, u.dot)
         # The linear term must vanish as a function, not only as written: with a momentum substituted it
         # is a sum of fractions that cancels (a block on a moving cart's track) and sympy leaves it so.
@@ -519,6 +543,60 @@ class AnswerEvaluator:
                              "eliminated")
         a, c = poly.coeff_monomial(u.dot ** 2), poly.coeff_monomial(1)
         return (h0 - c) / a
+
+    def _uniformly_forced_squared(self, u) -> sympy.Expr | None:
+        """u̇²(u) on the motion from [initial] when every other coordinate s feels a uniform force alone,
+        or None.
+
+        Such an s enters L = ½ q̇ᵀ M q̇ − V only through V ∋ −F s, F constant, with constant ṡ ṡ' entries
+        E of M and ṡ u̇ entries c(u): a pendulum hung from a block sliding down an incline. Then
+        d/dt(E ṡ + c u̇) = F: the momentum p = F t + p₀ that Routh's function keeps adds Fᵀ E⁻¹ c(u) to
+        u's equation (its own terms in p cancel), so u moves in the potential V(u) + Fᵀ E⁻¹ ∫c du with the
+        inertia a − cᵀ E⁻¹ c, and ½ (a − cᵀ E⁻¹ c) u̇² + V(u) + Fᵀ E⁻¹ ∫c du is conserved (energy, which
+        holds ṡ and s, gives no u̇²(u)). On the incline of angle α the pendulum swings as on a free cart
+        on level ground under g cos α, about the normal to the incline.
+        """
+        reduction = self.reduction
+        L, t = reduction.lagrangian, self.scene.time
+        others = [v for v in reduction.independent.values() if v is not u]
+        if t in L.free_symbols or not others:
+            return None
+        velocities = [u.dot] + [v.dot for v in others]
+        constants = self.parameters
+        potential = -L.xreplace({d: 0 for d in velocities})
+        forces = [sympy.expand(sympy.diff(L, v.symbol)) for v in others]
+        if any(not f.free_symbols <= constants for f in forces) or all(f == 0 for f in forces):
+            return None  # (no uniform force at all: the others are cyclic, their momenta handle them)
+        own = sympy.expand(potential + sum(f * v.symbol for f, v in zip(forces, others)))
+        if own.free_symbols & ({v.symbol for v in others} | set(velocities)):
+            return None
+        n = len(velocities)
+        mass = sympy.Matrix(n, n, lambda i, j: sympy.expand(sympy.diff(L, velocities[i], velocities[j])))
+        quadratic = (sympy.Matrix([velocities]) * mass * sympy.Matrix(velocities))[0] / 2
+        if sympy.expand(L - quadratic + potential) != 0:
+            return None  # terms linear in the velocities (or of a higher degree)
+        E, c, a = mass[1:, 1:], mass[1:, 0], mass[0, 0]
+        if not all(e.free_symbols <= constants for e in E) or \
+                not all(e.free_symbols <= constants | {u.symbol} for e in [*c, a]):
+            return None
+        if sympy.cancel(E.det()) == 0:
+            return None
+        weights = E.LUsolve(sympy.Matrix(forces))  # E⁻¹ F
+
+        def integral():
+            total = sympy.integrate(sympy.expand(sum(w * ci for w, ci in zip(weights, c))), u.symbol)
+            return None if total.has(sympy.Integral) else total
+
+        extra = budget.attempt(integral, 2.0, fallback=lambda: None)
+        if extra is None:
+            return None
+        inertia = sympy.cancel(a - (c.T * E.LUsolve(c))[0])
+        if inertia == 0:
+            return None
+        h0 = reduction.initial_value(inertia * u.dot ** 2 / 2 + own + extra)
+        if h0 is None:
+            return None
+        return sympy.cancel(2 * (h0 - own - extra) / inertia)
 
 
 def _one_value(candidates: list[sympy.Expr]) -> bool:

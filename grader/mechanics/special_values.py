@@ -79,6 +79,15 @@ _TRIG = (sympy.sin, sympy.cos, sympy.tan)
 
 def special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     """Closed form of ``spec.expr`` where ``spec.where`` holds (see the module notes)."""
+    if _sets_an_acceleration_to_zero(evaluator, spec):
+        from grader.mechanics.answers import without_uniform_force
+
+        with without_uniform_force():
+            return _special_value(evaluator, spec)
+    return _special_value(evaluator, spec)
+
+
+def _special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     scene = evaluator.scene
     key = f"answers ({spec.name}).where"
     target = evaluator.target(spec, default_state=False)

@@ -14,6 +14,11 @@
    whose closed form is longer than the checker reads (Ferrari's root of a quartic in cos θ, 4,154
    characters) was refused ("cannot be checked: the text is too long"); it is found numerically now, as
    at a root nobody can type.
+4. Beside such a uniformly forced coordinate, φ̇² as a function of φ (and with it an answer at a given φ,
+   or the extremes of the swing) was refused ("the energy is not of the form a·φ̇² + c": energy holds
+   ṡ and s). The momentum E ṡ + c(φ) φ̇ grows as F t; in Routh's function it leaves the potential
+   Fᵀ E⁻¹ ∫c dφ, and ½ (a − cᵀ E⁻¹ c) φ̇² + V(φ) + Fᵀ E⁻¹ ∫c dφ is conserved. An acceleration set to
+   zero keeps being read as before (at rest where energy gave no φ̇²(φ)).
 3. A coordinate named d has the acceleration ddot, a parameter named ln is a function: both crashed the
    scene reader with a traceback (ValueError); they are refused naming the name to change.
 
@@ -145,6 +150,75 @@ def test_a_velocity_asked_in_is_not_dropped_by_reading_the_condition_at_rest(sup
         thetaddot = (point["phidot"] ** 2 * math.sin(theta) * math.cos(theta) - point["g"] * math.sin(theta) / point["l"]
                      + math.cos(theta) * drive / point["l"])
         assert thetaddot == pytest.approx(0, abs=1e-9)
+
+
+# -- 4. the speed beside a uniformly forced coordinate ------------------------------------------------
+# The pendulum of section 0 released at rest at φ₀ (the block at rest). On the incline (P = 0) it swings
+# as on a free cart under g cos α about ψ = φ + α = 0: φ̇² = 2 (M + m) g cos α (cos ψ − cos ψ₀)/
+# (l (M + m sin²ψ)), and the least φ is −2α − φ₀. Pushed on level ground (α = 0) by P it swings under
+# G = √(g² + A²), A = P/(M + m), about φ = −δ, tan δ = A/g: φ̇² = 2 (M + m) G (cos(φ + δ) − cos(φ₀ + δ))/
+# (l (M + m sin²φ)), least φ −2δ − φ₀ (both checked against an integration of the Cartesian equations with
+# a multiplier, to 1e-9). (The least φ itself, asked as a minimum, is still refused: solving φ̇² = 0 for φ
+# runs out of budget.)
+_RELEASED = """
+[initial]
+s = 0
+sdot = 0
+phi = "phi0"
+phidot = 0
+
+[[answers]]
+name = "speed_squared"
+prompt = "phidot^2 as a function of phi"
+expr = "phidot^2"
+in_terms_of = ["m", "M", "g", "l", "phi", "phi0"{more}]
+
+[[answers]]
+name = "lowest_speed_squared"
+prompt = "phidot^2 where the pendulum passes its equilibrium"
+expr = "phidot^2"
+where = "{where}"
+in_terms_of = ["m", "M", "g", "l", "phi0"{more}]
+"""
+
+
+@pytest.mark.parametrize("case", ["incline", "pushed_on_level"])
+def test_the_swing_beside_a_uniformly_forced_coordinate(case):
+    incline = case == "incline"
+    extra = ('alpha = { dimension = "angle", domain = [0.05, 1.5], value = 0.5 }\n' if incline else
+             'P = { dimension = "force", domain = "positive", value = 3.0 }\n')
+    extra += 'phi0 = { dimension = "angle", domain = [0, 0.5], value = 0.3 }\n'
+    text = _PUSHED.format(alpha="alpha" if incline else "0", push="0" if incline else "P", extra=extra,
+                          where="phi = 0")
+    text = text[:text.index("[[answers]]")] + _RELEASED.format(
+        more=', "alpha"' if incline else ', "P"', where="phi = -alpha" if incline else "tan(phi) = -P/((M + m)*g)")
+    derivation = derive(parse_scene(text, source=f"{case}.toml"))
+    for point in ({"m": 0.5, "M": 2.0, "g": 9.81, "l": 0.8, "alpha": 0.5, "P": 3.0, "phi0": 0.3},
+                  {"m": 3.0, "M": 1.0, "g": 1.6, "l": 2.5, "alpha": 1.1, "P": 0.7, "phi0": 0.0}):
+        declared = {k: v for k, v in point.items() if k in derivation.scene.namespace.names}
+        m, M, g, l, phi0 = (point[k] for k in ("m", "M", "g", "l", "phi0"))
+        if incline:
+            a = point["alpha"]
+            least = -2 * a - phi0
+            lowest = 2 * (M + m) * g * math.cos(a) * (1 - math.cos(phi0 + a)) / (l * M)
+        else:
+            delta = math.atan(point["P"] / ((M + m) * g))
+            least = -2 * delta - phi0
+            lowest = 2 * (M + m) * math.hypot(g, point["P"] / (M + m)) * (1 - math.cos(phi0 + delta)) / (
+                l * (M + m * math.sin(delta) ** 2))
+        got = at(derivation, derivation.answers["lowest_speed_squared"], declared)
+        assert got == pytest.approx(lowest, rel=1e-10, abs=1e-12)
+        for phi in (least + 0.01, -0.2, phi0 - 0.01):
+            if incline:
+                psi, psi0 = phi + a, phi0 + a
+                expected = 2 * (M + m) * g * math.cos(a) * (math.cos(psi) - math.cos(psi0)) / (
+                    l * (M + m * math.sin(psi) ** 2))
+            else:
+                G = math.hypot(g, point["P"] / (M + m))
+                expected = 2 * (M + m) * G * (math.cos(phi + delta) - math.cos(phi0 + delta)) / (
+                    l * (M + m * math.sin(phi) ** 2))
+            got = at(derivation, derivation.answers["speed_squared"], {**declared, "phi": phi})
+            assert got == pytest.approx(expected, rel=1e-10, abs=1e-12)
 
 
 # -- 2. a numeric answer whose closed form is too long to check ------------------------------------------
