@@ -682,8 +682,10 @@ class _Tokenizer:
         while i < self.n and self.text[i] in PRIME_CHARS:
             order += PRIME_CHARS[self.text[i]]
             i += 1
-        if primed and i < self.n and (self.text[i] in SUBSCRIPT_DIGITS or self.text[i] == "_"):
-            # θ''₁, theta''_1, x'_{2}: the subscript typed after the primes (not x'2: a product)
+        if primed and not extra.get("forced_function") and i < self.n \
+                and (self.text[i] in SUBSCRIPT_DIGITS or self.text[i] == "_"):
+            # θ''₁, theta''_1, x'_{2}: the subscript typed after the primes (not x'2: a product); a
+            # function's (\sin''_{1}) is not joined to its name, which would name no function
             suffix, i = self.subscript_after_accent(i)
             name += suffix
         self.emit("name", name, start, i, order=order, **extra)

@@ -494,3 +494,12 @@ def test_a_matrix_outside_a_brace_is_still_refused_by_name(ns, latex):
     with pytest.raises(ExpressionError) as err:
         parse_system(latex, ns)
     assert "matrix}" in str(err.value)
+
+
+# -- red team 2026-11-10b: primes and a subscript on a function name are refused, not a crash ------
+
+@pytest.mark.parametrize("latex", [r"\sin''_{1}", r"\sin′_{1}", r"\cos''_{1}\theta", r"\sin'_1", r"\tan''_{2} x"])
+def test_a_subscript_after_primes_on_a_function_is_refused(ns, latex):
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(latex, ns)
+    assert "_" in str(err.value)
