@@ -1522,14 +1522,19 @@ def _with_real_roots(evaluator, parameters: dict, symbols: set, roots, variable)
     point = _with_state(evaluator, parameters, symbols)
     numeric = _numeric_roots(roots, point, variable)
     free = _free_state(evaluator, parameters, symbols)
-    if numeric or not free:
+    if len(numeric) == len(roots) or not free:
         return point, numeric
+    # Some roots are not real here: a state where more are. cos θ = g/(l φ̇²) of a conical pendulum,
+    # beside θ = 0 and π, is real only where φ̇² ≥ g/l; dropped at a slower φ̇, the answer was cos θ = 1.
+    best = (point, numeric)
     for numbers in itertools.islice(itertools.product(*(_state_candidates(evaluator, s) for s in free)), 400):
         trial = {**point, **dict(zip(free, numbers))}
         numeric = _numeric_roots(roots, trial, variable)
-        if numeric:
-            return trial, numeric
-    return point, {}
+        if len(numeric) > len(best[1]):
+            best = (trial, numeric)
+            if len(numeric) == len(roots):
+                break
+    return best
 
 
 def _ambiguous(x, roots, numeric, undecided: bool = False) -> str:

@@ -19,6 +19,10 @@
    ṡ and s). The momentum E ṡ + c(φ) φ̇ grows as F t; in Routh's function it leaves the potential
    Fᵀ E⁻¹ ∫c dφ, and ½ (a − cᵀ E⁻¹ c) φ̇² + V(φ) + Fᵀ E⁻¹ ∫c dφ is conserved. An acceleration set to
    zero keeps being read as before (at rest where energy gave no φ̇²(φ)).
+5. A root real on part of the state space was dropped beside roots real everywhere: cos θ where θ̈ = 0, in
+   terms of φ̇, for a spherical pendulum (no [initial]): θ = 0 and π always, cos θ = g/(l φ̇²) only where
+   φ̇² ≥ g/l; tried at a slower φ̇, the textbook answer was no alternative (the reference was cos θ = 1).
+   A state where more roots are real is looked for now.
 3. A coordinate named d has the acceleration ddot, a parameter named ln is a function: both crashed the
    scene reader with a traceback (ValueError); they are refused naming the name to change.
 
@@ -219,6 +223,40 @@ def test_the_swing_beside_a_uniformly_forced_coordinate(case):
                     l * (M + m * math.sin(phi) ** 2))
             got = at(derivation, derivation.answers["speed_squared"], {**declared, "phi": phi})
             assert got == pytest.approx(expected, rel=1e-10, abs=1e-12)
+
+
+# -- 5. a root real on part of the state space ---------------------------------------------------------
+# T = m l² (θ̇² + sin²θ φ̇²)/2, V = −m g l cos θ: θ̈ = sin θ (cos θ φ̇² − g/l), zero at θ = 0, π and where
+# cos θ = g/(l φ̇²) (the steady conical motion, real for φ̇² ≥ g/l). Each must be a right answer.
+_CONICAL = """
+id = "conical"
+title = "Spherical pendulum"
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 0.3 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+l = { dimension = "length", domain = "positive", value = 0.9 }
+[coordinates]
+theta = { dimension = "angle", domain = [0, 3.1416] }
+phi = { dimension = "angle" }
+[energy]
+kinetic = "m*l^2/2*(thetadot^2 + sin(theta)^2*phidot^2)"
+potential = "-m*g*l*cos(theta)"
+[[answers]]
+name = "steady"
+prompt = "where thetaddot = 0"
+expr = "EXPR"
+where = "thetaddot = 0"
+in_terms_of = ["g", "l", "phidot"]
+"""
+
+
+@pytest.mark.parametrize("expr, steady", [("cos(theta)", lambda c: c), ("theta", math.acos)])
+def test_a_root_real_only_for_fast_turning_is_a_right_answer(expr, steady):
+    derivation = derive(parse_scene(_CONICAL.replace("EXPR", expr), source="conical.toml"))
+    for point in ({"g": 9.81, "l": 0.9, "phidot": 5.0}, {"g": 1.6, "l": 2.0, "phidot": 1.3}):
+        expected = steady(point["g"] / (point["l"] * point["phidot"] ** 2))
+        forms = [derivation.answers["steady"], *derivation.alternatives.get("steady", [])]
+        assert any(at(derivation, f, point) == pytest.approx(expected, rel=1e-12) for f in forms)
 
 
 # -- 2. a numeric answer whose closed form is too long to check ------------------------------------------
