@@ -32,6 +32,7 @@ from grader.mechanics.special_values import (
     _parameter_points,
     _periodic,
     _speed_squared,
+    _bounded,
     _travel,
     energy_speed_squared,
     solve_for,
@@ -97,6 +98,9 @@ def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
     chosen = None
     for point in _parameter_points(scene):
         legs = _motion_legs(evaluator, u, point, key)
+        if not periodic and any(low is not None and high - low >= 2 * math.pi - 1e-12 for _, low, high in legs):
+            raise SceneError(scene.source, key, f"the motion from [initial] goes round and round in {u.name}, and "
+                                                f"{spec.expr} is not periodic in it: it has no {spec.kind}")
         if squared is None and len(legs) > 1:
             # The motion turns back, and the extreme may be where it does; without that point among
             # the candidates the best of the others would be a wrong answer, not a missing one.
@@ -214,6 +218,10 @@ def _motion_legs(evaluator, u, point: dict, key: str) -> list[tuple[int, float |
     speed2 = _speed_squared(evaluator, u, point, key)
     end, why = _travel(u, u0, direction, speed2)
     if end is None:
+        if _circulates(evaluator, u, key, why):
+            # An angle that energy never turns back, with u̇² periodic in it (a block round a whole loop, a
+            # pendulum launched over the top): the motion goes round and round, covering every angle.
+            return [(1, min(u0, u0 + 2 * math.pi * direction), max(u0, u0 + 2 * math.pi * direction))]
         return [(1, None, None)]
     legs = [(1, min(u0, end), max(u0, end))]
     if why == "turns back" or _at_a_pole(evaluator, u, end, why, u0, point):
@@ -225,6 +233,21 @@ def _motion_legs(evaluator, u, point: dict, key: str) -> list[tuple[int, float |
             if again == "turns back" or _at_a_pole(evaluator, u, back, again, u0, point):
                 legs.append((1, min(end, back), max(end, back)))
     return legs
+
+
+def _circulates(evaluator, u, key: str, why: str) -> bool:
+    """Whether the motion goes round an angle for ever: u is an angle free to turn (no interval of less
+    than a turn), energy gives u̇² as a function of u alone, 2π-periodic in it, and the scan never
+    found it turning back."""
+    if why != "never turns back" or not u.dimension.is_dimensionless or _bounded(u):
+        return False
+    squared = energy_speed_squared(evaluator, u, key, readable=False)
+    if squared is None:
+        return False
+    others = evaluator.reduction.independent.values()
+    if any(squared.free_symbols & {v.symbol, v.dot} for v in others if v is not u):
+        return False
+    return _periodic(squared, u.symbol)
 
 
 def _at_a_pole(evaluator, u, end: float, why: str, u0: float, point: dict) -> bool:
