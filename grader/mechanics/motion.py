@@ -81,6 +81,22 @@ def motion_in_time(evaluator, key: str) -> dict[sympy.Symbol, sympy.Expr]:
     return result
 
 
+def cyclic_motion_in_time(evaluator) -> dict[sympy.Symbol, sympy.Expr]:
+    """``{u: u(t), u̇: u̇(t)}`` for the cyclic coordinates alone whose conserved momentum gives their
+    velocity free of the rest of the state (a pair of pucks' centre of mass, X = X₀ + V t, however the
+    spring between them swings; a falling stick's foot, x = x₀, while θ(t) has no closed form),
+    confirmed by a numerical integration; ``{}`` where there is none or it is not confirmed."""
+    def compute():
+        motion: dict = {}
+        _cyclic_in_time(evaluator, _plan(evaluator), motion)
+        if motion:
+            _confirm(evaluator, motion, "the closed form")
+        return motion
+
+    result = _cached(evaluator, "cyclic motion", compute)
+    return {} if isinstance(result, SceneError) else result
+
+
 @dataclass
 class Quadrature:
     """t(q) = sign · (G(q) − G(q₀)) for one coordinate ``u``, from q̇² = ``speed_squared``(q)."""
