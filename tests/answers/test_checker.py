@@ -232,3 +232,34 @@ def test_an_answer_is_called_close_only_where_it_is_close_at_every_ordinary_poin
     verdict = check(_ROD_MOTION, answer, _ROD)
     assert verdict.verdict == "not_equivalent"
     assert ("close" in [f["code"] for f in verdict.feedback]) is close
+
+
+# -- red team 2026-11-10b: an answer undefined on a part of the domain set by two variables --------
+
+_TWO = {"x": {"dimension": "dimensionless", "domain": [-2, 3]}, "a": {"dimension": "dimensionless", "domain": "positive"}}
+
+
+@pytest.mark.parametrize("reference", ["(a + x)^2", "(a+x)^2", "(x + a)^2", "(x+a)^2", "a^2 + 2*a*x + x^2", "(a+x)*(a+x)"])
+@pytest.mark.parametrize("answer", ["exp(2*log(a+x))", "sqrt(a+x)^4", "(sqrt(a+x))^2*(a+x)", "exp(log(a+x))^2",
+                                    "(a+x)^(3/2)*sqrt(a+x)", r"e^{2 \log{\left(a + x \right)}}"])
+def test_an_answer_undefined_where_x_is_below_minus_a_is_refused_whatever_the_seed(reference, answer):
+    # a + x < 0 for x in [-2, -a): a good part of the plane, which eight points can all miss
+    verdict = check(reference, answer, _TWO)
+    assert verdict.verdict == "not_equivalent" and "undefined" in verdict.reason
+    assert verdict.counterexample["values"]["a"] + verdict.counterexample["values"]["x"] <= 0
+
+
+@pytest.mark.parametrize("reference, answer", [
+    ("exp(2*log(a+x))", "(a+x)^2"), ("exp(2*log(x+a))", "x^2 + 2*a*x + a^2"),
+])
+def test_an_answer_defined_where_the_reference_is_not_is_refused_whatever_the_seed(reference, answer):
+    verdict = check(reference, answer, _TWO)
+    assert verdict.verdict == "not_equivalent" and "defined at a point" in verdict.reason
+
+
+@pytest.mark.parametrize("reference, answer", [
+    ("(a + x + 2)^2", "exp(2*log(a+x+2))"), ("sqrt(a*(x+2))", "sqrt(a)*sqrt(x+2)"),
+    ("sqrt(1 - x^2/9)", "sqrt(1 - x/3)*sqrt(1 + x/3)"), ("asin(x/3)", "atan(x/sqrt(9 - x^2))"),
+])
+def test_an_answer_restricted_only_outside_the_domain_is_still_right(reference, answer):
+    assert check(reference, answer, _TWO).verdict == "equivalent"
