@@ -333,7 +333,11 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
 
     def differ(outcome) -> Comparison:
         """The verdict where the answer is not the state-free multiple the other points found."""
-        if k == 1 and options.factors and outcome[1].startswith((_NOT_A_MULTIPLE, _UNDEFINED_WHERE)):
+        # An equation of motion whose typed real domain (-k√x√x, exp(log(x/L)): sympy simplified the root or
+        # logarithm away, its condition stays) excludes a state where the reference holds has lost that state's
+        # motion: the factor searches below see only the simplified residual, and found the factor 1.
+        lost = bool(unknowns and answer_conditions and outcome[1].startswith(_UNDEFINED_WHERE))
+        if k == 1 and options.factors and outcome[1].startswith((_NOT_A_MULTIPLE, _UNDEFINED_WHERE)) and not lost:
             # Not a constant multiple; it may still be the reference times a factor that depends
             # on the state and is nonzero on the whole domain (r**2 with r > 0, 1 + x**2).
             factor = state_dependent_factor(reference[0], answer[0], {**parameters.domains, **states.domains},

@@ -1542,3 +1542,35 @@ def test_a_factor_near_the_largest_float_is_no_internal_error(reference, answer,
     verdict = check(reference, answer, _HUGE, kind="equation")
     assert verdict.verdict == expected, verdict.reason
     assert "internal error" not in verdict.reason
+
+
+# -- red team 2026-11-10b: an equation of motion whose typed domain loses states --------------------
+
+_SPRING = {"m": {"dimension": "mass", "domain": "positive"}, "k": {"dimension": "stiffness", "domain": "positive"},
+           "L": {"dimension": "length", "domain": "positive"},
+           "x": {"dimension": "length", "domain": "real", "kind": "coordinate"},
+           "xdot": {"dimension": "velocity", "domain": "real", "kind": "velocity"},
+           "xddot": {"dimension": "acceleration", "domain": "real", "kind": "acceleration"},
+           "y": {"dimension": "length", "domain": "real", "kind": "coordinate"},
+           "ydot": {"dimension": "velocity", "domain": "real", "kind": "velocity"},
+           "yddot": {"dimension": "acceleration", "domain": "real", "kind": "acceleration"}}
+
+
+@pytest.mark.parametrize("reference, answer", [
+    ("m*xddot = -k*x", "m*xddot = -k*sqrt(x)^2"), ("m*xddot = -k*x", "m*xddot = -k*sqrt(x)*sqrt(x)"),
+    ("m*xddot = -k*x", "m*xddot = -k*L*exp(log(x/L))"), ("m*xddot = -k*x", "m*xddot = -k*x + 0*log(x/L)"),
+    ("m*xddot = -k*x", "xddot = -(k/m)*sqrt(x)^2"),
+    ("m*xddot = -k*x; m*yddot = -k*y", "m*xddot = -k*sqrt(x)*sqrt(x); m*yddot = -k*y"),
+])
+def test_an_equation_of_motion_undefined_for_negative_x_is_refused(reference, answer):
+    verdict = check(reference, answer, _SPRING, kind="equation")
+    assert verdict.verdict == "not_equivalent" and "undefined at a state" in verdict.reason
+    assert verdict.counterexample["values"]["x"] <= 0
+
+
+@pytest.mark.parametrize("reference, answer", [
+    ("m*xddot = -k*x", "m*xddot = -k*sqrt(x)^2"), ("m*xddot = -k*x", "m*xddot = -k*L*exp(log(x/L))"),
+])
+def test_the_same_answers_are_right_where_x_is_positive(reference, answer):
+    positive = {**_SPRING, "x": {"dimension": "length", "domain": "positive", "kind": "coordinate"}}
+    assert check(reference, answer, positive, kind="equation").verdict == "equivalent"
