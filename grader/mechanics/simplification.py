@@ -55,7 +55,7 @@ import sympy
 from sympy.core.mul import _keep_coeff
 
 __all__ = ["contract_double_angles", "declared_domains", "half_angles", "identically_zero", "in_single_angles", "factored_sums", "gathered_roots", "grouped", "human_form", "inverse_hyperbolic", "joined_roots",
-           "quick_form", "readable_denominator", "seen_nonzero", "signs_in_front", "spread_denominator", "tidy_radicands", "tidy_trig"]
+           "pythagorean_pairs", "quick_form", "readable_denominator", "seen_nonzero", "signs_in_front", "spread_denominator", "tidy_radicands", "tidy_trig"]
 
 _TRIG = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc)
 _HYPERBOLIC = (sympy.sinh, sympy.cosh, sympy.tanh, sympy.coth, sympy.sech, sympy.csch)
@@ -263,7 +263,7 @@ _TRIGSIMP_MAX_OPS = 36
 def _rewritten(expr: sympy.Expr, weight) -> sympy.Expr:
     """``expr`` through each of our rewritings in turn, each kept where it does not lengthen it."""
     best = expr
-    for rewrite in (tidy_radicands, _readable_fraction, _squares_in_sums, grouped, spread_denominator,
+    for rewrite in (tidy_radicands, _readable_fraction, _squares_in_sums, grouped, pythagorean_pairs, spread_denominator,
                     contract_double_angles, sympy.factor_terms):
         candidate = rewrite(best)
         if candidate != best and weight(candidate) <= weight(best):
@@ -296,6 +296,42 @@ def _squares_in_sums(expr: sympy.Expr) -> sympy.Expr:
 
     return expr.replace(lambda e: e.is_Add and any(p.exp == 2 for p in e.atoms(sympy.Pow)
                                                    if isinstance(p.base, (sympy.sin, sympy.cos))), shorter)
+
+
+def pythagorean_pairs(expr: sympy.Expr) -> sympy.Expr:
+    """In each sum, a term k sin²x beside −k as −k cos²x, and k cos²x beside −k as −k sin²x; the
+    rest of the sum as it is.
+
+    :func:`_squares_in_sums` writes every square of a sum the other way or none; a denominator
+    M + m − m sin²θ needs only one of its terms rewritten, and sums such as it are often built by
+    our own rewritings (:func:`grouped`) after that ran.
+
+    >>> M, m, m1, m2, th = sympy.symbols("M m m1 m2 theta", positive=True)
+    >>> pythagorean_pairs(M + m - m*sympy.sin(th)**2)
+    M + m*cos(theta)**2
+    >>> pythagorean_pairs(m1*sympy.cos(th)**2 - m2*sympy.cos(th)**2 + m2)
+    m1*cos(theta)**2 + m2*sin(theta)**2
+    """
+    def paired(total):
+        terms = list(sympy.Add.make_args(total))
+        changed = False
+        for square, other in ((sympy.sin, sympy.cos), (sympy.cos, sympy.sin)):
+            for power in [p for p in total.atoms(sympy.Pow) if isinstance(p.base, square) and p.exp == 2]:
+                i = 0
+                while i < len(terms):
+                    k = terms[i] / power  # terms[i] = k·sin²x exactly, whatever k is
+                    if terms[i].has(power) and -k in terms[:i] + terms[i + 1:]:
+                        j = terms.index(-k, i + 1) if -k in terms[i + 1:] else terms.index(-k)
+                        terms[i] = -k * other(power.base.args[0]) ** 2  # k sin²x − k = −k cos²x
+                        del terms[j]
+                        changed = True
+                        i = 0 if j < i else i + 1
+                    else:
+                        i += 1
+        return sympy.Add(*terms) if changed else total
+
+    return expr.replace(lambda e: e.is_Add and any(p.exp == 2 for p in e.atoms(sympy.Pow)
+                                                   if isinstance(p.base, (sympy.sin, sympy.cos))), paired)
 
 
 def factored_sums(expr: sympy.Expr) -> sympy.Expr:

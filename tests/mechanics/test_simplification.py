@@ -498,3 +498,33 @@ def test_the_shortest_candidate_is_rewritten_even_past_half_the_budget(monkeypat
     simplification.forget_forms()
     spread = g * m1 + g * m2 + l * m1 * w ** 2 + l * m2 * w ** 2
     assert human_form(spread, seconds=0.3) == (g + l * w ** 2) * (m1 + m2)
+
+
+_k = sympy.Symbol("k", positive=True)
+
+
+@pytest.mark.parametrize("expr, printed", [
+    # one term of a sum and its partner: a pendulum on a ring's denominator, a trammel's, a spring's
+    (M + m - m * sin(theta) ** 2, "M + m*cos(theta)**2"),
+    (m1 * cos(theta) ** 2 - m2 * cos(theta) ** 2 + m2, "m1*cos(theta)**2 + m2*sin(theta)**2"),
+    (-_k * cos(theta) ** 2 + _k - m1 * thetadot ** 2, "k*sin(theta)**2 - m1*thetadot**2"),
+    (A * g - M * g * l ** 2 * (sin(theta) ** 2 - 1), "A*g + M*g*l**2*cos(theta)**2"),  # a heavy top's pivot
+    (cos(theta0) ** 2 - 1, "-sin(theta0)**2"),
+    # no partner: left as it is (2 cos²β − 1 is no pair; sin⁴ is not read as sin² times sin²)
+    (2 * cos(theta) ** 2 - 1, "2*cos(theta)**2 - 1"),
+    (sin(theta) ** 4 - sin(theta) ** 2, "sin(theta)**4 - sin(theta)**2"),
+    (M + m * sin(theta) ** 2, "M + m*sin(theta)**2"),
+    (M + m * sin(theta) ** 2 - M * sin(theta0) ** 2, "M*cos(theta0)**2 + m*sin(theta)**2"),  # any angle's pair
+])
+def test_a_square_and_its_partner_in_a_sum_are_written_as_the_other_square(expr, printed):
+    paired = simplification.pythagorean_pairs(expr)
+    assert str(paired) == printed
+    _assert_same_value_on(expr, paired, ())
+
+
+def test_a_trammels_forces_print_over_its_shortest_denominator():
+    # grouped builds m1 cos²θ − m2 cos²θ + m2 after the sums' squares were looked at: it is m1 cos²θ + m2 sin²θ
+    simplification.forget_forms()
+    force = (g * m1 * (m1 * cos(theta) ** 2 + m2) + l * m2 * (-_k * cos(theta) ** 2 + _k - m1 * thetadot ** 2)
+             * cos(theta)) / (m1 * cos(theta) ** 2 - m2 * cos(theta) ** 2 + m2)
+    assert str(human_form(force)).endswith("/(m1*cos(theta)**2 + m2*sin(theta)**2)")
