@@ -1522,6 +1522,10 @@ def _with_real_roots(evaluator, parameters: dict, symbols: set, roots, variable)
     point = _with_state(evaluator, parameters, symbols)
     numeric = _numeric_roots(roots, point, variable)
     free = _free_state(evaluator, parameters, symbols)
+    if not numeric and not free:
+        # None is real at the state [initial] gives, and the answer is a formula over that state: the
+        # launch speed v0 at which a string goes slack at φ is real only for cos φ < 2/3, not at φ0 = 0.
+        free = sorted((s for s in symbols - set(parameters) if s in evaluator.state_symbols()), key=str)
     if len(numeric) == len(roots) or not free:
         return point, numeric
     # Some roots are not real here: a state where more are. cos θ = g/(l φ̇²) of a conical pendulum,

@@ -325,3 +325,60 @@ def test_a_stick_falling_on_a_smooth_floor():
         point = {"m": 1.0, "g": g, "l": l, "theta0": theta0}
         assert at(derivation, derivation.answers["landing_force"], point) == pytest.approx(g / 4, rel=1e-12)
         assert at(derivation, derivation.answers["least_floor_force"], point) == pytest.approx(min(forces), rel=1e-6)
+
+
+# -- 4. a parameter by a condition, as a formula over a state [initial] gives a number ---------------
+# A bob on a string (l) launched at the bottom at v0, φ from the downward vertical. The string's tension
+# T = m (v²/l + g cos φ), v² = v0² − 2 g l (1 − cos φ): T = m (g (3 cos φ − 2) + v0²/l). The launch speed
+# at which the string goes slack at φ is v0 = √(g l (2 − 3 cos φ)) (real for cos φ < 2/3, reached for
+# cos φ < 0). It was refused ("no real root for v0 anywhere in its domain"): the root was only tried at
+# φ = 0.7 (φ0 = 0 from [initial]), where 2 − 3 cos φ < 0. Checked by launching the bob at that v0
+# (φ̈ = −g sin φ/l integrated) and finding where the tension first vanishes. The speed and height where it
+# goes slack for a given v0 (v² = (v0² − 2 g l)/3, −l cos φ = (v0²/g − 2 l)/3) came out right before.
+_SLACK = '''
+id = "string_goes_slack"
+title = "Bob on a string launched at the bottom"
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 0.2 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+l = { dimension = "length", domain = "positive", value = 0.5 }
+v0 = { dimension = "velocity", domain = "positive", value = 4.0 }
+[coordinates]
+r = { dimension = "length", domain = "positive" }
+phi = { dimension = "angle" }
+[energy]
+kinetic = "m/2*(rdot^2 + r^2*phidot^2)"
+potential = "-m*g*r*cos(phi)"
+[[constraints]]
+name = "string"
+f = "r - l"
+kind = "unilateral"
+[initial]
+phi = 0
+phidot = "v0/l"
+[[answers]]
+name = "tension"
+prompt = "the string's tension as a function of phi"
+expr = "-lambda_string"
+in_terms_of = ["m", "g", "l", "v0", "phi"]
+dimension = "force"
+[[answers]]
+name = "slack_launch_speed"
+prompt = "the launch speed for which the string goes slack at phi"
+expr = "v0"
+where = "tension = 0"
+in_terms_of = ["g", "l", "phi"]
+'''
+
+
+@pytest.mark.parametrize("phi_slack", [1.9, 2.4, 2.9])
+def test_the_launch_speed_for_a_string_to_go_slack_at_an_angle(phi_slack):
+    derivation = derive(parse_scene(_SLACK, source="slack.toml"))
+    for g, l in ((9.81, 0.5), (1.6, 2.2)):
+        v0 = at(derivation, derivation.answers["slack_launch_speed"], {"g": g, "l": l, "phi": phi_slack})
+        assert v0 == pytest.approx(math.sqrt(g * l * (2 - 3 * math.cos(phi_slack))), rel=1e-12)
+        slack = lambda t, s: g * (3 * math.cos(s[0]) - 2) + v0 ** 2 / l
+        slack.terminal = True
+        solution = solve_ivp(lambda t, s: [s[1], -g * math.sin(s[0]) / l], [0, 100], [0, v0 / l],
+                             rtol=1e-12, atol=1e-12, events=slack)
+        assert solution.y_events[0][0][0] == pytest.approx(phi_slack, rel=1e-8)
