@@ -117,6 +117,8 @@ CONFIRMED_ELSEWHERE = {
     ("elastic_pendulum_hanging", "r_max"),
     ("elastic_pendulum_hanging", "tension_min"),
     ("cone_orbit_inverse_attraction", "small_oscillation_frequency"),
+    # Red team 12's: test_red_team_confirmed.py (the swing about the normal to the incline).
+    ("pendulum_on_block_on_incline", "small_oscillation_frequency"),
 }
 
 

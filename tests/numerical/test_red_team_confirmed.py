@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from scipy.optimize import brentq
 
 from grader.simulate.constrained import Event, simulate
@@ -397,4 +398,30 @@ def test_ball_rolling_in_a_bowl_oscillates_at_the_engines_rate():
     expected = closed_form(model, answers, "small_oscillation_frequency")
     measured = _frequency(model, [b, theta, -b * theta / a], [0.0, 0.0, 0.0], lambda s: s.q[1], 0.0,
                           2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_pendulum_hung_from_a_block_sliding_down_an_incline_swings_about_the_normal_at_the_engines_rate():
+    # Red team 12's scene: the block's s is no cyclic coordinate (gravity pulls it down the slope), but
+    # the swing does not depend on it. Everything starts at rest; the rest state where the bob's
+    # acceleration relative to the block has no component along its path is located numerically.
+    model, answers = engine("pendulum_on_block_on_incline")
+    l = model.values["l"]
+
+    def state(phi):  # X, Y of the block (at the origin), x, y of the bob, all at rest
+        return [0.0, 0.0, l * math.sin(phi), -l * math.cos(phi)], [0.0, 0.0, 0.0, 0.0]
+
+    def relative_tangential(phi):  # l φ̈ = (ẍ − Ẍ) cos φ + (ÿ − Ÿ) sin φ
+        a = snapshot(model.numeric, 0.0, *state(phi)).qddot
+        return (a[2] - a[0]) * math.cos(phi) + (a[3] - a[1]) * math.sin(phi)
+
+    alpha = model.values["alpha"]
+    rest = brentq(relative_tangential, -alpha - 0.5, -alpha + 0.5, xtol=1e-15)
+    assert rest == pytest.approx(-alpha, abs=1e-9)  # about the normal to the incline, as the scene says
+
+    def angle(s):
+        return math.atan2(s.q[2] - s.q[0], -(s.q[3] - s.q[1]))
+
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, *state(rest + 1e-4), angle, rest, 2 * math.pi / expected)
     assert abs(measured - expected) < 1e-6 * expected
