@@ -19,6 +19,7 @@ with more bits until the answer is certain, instead of cancelling to zero. The `
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 from dataclasses import dataclass, field, replace
@@ -957,30 +958,23 @@ def _outside_one_domain(ref: Compiled, ans: Compiled, sampler: Sampler, referenc
         arguments = [Compiled(u, FloatBackend()) for u in one_sided[:MAX_KINKS]]
     except Unsupported:
         return None
-    checked = 0
-    for i in range(options.points, options.points + DOMAIN_DRAWS):
-        if deadline is not None and time.monotonic() > deadline:
-            return None
-        point = sampler.point(i)
-        for argument in arguments:
-            try:
-                value, _ = argument.at(point, 53)
-            except (Undefined, Unresolved):
-                continue
-            if value < 0:
-                break
-        else:
-            continue
-        result = compare_at(ref, ans, point, i, options, deadline)
-        if result.kind == "budget":
-            return None
-        found = _proved_there(ref, ans, sampler, point, result, options, deadline)
-        if found is not None:
-            return found
-        checked += 1
-        if checked >= MAX_DOMAIN_CHECKS:
-            return None
-    return None
+    def outside():  # the drawn points where one of the arguments is negative
+        for i in range(options.points, options.points + DOMAIN_DRAWS):
+            if deadline is not None and time.monotonic() > deadline:
+                return
+            point = sampler.point(i)
+            if any(_negative_at(argument, point) for argument in arguments):
+                yield point, i
+
+    return _first_difference(ref, ans, sampler, itertools.islice(outside(), MAX_DOMAIN_CHECKS), options, deadline)
+
+
+def _negative_at(argument: Compiled, point) -> bool:
+    try:
+        value, _ = argument.at(point, 53)
+    except (Undefined, Unresolved):
+        return False
+    return value < 0
 
 
 def _first_difference(ref: Compiled, ans: Compiled, sampler: Sampler, points, options: Options,

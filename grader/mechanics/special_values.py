@@ -146,28 +146,24 @@ def _at_start(evaluator, spec, target: set, key: str) -> sympy.Expr:
 
 def _condition_in_time(evaluator, spec, key: str) -> bool:
     """Whether the condition, in the independent variables, depends on t itself."""
-    lhs, rhs = spec.where
-    everything = evaluator.parameters | evaluator.state_symbols() | {evaluator.scene.time}
-    try:
-        condition = evaluator.reduce(lhs - rhs, everything, key, readable=False)
-    except SceneError:
-        return False
-    return evaluator.scene.time in condition.free_symbols
+    return evaluator.scene.time in _condition_symbols(evaluator, spec, key)
 
 
 def _asked_velocities_in_condition(evaluator, spec, target: set, key: str) -> bool:
     """Whether the condition, in the independent variables, depends on a velocity that in_terms_of
     names (so it cannot be read at rest)."""
     velocities = {u.dot for u in evaluator.reduction.independent.values()} & target
-    if not velocities:
-        return False
+    return bool(velocities) and bool(_condition_symbols(evaluator, spec, key) & velocities)
+
+
+def _condition_symbols(evaluator, spec, key: str) -> set:
+    """The symbols of the condition written in the independent variables (none where it cannot be)."""
     lhs, rhs = spec.where
     everything = evaluator.parameters | evaluator.state_symbols() | {evaluator.scene.time}
     try:
-        condition = evaluator.reduce(lhs - rhs, everything, key, readable=False)
+        return evaluator.reduce(lhs - rhs, everything, key, readable=False).free_symbols
     except SceneError:
-        return False
-    return bool(condition.free_symbols & velocities)
+        return set()
 
 
 def _sets_an_acceleration_to_zero(evaluator, spec) -> bool:
