@@ -40,7 +40,10 @@ from grader.answers.equivalence import (
     Compiled,
     Options,
     _kink_arguments,
+    _breakpoints,
+    _float_at,
     _sign_pattern,
+    _span,
     as_float,
     kink_region_states,
 )
@@ -337,6 +340,17 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
         # logarithm away, its condition stays) excludes a state where the reference holds has lost that state's
         # motion: the factor searches below see only the simplified residual, and found the factor 1.
         lost = bool(unknowns and answer_conditions and outcome[1].startswith(_UNDEFINED_WHERE))
+        if k == 1 and not unknowns and answer_conditions and outcome[1].startswith(_UNDEFINED_WHERE):
+            # A relation between state variables (y = exp(log x) against y = x, x real) whose typed real domain
+            # leaves out states where the reference holds has lost those solutions; one undefined only where
+            # the reference has none either (θ = acos(...) against the energy equation) goes on below.
+            lost_state = _undefined_where_the_reference_holds(reference[0], anss[0], outcome[2], parameters, states)
+            if lost_state is not None:
+                return Comparison(False, "numeric", f"{_UNDEFINED_WHERE}, at a state where the reference holds (see "
+                                  "the counterexample): your equation leaves out solutions of the reference",
+                                  evidence={"method": "root search", "points": agreed + 1},
+                                  counterexample={"values": _named(lost_state), "answer": "undefined",
+                                                  "reference": 0.0})
         if k == 1 and options.factors and outcome[1].startswith((_NOT_A_MULTIPLE, _UNDEFINED_WHERE)) and not lost:
             # Not a constant multiple; it may still be the reference times a factor that depends
             # on the state and is nonzero on the whole domain (r**2 with r > 0, 1 + x**2).
@@ -455,7 +469,9 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
                 return differ(outcome)
         # and in each region between the boundaries of a kink or branch (sign((x - 5y)(x - 6y)), θ past π)
         fresh = None  # the reference compiled again: these points are not the shared cache's (p, j)
-        regions = kink_region_states(reference + answer, parameters, states, k + 2, deadline)
+        # (with the answer's typed real domain: y = exp(log(x + 10)) - 5 is y = x + 5 only where x > -10)
+        regions = kink_region_states(reference + answer + list(answer_conditions), parameters, states, k + 2,
+                                     deadline)
         for n, (given, at) in enumerate(regions):
             fresh = fresh or [Compiled(r, backend) for r in reference]
             outcome = _one_parameter_point(fresh, anss, given, at, n, target, options, deadline)
@@ -956,6 +972,46 @@ def _not_a_multiple(k, points, R, S, j, i):
     return reason, example
 
 
+def _undefined_where_the_reference_holds(reference: sympy.Expr, answer: Compiled, example: dict,
+                                        parameters: Sampler, states: Sampler) -> dict | None:
+    """A state where the reference equation ``reference = 0`` holds and the compiled ``answer`` (with its typed
+    real domain) is undefined, or None: the roots of the reference along each state variable from the state
+    of ``example`` (a counterexample where the answer is undefined), the other variables kept, found as the
+    kink search finds an argument's zeros (`_breakpoints`), each inside its domain and the declared orders."""
+    domains = {**parameters.domains, **states.domains}
+    named = example.get("values") or {}
+    base = {s: float(named[s.name]) for s in domains if s.name in named}
+    below = {**parameters.below, **states.below, **parameters.across, **states.across}
+    try:
+        residual = compile_expr(reference, FloatBackend())
+    except Unsupported:
+        return None
+    for symbol in sorted(reference.free_symbols & set(states.domains), key=lambda s: s.name):
+        span = _span(domains[symbol])
+        if span is None or symbol not in base:
+            continue
+        for t in _breakpoints(reference, (0,), symbol, base, span)[:MAX_LOST_ROOTS]:
+            point = {**base, symbol: t}
+            if not domains[symbol].contains(t) or not all(
+                    point[a] < point[b] for a, b in below.items() if a in point and b in point):
+                continue
+            # a root, not one of the extrema _breakpoints also returns: the residual changes sign across it
+            step = 1e-9 * max(1.0, abs(t))
+            env = {s: float(v) for s, v in base.items()}
+            left, right = (_float_at(residual, env, symbol, t + d) for d in (-step, step))
+            if left is None or right is None or (left > 0) == (right > 0) or left == 0 or right == 0:
+                continue
+            try:
+                answer.at(point, CONFIRM_BITS)
+            except Undefined:
+                return point
+            except Unresolved:
+                continue
+    return None
+
+
+# Roots of the reference looked at along each state variable for a state the answer's domain leaves out.
+MAX_LOST_ROOTS = 16
 _NOT_A_MULTIPLE = "your equation is not the reference multiplied by a factor free of the state"
 _UNDEFINED_WHERE = "your equation is undefined at a state where the reference is not"
 _NOT_A_COMBINATION = ("your equations are not combinations of the reference equations with coefficients free of "

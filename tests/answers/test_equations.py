@@ -1574,3 +1574,46 @@ def test_an_equation_of_motion_undefined_for_negative_x_is_refused(reference, an
 def test_the_same_answers_are_right_where_x_is_positive(reference, answer):
     positive = {**_SPRING, "x": {"dimension": "length", "domain": "positive", "kind": "coordinate"}}
     assert check(reference, answer, positive, kind="equation").verdict == "equivalent"
+
+
+# -- red team 15 (2026-11-28): a relation whose typed domain leaves out states where the reference holds --------
+
+_RELATION = {"x": {"dimension": "length", "domain": "real", "kind": "coordinate"},
+             "y": {"dimension": "length", "domain": "real", "kind": "coordinate"},
+             "L": {"dimension": "length", "domain": "positive"}}
+
+
+@pytest.mark.parametrize("reference, answer", [
+    ("y = x", "y = exp(log(x/L))*L"),          # y = x only for x > 0: (-1, -1) is lost
+    ("y = x", "y = sqrt(x)^2"),
+    ("y = x", "y = (x^(1/4))^4"),
+    ("y = x", "exp(log(y/L)) = x/L"),
+    ("y*L = x^2", "y*L = exp(2*log(x/L))*L^2"),
+    ("y = x + 5*L", "y = L*exp(log(x/L + 10)) - 5*L"),  # lost only where x < -10 L, past the sampled scale
+])
+def test_a_relation_undefined_where_the_reference_holds_is_refused(reference, answer):
+    verdict = check(reference, answer, _RELATION, kind="equation")
+    assert verdict.verdict == "not_equivalent" and "undefined at a state" in verdict.reason
+    # the counterexample is a solution of the reference: y = x there (or y L = x^2, y = x + 5 L)
+    values = verdict.counterexample["values"]
+    x, y, length = values["x"], values["y"], values.get("L", 1.0)
+    assert any(math.isclose(lhs, rhs, rel_tol=1e-6, abs_tol=1e-6)
+               for lhs, rhs in ((y, x), (y * length, x * x), (y, x + 5 * length)))
+
+
+@pytest.mark.parametrize("reference, answer, domain", [
+    ("y = x", "y = exp(log(x/L))*L", "positive"),   # nothing lost where x > 0
+    ("y = x + 5*L", "y = L*exp(log(x/L + 10)) - 5*L", "positive"),
+    ("y*L = x^2", "y*L = exp(2*log(abs(x)/L))*L^2", "real"),
+])
+def test_the_same_relations_are_right_where_nothing_is_lost(reference, answer, domain):
+    variables = {**_RELATION, "x": {"dimension": "length", "domain": domain, "kind": "coordinate"}}
+    assert check(reference, answer, variables, kind="equation").verdict == "equivalent"
+
+
+def test_a_relation_undefined_only_where_the_reference_has_no_solution_stays_right():
+    # |v| = sqrt(2 g h) is undefined for h < 0, where v^2 = 2 g h has no real v either
+    variables = {"g": {"dimension": "acceleration", "domain": "positive"},
+                 "h": {"dimension": "length", "domain": "real", "kind": "coordinate"},
+                 "v": {"dimension": "velocity", "domain": "real", "kind": "velocity"}}
+    assert check("v^2 = 2*g*h", "abs(v) = sqrt(2*g*h)", variables, kind="equation").verdict == "equivalent"
