@@ -105,6 +105,15 @@ _MARKUP_TAG = re.compile(r"</?(math|mi|mn|mo|ms|mrow|msup|msub|msubsup|mfrac|msq
 # A subscript between a braced name and its primes ({x}_{1}^{\prime}): the name inside carries it already.
 _SUBSCRIPT_GAP = re.compile(r"\s*_\s*(?:\{[^{}]{1,40}\}|[A-Za-z0-9])\s*")
 
+# What may follow a number's digits to start its power of ten, and the exponent's signs.
+_EXPONENT_MARKS = frozenset("eEᴇ")
+_EXPONENT_MINUSES = frozenset({"-", "－"} | {ch for ch, op in OPERATOR_CHARS.items() if op == "-"})
+_EXPONENT_PLUSES = frozenset("+＋")
+
+# ASCIIMath's subscript in round brackets, which it does not print: x_(1), theta_(0), v_(max), m_(α).
+# Only a plain index (letters or digits, or one Greek letter): x_(1 + n) is left to the grammar.
+_ROUND_SUBSCRIPT = re.compile(r"\(\s*([A-Za-z0-9]{1,20}|[" + "".join(GREEK_CHARS) + r"])\s*\)")
+
 # The extra space a line break may take: \\[2pt], \\[1ex], \\[0.5em]
 _BREAK_SPACE = re.compile(r"\s*\[\s*-?(?:\d+\.?\d*|\.\d+)\s*(?:pt|ex|em|mm|cm|in|bp|pc|mu|sp|dd|cc)\s*\]")
 
@@ -520,9 +529,12 @@ class _Tokenizer:
             while k < self.n and _is_digit(text[k]):
                 k += 1
             frac_part, j, decimal = text[j + point:k], k, True
-        if j < self.n and text[j] in "eE":
+        # 1.5e-3, and as calculators write it, 1.5ᴇ-3 (TI, NumWorks). The exponent's sign may be any minus a
+        # word processor or PDF makes of '-' (1.5e−3 was 1.5·e − 3, Euler's number), and after ᴇ TI's raised ⁻.
+        if j < self.n and text[j] in _EXPONENT_MARKS:
             k = j + 1
-            if k < self.n and text[k] in "+-":
+            negative = k < self.n and (text[k] in _EXPONENT_MINUSES or (text[k] == "⁻" and text[j] == "ᴇ"))
+            if k < self.n and (negative or text[k] in _EXPONENT_PLUSES):
                 k += 1
             if k < self.n and _is_digit(text[k]):
                 m = k
@@ -532,7 +544,7 @@ class _Tokenizer:
                 if m - k > 5:
                     raise ExpressionError("number too large", start, "too_large",
                                           "no answer here needs numbers that size")
-                exponent, j, decimal = int(text[j + 1:m]), m, True
+                exponent, j, decimal = (-1 if negative else 1) * int(text[k:m]), m, True
         mantissa = (int_part + frac_part).lstrip("0") or "0"
         scale = exponent - len(frac_part)
         if len(mantissa) > MAX_DIGITS or (mantissa != "0" and len(mantissa) + scale > MAX_DIGITS) \
@@ -571,6 +583,11 @@ class _Tokenizer:
                     j = self.matching_brace(j) + 1  # v_\text{max}: the font's braces are the subscript's
                 parts.append("_" + subscript_text(text[after:j], after))
                 i = j
+                break
+            elif c == "_" and (index := _ROUND_SUBSCRIPT.match(text, after)):
+                # ASCIIMath's x_(1) is x₁: read as the product x·1 (or MATLAB's index) it gave 2x for x_(2)
+                parts.append("_" + GREEK_CHARS.get(index[1], index[1]))
+                i = index.end()
                 break
             elif c == "_" and after > i + 1 and after < self.n and text[after] in _ASCII_ALNUM:
                 parts.append("_" + text[after])  # m _ 1: one character, as LaTeX takes a bare subscript
@@ -675,6 +692,8 @@ class _Tokenizer:
         if i + 1 < n and text[i] == "_" and text[i + 1] in _ASCII_ALNUM:
             run = _ASCII_ALNUM_RUN.match(text, i + 1)
             return "_" + run.group(), run.end()
+        if i + 1 < n and text[i] == "_" and (index := _ROUND_SUBSCRIPT.match(text, i + 1)):  # θ̇_(1), θ'_(1)
+            return "_" + GREEK_CHARS.get(index[1], index[1]), index.end()
         return "", i
 
     def finish_name(self, start: int, name: str, i: int, order: int, **extra) -> None:

@@ -164,6 +164,7 @@ _SYMBOL_HINTS = {
     "≤": "give an expression, or an equation with =", "≥": "give an expression, or an equation with =",
     "≠": "give an expression, or an equation with =", "≈": "use = for an equation",
     "∞": "no answer here is infinite",
+    "ᴇ": "ᴇ is a calculator's 'times ten to the': write it between a number and a whole power, as in 1.5ᴇ-3 or 1.5e-3",
     "°": "angles are in radians: degrees only follow a number, as in 30°",
     "±": "give one sign (the answer with + or the one with -)",
     "∓": "give one sign (the answer with + or the one with -)",

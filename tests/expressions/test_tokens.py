@@ -369,3 +369,49 @@ def test_a_dot_between_names_is_still_refused(text):
     # Only .*, ./ and .^ are MATLAB's operators; a bare dot between names is no product.
     bad = [t for t in tokenize(text) if t.kind == "bad"]
     assert bad and "attribute access" in bad[0].error.message
+
+
+@pytest.mark.parametrize("text, name, order", [
+    # ASCIIMath's subscript in round brackets, which it does not print: x_(2) is x₂, never x·2
+    ("x_(2)", "x_2", 0), ("theta_(0)", "theta_0", 0), ("m_( 12 )", "m_12", 0), ("v_(max)", "v_max", 0),
+    ("θ_(1)", "theta_1", 0), ("x_(α)", "x_alpha", 0), ("θ̇_(1)", "theta_1", 1), ("theta''_(2)", "theta_2", 2),
+])
+def test_a_subscript_in_round_brackets_belongs_to_the_name(text, name, order):
+    [token] = tokenize(text)[:-1]
+    assert (token.kind, token.value, token.order) == ("name", name, order)
+
+
+def test_only_a_plain_index_in_round_brackets_is_a_subscript():
+    # x_(1 + n) holds no index to read: the bracket stays a bracket
+    assert kinds("x_(1 + n)")[1:] == [("open", "("), ("number", 1), ("op", "+"), ("name", "n"), ("close", ")")]
+    # after x_(2) a second bracket is a factor of its own
+    assert kinds("x_(2)(y)") == [("name", "x_2"), ("open", "("), ("name", "y"), ("close", ")")]
+
+
+@pytest.mark.parametrize("text, value", [
+    # scientific notation whose minus a word processor or PDF changed, and calculators' ᴇ (TI, NumWorks):
+    # 1.5e−3 was 1.5·e − 3 with Euler's e
+    ("1.5e−3", sympy.Rational(3, 2000)), ("1.5E–3", sympy.Rational(3, 2000)), ("2e—2", sympy.Rational(1, 50)),
+    ("1e‒3", sympy.Rational(1, 1000)), ("1e‐3", sympy.Rational(1, 1000)), ("1e‑3", sympy.Rational(1, 1000)),
+    ("1e﹣3", sympy.Rational(1, 1000)), ("1e－3", sympy.Rational(1, 1000)), ("1e＋3", 1000),
+    ("1.5ᴇ3", 1500), ("1.5ᴇ-3", sympy.Rational(3, 2000)), ("1.5ᴇ⁻3", sympy.Rational(3, 2000)),
+    ("1.5ᴇ−3", sympy.Rational(3, 2000)), ("1.5ᴇ+3", 1500),
+])
+def test_a_power_of_ten_with_any_minus_is_one_number(text, value):
+    [token] = tokenize(text)[:-1]
+    assert (token.kind, token.value, token.decimal) == ("number", value, True)
+
+
+def test_an_exponent_mark_without_a_power_is_not_a_number():
+    # no digit after the minus: Euler's e
+    assert kinds("2e−x") == [("number", 2), ("name", "e"), ("op", "-"), ("name", "x")]
+    # a raised minus is a calculator's sign only after its ᴇ: 1e⁻2 is not read as 1/100
+    with pytest.raises(ExpressionError):
+        tokenize("1e⁻2")
+
+
+@pytest.mark.parametrize("text", ["1ᴇ", "ᴇ3", "1ᴇ2ᴇ3"])
+def test_a_calculators_e_without_its_number_is_refused_saying_what_it_is(text):
+    with pytest.raises(ExpressionError) as refused:
+        tokenize(text)
+    assert "'ᴇ'" in refused.value.message and "calculator's 'times ten to the'" in refused.value.hint
