@@ -43,6 +43,7 @@ from grader.answers.evaluate import (
     compile_expr,
 )
 from grader.answers.sampling import GivenPoints, Sampler
+from grader.expressions.functions import REGISTRY
 from grader.expressions.magnitudes import node_count
 
 __all__ = ["Options", "Comparison", "Compiled", "PointResult", "compare_expressions", "expansion_terms",
@@ -741,8 +742,141 @@ def _below_the_digits(ref: Compiled, ans: Compiled, sampler: Sampler, options: O
     except (Undefined, Unresolved):
         return None
     if (a - r).contains(0):
-        return None
+        bits = _range_bits((ref.expr, ans.expr), point)
+        if bits <= CONFIRM_BITS:
+            return None
+        try:  # keyed by the precision, which depends only on the texts at the first point
+            a, _ = ans.at(point, bits, 0 if options.fast else None)
+            r, _ = ref.at(point, bits, 0)
+        except (Undefined, Unresolved):
+            return None
+        if (a - r).contains(0):
+            return None
     return _differ_below_the_digits(point, a, r, options, "at more precision they differ there")
+
+
+# The most bits a confirmation at the expressions' own range is carried to (about 20,000 digits).
+MAX_CONFIRM_BITS = 1 << 16
+# A constant, point value or integer power past 2^±RANGE_TRIGGER, or a function that saturates, asks for
+# the range to be measured; below it, CONFIRM_BITS covers any difference the expression can hide.
+RANGE_TRIGGER = 60
+# Functions within e^-|u| of a limit for large |u| (tanh 2000 is 1 - 2e-1737), or within 1/|u| (atan 1e400).
+_SATURATING = frozenset({"exp", "sinh", "cosh", "tanh", "coth", "sech", "csch"})
+_RECIPROCAL = frozenset({"atan", "acot", "asinh", "acosh", "atanh", "acoth", "asec", "acsc", "log", "asin", "acos",
+                         "atan2"})
+
+
+def _range_bits(exprs, point: dict) -> int:
+    """The working precision at which a difference that ``exprs`` can hide at ``point`` shows: twice the widest
+    magnitude (log2) of a constant, an integer power or a function's argument, and about 3|u| bits for a function
+    that nears its limit as e^-|u| (``x (1 + e^-1000)``, ``x tanh(2000)``, ``cos(10^-200)``, ``atan(10^400)`` all
+    agree with ``x``, ``1`` or ``π/2`` to 1024 bits). Measured by one 64-bit evaluation, only where a constant,
+    a value of the point or an integer power is past 2^±`RANGE_TRIGGER` or a saturating function is present;
+    0 otherwise. At most `MAX_CONFIRM_BITS`."""
+    bits = 0.0
+    measure = any(v and abs(math.log2(abs(v))) > RANGE_TRIGGER for v in point.values()
+                  if isinstance(v, float) and math.isfinite(v))
+    for expr in exprs:
+        for node in sympy.preorder_traversal(expr):
+            if node.is_Number:
+                magnitude = _constant_magnitude(node)
+                bits = max(bits, 2 * magnitude)
+                measure = measure or magnitude > RANGE_TRIGGER
+            elif node.is_Pow and node.exp.is_Integer and abs(node.exp) > RANGE_TRIGGER:
+                measure = True
+            elif isinstance(node, sympy.Function) and _range_name(node) in _SATURATING | _RECIPROCAL:
+                measure = True
+    if measure:
+        bits = max(bits, _measured_range(exprs, point))
+    return min(int(bits) + 64, MAX_CONFIRM_BITS) if bits > CONFIRM_BITS - 64 else 0
+
+
+def _constant_magnitude(node: sympy.Number) -> int:
+    """|log2| of a nonzero rational or float constant, to a bit or two; 0 for zero and the infinities."""
+    if node.is_Rational:
+        return abs(int(node.p).bit_length() - int(node.q).bit_length())
+    if node.is_Float:
+        _, mantissa, exponent, _ = node._mpf_
+        return abs(int(mantissa).bit_length() + exponent) if mantissa else 0
+    return 0
+
+
+def _range_name(node) -> str:
+    return type(node).__name__.lower()
+
+
+class _RangeBackend(ArbBackend):
+    """Ball arithmetic that records under ``RANGE`` the bits `_range_bits` asks for: of each function's
+    arguments, integer power's base and real power's base and exponent."""
+
+    def function(self, name: str, fs):
+        spec = REGISTRY.get(name)
+        if spec is None or spec.arb is None:
+            raise Unsupported(name)
+        evaluate, saturating = spec.arb, name in _SATURATING
+
+        def recorded(env):
+            args = [f(env) for f in fs]
+            for u in args:
+                _note(env, u, saturating)
+            return evaluate(*args)
+
+        return recorded
+
+    def pow_int(self, f, n: int):
+        power = super().pow_int(lambda env: env[_BASE], n)
+
+        def recorded(env):
+            x = f(env)
+            _note(env, x, False, abs(n))
+            env[_BASE] = x
+            return power(env)
+
+        return recorded
+
+    def pow_real(self, f, g):
+        def recorded(env):
+            x, y = f(env), g(env)
+            _note(env, x, False)
+            _note(env, y, True)
+            env[_BASE], env[_EXPONENT] = x, y
+            return power(env)
+
+        power = super().pow_real(lambda env: env[_BASE], lambda env: env[_EXPONENT])
+        return recorded
+
+
+RANGE, _BASE, _EXPONENT = "__range__", "__base__", "__exponent__"
+
+
+def _note(env: dict, u, saturating: bool, times: int = 1) -> None:
+    if not u.is_finite() or u.contains(0):
+        return
+    magnitude = _log2_mag(u)
+    bits = 2 * abs(magnitude) * times
+    if saturating and magnitude > 0:
+        bits = max(bits, 3 * 2.0 ** min(magnitude, 20))  # e^-|u| is 1.44|u| bits below the limit, twice over
+    env[RANGE] = max(env[RANGE], bits)
+
+
+def _measured_range(exprs, point: dict) -> float:
+    backend = _RangeBackend()
+    ctx = flint.ctx
+    outer = ctx.prec
+    ctx.prec = 64
+    bits = 0.0
+    try:
+        for expr in exprs:
+            env = {s: flint.arb(v) for s, v in point.items()}
+            env[SCALE], env[RANGE] = -math.inf, 0.0
+            try:
+                compile_expr(expr, backend)(env)
+            except (Undefined, Unresolved, Unsupported, ValueError, ZeroDivisionError):
+                pass
+            bits = max(bits, env.get(RANGE, 0.0))
+    finally:
+        ctx.prec = outer
+    return bits
 
 
 # Constants outside the ordinary samples' scale (0.5 .. 3) say where else to look: abs(x - 10)

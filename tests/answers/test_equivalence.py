@@ -455,3 +455,44 @@ def test_the_regions_of_a_kink_are_located_between_close_and_narrow_boundaries()
                                  {theta: 1.0})
     assert any(abs(p[theta] - sympy.pi.evalf()) < 0.045 for p in near_pi)
     assert kink_region_points([m * g * sympy.sqrt(2 * l / g)], {m: POS, g: POS, l: POS}, {m: 1.0, g: 1.0, l: 1.0}) == []
+
+
+# -- red team 15 (2026-11-28): a difference below the 1024-bit confirmation -------------------------------------
+
+_x, _y = sympy.symbols("x y", positive=True)
+_TINY = sympy.Rational(1, 10**200)
+_HUGE = sympy.Integer(10)**400
+
+
+def _wide_sampler(y_domain="positive"):
+    return Sampler({_x: POS, _y: parse_domain(y_domain)}, seed_for(["x", "y", y_domain]))
+
+
+@pytest.mark.parametrize("reference, answer, y_domain, why", [
+    (_x, _x * (1 + sympy.exp(-1000)), "positive", "relative 5e-435"),
+    (_x, _x * sympy.tanh(2000), "positive", "tanh(2000) = 1 - 2e-1737"),
+    (_x, _x * sympy.tanh(2000 * _y), "positive", "1 - tanh(2000 y) is below 2^-1024 wherever y > 0.18"),
+    (_x, _x * (1 + sympy.exp(-_y)), [1000, 2000], "the domain's own scale puts e^-y below 1e-434"),
+    (_x, _x * (1 + sympy.exp(-800 * _y)), [1, 2], "e^-800y < 1e-347"),
+    (sympy.Integer(1), sympy.tanh(1000 * _x)**2, "positive", "1 - tanh²(1000 x) is 4 e^-2000x"),
+    (sympy.Integer(1), sympy.cos(_TINY), "positive", "1 - cos(1e-200) = 5e-401"),
+    (sympy.pi / 2, sympy.atan(_HUGE), "positive", "atan(1e400) = pi/2 - 1e-400"),
+    (_x, _x * sympy.cos(sympy.exp(-300)), "positive", "1 - cos(e^-300) = 1.9e-261 (within 1024 bits already)"),
+])
+def test_a_difference_below_the_confirming_precision_is_found_at_the_expressions_range(reference, answer,
+                                                                                        y_domain, why):
+    result = compare_expressions(reference, answer, _wide_sampler(y_domain))
+    assert result.equivalent is False and result.certainty == "proved", why
+
+
+@pytest.mark.parametrize("reference, answer, y_domain", [
+    (_x * sympy.tanh(2000), _x * (1 - sympy.exp(-4000)) / (1 + sympy.exp(-4000)), "positive"),
+    (_x * sympy.tanh(2000 * _y), _x * (sympy.exp(4000 * _y) - 1) / (sympy.exp(4000 * _y) + 1), "positive"),
+    (sympy.sinh(800 * _y), (sympy.exp(800 * _y) - sympy.exp(-800 * _y)) / 2, [1, 2]),
+    (sympy.tanh(1000 * _x)**2, 1 - 1 / sympy.cosh(1000 * _x)**2, "positive"),
+    (sympy.atan(_HUGE), sympy.pi / 2 - sympy.atan(1 / _HUGE), "positive"),
+    (sympy.cos(_TINY), 1 - 2 * sympy.sin(_TINY / 2)**2, "positive"),
+])
+def test_the_same_values_written_otherwise_stay_equivalent_at_that_range(reference, answer, y_domain):
+    result = compare_expressions(reference, answer, _wide_sampler(y_domain), Options(symbolic=False))
+    assert result.equivalent is True
