@@ -298,19 +298,24 @@ def _operator_in_brackets(tokens: list[Token], i: int):
 def _match(tokens: list[Token], i: int, ns, text: str, memo: dict) -> tuple[Token, int] | None:
     """The derivative token for a Leibniz derivative starting at ``tokens[i]`` and where it ends."""
     start = tokens[i]
-    framed = start.kind == "command"
+    # ASCIIMath's frac(d^2 theta)(dt^2) is \frac{d^2\theta}{dt^2} with round brackets
+    ascii_frac = start.kind == "name" and start.value == "frac" and "frac" not in ns.names
+    framed = start.kind == "command" or ascii_frac
+    opening, closing = ("(", ")") if ascii_frac else ("{", "}")
     if framed:  # \frac{d…}{dt…}, or \frac d{dt…} (an unbraced argument is one letter, as in TeX)
         first = _at(tokens, i + 1)
-        if _plain_name(first) and first.text == "d" and not first.order:
+        if _plain_name(first) and first.text == "d" and not first.order and not ascii_frac:
             top, after = _Numerator(1, [first], None, None, None, i + 2), i + 2
-        elif _is(first, "open", "{"):
+        elif _is(first, "open", opening):
             top = _numerator(tokens, i + 2)
-            if top is None or not _is(_at(tokens, top.end), "close", "}"):
+            if top is None or not _is(_at(tokens, top.end), "close", closing):
                 return None
             after = top.end + 1
         else:
             return None
-        if not _is(_at(tokens, after), "open", "{"):
+        if ascii_frac and not _is(_at(tokens, after), "open", opening):
+            return None
+        if not _is(_at(tokens, after), "open", opening):
             bare = _at(tokens, after)  # \frac{d}dt: LaTeX reads d/d, then t
             if top.coordinate is None and _plain_name(bare) and bare.value == "dt" and bare.text == "dt" \
                     and not _means_something(top.words + [bare], ns, memo):
@@ -320,7 +325,7 @@ def _match(tokens: list[Token], i: int, ns, text: str, memo: dict) -> tuple[Toke
                 return _derivative(start, bare, text, "", 0, ns, error), after + 1
             return None
         below = _denominator(tokens, after + 1)
-        if below is None or not _is(_at(tokens, below[3]), "close", "}"):
+        if below is None or not _is(_at(tokens, below[3]), "close", closing):
             return None
         k = below[3] + 1
     elif start.kind == "open" and _operator_in_brackets(tokens, i):  # (d/dt)(m l² θ̇)
@@ -499,7 +504,8 @@ def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
     while i < n:
         token = tokens[i]
         found = None
-        if (token.kind == "name" and token.value[:1] == "d") or (token.kind == "command" and token.value == "frac") \
+        if (token.kind == "name" and token.value[:1] == "d") or (token.kind in ("command", "name")
+                                                                 and token.value == "frac") \
                 or (token.kind == "open" and token.value == "(" and i + 1 < n and tokens[i + 1].kind == "name"
                     and tokens[i + 1].value[:1] == "d"):
             found = _match(tokens, i, ns, text, memo)

@@ -567,6 +567,10 @@ class _Parser:
             return self.function(token.value, token)
         if raw in ("dot", "ddot") and raw not in self.ns and following.kind == "open":
             return self.derivative_call(token, 1 if raw == "dot" else 2)
+        if raw in ("frac", "root") and raw not in self.ns.names and not token.order and called:
+            two = self.asciimath_pair(token)
+            if two is not None:
+                return two
         if (raw in _DIFF_CALLS and not token.order and raw not in self.ns.names and following.kind == "open"
                 and following.value == _DIFF_CALLS[raw] and following.pos == token.end):
             return self.diff_call(token)
@@ -596,6 +600,39 @@ class _Parser:
         if called and not following.space_before and not token.order:
             self.note(f"read '{token.text}(…)' as {token.text}·(…): {token.text} is a variable, not a function")
         return value
+
+    def asciimath_pair(self, token: Token) -> sympy.Expr | None:
+        """ASCIIMath's ``frac(a)(b)`` (a/b) and ``root(n)(x)`` (the n-th root of x), as MathJax, Moodle,
+        WeBWorK and Canvas write them: two bracketed arguments side by side. None when only one bracket
+        follows (Typst's ``frac(a, b)``, STACK's ``root(x, n)``: refused with the form to type)."""
+        first = self.i
+        depth, k = 0, first
+        while True:  # the bracket that closes the first argument (the brackets are balanced already)
+            depth += {"open": 1, "close": -1}.get(self.tokens[k].kind, 0)
+            if depth == 0:
+                break
+            k += 1
+        second = self.tokens[k + 1]
+        if second.kind != "open" or any(t.kind == "op" and t.value == "," for t in self.tokens[first:k]):
+            return None
+        self.advance()
+        head = self.expression(0)
+        self.expect_close(self.tokens[first])
+        opener = self.advance()
+        if self.peek().kind == "close":
+            raise ExpressionError("empty brackets", opener.pos, "syntax", "put an expression inside, or delete them")
+        tail = self.expression(0)
+        self.expect_close(opener)
+        typed = self.text[token.pos:self.tokens[self.i - 1].end]
+        if token.value == "frac":
+            self.note(f"read '{typed}' as ASCIIMath's fraction ({head})/({tail})")
+            return checked(sympy.Mul(head, guarded_pow(tail, sympy.Integer(-1), token.pos)), token.pos)
+        if not (head.is_Integer and 2 <= head <= MAX_ROOT_INDEX):
+            raise ExpressionError(f"cannot read the root of index {head} in '{typed}'", token.pos, "syntax",
+                                  "the index of a root is a whole number from 2 on, as in root(3)(x); "
+                                  "write x^(1/n) for a power")
+        self.note(f"read '{typed}' as ASCIIMath's root of index {head}")
+        return self.root(tail, int(head), token.pos)
 
     def indexed_name(self, token: Token) -> sympy.Expr | None:
         """``m[1]``, ``epsilon[0]``, ``x[i]``: a name with an index in square brackets right after it,

@@ -454,3 +454,22 @@ def test_braced_bases_keep_their_meaning_when_d_is_declared():
     # a command's braced argument before a power is not unbraced: \sqrt{x}^{2} is (√x)², not √(x²)
     assert parse(r"\frac{{d}^{2}\theta }{d{t}^{2}} + \sqrt{x}^{2}", _ns()) == \
         _ns().symbol("thetaddot") + _ns().symbol("x")
+
+
+@pytest.mark.parametrize("text, name", [
+    # ASCIIMath's fraction of two bracketed arguments (MathJax, Moodle, WeBWorK, Canvas)
+    ("frac(d theta)(dt)", "thetadot"), ("frac(d^2 theta)(dt^2)", "thetaddot"), ("frac(d^2x)(dt^2)", "xddot"),
+    ("frac(d theta_1)(d t)", "theta1dot"), ("frac(d)(dt)(x)", "xdot"), ("frac(d^2)(dt^2)(theta)", "thetaddot"),
+])
+def test_asciimath_fraction_of_differentials_is_the_dotted_variable(ns, text, name):
+    assert parse_expression(text, ns).expr == ns.symbol(name)
+
+
+@pytest.mark.parametrize("text, words", [
+    ("frac(d^2 theta)(dt)", "d² on top but dt below"),
+    ("frac(d theta)(dt^2)", "on top but dt² below"),
+])
+def test_asciimath_fraction_of_unequal_differentials_is_refused_by_name(ns, text, words):
+    with pytest.raises(ExpressionError) as refused:
+        parse_expression(text, ns)
+    assert words in refused.value.message and text in refused.value.message

@@ -1023,3 +1023,34 @@ def test_katex_function_names_and_brackets_are_read(student, canonical):
     ns = Namespace([Variable("x", "dimensionless", "positive"), Variable("y", "dimensionless", "real"),
                     Variable("theta1", "angle", "real")])
     assert parse(student, ns) == parse(canonical, ns)
+
+
+# -- ASCIIMath's two-argument forms (MathJax, Moodle, WeBWorK, Canvas) --------------------------------
+
+@pytest.mark.parametrize("text, expected", [
+    ("frac(m g)(2)", lambda s: s("m") * s("g") / 2),
+    ("frac(x)(l) + 1", lambda s: s("x") / s("l") + 1),
+    ("frac (x) (l)", lambda s: s("x") / s("l")),
+    ("frac(x)(l)^2", lambda s: s("x") ** 2 / s("l") ** 2),  # the power raises the whole fraction, as shown
+    ("frac(x)(l) r", lambda s: s("x") * s("r") / s("l")),
+    ("root(3)(x)", lambda s: sympy.sign(s("x")) * sympy.Abs(s("x")) ** sympy.Rational(1, 3)),  # real for x < 0
+    ("root(2)(l r)", lambda s: sympy.sqrt(s("l") * s("r"))),
+    ("root(4)(l)", lambda s: s("l") ** sympy.Rational(1, 4)),
+    ("2 root(2)(g/l)", lambda s: 2 * sympy.sqrt(s("g") / s("l"))),
+])
+def test_asciimath_fractions_and_roots_of_two_bracketed_arguments(ns, text, expected):
+    assert sympy.simplify(parse(text, ns) - expected(lambda n: sym(ns, n))) == 0
+
+
+@pytest.mark.parametrize("text, words", [
+    ("frac(x, l)", "write a/b"),  # Typst's frac(a, b): one bracket, refused with the form to type
+    ("root(x, 3)", "x^(1/n)"),  # STACK's root(x, n)
+    ("root(x)", "x^(1/n)"),
+    ("root(1.5)(x)", "whole number from 2 on"),
+    ("root(l)(x)", "whole number from 2 on"),
+    ("frac(x)()", "empty brackets"),
+])
+def test_asciimath_forms_that_are_not_two_arguments_are_refused_saying_what_to_type(ns, text, words):
+    with pytest.raises(ExpressionError) as refused:
+        parse(text, ns)
+    assert words in refused.value.message + "; " + (refused.value.hint or "")
