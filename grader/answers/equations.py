@@ -42,6 +42,7 @@ from grader.answers.equivalence import (
     _kink_arguments,
     _breakpoints,
     _float_at,
+    _range_bits,
     _sign_pattern,
     _span,
     as_float,
@@ -512,6 +513,12 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
             if special is not None:
                 return special
         confirmed = _try_precision(refs, anss, parameters.point(0), states, 0, k, CONFIRM_BITS + 64, CONFIRM_BITS)
+        if confirmed is None or confirmed[0] != "differ":
+            # a difference behind a function near its limit or a constant far from 1 (θ̈ = −(g/l) sin θ tanh 2000):
+            # once more at the range the texts span (`_range_bits`), where that is past CONFIRM_BITS
+            bits = _range_bits(reference + answer, states.joint(parameters.point(0), states.point(0)))
+            if bits > CONFIRM_BITS:
+                confirmed = _try_precision(refs, anss, parameters.point(0), states, 0, k, bits + 64, bits)
         if confirmed is not None and confirmed[0] == "differ":
             # θ̈ = −(g/l) sin(θ(1 + 10⁻⁴⁰)) is a multiple of the reference to 40 digits, not at 300
             return Comparison(False, "proved", f"{confirmed[1]} (by less than the judge's digits: at more "

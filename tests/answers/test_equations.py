@@ -1617,3 +1617,15 @@ def test_a_relation_undefined_only_where_the_reference_has_no_solution_stays_rig
                  "h": {"dimension": "length", "domain": "real", "kind": "coordinate"},
                  "v": {"dimension": "velocity", "domain": "real", "kind": "velocity"}}
     assert check("v^2 = 2*g*h", "abs(v) = sqrt(2*g*h)", variables, kind="equation").verdict == "equivalent"
+
+
+@pytest.mark.parametrize("answer, expected", [
+    ("thetaddot = -g/l*sin(theta)*tanh(2000)", "not_equivalent"),        # 1 - tanh 2000 = 1.3e-1737
+    ("l*thetaddot + g*sin(theta)*cos(10^(-200)) = 0", "not_equivalent"),  # 1 - cos(1e-200) = 5e-401
+    ("thetaddot = -g/l*sin(theta)*(1 + exp(-2000))", "not_equivalent"),
+    ("thetaddot*tanh(2000) = -g/l*sin(theta)*tanh(2000)", "equivalent"),  # a constant multiple, nonzero
+    ("thetaddot*(1 - exp(-4000)) = -g/l*sin(theta)*(1 - exp(-4000))", "equivalent"),
+])
+def test_an_equation_off_by_less_than_the_confirming_precision_is_refused(pendulum, answer, expected):
+    verdict = check(PENDULUM_EOM, answer, pendulum, kind="equation")
+    assert verdict.verdict == expected, verdict.reason
