@@ -690,9 +690,16 @@ class _Parser:
 
     def time_bracket(self, raw: str) -> bool:
         """Whether a declared variable ``raw`` is followed by ``[t]`` that `time_argument` reads as
-        Mathematica's function of time (``θ[t]``), not as an index."""
+        Mathematica's function of time (``θ[t]``), not as an index. A subscript typed apart (``θ₁[t]``,
+        ``Subscript[θ, 1][t]``) is the declared theta1's."""
         if raw not in self.ns.names:
-            return False
+            try:
+                resolved = resolve_name(raw, self.ns)
+            except ExpressionError:
+                return False
+            if resolved.kind != "symbol" or resolved.value.name not in self.ns.names:
+                return False
+            raw = resolved.value.name
         inner, closer = self.tokens[self.i + 1:self.i + 3]
         return (inner.kind == "name" and inner.value == "t" and not inner.order
                 and closer.kind == "close" and closer.value == "]"

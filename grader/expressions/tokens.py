@@ -178,6 +178,9 @@ MATHEMATICA_CHARACTERS = {
     "CurlyTheta": "ϑ", "CurlyPhi": "φ", "CurlyEpsilon": "ε", "CurlyRho": "ϱ", "Ell": "ℓ",
     "Times": "×", "CenterDot": "·", "Minus": "−", "Divide": "÷", "Degree": "°",
 }
+# Mathematica's Subscript[m, 1], Subscript[\[Theta], 0], Subscript[θ, max]: a subscripted name
+_MATHEMATICA_SUBSCRIPT = re.compile(r"Subscript\[\s*(?:([A-Za-z][A-Za-z0-9]{0,30})|\\\[([A-Za-z]+)\]|(["
+                                    + "".join(GREEK_CHARS) + r"]))\s*,\s*([A-Za-z0-9]{1,20})\s*\]")
 _CONSOLE_PROMPT = re.compile(r"\s*(?:(?:In|Out)\[\d+\]\s*:?=|>>|\(%[io]\d+\))")
 
 # Python modules whose functions students paste with the prefix (np.sin, math.sqrt).
@@ -272,7 +275,9 @@ class _Tokenizer:
         # Letters, digits, spaces, ASCII operators and brackets first. Each class matches only one
         # branch of the chain, so the order only decides how soon it is found: before the Unicode
         # lookup of is_space.
-        if ch in _ASCII_NAME_START:
+        if ch == "S" and (subscript := _MATHEMATICA_SUBSCRIPT.match(self.text, start)):
+            self.mathematica_subscript(start, subscript)
+        elif ch in _ASCII_NAME_START:
             run = _ASCII_ALNUM_RUN.match(self.text, start) if ch != "_" else None
             end = run.end() if run else start
             if run and (end == self.n or self.text[end] not in _NAME_GOES_ON):
@@ -1012,6 +1017,18 @@ class _Tokenizer:
         else:
             raise ExpressionError("'\\' must start a LaTeX command such as \\frac", start, "syntax",
                                   "delete the backslash, or write a command such as \\frac{a}{b}")
+
+    def mathematica_subscript(self, start: int, found: re.Match) -> None:
+        """Mathematica's ``Subscript[θ, 0]`` (what "Copy As Plain Text" gives for θ₀): the name θ_0, with the
+        primes after it (``Subscript[θ, 1]'[t]``). It was refused as an unknown name 'Subscript'."""
+        ascii_name, named, letter, index = found.groups()
+        base = ascii_name or GREEK_CHARS.get(MATHEMATICA_CHARACTERS.get(named, ""), "") or GREEK_CHARS.get(letter, "")
+        if not base:
+            self.emit("bad", found.group(), start, found.end(),
+                      error=ExpressionError(f"cannot read '{found.group()}'", start, "syntax",
+                                            "write the subscripted name as x_1"))
+            return
+        self.finish_name(start, f"{base}_{index}", found.end(), 0)
 
     def mathematica_character(self, start: int, end: int, character: str) -> None:
         """Mathematica's ``\\[Theta]`` (what its InputForm and "Copy As Plain Text" give for θ), read as

@@ -1054,3 +1054,11 @@ def test_asciimath_forms_that_are_not_two_arguments_are_refused_saying_what_to_t
     with pytest.raises(ExpressionError) as refused:
         parse(text, ns)
     assert words in refused.value.message + "; " + (refused.value.hint or "")
+
+
+@pytest.mark.parametrize("text", ["θ₁[t]", "theta_1[t]", "Subscript[θ, 1][t]", "Subscript[\\[Theta], 1][t]"])
+def test_a_subscripted_coordinate_of_t_in_square_brackets_is_the_coordinate(text):
+    # Mathematica's θ₁[t] (and its Subscript[θ, 1][t]) is the declared theta1 as a function of time; it was
+    # refused as an index ('no variable theta_1_t')
+    ns = Namespace([Variable("theta1", "angle", "real", "coordinate"), Variable("l", "length", "positive")])
+    assert parse(f"l {text}", ns) == ns.symbol("l") * ns.symbol("theta1")

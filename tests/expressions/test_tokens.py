@@ -415,3 +415,18 @@ def test_a_calculators_e_without_its_number_is_refused_saying_what_it_is(text):
     with pytest.raises(ExpressionError) as refused:
         tokenize(text)
     assert "'ᴇ'" in refused.value.message and "calculator's 'times ten to the'" in refused.value.hint
+
+
+@pytest.mark.parametrize("text, name, order", [
+    # Mathematica's "Copy As Plain Text" of a subscripted name
+    ("Subscript[m, 1]", "m_1", 0), ("Subscript[\\[Theta], 0]", "theta_0", 0), ("Subscript[θ, max]", "theta_max", 0),
+    ("Subscript[theta,2]", "theta_2", 0), ("Subscript[θ, 1]'", "theta_1", 1), ("Subscript[x, 2]''", "x_2", 2),
+])
+def test_mathematicas_subscript_is_the_subscripted_name(text, name, order):
+    [token] = tokenize(text)[:-1]
+    assert (token.kind, token.value, token.order) == ("name", name, order)
+
+
+def test_mathematicas_subscript_of_an_unknown_character_is_refused_by_name():
+    [bad] = [t for t in tokenize("Subscript[\\[Foo], 1]") if t.kind == "bad"]
+    assert "Subscript[\\[Foo], 1]" in bad.error.message and "x_1" in bad.error.hint
