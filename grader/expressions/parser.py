@@ -185,12 +185,38 @@ def _empty_group_before_power(tokens: list[Token]) -> list[Token]:
     return tokens if keep is None else [t for t in keep if t is not None]
 
 
+# ASCIIMath's operators spelled as words (MathJax, Moodle, WeBWorK, Canvas: a xx b, a cdot b, a times b, a div b)
+_OPERATOR_WORDS = {"xx": "*", "cdot": "*", "times": "*", "div": "/"}
+_OPERAND_ENDS = ("name", "number", "close", "sup", "derivative")
+
+
+def _operator_words(tokens: list[Token], ns: Namespace) -> list[Token]:
+    """The tokens with each ASCIIMath operator word between two operands made its operator: ``m xx g`` is
+    m·g, ``a div b`` is a/b. A word the problem declares stays its variable; ``xx`` where x is a variable
+    is refused, since glued it is x·x (it was read as x·x silently: ``x xx k`` gave k x³)."""
+    found = [k for k, t in enumerate(tokens) if t.kind == "name" and t.value in _OPERATOR_WORDS
+             and not t.order and t.text == t.value and t.value not in ns.names]
+    if not found:
+        return tokens
+    tokens = list(tokens)
+    for k in found:
+        word = tokens[k]
+        before, after = tokens[k - 1] if k else None, tokens[k + 1]
+        if before is None or before.kind not in _OPERAND_ENDS or after.kind not in _ATOM_STARTS:
+            continue
+        if word.value == "xx" and "x" in ns.names:
+            raise ExpressionError("'xx' is ASCIIMath's × (times), or x·x typed without a space", word.pos,
+                                  "ambiguous", "write * for a product, or x^2 for x squared")
+        tokens[k] = Token("op", _OPERATOR_WORDS[word.value], word.pos, word.end, word.text, word.space_before)
+    return tokens
+
+
 class _Parser:
     def __init__(self, tokens: list[Token], namespace: Namespace, text: str) -> None:
         # dθ/dt, \frac{d^2x}{dt^2}, d/dt(θ): one derivative token each (see leibniz.py).
         if "{" in text and "^" in text:
             tokens = _empty_group_before_power(tokens)
-        self.tokens = read_leibniz(tokens, namespace, text)
+        self.tokens = _operator_words(read_leibniz(tokens, namespace, text), namespace)
         self.ns = namespace
         self.text = text
         # LaTeX (a command or a brace in it): a superscript is one token there, as editors show it

@@ -330,6 +330,12 @@ class _Tokenizer:
                                             "then a negative number, write + (-2)"))
         elif ch == "-" and self.peek(1) == ">":
             self.emit("bad", "->", start, start + 2, error=_arrow_error(start, "->"))
+        elif _sign(ch) == "-" and self.peek(1) == ":":  # ASCIIMath's ÷
+            self.emit("op", "/", start, start + 2)
+        elif ch == "/" and self.peek(1) == "/":
+            self.emit("bad", "//", start, start + 2, error=ExpressionError(
+                "'//' is floor division in Python, a postfix function in Mathematica and a slash in ASCIIMath",
+                start, "ambiguous", "write / for a quotient"))
         elif _NOT_EQUAL.match(self.text, start):
             # =/= (KAS), /= (Fortran, Haskell), <> (BASIC, SQL), =\= (Prolog): "not equal", named as such
             # rather than as a stray '/', a second '=' or an inequality

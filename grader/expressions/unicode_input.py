@@ -34,7 +34,9 @@ GREEK_CHARS.update({"ς": "sigma", "ϑ": "theta", "ϕ": "phi", "ϵ": "epsilon", 
                     # (\ell), and nobody means ℓ and l as two different variables.
                     "ℓ": "l",
                     # likewise the script e of some fonts and equation editors for Euler's number
-                    "ℯ": "e"})
+                    "ℯ": "e",
+                    # and UnicodeMath's exponential e (Word's \ee), DOUBLE-STRUCK ITALIC SMALL E
+                    "ⅇ": "e"})
 
 #: Operator look-alikes -> ASCII operator.
 

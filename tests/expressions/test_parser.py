@@ -1062,3 +1062,28 @@ def test_a_subscripted_coordinate_of_t_in_square_brackets_is_the_coordinate(text
     # refused as an index ('no variable theta_1_t')
     ns = Namespace([Variable("theta1", "angle", "real", "coordinate"), Variable("l", "length", "positive")])
     assert parse(f"l {text}", ns) == ns.symbol("l") * ns.symbol("theta1")
+
+
+@pytest.mark.parametrize("text, expected", [
+    # ASCIIMath's operators spelled as words, between two operands
+    ("m xx g", lambda s: s("m") * s("g")), ("m cdot g", lambda s: s("m") * s("g")),
+    ("m times g times l", lambda s: s("m") * s("g") * s("l")), ("l div g", lambda s: s("l") / s("g")),
+    ("(m)xx(g)", lambda s: s("m") * s("g")), ("2 xx m g/2", lambda s: s("m") * s("g")),
+    ("l div g^2", lambda s: s("l") / s("g") ** 2),
+])
+def test_asciimath_operator_words_between_operands(text, expected):
+    ns = Namespace([Variable("m", "mass", "positive"), Variable("g", "acceleration", "positive"),
+                    Variable("l", "length", "positive")])
+    assert parse(text, ns) == expected(lambda n: sym(ns, n))
+
+
+def test_xx_where_x_is_a_variable_is_refused_naming_both_readings(ns):
+    # glued, xx is x·x; in ASCIIMath it is ×: 'x xx y' was read as x³y
+    with pytest.raises(ExpressionError) as refused:
+        parse("x xx y", ns)
+    assert "ASCIIMath's ×" in refused.value.message and "x^2" in refused.value.hint
+
+
+def test_an_operator_word_the_problem_declares_is_its_variable():
+    ns = Namespace([Variable("m", "mass", "positive"), Variable("times", "dimensionless", "positive")])
+    assert parse("m times", ns) == sym(ns, "m") * sym(ns, "times")

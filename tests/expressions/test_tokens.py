@@ -430,3 +430,15 @@ def test_mathematicas_subscript_is_the_subscripted_name(text, name, order):
 def test_mathematicas_subscript_of_an_unknown_character_is_refused_by_name():
     [bad] = [t for t in tokenize("Subscript[\\[Foo], 1]") if t.kind == "bad"]
     assert "Subscript[\\[Foo], 1]" in bad.error.message and "x_1" in bad.error.hint
+
+
+@pytest.mark.parametrize("text", ["a -: b", "a−:b"])
+def test_asciimaths_division_sign_is_a_quotient(text):
+    assert kinds(text) == [("name", "a"), ("op", "/"), ("name", "b")]
+
+
+@pytest.mark.parametrize("text", ["m*g//3", "a // b"])
+def test_a_double_slash_is_refused_naming_its_readings(text):
+    # floor division (Python), postfix application (Mathematica), a slash (ASCIIMath): never guessed
+    [bad] = [t for t in tokenize(text) if t.kind == "bad"]
+    assert bad.error.code == "ambiguous" and "floor division" in bad.error.message and bad.error.hint == "write / for a quotient"

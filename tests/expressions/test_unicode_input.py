@@ -1,7 +1,9 @@
 """Non-ASCII input: accepted symbols and refused look-alikes."""
 
 import pytest
+import sympy
 
+from grader.expressions import Namespace, Variable, parse_expression
 from grader.expressions.unicode_input import (GREEK_CHARS, SUPERSCRIPT_CHARS, SUPERSCRIPT_OTHERS, bad_character,
                                               is_space)
 
@@ -95,3 +97,10 @@ def test_full_width_digits_operators_and_brackets_read_as_ascii(typed, plain):
 
     ns = Namespace([Variable(n, "dimensionless", "real") for n in "mn"])
     assert parse_expression(typed, ns).expr == parse_expression(plain, ns).expr
+
+
+@pytest.mark.parametrize("text", ["ⅇ^x", "ℯ^x", "e^x"])
+def test_every_exponential_e_of_editors_is_eulers_number(text):
+    # UnicodeMath's ⅇ (Word's \ee) was refused while ℯ was read
+    ns = Namespace([Variable("x", "dimensionless")])
+    assert parse_expression(text, ns).expr == sympy.exp(ns.symbol("x"))
