@@ -1443,7 +1443,84 @@ def kink_region_points(exprs, domains: dict, base: dict, below: dict | None = No
             point = {**base, symbol: t}
             if all(point[a] < point[b] for a, b in (below or {}).items() if a in point and b in point):
                 points.append(point)
+    if len(points) < MAX_REGION_POINTS:
+        points += _descended_points(boundaries, domains, base, below or {}, deadline, points)
     return points[:MAX_REGION_POINTS]
+
+
+# Rounds of the walk along one variable at a time toward a boundary that no single variable reaches, and the
+# least share of the distance left that a round must close for the walk to go on (a coupled valley,
+# (x - a)² + (y - a)² + (x - y)², closes half of it a round).
+DESCENT_ROUNDS = 32
+DESCENT_PROGRESS = 0.05
+
+
+def _descended_points(boundaries, domains: dict, base: dict, below: dict, deadline: float | None,
+                      met: list[dict] = ()) -> list[dict]:
+    """Points past a boundary that moving one variable from ``base`` never crosses: sign((x - 10⁴)² + (y - 10⁴)²
+    - 1) is -1 only within 1 of (10⁴, 10⁴), which both variables must leave the ordinary scale to reach. From
+    ``base``, each argument of two or more variables that none of the points ``met`` puts past its boundary is
+    taken, one variable at a time, to its value nearest the other side along that variable (on the scan's grid
+    and at its extrema there), for up to `DESCENT_ROUNDS` rounds while each round brings it `DESCENT_PROGRESS`
+    nearer; the point reached, where it is past the boundary, is returned."""
+    global _FLOAT
+    _FLOAT = _FLOAT or FloatBackend()
+    found: list[dict] = []
+    for u, values in boundaries:
+        symbols = sorted((s for s in u.free_symbols if s in domains and s in base and _span(domains[s])),
+                         key=lambda s: s.name)[:MAX_SCANNED]
+        if len(symbols) < 2:
+            continue
+        try:
+            f = compile_expr(u, _FLOAT)
+            slopes = {s: compile_expr(sympy.diff(u, s), _FLOAT) for s in symbols}
+        except (Unsupported, ValueError, TypeError):
+            continue
+        grids = {s: _scan_grid(*_span(domains[s]), _reach(u, base)) for s in symbols}
+        for c in values:
+            start = _float_at(f, {k: float(v) for k, v in base.items()}, symbols[0], float(base[symbols[0]]))
+            if start is None or start == c:
+                continue
+            side = 1.0 if start > c else -1.0
+            if any((v := _float_at(f, {k: float(x) for k, x in p.items()}, symbols[0], float(p[symbols[0]])))
+                   is not None and side * (v - c) < 0 for p in met):
+                continue  # the regions past this boundary are met already
+            point = {k: float(v) for k, v in base.items()}
+            best_value = side * (start - c)
+            for _ in range(DESCENT_ROUNDS):
+                before = best_value
+                for symbol in symbols:
+                    if deadline is not None and time.monotonic() > deadline:
+                        return found
+                    point[symbol], best_value = _nearest_side(f, slopes[symbol], point, symbol, grids[symbol],
+                                                              c, side, domains[symbol], below)
+                    if best_value < 0:
+                        break
+                if best_value < 0:
+                    found.append(point)
+                    break
+                if best_value > before - DESCENT_PROGRESS * before:
+                    break  # settled on this side: the walk no longer nears the boundary
+    return found
+
+
+def _nearest_side(f, slope, point: dict, symbol, grid: list[float], c: float, side: float, domain,
+                  below: dict) -> tuple[float, float]:
+    """The value of ``symbol`` (the others as in ``point``), among ``grid`` and the extrema of ``f`` between its
+    values, where ``side * (f - c)`` is least, and that least value (from the present value on)."""
+    env = dict(point)
+    steep = [_float_at(slope, env, symbol, t) for t in grid]
+    here = _float_at(f, env, symbol, point[symbol])
+    best, best_value = point[symbol], math.inf if here is None else side * (here - c)
+    for t in grid + _crossings(steep, grid, slope, env, symbol):
+        trial = {**point, symbol: t}
+        if not domain.contains(t) or not all(trial[a] < trial[b] for a, b in below.items()
+                                             if a in trial and b in trial):
+            continue
+        v = _float_at(f, env, symbol, t)
+        if v is not None and side * (v - c) < best_value:
+            best, best_value = t, side * (v - c)
+    return best, best_value
 
 
 def _across_the_kinks(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, options: Options,

@@ -496,3 +496,29 @@ def test_a_difference_below_the_confirming_precision_is_found_at_the_expressions
 def test_the_same_values_written_otherwise_stay_equivalent_at_that_range(reference, answer, y_domain):
     result = compare_expressions(reference, answer, _wide_sampler(y_domain), Options(symbolic=False))
     assert result.equivalent is True
+
+
+# -- red team 15: a kink region that only two variables off the ordinary scale reach together --------------------
+
+_XY = {"x": {"dimension": "dimensionless", "domain": "real"}, "y": {"dimension": "dimensionless", "domain": "real"}}
+
+
+@pytest.mark.parametrize("reference, answer, expected", [
+    # -1 only within 1 of (1e4, 1e4): no single variable moved from an ordinary point gets there
+    ("1", "sign((x - 1e4)^2 + (y - 1e4)^2 - 1)", "not_equivalent"),
+    ("1", "sign((x - 1e4)^2 + (y + 3e3)^2 - 1)", "not_equivalent"),
+    # a coupled valley: one variable at a time closes half the distance a round
+    ("1", "sign((x - 1e4)^2 + (y - 1e4)^2 + (x - y)^2 - 1)", "not_equivalent"),
+    ("(x - 1e4)^2 + (y - 1e4)^2 - 1", "abs((x - 1e4)^2 + (y - 1e4)^2 - 1)", "not_equivalent"),
+    ("abs((x - 1e4)^2 + (y - 1e4)^2 - 1)",
+     "((x - 1e4)^2 + (y - 1e4)^2 - 1)*sign((x - 1e4)^2 + (y - 1e4)^2 - 1)", "equivalent"),
+    ("1", "sign((x - 1e4)^2 + (y - 1e4)^2 + 1)", "equivalent"),
+])
+def test_a_kink_region_reached_only_by_two_variables_off_scale_is_compared(reference, answer, expected):
+    from grader.answers.checker import check
+
+    verdict = check(reference, answer, _XY)
+    assert verdict.verdict == expected, verdict.reason
+    if expected == "not_equivalent":
+        values = verdict.counterexample["values"]
+        assert abs(values["x"]) > 100 and abs(values["y"]) > 100
