@@ -260,7 +260,13 @@ _TABLE = [
     Function("sqrt", None),
     # The real cube root, defined for negative numbers too (x**(1/3) is not, over the reals); built
     # from sign and abs, so the evaluators and the dimension rule of a power apply as they are.
-    Function("cbrt", lambda x: sympy.sign(x) * sympy.Abs(x) ** sympy.Rational(1, 3)),
+    Function("cbrt", lambda x: sympy.sign(x) * sympy.Abs(x) ** sympy.Rational(1, 3),
+             aliases=("cuberoot",)),  # Mathematica's CubeRoot[x]
+    # pow(x, y) (Python, C, JavaScript's Math.pow, Excel's POWER, Mathematica's Power[x, y]) is x^y, and
+    # surd(x, n) (Maple, Mathematica's Surd[x, n], GeoGebra's nroot(x, n)) the real n-th root: the parser
+    # builds both, as it builds sqrt, so that the power is size-checked and its real domain kept.
+    Function("pow", None, 2, 2, aliases=("power",)),
+    Function("surd", None, 2, 2, aliases=("nroot",)),
     Function("abs", sympy.Abs, aliases=("Abs",), sympy_func=sympy.Abs, text="Abs", dimension="same",
              arb=lambda x: abs(x), real=lambda lib, x: abs(x)),
     Function("sign", sympy.sign, aliases=("sgn",), sympy_func=sympy.sign, latex=_op("sgn"), dimension="any",

@@ -185,6 +185,10 @@ def _empty_group_before_power(tokens: list[Token]) -> list[Token]:
     return tokens if keep is None else [t for t in keep if t is not None]
 
 
+# Two-argument functions whose Mathematica form takes its arguments in our order (Power[x, y], Surd[x, n])
+_SAME_ORDER_IN_MATHEMATICA = frozenset({"pow", "surd"})
+_ARGUMENT_NAMES = {"pow": "x, y", "surd": "x, n"}  # what a refusal shows as their arguments (atan2's are y, x)
+
 # ASCIIMath's operators spelled as words (MathJax, Moodle, WeBWorK, Canvas: a xx b, a cdot b, a times b, a div b)
 _OPERATOR_WORDS = {"xx": "*", "cdot": "*", "times": "*", "div": "/"}
 _OPERAND_ENDS = ("name", "number", "close", "sup", "derivative")
@@ -809,13 +813,22 @@ class _Parser:
                     return index_root
         elif spec.min_args > 1:
             raise ExpressionError(f"{token.text} takes {spec.min_args} arguments in parentheses, "
-                                  f"as in {name}(y, x)", token.pos, "syntax")
+                                  f"as in {name}({_ARGUMENT_NAMES.get(name, 'y, x')})", token.pos, "syntax")
         elif following.kind in _ATOM_STARTS or (following.kind == "op" and following.value == "-"):
             args = [self.function_argument(token, name)]
         else:
             raise ExpressionError(f"{token.text} needs an argument, as in {name}(x)", token.pos, "syntax")
         if name == "sqrt":
             value = self.power(args[0], sympy.Rational(1, 2), token.pos)
+        elif name == "pow":
+            value = self.power(args[0], args[1], token.pos)
+        elif name == "surd":
+            index = args[1]
+            if not (index.is_Integer and 2 <= index <= MAX_ROOT_INDEX):
+                raise ExpressionError(f"cannot read the root of index {index} in {token.text}(x, n)", token.pos,
+                                      "syntax", "the index of a root is a whole number from 2 on, as in "
+                                      f"{token.text}(x, 3); write x^(1/n) for a power")
+            value = self.root(args[0], int(index), token.pos)
         else:
             value = checked(spec.build(*args), token.pos)
             if spec.name in _RESTRICTED:
@@ -860,14 +873,16 @@ class _Parser:
             raise ExpressionError(f"{token.text}() needs an argument", opener.pos, "syntax",
                                   f"write {spec.name}(x)")
         args = [self.expression(0)]
-        if opener.value == "[" and (spec.max_args > 1 or spec.name in _BRACKET_PAIR_HINTS) and self.peek().kind == "op" and self.peek().value == ",":
+        if (opener.value == "[" and (spec.max_args > 1 or spec.name in _BRACKET_PAIR_HINTS)
+                and spec.name not in _SAME_ORDER_IN_MATHEMATICA and self.peek().kind == "op" and self.peek().value == ","):
             # Mathematica's ArcTan[x, y] is atan2(y, x) and its Log[b, x] is the logarithm of x to
             # base b: the reverse of atan2(y, x) and log(x, b) here, so neither order is guessed.
             raise ExpressionError(f"'{token.text}[…, …]' has its arguments in a different order in different "
                                   f"systems (Mathematica's ArcTan[x, y] is atan2(y, x), its Log[b, x] is "
                                   f"log(x, b))", self.peek().pos, "ambiguous",
                                   _BRACKET_PAIR_HINTS.get(spec.name, f"write {spec.name}(…) with round brackets"))
-        while self.peek().kind == "op" and self.peek().value == "," and opener.value == "(":
+        while self.peek().kind == "op" and self.peek().value == "," and (
+                opener.value == "(" or spec.name in _SAME_ORDER_IN_MATHEMATICA):
             self.advance()
             args.append(self.expression(0))
         closer = self.expect_close(opener)
@@ -884,7 +899,8 @@ class _Parser:
         if not spec.min_args <= len(args) <= spec.max_args:
             wanted = (f"{spec.min_args}" if spec.min_args == spec.max_args
                       else f"{spec.min_args} or {spec.max_args}")
-            example = f"{spec.name}(" + ", ".join("yxz"[:spec.min_args] if spec.min_args > 1 else "x") + ")"
+            shown = ", ".join("yxz"[:spec.min_args] if spec.min_args > 1 else "x")
+            example = f"{spec.name}({_ARGUMENT_NAMES.get(spec.name, shown)})"
             hint = f"write it as {example}"
             if spec.name in ("log10", "log2") and len(args) == 2:  # STACK's lg(x, b): a base given
                 hint = "write log(x, b) for the logarithm of x to base b"

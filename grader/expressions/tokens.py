@@ -184,7 +184,7 @@ _MATHEMATICA_SUBSCRIPT = re.compile(r"Subscript\[\s*(?:([A-Za-z][A-Za-z0-9]{0,30
 _CONSOLE_PROMPT = re.compile(r"\s*(?:(?:In|Out)\[\d+\]\s*:?=|>>|\(%[io]\d+\))")
 
 # Python modules whose functions students paste with the prefix (np.sin, math.sqrt).
-_MODULES = frozenset({"np", "numpy", "math", "cmath", "sp", "sympy"})
+_MODULES = frozenset({"np", "numpy", "math", "cmath", "sp", "sympy", "Math"})  # Math: JavaScript's
 _ASCII_WORD = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 # Maxima's constants, typed after a '%' (STACK's %pi, %e, %i).
@@ -490,15 +490,15 @@ class _Tokenizer:
             raise bad_character(ch, start)
 
     def module_attribute(self, dot: int) -> None:
-        """``np.sin``, ``math.sqrt``, ``numpy.pi``: a function or π pasted from Python with its module
+        """``np.sin``, ``math.sqrt``, ``numpy.pi``, ``Math.PI``: a function or π pasted from Python (or JavaScript) with its module
         prefix, one name token spanning both (the prefix carries no meaning of its own). Anything
         else after the prefix (``np.linspace``, ``math.e`` beside a variable e) is refused by name."""
         module = self.tokens.pop()
         word = _ASCII_WORD.match(self.text, dot + 1)
         name = word.group()
         self.space = module.space_before
-        if name in FUNCTIONS or name == "pi":
-            self.emit("name", name, module.pos, word.end())
+        if name in FUNCTIONS or name in ("pi", "PI"):  # JavaScript's Math.PI
+            self.emit("name", name.lower() if name == "PI" else name, module.pos, word.end())
             return
         self.emit("bad", module.text, module.pos, word.end(),
                   error=ExpressionError(f"'{module.text}.{name}' is not a function or constant of this grammar",

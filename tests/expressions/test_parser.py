@@ -1087,3 +1087,37 @@ def test_xx_where_x_is_a_variable_is_refused_naming_both_readings(ns):
 def test_an_operator_word_the_problem_declares_is_its_variable():
     ns = Namespace([Variable("m", "mass", "positive"), Variable("times", "dimensionless", "positive")])
     assert parse("m times", ns) == sym(ns, "m") * sym(ns, "times")
+
+
+@pytest.mark.parametrize("text, expected", [
+    # pow(x, y) of Python, C, JavaScript and Excel, Mathematica's Power[x, y]: x^y
+    ("pow(x, 2)", lambda s: s("x") ** 2), ("math.pow(l, 3)", lambda s: s("l") ** 3),
+    ("Math.pow(l, 0.5)", lambda s: sympy.sqrt(s("l"))), ("np.power(r, 2)", lambda s: s("r") ** 2),
+    ("POWER(l, 2)", lambda s: s("l") ** 2), ("Power[l, -1]", lambda s: 1 / s("l")),
+    # the real n-th root: Maple's surd(x, n), Mathematica's Surd[x, n] and CubeRoot[x], GeoGebra's nroot(x, n)
+    ("surd(x, 3)", lambda s: sympy.sign(s("x")) * sympy.Abs(s("x")) ** sympy.Rational(1, 3)),
+    ("Surd[x, 3]", lambda s: sympy.sign(s("x")) * sympy.Abs(s("x")) ** sympy.Rational(1, 3)),
+    ("nroot(l, 4)", lambda s: s("l") ** sympy.Rational(1, 4)),
+    ("CubeRoot[x]", lambda s: sympy.sign(s("x")) * sympy.Abs(s("x")) ** sympy.Rational(1, 3)),
+    ("Math.PI*l", lambda s: sympy.pi * s("l")),
+])
+def test_power_and_root_functions_of_other_tools(ns, text, expected):
+    assert sympy.simplify(parse(text, ns) - expected(lambda n: sym(ns, n))) == 0
+
+
+def test_pow_keeps_the_real_domain_of_a_fractional_power(ns):
+    # pow(pow(x, 1/2), 2) is x only where x >= 0, as (x^(1/2))^2 is: the domain is kept, not lost to
+    # sympy's power laws
+    assert parse(("pow(x^2, 1/2)"), ns) == sympy.Abs(sym(ns, "x"))
+    parsed = parse_expression("pow(pow(x, 1/2), 2)", ns)
+    assert parsed.expr == sym(ns, "x") and parsed.conditions == parse_expression("(x^(1/2))^2", ns).conditions != ()
+
+
+@pytest.mark.parametrize("text, words", [
+    ("nroot(x, 1.5)", "whole number from 2 on"), ("surd(x, l)", "whole number from 2 on"),
+    ("pow(x)", "pow(x, y)"), ("pow x", "pow(x, y)"),
+])
+def test_power_and_root_functions_refuse_what_they_cannot_read_saying_how(ns, text, words):
+    with pytest.raises(ExpressionError) as refused:
+        parse(text, ns)
+    assert words in refused.value.message + "; " + (refused.value.hint or "")
