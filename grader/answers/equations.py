@@ -47,8 +47,10 @@ from grader.answers.equivalence import (
     _span,
     as_float,
     kink_region_states,
+    off_grid,
+    resonant,
 )
-from grader.answers.sampling import Sampler
+from grader.answers.sampling import GivenPoints, Sampler
 from grader.mechanics import budget
 
 __all__ = ["compare_equations", "state_dependent_mixing", "state_symbols", "unknown_symbols"]
@@ -513,18 +515,31 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
             if special is not None:
                 return special
         confirmed = _try_precision(refs, anss, parameters.point(0), states, 0, k, CONFIRM_BITS + 64, CONFIRM_BITS)
+        how = "by less than the judge's digits: at more precision the ratio is not constant"
         if confirmed is None or confirmed[0] != "differ":
             # a difference behind a function near its limit or a constant far from 1 (θ̈ = −(g/l) sin θ tanh 2000):
             # once more at the range the texts span (`_range_bits`), where that is past CONFIRM_BITS
             bits = _range_bits(reference + answer, states.joint(parameters.point(0), states.point(0)))
             if bits > CONFIRM_BITS:
                 confirmed = _try_precision(refs, anss, parameters.point(0), states, 0, k, bits + 64, bits)
+        if (confirmed is None or confirmed[0] != "differ") and resonant(reference + answer):
+            # a period fitted to every float (θ̈ = −(g/l) sin θ + (g/l) sin(2^60 π θ)): states off the floats' grid,
+            # with the reference compiled afresh (these are not the shared cache's (p, j) points)
+            off = GivenPoints(states, [off_grid(states.point(j), states.domains) for j in range(k + 2)])
+            confirmed = _try_precision([Compiled(r, backend) for r in reference], anss,
+                                       off_grid(parameters.point(0), parameters.domains), off, 0, k,
+                                       CONFIRM_BITS + 64, CONFIRM_BITS)
+            if confirmed is not None and confirmed[0] == "differ":
+                for key in ("values", "other_state"):  # the exact fractions, as the JSON numbers nearest them
+                    if key in confirmed[2]:
+                        confirmed[2][key] = {n: float(v) for n, v in confirmed[2][key].items()}
+                how = ("at states off the floats' grid: a constant in a periodic function of your equation fits its "
+                       "period to every float")
         if confirmed is not None and confirmed[0] == "differ":
             # θ̈ = −(g/l) sin(θ(1 + 10⁻⁴⁰)) is a multiple of the reference to 40 digits, not at 300
-            return Comparison(False, "proved", f"{confirmed[1]} (by less than the judge's digits: at more "
-                              "precision the ratio is not constant)", evidence={"method": "ball arithmetic",
-                                                                                 "points": 1},
-                              counterexample=confirmed[2])
+            # (through `differ`: a factor constant at the ordinary states may still be nonzero and depend on the
+            # state, 2 + cos(2^60 π θ))
+            return differ(("differ", f"{confirmed[1]} ({how})", confirmed[2]))
         return Comparison(
             True,
             "numeric",

@@ -22,6 +22,7 @@ from __future__ import annotations
 import itertools
 import math
 import time
+from fractions import Fraction
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from typing import Any, Callable
@@ -324,7 +325,8 @@ def _compare_fixed(ref: Compiled, ans: Compiled, point: dict, key, options: Opti
 
 def counterexample(point: dict, result: PointResult) -> dict:
     """The counterexample record of a verdict: values, both results, and their difference."""
-    values = {s.name: v for s, v in point.items()}
+    # (a value off the floats' grid, an exact fraction, as the JSON number nearest it)
+    values = {s.name: float(v) if isinstance(v, flint.fmpq) else v for s, v in point.items()}
     record = {"values": values, "answer": None, "reference": as_float(result.reference)}
     if result.kind == "answer_defined":
         record["reference"] = "undefined"
@@ -678,9 +680,17 @@ def compare_expressions(
                 and symbolic_zero(diff):
             return Comparison(True, "proved", "symbolically identical", evidence={"method": "symbolic"})
     result = compare_numeric(ref, ans, sampler, options, deadline)
+    if result.equivalent is None and not result.budget_exceeded and options.method == "arb" \
+            and resonant((reference, answer)):
+        # sin(2^60 π x) is a zero every float makes exact, which no precision resolves: off the floats' grid it
+        # is not (both compiled afresh: these are not their cached points)
+        ref, ans = Compiled(reference, backend, reference_conditions), Compiled(answer, backend, answer_conditions)
+        sampler = _OffGridSampler(sampler)
+        result = compare_numeric(ref, ans, sampler, options, deadline)
     if result.equivalent and options.method == "arb":
         return (_hidden_difference(diff, answer, reference, ref, ans, sampler, options)
                 or _below_the_digits(ref, ans, sampler, options)
+                or _off_the_grid(ref, ans, sampler, (reference, answer), options, deadline)
                 or _at_landmarks(ref, ans, sampler, (reference, answer), options, deadline)
                 or _past_the_branches(ref, ans, sampler, (reference, answer), options, deadline)
                 or _in_sign_regions(ref, ans, sampler, (reference, answer), options, deadline)
@@ -773,19 +783,12 @@ def _range_bits(exprs, point: dict) -> int:
     agree with ``x``, ``1`` or ``π/2`` to 1024 bits). Measured by one 64-bit evaluation, only where a constant,
     a value of the point or an integer power is past 2^±`RANGE_TRIGGER` or a saturating function is present;
     0 otherwise. At most `MAX_CONFIRM_BITS`."""
-    bits = 0.0
     measure = any(v and abs(math.log2(abs(v))) > RANGE_TRIGGER for v in point.values()
                   if isinstance(v, float) and math.isfinite(v))
+    bits = 0.0
     for expr in exprs:
-        for node in sympy.preorder_traversal(expr):
-            if node.is_Number:
-                magnitude = _constant_magnitude(node)
-                bits = max(bits, 2 * magnitude)
-                measure = measure or magnitude > RANGE_TRIGGER
-            elif node.is_Pow and node.exp.is_Integer and abs(node.exp) > RANGE_TRIGGER:
-                measure = True
-            elif isinstance(node, sympy.Function) and _range_name(node) in _SATURATING | _RECIPROCAL:
-                measure = True
+        constant_bits, asks, _ = _structure(expr)
+        bits, measure = max(bits, constant_bits), measure or asks
     if measure:
         bits = max(bits, _measured_range(exprs, point))
     return min(int(bits) + 64, MAX_CONFIRM_BITS) if bits > CONFIRM_BITS - 64 else 0
@@ -877,6 +880,93 @@ def _measured_range(exprs, point: dict) -> float:
     finally:
         ctx.prec = outer
     return bits
+
+
+# A periodic function whose argument has a constant at least 2^GRID_RESONANCE can fit its period to the floats'
+# grid: sin(2^60 π x) is 0 at every float x above 2^-7 (x 2^60 is an integer there), so x + sin(2^60 π x)
+# agrees with x at every sample point. Such texts are compared once more at a point off that grid.
+GRID_RESONANCE = 20
+_PERIODIC = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc)
+# The off-grid point: each value times (1 - 3^-24) (or 1 + 3^-24 at a domain's end), an exact fraction with a
+# power of 3 below, which no power of 2 times an integer meets.
+_OFF_GRID = 3**24
+
+
+def resonant(exprs) -> bool:
+    """Whether a periodic function in ``exprs`` has a constant of at least 2^`GRID_RESONANCE` in its argument."""
+    return any(_structure(expr)[2] for expr in exprs)
+
+
+@lru_cache(maxsize=4096)
+def _structure(expr: sympy.Expr) -> tuple[float, bool, bool]:
+    """What `_range_bits` and `resonant` read from a text, in one walk (a reference's, once for all its answers):
+    twice the widest magnitude (log2) of its constants; whether a constant or integer power past
+    2^±`RANGE_TRIGGER` or a saturating or inverse function asks for its range to be measured; whether a periodic
+    function's argument has a constant of at least 2^`GRID_RESONANCE`."""
+    bits, measure, resonance = 0.0, False, False
+    for node in sympy.preorder_traversal(expr):
+        if node.is_Number:
+            magnitude = _constant_magnitude(node)
+            bits = max(bits, 2.0 * magnitude)
+            measure = measure or magnitude > RANGE_TRIGGER
+        elif node.is_Pow:
+            measure = measure or (node.exp.is_Integer and abs(node.exp) > RANGE_TRIGGER)
+        elif isinstance(node, sympy.Function):
+            measure = measure or _range_name(node) in _SATURATING | _RECIPROCAL
+            resonance = resonance or isinstance(node, _PERIODIC) and any(
+                abs(c) > 1 and _constant_magnitude(c) >= GRID_RESONANCE for c in node.args[0].atoms(sympy.Number))
+    return bits, measure, resonance
+
+
+def off_grid(point: dict, domains: dict) -> dict:
+    """``point`` moved off the floats' grid: each nonzero float ``v`` as the exact fraction ``v (1 - 3^-24)``, or
+    ``v (1 + 3^-24)`` where the first leaves its domain (python-flint ``fmpq``, rounded at each evaluation's
+    precision)."""
+    moved = {}
+    for s, v in point.items():
+        if not isinstance(v, float) or v == 0 or not math.isfinite(v):
+            moved[s] = v
+            continue
+        exact = Fraction(v)
+        w = exact * Fraction(_OFF_GRID - 1, _OFF_GRID)
+        if s in domains and not domains[s].contains(float(w)):
+            w = exact * Fraction(_OFF_GRID + 1, _OFF_GRID)
+        moved[s] = flint.fmpq(w.numerator, w.denominator)
+    return moved
+
+
+class _OffGridSampler:
+    """A `Sampler` whose points (ordinary and wide) are moved off the floats' grid (`off_grid`)."""
+
+    def __init__(self, sampler: Sampler):
+        self._sampler = sampler
+
+    def __getattr__(self, name):
+        return getattr(self._sampler, name)
+
+    def point(self, i: int) -> dict:
+        return off_grid(self._sampler.point(i), self._sampler.domains)
+
+    def wide_point(self, i: int) -> dict:
+        return off_grid(self._sampler.wide_point(i), self._sampler.domains)
+
+
+def _off_the_grid(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, options: Options,
+                  deadline: float | None) -> Comparison | None:
+    """A counterexample at a point off the floats' grid, where a periodic function's large constant may have fit
+    its period to every sample point (`resonant`), or None."""
+    if not resonant(exprs):
+        return None
+    point = off_grid(sampler.point(0), sampler.domains)
+    result = compare_at(ref, ans, point, ("off the grid",), options, deadline)
+    found = _proved_there(ref, ans, sampler, point, result, options, deadline, rounder=False)
+    if found is not None and found.counterexample:
+        found.counterexample["values"] = {name: float(v) for name, v in found.counterexample["values"].items()}
+        found.counterexample["exact_values"] = {s.name: f"{v.p}/{v.q}" if isinstance(v, flint.fmpq) else v
+                                                for s, v in point.items()}
+        found.reason += (" (a point off the floats' grid: a constant in a periodic function of your answer fits "
+                         "its period to every float)")
+    return found
 
 
 # Constants outside the ordinary samples' scale (0.5 .. 3) say where else to look: abs(x - 10)

@@ -1629,3 +1629,16 @@ def test_a_relation_undefined_only_where_the_reference_has_no_solution_stays_rig
 def test_an_equation_off_by_less_than_the_confirming_precision_is_refused(pendulum, answer, expected):
     verdict = check(PENDULUM_EOM, answer, pendulum, kind="equation")
     assert verdict.verdict == expected, verdict.reason
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # sin(2^60 π θ) = 0 and cos(2^60 π θ) = 1 at every float θ above 2^-7
+    ("thetaddot = -g/l*sin(theta) + sin(2^60*pi*theta)*g/l", "not_equivalent"),
+    ("thetaddot = -g/l*sin(theta)*cos(2^60*pi*theta)^2", "not_equivalent"),
+    # a factor 3 at every float, nonzero everywhere: the reference times it
+    ("thetaddot*(2 + cos(2^60*pi*theta)) = -g/l*sin(theta)*(2 + cos(2^60*pi*theta))", "equivalent"),
+])
+def test_an_equation_whose_period_fits_every_float_is_compared_off_the_grid(pendulum, answer, expected):
+    verdict = check(PENDULUM_EOM, answer, pendulum, kind="equation")
+    assert verdict.verdict == expected, verdict.reason
+

@@ -522,3 +522,25 @@ def test_a_kink_region_reached_only_by_two_variables_off_scale_is_compared(refer
     if expected == "not_equivalent":
         values = verdict.counterexample["values"]
         assert abs(values["x"]) > 100 and abs(values["y"]) > 100
+
+
+# -- red team 15: a period that every sample point fits ---------------------------------------------------------
+
+@pytest.mark.parametrize("reference, answer, expected", [
+    # sin(2^60 π x) = 0 and cos(2^60 π x) = 1 at every float x above 2^-7: the floats' grid fits the period
+    ("x", "x + sin(2^60*pi*x)", "not_equivalent"),
+    ("x", "x*cos(2^60*pi*x)", "not_equivalent"),
+    ("x", "x + sin(9007199254740992*pi*x)", "not_equivalent"),   # 2^53
+    ("x", "x + tan(2^60*pi*x)", "not_equivalent"),
+    ("x", "x + sin(2^53*pi*x)^2", "not_equivalent"),
+    # right forms: one exact zero on the grid (no precision resolves it) is decided off it
+    ("sin(2^60*pi*x)", "2*sin(2^59*pi*x)*cos(2^59*pi*x)", "equivalent"),
+    ("1", "cos(2^60*pi*x)^2 + sin(2^60*pi*x)^2", "equivalent"),
+])
+def test_a_period_that_fits_every_float_is_compared_off_the_floats_grid(reference, answer, expected):
+    from grader.answers.checker import check
+
+    verdict = check(reference, answer, {"x": {"dimension": "dimensionless", "domain": "real"}})
+    assert verdict.verdict == expected, verdict.reason
+    if verdict.counterexample:
+        assert all(isinstance(v, float) for v in verdict.counterexample["values"].values())  # JSON numbers
