@@ -412,6 +412,9 @@ class _Parser:
         if token.kind == "op" and token.value == "^":
             base = self.tokens[self.i - 1]
             self.advance()
+            if self.peek().kind == "sup" and not self.peek().space_before:
+                # x^², θ̇^⁻¹: a caret, then the power as a superscript (a phone's keyboard makes 2 into ²)
+                return guarded_pow(left, sympy.Integer(self.advance().value), token.pos), "^"
             bracketed = self.peek().kind == "open"
             exponent = self.expression(_POW - 1)
             after = self.peek()
@@ -1406,6 +1409,12 @@ def _joins_equations(tokens: list[Token], i: int, namespace: Namespace, before: 
     return False
 
 
+def _ends_with_operator(chunk: list[Token]) -> bool:
+    """Whether the last token typed in ``chunk`` (line breaks aside) is an operator that needs more after it."""
+    typed = next((t for t in reversed(chunk) if t.kind != "newline"), None)
+    return typed is not None and typed.kind == "op" and typed.value in "+-*/^="
+
+
 def parse_system(text: str, namespace: Namespace, *, printed: bool = True) -> list[ParsedEquation]:
     """Parse several equations separated by ``;``, ``,`` or new lines (at top level).
 
@@ -1435,8 +1444,11 @@ def parse_system(text: str, namespace: Namespace, *, printed: bool = True) -> li
             depth += 1
         elif token.kind == "close":
             depth -= 1
-        if depth == 0 and (token.kind == "newline" or (token.kind == "op" and token.value in ",;")
-                           or token.kind == "name" and _joins_equations(tokens, i, namespace, chunks[-1])):
+        # a line that ends with an operator (x =⏎ -k y, a long right side wrapped) goes on on the next one
+        broken = token.kind == "newline" and _ends_with_operator(chunks[-1])
+        if depth == 0 and not broken and (token.kind == "newline" or (token.kind == "op" and token.value in ",;")
+                                          or token.kind == "name" and _joins_equations(tokens, i, namespace,
+                                                                                         chunks[-1])):
             chunks.append([])
         else:
             chunks[-1].append(token)

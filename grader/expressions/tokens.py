@@ -105,6 +105,8 @@ _MARKUP_TAG = re.compile(r"</?(math|mi|mn|mo|ms|mrow|msup|msub|msubsup|mfrac|msq
 # A subscript between a braced name and its primes ({x}_{1}^{\prime}): the name inside carries it already.
 _SUBSCRIPT_GAP = re.compile(r"\s*_\s*(?:\{[^{}]{1,40}\}|[A-Za-z0-9])\s*")
 
+_LINE_BREAKS = frozenset("\n\u2028\u2029\u0085\v\f")
+
 # What may follow a number's digits to start its power of ten, and the exponent's signs.
 _EXPONENT_MARKS = frozenset("eEᴇ")
 _EXPONENT_MINUSES = frozenset({"-", "－"} | {ch for ch, op in OPERATOR_CHARS.items() if op == "-"})
@@ -121,6 +123,7 @@ _BREAK_SPACE = re.compile(r"\s*\[\s*-?(?:\d+\.?\d*|\.\d+)\s*(?:pt|ex|em|mm|cm|in
 _PUNCTUATION = {
     "!": ("factorial (!) is not supported", "unsupported_function", "write the product out, as in 2*3"),
     ":": ("':' is not part of a formula", "syntax", "write a ratio with /, as in a/b"),
+    "#": ("'#' starts a comment in Python and Maple", "syntax", "delete the '#' and everything after it"),
     "<": ("inequalities are not supported", "syntax", "give an expression, or an equation with ="),
     ">": ("inequalities are not supported", "syntax", "give an expression, or an equation with ="),
     '"': ("quotes are not part of a formula", "syntax", "delete the quotes"),
@@ -360,7 +363,7 @@ class _Tokenizer:
                 self.i += 1
         elif ch in _OPENERS:
             self.emit("close", ch, start, start + 1)
-        elif ch == "\n":
+        elif ch in _LINE_BREAKS:  # and the line and paragraph separators Word, PDFs and web pages paste
             self.emit("newline", "\n", start, start + 1)
         elif is_space(ch) or ch == "$":  # $...$ around pasted LaTeX is only decoration
             self.space = True

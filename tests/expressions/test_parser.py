@@ -1121,3 +1121,22 @@ def test_power_and_root_functions_refuse_what_they_cannot_read_saying_how(ns, te
     with pytest.raises(ExpressionError) as refused:
         parse(text, ns)
     assert words in refused.value.message + "; " + (refused.value.hint or "")
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("l^²", lambda s: s("l") ** 2), ("l^⁻¹", lambda s: 1 / s("l")), ("r l^¹²", lambda s: s("r") * s("l") ** 12),
+    ("thetadot^² l", lambda s: s("thetadot") ** 2 * s("l")),
+])
+def test_a_caret_then_a_superscript_is_that_power(ns, text, expected):
+    # x^² (a phone makes the typed 2 a superscript) was refused: 'superscript has nothing to raise'
+    assert parse(text, ns) == expected(lambda n: sym(ns, n))
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("x =\n-l", ["x = -l"]), ("x = l +\ny", ["x = y + l"]), ("x = l *\n\ny/l", ["x = y"]),
+    ("x =\u2028l; y = 2l", ["x = l", "y = 2*l"]), ("x = l\ny = l", ["x = l", "y = l"]),
+])
+def test_a_line_that_ends_with_an_operator_goes_on_on_the_next(text, expected):
+    # a wrapped right side ('θ̈ =⏎ −(g/l) sin θ', pasted) was two equations, the first with nothing after '='
+    ns = Namespace([Variable("x", "length", "real"), Variable("y", "length", "real"), Variable("l", "length", "positive")])
+    assert [eq.text for eq in parse_system(text, ns)] == expected

@@ -442,3 +442,14 @@ def test_a_double_slash_is_refused_naming_its_readings(text):
     # floor division (Python), postfix application (Mathematica), a slash (ASCIIMath): never guessed
     [bad] = [t for t in tokenize(text) if t.kind == "bad"]
     assert bad.error.code == "ambiguous" and "floor division" in bad.error.message and bad.error.hint == "write / for a quotient"
+
+
+@pytest.mark.parametrize("text", ["x\u2028y", "x\u2029y", "x\u0085y", "x\x0by", "x\x0cy"])
+def test_pasted_line_and_paragraph_separators_are_line_breaks(text):
+    # Word, PDFs and web pages paste U+2028/U+2029 where a line ends; they were 'not allowed' characters
+    assert kinds(text) == [("name", "x"), ("newline", "\n"), ("name", "y")]
+
+
+def test_a_comment_sign_is_refused_saying_what_it_is():
+    [bad] = [t for t in tokenize("m*g # the weight") if t.kind == "bad"]
+    assert "comment" in bad.error.message and "delete the '#'" in bad.error.hint
