@@ -2569,6 +2569,7 @@ def _nonzero_on(expr: sympy.Expr, domains: dict) -> bool | None:
                 continue
             return None
         if factor.is_positive or factor.is_negative or _signed_as_squares(factor) or _no_real_root(factor, domains) \
+                or _no_real_root(_dehomogenised(factor, domains), domains) \
                 or _positive_quadratic(factor, domains) or _signed_by_the_order(factor):
             continue
         if _nonzero_in_balls(factor, domains) is not True:
@@ -2620,6 +2621,25 @@ def _no_real_root(expr: sympy.Expr, domains: dict) -> bool:
     except (sympy.PolynomialError, ValueError, TypeError):
         return False
     return roots == 0
+
+
+def _dehomogenised(expr: sympy.Expr, domains: dict) -> sympy.Expr:
+    """``expr``, a homogeneous polynomial, with a positive variable set to 1 where every other variable's domain
+    is a cone (the real line, positive, nonnegative): x⁴ − 2x²L² + 1.000001 L⁴ is L⁴ times t⁴ − 2t² + 1.000001
+    at t = x/L, which takes every value of x's domain, so each is nonzero where the other is. ``expr`` itself
+    where that does not apply."""
+    symbols = sorted(expr.free_symbols, key=lambda s: s.name)
+    cones = ("real", "positive", "nonnegative")
+    if len(symbols) < 2 or _nodes(expr) > FACTOR_MAX_NODES \
+            or any(getattr(domains.get(s), "kind", None) not in cones for s in symbols):
+        return expr
+    try:
+        if not sympy.Poly(expr, *symbols).is_homogeneous:
+            return expr
+    except (sympy.PolynomialError, ValueError, TypeError):
+        return expr
+    positive = [s for s in symbols if domains[s].kind == "positive"]
+    return expr.xreplace({positive[0]: sympy.Integer(1)}) if positive else expr
 
 
 _SQUARES = ((sympy.cos(_U)**2, 1 - sympy.sin(_U)**2), (sympy.sin(_U)**2, 1 - sympy.cos(_U)**2),

@@ -1642,3 +1642,18 @@ def test_an_equation_whose_period_fits_every_float_is_compared_off_the_grid(pend
     verdict = check(PENDULUM_EOM, answer, pendulum, kind="equation")
     assert verdict.verdict == expected, verdict.reason
 
+
+@pytest.mark.parametrize("factor, expected", [
+    # homogeneous in x and the positive L: L⁴ (t⁴ - 2t² + 1.000001) at t = x/L, which has no real root
+    ("x^4 - 2*x^2*L^2 + 1.000001*L^4", "equivalent"),
+    ("x^4 - x^3*L + L^4", "equivalent"),            # t^4 - t^3 + 1 >= 229/256 (at t = 3/4)
+    ("x^4 - 3*x^2*L^2 + 3*L^4", "equivalent"),      # (t^2 - 3/2)^2 + 3/4
+    # the same forms with real roots (x = ±L, x = L): the factor vanishes on the domain
+    ("x^4 - 2*x^2*L^2 + L^4", "not_equivalent"),
+    ("x^2 - 2*x*L + L^2", "not_equivalent"),
+    ("x^2 - 3*x*L + L^2", "not_equivalent"),
+])
+def test_a_homogeneous_factor_is_nonzero_where_its_one_variable_form_has_no_real_root(factor, expected):
+    verdict = check("m*xddot = -k*x", f"m*xddot*({factor}) = -k*x*({factor})", _SPRING, kind="equation")
+    assert verdict.verdict == expected, verdict.reason
+
