@@ -433,6 +433,13 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
                                            (parameters, states), options, deadline)
             if mixed is not None:
                 return mixed
+        if k > 1 and options.factors and outcome[1].startswith(_NOT_A_COMBINATION) and not answer_conditions:
+            # T³ = (m₁m₂g/(m₁ + m₂))³ as one equation of a system: each row f(A) = f(B) with f one-to-one is read as
+            # A = B, as a single equation's is above, and the systems compared again
+            peeled = _rows_peeled(reference, answer, {**parameters.domains, **states.domains}, parameters, states,
+                                  options, deadline, compiled_reference, unknowns)
+            if peeled is not None:
+                return peeled
         certainty = outcome[3] if len(outcome) > 3 else "proved"
         if k == 1 and not unknowns and outcome[1].startswith((_NOT_A_MULTIPLE, _UNDEFINED_WHERE)):
             # A relation between state variables with the reference's solutions need be no multiple of it
@@ -992,6 +999,32 @@ def _not_a_multiple(k, points, R, S, j, i):
         example = {"values": _named(points[j]), "answer": [as_float(v) for v in S[j]],
                    "reference": [as_float(v) for v in R[j]]}
     return reason, example
+
+
+def _rows_peeled(reference, answer, domains, parameters, states, options, deadline, compiled_reference,
+                 unknowns) -> Comparison | None:
+    """The verdict of the systems with each row ``f(A) = f(B)`` (``f`` one-to-one: an odd power, exp, atan, a log
+    of positive quantities; `_injective_sides`, `_logs_exponentiated`) read as ``A = B``, on the answer's side,
+    the reference's or both, where that makes them the same; else None."""
+    def peel(rows):
+        return [_injective_sides(r, domains) or _logs_exponentiated(r) or r for r in rows]
+
+    peeled, peeled_reference = peel(answer), peel(reference)
+    for ref_form, answer_form in ((reference, peeled), (peeled_reference, answer), (peeled_reference, peeled)):
+        if (ref_form == reference and answer_form == answer) or _past(deadline) or _PEELED.get() >= MAX_PEELED:
+            continue
+        token = _PEELED.set(_PEELED.get() + 1)
+        try:
+            again = compare_equations(ref_form, answer_form, parameters, states, options, deadline,
+                                      compiled_reference if ref_form is reference else None, (), unknowns)
+        finally:
+            _PEELED.reset(token)
+        if again.equivalent:
+            again.reason = ("the same solutions as the reference: an equation f(A) = f(B), with f taking each value "
+                            "once (an odd power, exp, atan, log of positive quantities), holds exactly where A = B, "
+                            f"and with such equations so read, {again.reason}")
+            return again
+    return None
 
 
 def _undefined_where_the_reference_holds(reference: sympy.Expr, answer: Compiled, example: dict,

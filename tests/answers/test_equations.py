@@ -1657,3 +1657,23 @@ def test_a_homogeneous_factor_is_nonzero_where_its_one_variable_form_has_no_real
     verdict = check("m*xddot = -k*x", f"m*xddot*({factor}) = -k*x*({factor})", _SPRING, kind="equation")
     assert verdict.verdict == expected, verdict.reason
 
+
+_ATWOOD_T = {"m1": {"dimension": "mass", "domain": "positive"}, "m2": {"dimension": "mass", "domain": "positive"},
+             "g": {"dimension": "acceleration", "domain": "positive"},
+             "xddot": {"dimension": "acceleration", "domain": "real", "kind": "acceleration"},
+             "T": {"dimension": "force", "domain": "real", "kind": "force"}}
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # a row f(A) = f(B) with f one-to-one has the solutions of A = B
+    ("xddot = m2*g/(m1 + m2); T^3 = (m1*m2*g/(m1 + m2))^3", "equivalent"),
+    ("xddot^3 = (m2*g/(m1 + m2))^3; T = m1*xddot", "equivalent"),
+    ("xddot = m2*g/(m1 + m2); exp(T/(m1*g)) = exp(m2/(m1 + m2))", "equivalent"),
+    ("xddot = m2*g/(m1 + m2); atan(T/(m1*g)) = atan(m2/(m1 + m2))", "equivalent"),
+    # an even power is not: T = -m1 m2 g/(m1 + m2) solves it too
+    ("xddot = m2*g/(m1 + m2); T^2 = (m1*m2*g/(m1 + m2))^2", "not_equivalent"),
+    ("xddot = m2*g/(m1 + m2); T^3 = (m1*m2*g/(m1 + m2))^3*2", "not_equivalent"),
+])
+def test_a_row_of_a_system_under_a_one_to_one_function_has_its_solutions(answer, expected):
+    verdict = check("m1*xddot = T; m2*xddot = m2*g - T", answer, _ATWOOD_T, kind="equation")
+    assert verdict.verdict == expected, verdict.reason
