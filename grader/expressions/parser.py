@@ -630,6 +630,8 @@ class _Parser:
             value = resolved.value
         if following.kind == "open" and following.value in "([" and self.time_argument(token, value):
             return value
+        if called and following.pos == token.end:
+            self.refuse_value_at_time(token, value)
         if called and not following.space_before and not token.order:
             self.note(f"read '{token.text}(…)' as {token.text}·(…): {token.text} is a variable, not a function")
         return value
@@ -720,6 +722,23 @@ class _Parser:
         self.i += 3
         self.note(f"read '{self.text[token.pos:closer.end]}' as {token.text}, a function of time")
         return True
+
+    def refuse_value_at_time(self, token: Token, value: sympy.Expr) -> None:
+        """``θ(0)``, ``ẋ(2)``: a coordinate (or its rate) with a number in brackets right after it is its
+        value at that time to whoever wrote it, and was read as θ·0 = 0. Neither reading is taken: refused
+        naming both."""
+        name = getattr(value, "name", None)
+        if not (isinstance(value, sympy.Symbol) and name in self.ns.names
+                and self.ns[name].kind in ("coordinate", "velocity", "acceleration")):
+            return
+        inner, closer = self.tokens[self.i + 1:self.i + 3]
+        if not (inner.kind == "number" and closer.kind == "close" and closer.value == ")"):
+            return
+        typed = self.text[token.pos:closer.end]
+        own = (f"write {name}0 for the value at t = 0" if inner.value == 0 and f"{name}0" in self.ns.names
+               else "write the value at that time by its own name")
+        raise ExpressionError(f"'{typed}' reads as {token.text} at t = {inner.text} or as {token.text}·{inner.text}",
+                              token.pos, "ambiguous", f"{own}, or {token.text}*{inner.text} for the product")
 
     def time_bracket(self, raw: str) -> bool:
         """Whether a declared variable ``raw`` is followed by ``[t]`` that `time_argument` reads as

@@ -1140,3 +1140,21 @@ def test_a_line_that_ends_with_an_operator_goes_on_on_the_next(text, expected):
     # a wrapped right side ('θ̈ =⏎ −(g/l) sin θ', pasted) was two equations, the first with nothing after '='
     ns = Namespace([Variable("x", "length", "real"), Variable("y", "length", "real"), Variable("l", "length", "positive")])
     assert [eq.text for eq in parse_system(text, ns)] == expected
+
+
+@pytest.mark.parametrize("text, shown", [
+    ("theta(0)", "'theta(0)' reads as theta at t = 0 or as theta·0"), ("θ̇(1)^2", "'θ̇(1)' reads as θ̇ at t = 1"),
+    ("theta'(0) + 1", "'theta'(0)' reads as theta' at t = 0"), ("l cos(θ(0))", "'θ(0)' reads as θ at t = 0"),
+])
+def test_a_coordinate_at_a_number_is_refused_naming_both_readings(ns, text, shown):
+    # θ(0) was θ·0 = 0, silently (a note only): an initial condition typed as the value at t = 0
+    with pytest.raises(ExpressionError) as refused:
+        parse(text, ns)
+    assert shown in refused.value.message and refused.value.code == "ambiguous"
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("theta(t)", lambda s: s("theta")), ("l (2) r", lambda s: 2 * s("l") * s("r")), ("r(2)", lambda s: 2 * s("r")),
+])
+def test_a_function_of_t_and_a_parameters_bracket_keep_their_readings(ns, text, expected):
+    assert parse(text, ns) == expected(lambda n: sym(ns, n))
