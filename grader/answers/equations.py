@@ -2602,7 +2602,7 @@ def _nonzero_on(expr: sympy.Expr, domains: dict) -> bool | None:
                 continue
             return None
         if factor.is_positive or factor.is_negative or _signed_as_squares(factor) or _no_real_root(factor, domains) \
-                or _no_real_root(_dehomogenised(factor, domains), domains) \
+                or _no_real_root(_dehomogenised(factor, domains), domains) or _outside_the_range(factor) \
                 or _positive_quadratic(factor, domains) or _signed_by_the_order(factor):
             continue
         if _nonzero_in_balls(factor, domains) is not True:
@@ -2654,6 +2654,35 @@ def _no_real_root(expr: sympy.Expr, domains: dict) -> bool:
     except (sympy.PolynomialError, ValueError, TypeError):
         return False
     return roots == 0
+
+
+# The values a function defined on the whole real line takes there: (low, high, low end left out, high end left
+# out). (asin and acos are left out: a factor undefined somewhere is no factor nonzero everywhere.)
+_RANGES = {sympy.atan: (-sympy.pi / 2, sympy.pi / 2, True, True), sympy.tanh: (-1, 1, True, True),
+           sympy.exp: (0, sympy.oo, True, True), sympy.cosh: (1, sympy.oo, False, True),
+           sympy.sin: (-1, 1, False, False), sympy.cos: (-1, 1, False, False), sympy.sech: (0, 1, True, False)}
+
+
+def _outside_the_range(expr: sympy.Expr) -> bool:
+    """Whether ``expr`` is ``c + a f(u)`` (numbers ``c`` and ``a != 0``) with ``-c/a`` outside the values ``f`` takes
+    anywhere on the real line: tanh(x/L) + 1 and atan(x/L) − 1.5708 never vanish, though no box of finite x shows it
+    (tanh's values come as near −1 as one likes)."""
+    constant, rest = [], []
+    for term in sympy.Add.make_args(expr):
+        (constant if term.is_number else rest).append(term)
+    if len(rest) != 1 or not constant:
+        return False
+    a, call = rest[0].as_coeff_Mul()
+    if type(call) not in _RANGES or not a.is_number or a.is_zero is not False or not call.args[0].is_real:
+        return False
+    value = -sympy.Add(*constant) / a
+    lo, hi, lo_open, hi_open = _RANGES[type(call)]
+    try:
+        below, above = bool(sympy.Lt(value, lo)), bool(sympy.Gt(value, hi))
+        at_lo, at_hi = (value - lo).is_zero, (value - hi).is_zero
+    except TypeError:
+        return False
+    return below or above or (lo_open and at_lo is True) or (hi_open and at_hi is True)
 
 
 def _dehomogenised(expr: sympy.Expr, domains: dict) -> sympy.Expr:

@@ -1677,3 +1677,21 @@ _ATWOOD_T = {"m1": {"dimension": "mass", "domain": "positive"}, "m2": {"dimensio
 def test_a_row_of_a_system_under_a_one_to_one_function_has_its_solutions(answer, expected):
     verdict = check("m1*xddot = T; m2*xddot = m2*g - T", answer, _ATWOOD_T, kind="equation")
     assert verdict.verdict == expected, verdict.reason
+
+
+@pytest.mark.parametrize("factor, expected", [
+    # c + a f(u) with -c/a outside f's values on the real line: never zero, however large x
+    ("tanh(x/L) + 1", "equivalent"),              # tanh > -1
+    ("atan(x/L) - 1.5708", "equivalent"),         # atan < pi/2 < 1.5708
+    ("2*exp(-x/L) + 1/10", "equivalent"),
+    ("cosh(x/L) - 1/2", "equivalent"),
+    ("1 - sech(x/L)/2", "equivalent"),
+    # the value inside the range: zero somewhere
+    ("tanh(x/L) + 0.9999999", "not_equivalent"),
+    ("atan(x/L) - 1.5", "not_equivalent"),
+    ("cosh(x/L) - 2", "not_equivalent"),
+    ("1 - sech(x/L)", "not_equivalent"),          # zero at x = 0
+])
+def test_a_factor_whose_function_never_reaches_the_value_that_zeroes_it_is_nonzero(factor, expected):
+    verdict = check("m*xddot = -k*x", f"m*xddot*({factor}) = -k*x*({factor})", _SPRING, kind="equation")
+    assert verdict.verdict == expected, verdict.reason
