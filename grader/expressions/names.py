@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING
 
 from .errors import ExpressionError
 from .functions import CONSTANTS, FUNCTIONS, function_names
+from .unicode_input import GREEK_CHARS
 
 if TYPE_CHECKING:  # pragma: no cover
     from .variables import Namespace
@@ -536,8 +537,30 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
         subscript = "" if command == "\\pi" else f", or {command}_{{{digits}}} for a variable with subscript {digits}"
         raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name",
                               f"write {digits}{command} for the product{subscript}")
+    latin = _latin_lookalike(raw, typed, ns)
+    if latin is not None:  # ν0 for v0: a Greek letter that looks like the Latin one the problem uses
+        greek, letter, name = latin
+        raise ExpressionError(f"unknown name '{typed}': '{greek}' is the Greek letter {GREEK_CHARS[greek]}, "
+                              f"which looks like the Latin '{letter}'", position, "unknown_name",
+                              f"type {name} with the Latin '{letter}' if that is what you meant")
     raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name",
                           _suggestion(raw, ns) or "this answer uses no variables: write a number")
+
+
+# Greek letters that look like Latin ones in most fonts, and the Latin letter.
+_GREEK_LOOKALIKES = {"ν": "v", "κ": "k", "ρ": "p", "υ": "u", "χ": "x", "ι": "i", "τ": "t", "ω": "w"}
+
+
+def _latin_lookalike(raw: str, typed: str, ns: "Namespace") -> tuple[str, str, str] | None:
+    """``(greek, latin, name)`` when the typed name holds a Greek letter that looks Latin and, with the Latin
+    letter instead, names a declared variable (``ν0`` where v0 is declared); None otherwise."""
+    for greek, letter in _GREEK_LOOKALIKES.items():
+        if greek in typed:
+            spelled = GREEK_CHARS[greek]
+            candidate = raw.replace(spelled, letter, 1)
+            if candidate != raw and candidate in ns.names:
+                return greek, letter, candidate
+    return None
 
 
 # A LaTeX command with digits typed after it (\pi2): the name the tokenizer made of both.

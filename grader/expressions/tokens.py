@@ -38,7 +38,8 @@ from .magnitudes import MAX_DIGITS
 from .names import WRITE_INSTEAD
 from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, FULLWIDTH_SYMBOLS, GREEK_CHARS, MATH_LETTERS,
                             OPERATOR_CHARS, PRIME_CHARS,
-                            ROOT_CHARS, SUBSCRIPT_DIGITS, SUPERSCRIPT_CHARS, SUPERSCRIPT_OTHERS, VULGAR_FRACTIONS,
+                            ROOT_CHARS, SUBSCRIPT_DIGITS, SUBSCRIPT_LETTERS, SUPERSCRIPT_CHARS, SUPERSCRIPT_OTHERS,
+                            VULGAR_FRACTIONS,
                             bad_character,
                             is_space)
 
@@ -66,6 +67,7 @@ _SUPERSCRIPT_FIRST = re.compile(r"(?<=[A-Za-z0-9}])(\s*\^(?:\{[^{}]*\}|\\[A-Za-z
 # What can continue a name or mark its derivative (see _Tokenizer.identifier and finish_name):
 # a plain ASCII name followed by none of these is emitted as it is.
 _NAME_GOES_ON = frozenset(_ASCII_ALNUM | {"_"} | set(GREEK_CHARS) | set(MATH_LETTERS) | set(SUBSCRIPT_DIGITS)
+                          | set(SUBSCRIPT_LETTERS)
                           | set(COMBINING_DOTS) | set(PRIME_CHARS))
 
 
@@ -619,6 +621,12 @@ class _Tokenizer:
                 parts.append(("" if after_subscript_digit else "_") + SUBSCRIPT_DIGITS[c])
                 subscript_digit = True
                 i += 1
+            elif c in SUBSCRIPT_LETTERS:  # vₓ, θₘₐₓ: one subscript of the letters typed together
+                j = i
+                while j < self.n and text[j] in SUBSCRIPT_LETTERS:
+                    j += 1
+                parts.append("_" + "".join(SUBSCRIPT_LETTERS[ch] for ch in text[i:j]))
+                i = j
             elif c in COMBINING_DOTS:
                 # An accent ends the name: θ̇ is the derivative of everything typed so far, and of
                 # the subscript that may follow it (θ̇₁ is θ₁̇).

@@ -15,7 +15,7 @@ from fractions import Fraction
 from .errors import ExpressionError
 
 __all__ = ["GREEK_CHARS", "MATH_LETTERS", "OPERATOR_CHARS", "FULLWIDTH_SYMBOLS", "SUPERSCRIPT_CHARS",
-           "SUPERSCRIPT_OTHERS", "SUBSCRIPT_DIGITS", "ROOT_CHARS",
+           "SUPERSCRIPT_OTHERS", "SUBSCRIPT_DIGITS", "SUBSCRIPT_LETTERS", "ROOT_CHARS",
            "COMBINING_DOTS", "DOTTED_LETTERS", "PRIME_CHARS", "VULGAR_FRACTIONS", "is_space", "bad_character"]
 
 _GREEK_NAMES = ("alpha beta gamma delta epsilon zeta eta theta iota kappa lambda mu nu xi "
@@ -108,6 +108,25 @@ SUPERSCRIPT_OTHERS: dict[str, str] = _superscript_others()
 
 #: Subscript digits (m₁ is m_1).
 SUBSCRIPT_DIGITS = {chr(0x2080 + i): str(i) for i in range(10)}
+
+
+def _subscript_letters() -> dict[str, str]:
+    """Subscript letters (``ₓ``, ``ₘₐₓ``, ``ᵢ``, ``ᵦ``) -> the letter's name text (``x``, ``beta``), from Unicode's
+    own decompositions. ``ₒ`` is left out: after a name it is the zero a student meant (v₀) more often than
+    the letter, so it stays refused, saying so."""
+    found = {}
+    for code in (*range(0x1D62, 0x1D6B), *range(0x2090, 0x209D), 0x2C7C):
+        ch = chr(code)
+        parts = unicodedata.decomposition(ch).split()
+        if len(parts) == 2 and parts[0] == "<sub>" and ch != "ₒ":
+            letter = chr(int(parts[1], 16))
+            if letter.isascii() or letter in GREEK_CHARS:
+                found[ch] = GREEK_CHARS.get(letter, letter)
+    return found
+
+
+#: Subscript letters (vₓ is v_x, θₘₐₓ is theta_max).
+SUBSCRIPT_LETTERS = _subscript_letters()
 
 #: Radical signs -> root index.
 ROOT_CHARS = {"√": 2, "∛": 3, "∜": 4}
@@ -239,6 +258,9 @@ def bad_character(ch: str, position: int) -> ExpressionError:
     if ch in _SPACING_ACCENTS:
         return ExpressionError(f"accent {name} does not follow a variable name", position, "bad_character",
                                "put the dot right after the variable, as in θ˙ or theta_dot")
+    if ch == "ₒ":  # v ₒ: the subscript letter o where the subscript zero was meant
+        return ExpressionError(f"'{ch}' ({name}) is the letter o, not the digit zero", position, "bad_character",
+                               "for a subscript zero type v₀ or v_0; for the letter, v_o")
     plain = unicodedata.normalize("NFKC", ch)
     if len(plain) == 1 and plain.isascii() and plain.isalnum():  # a styled digit such as 𝟐
         return ExpressionError(f"character '{ch}' ({name}) is not allowed", position, "bad_character",

@@ -198,3 +198,18 @@ def test_a_function_refused_by_name_is_not_split_into_a_declared_variable(text):
     with pytest.raises(ExpressionError) as caught:
         parse_expression(text, ns)
     assert "is not a function you can use here" in caught.value.message
+
+
+@pytest.mark.parametrize("text, letter, name", [("ν0^2", "v", "v0"), ("κ x", "k", "k"), ("ρ0", "p", "p0")])
+def test_a_greek_letter_that_looks_latin_is_named_with_the_latin_variable(text, letter, name):
+    # ν0 for v0 said only "unknown name 'ν0'"
+    ns = Namespace([Variable("v0", "velocity", "real"), Variable("k", "1/m", "positive"),
+                    Variable("x", "length", "real"), Variable("p0", "momentum", "positive")])
+    with pytest.raises(ExpressionError) as refused:
+        parse_expression(text, ns)
+    assert f"looks like the Latin '{letter}'" in refused.value.message and f"type {name}" in refused.value.hint
+
+
+def test_a_greek_letter_the_problem_declares_is_its_variable():
+    ns = Namespace([Variable("nu", "frequency", "positive"), Variable("v", "velocity", "real")])
+    assert parse_expression("ν v", ns).expr == ns.symbol("nu") * ns.symbol("v")

@@ -453,3 +453,19 @@ def test_pasted_line_and_paragraph_separators_are_line_breaks(text):
 def test_a_comment_sign_is_refused_saying_what_it_is():
     [bad] = [t for t in tokenize("m*g # the weight") if t.kind == "bad"]
     assert "comment" in bad.error.message and "delete the '#'" in bad.error.hint
+
+
+@pytest.mark.parametrize("text, name", [
+    # Unicode's subscript letters are a subscript, as its subscript digits are
+    ("vₓ", "v_x"), ("θₘₐₓ", "theta_max"), ("Fₙ", "F_n"), ("aᵦ", "a_beta"), ("v₀ₓ", "v_0_x"), ("xₜ", "x_t"),
+])
+def test_subscript_letters_are_a_subscript(text, name):
+    [token] = tokenize(text)[:-1]
+    assert (token.kind, token.value) == ("name", name)
+
+
+def test_the_subscript_letter_o_is_refused_saying_it_is_not_zero():
+    # vₒ for v₀: read as the letter, it named no variable, and the hint said "type the ordinary 'o'"
+    with pytest.raises(ExpressionError) as refused:
+        tokenize("m vₒ²")
+    assert "not the digit zero" in refused.value.message and "v_0" in refused.value.hint
