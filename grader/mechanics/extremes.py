@@ -33,6 +33,7 @@ from grader.mechanics.special_values import (
     _periodic,
     _speed_squared,
     _bounded,
+    _depends_on_parameters,
     _travel,
     energy_speed_squared,
     solve_for,
@@ -144,7 +145,7 @@ def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
         elif _evaluate(candidates[chosen[0]], point) is None or abs(
                 _evaluate(branches[chosen[1]].xreplace({u.symbol: candidates[chosen[0]]}), point) - best[0]
         ) > 1e-9 * max(1, abs(best[0])):
-            raise SceneError(scene.source, key, f"where the {spec.kind} lies depends on the parameter values")
+            raise SceneError(scene.source, key, _depends_on_parameters(point, f"where the {spec.kind} lies"))
     result = human_form(branches[chosen[1]].xreplace({u.symbol: candidates[chosen[0]]}))
     leftover = result.free_symbols - evaluator.target(spec, default_state=False)
     if leftover:
@@ -342,7 +343,7 @@ def _extreme_in_time(evaluator, spec: AnswerSpec, key: str) -> sympy.Expr:
         if chosen is None:
             chosen = best
         elif chosen not in amounts or abs(amounts[chosen] - amounts[best]) > 1e-9 * scale:
-            raise SceneError(scene.source, key, f"when the {spec.kind} comes depends on the parameter values")
+            raise SceneError(scene.source, key, _depends_on_parameters(point, f"when the {spec.kind} comes"))
     result = human_form(value.xreplace({t: candidates[chosen]}))
     leftover = result.free_symbols - evaluator.target(spec, default_state=False)
     if leftover:

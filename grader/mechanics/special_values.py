@@ -634,7 +634,7 @@ def _time_by_quadrature(evaluator, spec, target: set, key: str, quad) -> sympy.E
                              f"{listed}); the quadrature t({u.name}) follows it only until it first turns back")
         first = min(ahead, key=ahead.get)
         if chosen is not None and chosen != first:
-            raise SceneError(scene.source, key, "which root is reached first depends on the parameter values")
+            raise SceneError(scene.source, key, _depends_on_parameters(point, "which root is reached first"))
         chosen, count = first, len(ahead)
     root = roots[chosen]
     moment = human_form(quad.time.xreplace({q: root}))
@@ -694,7 +694,7 @@ def _first_time(scene, roots: list[sympy.Expr], t: sympy.Symbol, key: str) -> sy
                              f"{listed})")
         first = min(times, key=times.get)
         if chosen is not None and chosen != first:
-            raise SceneError(scene.source, key, "which root is reached first depends on the parameter values")
+            raise SceneError(scene.source, key, _depends_on_parameters(point, "which root is reached first"))
         chosen, count = first, len(times)
     # The same across the domains, where there are as many times (see _choose_root).
     for point in _domain_points(scene, roots):
@@ -704,13 +704,13 @@ def _first_time(scene, roots: list[sympy.Expr], t: sympy.Symbol, key: str) -> sy
     return roots[chosen]
 
 
-def _depends_on_parameters(point: dict) -> str:
-    """Why a root (or time) chosen at the scene's values cannot be the reference: elsewhere in the
-    domains another closed form holds."""
+def _depends_on_parameters(point: dict, what: str = "which root holds") -> str:
+    """Why a choice made at the scene's values (a root, an extreme, a time) cannot be the reference:
+    at ``point`` (another point of the domains, or a student's draw) another closed form holds."""
     where = ", ".join(f"{s} = {v:.4g}" for s, v in sorted(point.items(), key=lambda i: str(i[0])))
-    return ("which root holds depends on the parameter values: the closed form that holds at the scene's "
-            f"values is not the one reached at {where}; narrow the parameters' domains (or write the scene "
-            "with a ratio of them) so that one closed form holds throughout")
+    return (f"{what} depends on the parameter values: the closed form that holds at the scene's "
+            f"values is not the one reached at {where}; narrow the parameters' domains or random ranges (or "
+            "write the scene with a ratio of them) so that one closed form holds throughout")
 
 
 # -- the condition --------------------------------------------------------------------------------
@@ -1237,13 +1237,17 @@ def _implicit_root(evaluator, spec, condition, x, value, variable, point: dict, 
 
 
 def _draws(scene) -> list[dict]:
-    """Parameter values as students get them (random ranges and choices; fixed values as given)."""
+    """Parameter values as students get them (random ranges and choices; fixed values as given): the
+    corners of the ranges (where a closed form most often stops holding), then random draws."""
     drawn = [p for p in scene.parameters.values() if p.draw is not None]
     if not drawn:
         return []
-    rng = numpy.random.default_rng(13)
-    base = _parameter_points(scene)[0]
+    base = _base_point(scene)
+    ends = [sorted({min(_draw_values(p)), max(_draw_values(p))}) for p in drawn]
     points = []
+    if math.prod(len(e) for e in ends) <= MAX_CORNERS:
+        points = [{**base, **{p.symbol: v for p, v in zip(drawn, corner)}} for corner in itertools.product(*ends)]
+    rng = numpy.random.default_rng(13)
     for _ in range(IMPLICIT_DRAWS):
         point = dict(base)
         for p in drawn:
@@ -1254,7 +1258,27 @@ def _draws(scene) -> list[dict]:
                 steps = int((r["max"] - r["min"]) / r["step"] + 1e-9)
                 point[p.symbol] = float(r["min"] + r["step"] * rng.integers(0, steps + 1))
         points.append(point)
-    return points
+    # (a coarse grid or a few choices draw the same numbers again: each is confirmed once)
+    unique = {tuple(sorted((str(s), v) for s, v in p.items())): p for p in points if _keeps_orders(scene, p)}
+    return list(unique.values())
+
+
+#: Corners of the random ranges tried (all of them for up to four randomised parameters).
+MAX_CORNERS = 16
+
+
+def _draw_values(p) -> list[float]:
+    if "choices" in p.draw:
+        return [float(c) for c in p.draw["choices"]]
+    r = p.draw["random"]
+    steps = int((r["max"] - r["min"]) / r["step"] + 1e-9)
+    return [float(r["min"]), float(r["min"] + r["step"] * steps)]
+
+
+def _keeps_orders(scene, point: dict) -> bool:
+    """Whether ``point`` keeps every declared order (d below R): draws that break one are drawn again."""
+    return all(point[p.symbol] < point[scene.parameters[p.below].symbol]
+               for p in scene.parameters.values() if p.below is not None)
 
 
 # -- choosing among roots ---------------------------------------------------------------------------
@@ -1276,8 +1300,14 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str, at_rest:
     near = _parameter_points(scene)
     symbols = (condition.free_symbols | value.free_symbols) - {x}
     state: dict = {}
-    for parameters in near:
+    for n, parameters in enumerate(near):
         point, numeric = _with_real_roots(evaluator, parameters, symbols, roots, variable)
+        if not numeric and n >= 2:
+            # (a student's draw: those numbers would have no answer)
+            where = ", ".join(f"{s} = {v:.4g}" for s, v in sorted(parameters.items(), key=lambda i: str(i[0])))
+            raise SceneError(scene.source, key, f"the condition has no real root for {x} at {where}, numbers a "
+                                                "student may draw; narrow the random ranges so that every draw "
+                                                "has an answer")
         if not numeric:
             free = _free_state(evaluator, parameters, symbols)
             where = (f"anywhere in its domain" if not free else
@@ -1291,7 +1321,7 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str, at_rest:
         if chosen is None:
             chosen, base_count = indices, _distinct(numeric)
         elif _differ(chosen, indices, group_of):
-            raise SceneError(scene.source, key, "which root holds depends on the parameter values")
+            raise SceneError(scene.source, key, _depends_on_parameters(parameters))
     # Across the domains: a root formula may be the root the motion reaches on one side of m₁ = m₂
     # and another root on the other (Cardano's branches), so that a reference right at the scene's
     # values is wrong elsewhere. With as many roots there as at the scene's values, the same one must
@@ -1764,21 +1794,47 @@ def _domain_points(scene, roots) -> list[dict]:
 
 
 def _parameter_points(scene) -> list[dict]:
-    """Two parameter points: the scene's values (or a generic point), and a perturbed one."""
+    """The points where a choice made in closed form must hold: the scene's values (or a generic
+    point), a perturbed one, and the draws students get (:func:`_draws`, for randomised parameters).
+
+    A choice made at the scene's values alone (the root, the extreme, the first root reached) is
+    the reference for every student's numbers: a bob launched at v0 drawn from [3, 9] goes over the
+    top for v0 > 2√(gl) and not below, and its least tension is another closed form on each side.
+    Every draw must make the same choice, or the scene is refused, naming one that does not.
+    """
+    base = _base_point(scene)
+    other = {}
+    for p in scene.parameters.values():
+        value = base[p.symbol] * 1.0137
+        other[p.symbol] = value if p.domain.contains(value) else base[p.symbol]
+    return [base, other] + _draws(scene)
+
+
+def _base_point(scene) -> dict:
+    """The scene's values; for a parameter without one, the middle of its draws (randomised) or a
+    generic point of its domain, keeping the declared orders (d below R)."""
     rng = numpy.random.default_rng(7)
     base = {}
     for p in scene.parameters.values():
         base[p.symbol] = p.value if p.value is not None else p.domain.sample(rng)
+        if p.value is None and p.draw is not None:
+            base[p.symbol] = _middle_draw(p.draw)
     for p in scene.parameters.values():  # d declared below R: a generic point keeps the order
         big = scene.parameters[p.below] if p.below is not None else None
         if big is not None and not base[p.symbol] < base[big.symbol] and p.domain.contains(base[big.symbol]) \
                 and big.domain.contains(base[p.symbol]):
             base[p.symbol], base[big.symbol] = base[big.symbol], base[p.symbol]
-    other = {}
-    for p in scene.parameters.values():
-        value = base[p.symbol] * 1.0137
-        other[p.symbol] = value if p.domain.contains(value) else base[p.symbol]
-    return [base, other]
+    return base
+
+
+def _middle_draw(draw: dict) -> float:
+    """A value students get from ``random = {min, max, step}`` or ``choices``: the middle one."""
+    if "choices" in draw:
+        choices = sorted(float(c) for c in draw["choices"])
+        return choices[len(choices) // 2]
+    r = draw["random"]
+    steps = int((r["max"] - r["min"]) / r["step"] + 1e-9)
+    return float(r["min"] + r["step"] * (steps // 2))
 
 
 # -- following the motion ----------------------------------------------------------------------------

@@ -169,3 +169,56 @@ def test_a_coordinate_that_moves_with_the_one_of_the_extreme_is_named_not_said_t
         derive(scene)
     assert type(refused.value) is SceneError
     assert "couples xdot with ydot" in str(refused.value) and "runs away" not in str(refused.value)
+
+
+ROD_BOB = '''
+id = "rod_bob_drawn"
+title = "Bob on a light rod launched from the bottom, the launch speed drawn per student"
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 1.0 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+l = { dimension = "length", domain = "positive", value = 1.0 }
+v0 = { dimension = "velocity", domain = "positive", DRAW }
+[coordinates]
+r = { dimension = "length", domain = "positive" }
+phi = { dimension = "angle" }
+[energy]
+kinetic = "m/2*(rdot^2 + r^2*phidot^2)"
+potential = "-m*g*r*cos(phi)"
+[[constraints]]
+name = "rod"
+f = "r - l"
+[initial]
+phi = 0
+phidot = "v0/l"
+[[answers]]
+name = "least_tension"
+kind = "minimum"
+expr = "-lambda_rod"
+dimension = "force"
+'''
+
+
+@pytest.mark.parametrize("draw, expected", [
+    # v0² < 4 g l (v0 < 6.26 here) on every draw: the bob swings back, T = m(g cos φ + v²/l) is least
+    # where it turns, v = 0 at cos φ = 1 − v0²/(2 g l)
+    ("random = { min = 3.0, max = 6.0, step = 0.5 }", "m*(g - v0^2/(2*l))"),
+    # v0² > 4 g l on every draw: it goes over the top, where T = m(v0²/l − 5 g) is least
+    ("random = { min = 7.0, max = 9.0, step = 0.5 }", "m*(v0^2/l - 5*g)"),
+    ("choices = [7, 8, 10]", "m*(v0^2/l - 5*g)"),
+])
+def test_an_extreme_drawn_per_student_is_the_closed_form_of_every_draw(draw, expected):
+    derivation = derive(parse_scene(ROD_BOB.replace("DRAW", draw), "rod_bob_drawn.toml"))
+    want = parse_expression(expected, derivation.scene.namespace).expr
+    assert sympy.simplify(derivation.answers["least_tension"] - want) == 0
+
+
+@pytest.mark.parametrize("draw, named", [
+    # some students' bobs go over the top, others swing back: no one closed form is the reference
+    ("random = { min = 3.0, max = 9.0, step = 0.5 }", "v0 = 9|v0 = 3"),
+    ("choices = [4, 8]", "v0 = 8|v0 = 4"),
+])
+def test_an_extreme_whose_closed_form_changes_within_the_draws_is_refused_naming_a_draw(draw, named):
+    with pytest.raises(SceneError, match=rf"where the minimum lies depends on the parameter values.*({named})"
+                                         r".*random ranges"):
+        derive(parse_scene(ROD_BOB.replace("DRAW", draw), "rod_bob_drawn.toml"))

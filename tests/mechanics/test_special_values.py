@@ -994,3 +994,51 @@ def test_an_acceleration_set_to_zero_with_a_cyclic_coordinate_keeps_its_momentum
     # the steady orbit's φ̇ at r, with in_terms_of leaving the momentum's start out, is as before
     assert sympy.simplify(d.answers["orbit_angular_velocity"]
                           - parse_expression("sqrt(g/c)", scene.namespace).expr) == 0
+
+
+DRIVEN_HOOP = '''
+id = "driven_hoop_drawn"
+title = "Bead on a hoop turned about its vertical diameter, the rate drawn per student"
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 0.1 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+a = { dimension = "length", domain = "positive", value = 0.5 }
+omega = { dimension = "angular_velocity", domain = "positive", DRAW }
+[coordinates]
+theta = { dimension = "angle", domain = [0, 3.1416] }
+[energy]
+kinetic = "m/2*a^2*(thetadot^2 + omega^2*sin(theta)^2)"
+potential = "-m*g*a*cos(theta)"
+[initial]
+theta = 0.3
+thetadot = 0
+[[answers]]
+name = "equilibrium_cos"
+expr = "cos(theta)"
+where = "thetaddot = 0"
+in_terms_of = ["g", "a", "omega"]
+'''
+
+
+@pytest.mark.parametrize("draw", [
+    # ω² a > g on every draw (ω > 4.43 here): the bead released at 0.3 swings about the off-axis
+    # equilibrium cos θ = g/(ω² a); the root is chosen among the draws, not at a point of ω's domain
+    # (0 < ω) that no student gets, where the bottom θ = 0 is the one (main printed 1)
+    "random = { min = 5.0, max = 9.0, step = 0.5 }",
+    "choices = [5, 6, 8]",
+    "value = 7.0",
+])
+def test_a_root_chosen_for_drawn_parameters_is_the_one_of_the_draws(draw):
+    derivation = derive(parse_scene(DRIVEN_HOOP.replace("DRAW", draw), "driven_hoop_drawn.toml"))
+    want = parse_expression("g/(a*omega^2)", derivation.scene.namespace).expr
+    assert sympy.simplify(derivation.answers["equilibrium_cos"] - want) == 0
+
+
+@pytest.mark.parametrize("draw, named", [
+    # below ω = 4.43 there is no off-axis equilibrium: those students would be graded against g/(ω² a) > 1
+    ("random = { min = 2.0, max = 9.0, step = 0.5 }", "omega = 2"),
+    ("choices = [3, 6]", "omega = 3"),
+])
+def test_a_root_that_changes_within_the_draws_is_refused_naming_a_draw(draw, named):
+    with pytest.raises(SceneError, match=rf"which root holds depends on the parameter values.*{named}.*random ranges"):
+        derive(parse_scene(DRIVEN_HOOP.replace("DRAW", draw), "driven_hoop_drawn.toml"))
