@@ -66,7 +66,8 @@ _ANY_DIMENSION = {"√", "sqrt", "cbrt", "abs", "sign", "sgn", "Abs"}
 _MOST_FACTORS_TAKEN = 2
 _TIME = parse_dimension("time")
 # The exponent letter of a number in e-notation (2E+3, 1.5e-2), which may also be a declared variable.
-_EXPONENT_LETTER = re.compile(r"^[0-9.]+([eE])[+-]?[0-9]+$")
+_EXPONENT_LETTER = re.compile(r"^[0-9.]+([eE])[-+−–—‒‐‑﹣－＋]?[0-9]+$")  # every minus tokens.number signs with
+_MINUSES = str.maketrans({ch: "-" for ch in "−–—‒‐‑﹣－"} | {"＋": "+"})
 # \pi2, \omega12, \pi2x: a LaTeX command with digits (and letters) after it, which the tokenizer reads
 # as one name (see latex_argument).
 _UNBRACED_FRAC_DIGITS = re.compile(r"\\[dt]?frac\s*(\d)\s*(\d)\s*$")
@@ -196,8 +197,8 @@ _OPERAND_ENDS = ("name", "number", "close", "sup", "derivative")
 
 def _operator_words(tokens: list[Token], ns: Namespace) -> list[Token]:
     """The tokens with each ASCIIMath operator word between two operands made its operator: ``m xx g`` is
-    m·g, ``a div b`` is a/b. A word the problem declares stays its variable; ``xx`` where x is a variable
-    is refused, since glued it is x·x (it was read as x·x silently: ``x xx k`` gave k x³)."""
+    m·g, ``a div b`` is a/b. A word the problem declares stays its variable; one its variables spell glued
+    (``xx`` where x is a variable: it was read as x·x silently, ``x xx k`` gave k x³) is refused naming both."""
     found = [k for k, t in enumerate(tokens) if t.kind == "name" and t.value in _OPERATOR_WORDS
              and not t.order and t.text == t.value and t.value not in ns.names]
     if not found:
@@ -208,9 +209,16 @@ def _operator_words(tokens: list[Token], ns: Namespace) -> list[Token]:
         before, after = tokens[k - 1] if k else None, tokens[k + 1]
         if before is None or before.kind not in _OPERAND_ENDS or after.kind not in _ATOM_STARTS:
             continue
-        if word.value == "xx" and "x" in ns.names:
-            raise ExpressionError("'xx' is ASCIIMath's × (times), or x·x typed without a space", word.pos,
-                                  "ambiguous", "write * for a product, or x^2 for x squared")
+        try:  # glued, the word may name the problem's variables: xx is x·x where x is one
+            glued = resolve_name(word.value, ns)
+        except ExpressionError:
+            glued = None
+        if glued is not None and glued.kind in ("symbol", "split"):
+            parts = glued.value if glued.kind == "split" else [str(glued.value)]
+            shown, sign = "·".join(parts), {"*": "×", "/": "÷"}[_OPERATOR_WORDS[word.value]]
+            raise ExpressionError(f"'{word.text}' is ASCIIMath's {sign}, or {shown} typed without spaces", word.pos,
+                                  "ambiguous", f"write {_OPERATOR_WORDS[word.value]} for the operator, or "
+                                               f"{'*'.join(parts)} for the product of the variables")
         tokens[k] = Token("op", _OPERATOR_WORDS[word.value], word.pos, word.end, word.text, word.space_before)
     return tokens
 
@@ -464,7 +472,7 @@ class _Parser:
             if letter and letter.group(1) in self.ns.names:
                 # 2E+3 with a variable E (an energy, a Young's modulus): 2·10³ or 2E + 3.
                 e = letter.group(1)
-                mantissa, rest = token.text[:letter.start(1)], token.text[letter.end(1):]
+                mantissa, rest = token.text[:letter.start(1)], token.text[letter.end(1):].translate(_MINUSES)
                 raise ExpressionError(f"'{token.text}' could be {mantissa}×10^{rest.lstrip('+')} or "
                                       f"{mantissa}·{e} {rest[0] if rest[0] in '+-' else '·'} {rest.lstrip('+-')}, "
                                       f"and {e} is a variable here", token.pos, "ambiguous",

@@ -1081,7 +1081,15 @@ def test_xx_where_x_is_a_variable_is_refused_naming_both_readings(ns):
     # glued, xx is x·x; in ASCIIMath it is ×: 'x xx y' was read as x³y
     with pytest.raises(ExpressionError) as refused:
         parse("x xx y", ns)
-    assert "ASCIIMath's ×" in refused.value.message and "x^2" in refused.value.hint
+    assert "ASCIIMath's ×, or x·x" in refused.value.message and "x*x for the product" in refused.value.hint
+
+
+def test_an_operator_word_the_variables_spell_is_refused_naming_both_readings():
+    # with d, i and v declared, 'a div b' was d·i·v before ASCIIMath's ÷ was read: neither is guessed
+    ns = Namespace([Variable(n, "length", "positive") for n in ("a", "b", "d", "i", "v")])
+    with pytest.raises(ExpressionError) as refused:
+        parse("a div b", ns)
+    assert "ASCIIMath's ÷, or d·i·v" in refused.value.message
 
 
 def test_an_operator_word_the_problem_declares_is_its_variable():
@@ -1158,3 +1166,12 @@ def test_a_coordinate_at_a_number_is_refused_naming_both_readings(ns, text, show
 ])
 def test_a_function_of_t_and_a_parameters_bracket_keep_their_readings(ns, text, expected):
     assert parse(text, ns) == expected(lambda n: sym(ns, n))
+
+
+@pytest.mark.parametrize("text", ["2e−3", "2E–3", "2e﹣3", "2e-3"])
+def test_a_power_of_ten_beside_a_variable_e_is_ambiguous_with_any_minus(text):
+    # with a pasted minus, 2e−3 was read as 0.002 silently where e is a variable (a restitution coefficient)
+    ns = Namespace([Variable("e", "dimensionless", [0, 1]), Variable("E", "energy", "positive")])
+    with pytest.raises(ExpressionError) as refused:
+        parse(text, ns)
+    assert refused.value.code == "ambiguous" and "2×10^-3" in refused.value.message
