@@ -107,6 +107,7 @@ _MARKUP_TAG = re.compile(r"</?(math|mi|mn|mo|ms|mrow|msup|msub|msubsup|mfrac|msq
 # A subscript between a braced name and its primes ({x}_{1}^{\prime}): the name inside carries it already.
 _SUBSCRIPT_GAP = re.compile(r"\s*_\s*(?:\{[^{}]{1,40}\}|[A-Za-z0-9])\s*")
 
+_UNICODEMATH_ROOT = re.compile(r"√\(\s*(\d{1,6})\s*&")
 _LINE_BREAKS = frozenset("\n\u2028\u2029\u0085\v\f")
 
 # What may follow a number's digits to start its power of ten, and the exponent's signs.
@@ -416,6 +417,14 @@ class _Tokenizer:
             self.emit("op", OPERATOR_CHARS[ch], start, start + 1)
         elif ch in SUPERSCRIPT_CHARS or ch in SUPERSCRIPT_OTHERS:
             self.superscript()
+        elif ch == "√" and (indexed := _UNICODEMATH_ROOT.match(self.text, start)):
+            # UnicodeMath's n-th root, √(n&x) (what Word's \root n\of x gives in linear format)
+            index = int(indexed[1])
+            if not 2 <= index <= 1000:
+                raise ExpressionError(f"cannot read the root of index {index} in '{indexed.group()}…'", start, "syntax",
+                                      "the index of a root is a whole number from 2 on, as in √(3&x)")
+            self.emit("root", index, start, start + 1)
+            self.emit("open", "(", start + 1, indexed.end())
         elif ch in ROOT_CHARS:
             self.emit("root", ROOT_CHARS[ch], start, start + 1)
         elif ch in VULGAR_FRACTIONS:

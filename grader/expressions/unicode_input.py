@@ -185,6 +185,8 @@ _SYMBOL_HINTS = {
     "≤": "give an expression, or an equation with =", "≥": "give an expression, or an equation with =",
     "≠": "give an expression, or an equation with =", "≈": "use = for an equation",
     "∞": "no answer here is infinite",
+    "…": "an answer has no '…': give it in full (an exact expression, or all its terms), without the '…'",
+    "⋯": "an answer has no '⋯': give it in full (an exact expression, or all its terms), without the '⋯'",
     "ᴇ": "ᴇ is a calculator's 'times ten to the': write it between a number and a whole power, as in 1.5ᴇ-3 or 1.5e-3",
     "°": "angles are in radians: degrees only follow a number, as in 30°",
     "±": "give one sign (the answer with + or the one with -)",
@@ -243,6 +245,9 @@ def bad_character(ch: str, position: int) -> ExpressionError:
         ascii_ch = chr(ord(ch) - 0xFEE0)
         return ExpressionError(f"full-width character '{ch}' ({name})",
                                position, "bad_character", f"type the ordinary '{ascii_ch}' (half-width input)")
+    if ch == "\u2064":  # Word's INVISIBLE PLUS inside a mixed number, 2⁤½: read as +, 2⁤½k would be 2 + k/2
+        return ExpressionError(f"invisible character {name} (U+2064), which Word puts inside a mixed number "
+                               "such as 2½", position, "bad_character", "write the number as 5/2 or (2 + 1/2)")
     if ch in _INVISIBLE or unicodedata.category(ch) == "Cf":
         return ExpressionError(f"invisible character {name} (U+{ord(ch):04X})",
                                position, "bad_character", "delete it (it often comes with copy and paste)")

@@ -469,3 +469,24 @@ def test_the_subscript_letter_o_is_refused_saying_it_is_not_zero():
     with pytest.raises(ExpressionError) as refused:
         tokenize("m vₒ²")
     assert "not the digit zero" in refused.value.message and "v_0" in refused.value.hint
+
+
+@pytest.mark.parametrize("text, index", [("√(3&x)", 3), ("√(4 & x)", 4), ("√( 2&x)", 2)])
+def test_unicodemaths_root_with_an_index_is_that_root(text, index):
+    # Word's linear format writes \root 3\of x as √(3&x); the '&' was refused as a LaTeX alignment mark
+    assert kinds(text) == [("root", index), ("open", "("), ("name", "x"), ("close", ")")]
+
+
+def test_unicodemaths_root_of_index_one_is_refused():
+    with pytest.raises(ExpressionError) as refused:
+        tokenize("√(1&x)")
+    assert "index 1" in refused.value.message and "√(3&x)" in refused.value.hint
+
+
+@pytest.mark.parametrize("text, words", [
+    ("x + 0.5…", "give it in full"), ("x + x^2/2 + ⋯", "give it in full"), ("2\u2064½", "mixed number"),
+])
+def test_what_pasted_text_carries_is_refused_saying_what_to_type(text, words):
+    with pytest.raises(ExpressionError) as refused:
+        tokenize(text)
+    assert words in refused.value.message + "; " + refused.value.hint
