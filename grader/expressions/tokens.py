@@ -187,6 +187,9 @@ MATHEMATICA_CHARACTERS = {
 # Mathematica's Subscript[m, 1], Subscript[\[Theta], 0], Subscript[θ, max]: a subscripted name
 _MATHEMATICA_SUBSCRIPT = re.compile(r"Subscript\[\s*(?:([A-Za-z][A-Za-z0-9]{0,30})|\\\[([A-Za-z]+)\]|(["
                                     + "".join(GREEK_CHARS) + r"]))\s*,\s*([A-Za-z0-9]{1,20})\s*\]")
+# Mathematica's InputForm of a derivative, Derivative[2][θ], and a name it may hold
+_MATHEMATICA_DERIVATIVE = re.compile(r"Derivative\[\s*([1-9])\s*\]\[\s*")
+_MATHEMATICA_BASE = re.compile(r"([A-Za-z][A-Za-z0-9]{0,30})|\\\[([A-Za-z]+)\]|([" + "".join(GREEK_CHARS) + "])")
 _CONSOLE_PROMPT = re.compile(r"\s*(?:(?:In|Out)\[\d+\]\s*:?=|>>|\(%[io]\d+\))")
 
 # Python modules whose functions students paste with the prefix (np.sin, math.sqrt).
@@ -283,6 +286,9 @@ class _Tokenizer:
         # lookup of is_space.
         if ch == "S" and (subscript := _MATHEMATICA_SUBSCRIPT.match(self.text, start)):
             self.mathematica_subscript(start, subscript)
+        elif ch == "D" and (derivative := _MATHEMATICA_DERIVATIVE.match(self.text, start)) \
+                and self.mathematica_derivative(start, derivative):
+            pass
         elif ch in _ASCII_NAME_START:
             run = _ASCII_ALNUM_RUN.match(self.text, start) if ch != "_" else None
             end = run.end() if run else start
@@ -1044,6 +1050,26 @@ class _Tokenizer:
             raise ExpressionError("'\\' must start a LaTeX command such as \\frac", start, "syntax",
                                   "delete the backslash, or write a command such as \\frac{a}{b}")
 
+    def mathematica_derivative(self, start: int, found: re.Match) -> bool:
+        """Mathematica's InputForm of θ'[t], ``Derivative[1][θ][t]`` (and of θ₁'', ``Derivative[2][Subscript[θ, 1]]``):
+        the name with that many dots; the ``[t]`` after it is read as θ'[t]'s is. False (nothing emitted) when
+        the bracket after ``Derivative[n]`` holds no name."""
+        order, at = int(found[1]), found.end()
+        subscript = _MATHEMATICA_SUBSCRIPT.match(self.text, at)
+        plain = _MATHEMATICA_BASE.match(self.text, at) if subscript is None else None
+        closing = re.compile(r"\s*\]").match(self.text, (subscript or plain).end()) if (subscript or plain) else None
+        if closing is None:
+            return False
+        if subscript is not None:
+            ascii_name, named, letter, index = subscript.groups()
+        else:
+            (ascii_name, named, letter), index = plain.groups(), None
+        base = ascii_name or GREEK_CHARS.get(MATHEMATICA_CHARACTERS.get(named, ""), "") or GREEK_CHARS.get(letter, "")
+        if not base:
+            return False
+        self.emit("name", f"{base}_{index}" if index else base, start, closing.end(), order=order)
+        return True
+
     def mathematica_subscript(self, start: int, found: re.Match) -> None:
         """Mathematica's ``Subscript[θ, 0]`` (what "Copy As Plain Text" gives for θ₀): the name θ_0, with the
         primes after it (``Subscript[θ, 1]'[t]``). It was refused as an unknown name 'Subscript'."""
@@ -1138,6 +1164,9 @@ class _Tokenizer:
         word processors, and which letters multiply which is not written down.
         """
         run = self.text[start:j]
+        if run == "ʳ":  # sin(0.5ʳ): a TI calculator's radian mark, or a power r?
+            raise ExpressionError("'ʳ' is a TI calculator's radian mark, or a power r", start, "ambiguous",
+                                  "angles are in radians here: delete the 'ʳ' (or write ^r for a power)")
         letters = [c for c in run if c in SUPERSCRIPT_OTHERS]
         shown = [f"'{c}' ({unicodedata.name(c, 'U+%04X' % ord(c))})" for c in dict.fromkeys(letters)]
         names, many = ", ".join(shown[:3]) + (", …" if len(shown) > 3 else ""), len(shown) > 1

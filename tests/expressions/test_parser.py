@@ -884,7 +884,7 @@ def test_answers_pasted_from_other_tools_mean_what_they_mean_there(student_ns, s
     # what to type instead, named
     ("np.hypot(x, y)", "unsupported_function", "sqrt(x^2 + y^2)"),
     ("Derivative(x, t)", "unsupported_function", "diff(θ(t), t)"),
-    ("Derivative[1][theta][t]", "unsupported_function", "diff(θ(t), t)"),  # Mathematica's form
+    ("Derivative[1][theta + x][t]", "unsupported_function", "diff(θ(t), t)"),  # Mathematica's, of no one name
     ("“x”", "bad_character", "delete the quotation marks"),
     # a spreadsheet's ATAN2(x, y) has our arguments reversed; its PI() has brackets
     ("ATAN2(y, x)", "ambiguous", "Excel's ATAN2(x, y) is atan2(y, x)"),
@@ -1175,3 +1175,12 @@ def test_a_power_of_ten_beside_a_variable_e_is_ambiguous_with_any_minus(text):
     with pytest.raises(ExpressionError) as refused:
         parse(text, ns)
     assert refused.value.code == "ambiguous" and "2×10^-3" in refused.value.message
+
+
+@pytest.mark.parametrize("text, name", [
+    # Mathematica's InputForm of θ'[t] and θ''[t] (refused before, as a function the grammar lacks)
+    ("Derivative[1][theta][t]", "thetadot"), ("Derivative[2][θ][t]", "thetaddot"),
+    ("Derivative[1][\\[Theta]][t]", "thetadot"), ("Derivative[1][theta]", "thetadot"), ("Derivative[1][r][t]", "rdot"),
+])
+def test_mathematicas_derivative_of_a_name_is_the_dotted_name(ns, text, name):
+    assert parse(text, ns) == sym(ns, name)

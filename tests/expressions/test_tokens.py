@@ -490,3 +490,10 @@ def test_what_pasted_text_carries_is_refused_saying_what_to_type(text, words):
     with pytest.raises(ExpressionError) as refused:
         tokenize(text)
     assert words in refused.value.message + "; " + refused.value.hint
+
+
+def test_a_calculators_radian_mark_is_refused_naming_both_readings():
+    # 'ʳ' was refused as a superscript letter with the fix 'write x^r': a TI calculator means radians
+    with pytest.raises(ExpressionError) as refused:
+        tokenize("sin(0.5ʳ)")
+    assert "radian mark" in refused.value.message and "delete the 'ʳ'" in refused.value.hint
