@@ -517,7 +517,7 @@ def compare_numeric(
             how += f" ({options.describe()})"
         return Comparison(True, "numeric", how, evidence=evidence)
     if agreed == 0 and ref_undefined and not unresolved:
-        return Comparison(None, "none", f"the reference is undefined at all {ref_undefined} sample points "
+        return Comparison(None, "none", f"{_UNDEFINED_EVERYWHERE} {ref_undefined} sample points "
                           "tried, across the whole scale of the declared domains (magnitudes 1e-3 to 1e6): "
                           "check the reference and the variables' domains", evidence={"points": 0})
     return Comparison(
@@ -526,6 +526,77 @@ def compare_numeric(
         "could not decide: the expressions could not be evaluated reliably at enough points",
         evidence=_points_evidence(options, agreed, digits, unresolved),
     )
+
+
+_UNDEFINED_EVERYWHERE = "the reference is undefined at all"
+# Shares of a region between two boundaries (or of its distance from the one boundary of an unbounded one) at
+# which points of a reference defined only there are drawn.
+REGION_SHARES = (0.02, 0.1, 0.25, 0.38, 0.5, 0.62, 0.75, 0.9, 0.98)
+OUTER_SHARES = (0.01, 0.1, 0.38, 1.0, 3.0, 10.0, 100.0, 1000.0)
+MAX_DEFINED_POINTS = 48
+
+
+class _PointsSampler:
+    """A `Sampler` whose ordinary and wide points are the given ones, in turn (its domains and orders kept)."""
+
+    def __init__(self, sampler, points: list[dict]):
+        self._sampler, self._points = sampler, list(points)
+
+    def __getattr__(self, name):
+        return getattr(self._sampler, name)
+
+    def point(self, i: int) -> dict:
+        return self._points[i % len(self._points)]
+
+    def wide_point(self, i: int) -> dict:
+        return self._points[(i + len(self._points) // 2) % len(self._points)]
+
+
+def _where_defined(ref: Compiled, exprs, sampler, deadline: float | None) -> list[dict]:
+    """Points where ``ref`` is defined, drawn in each region between the boundaries of the restricted arguments of
+    ``exprs`` (a root's base, a log's argument, asin's ...: `_boundaries`) along each variable, the other
+    variables as at the first few sample points; at most `MAX_DEFINED_POINTS`. For a reference defined only
+    past the sampled magnitudes: sqrt(x − 10⁷) on x ≥ 10⁷."""
+    boundaries = _boundaries(exprs)
+    base = sampler.point(0)
+    symbols = sorted({s for u, _ in boundaries for s in u.free_symbols if s in sampler.domains and s in base},
+                     key=lambda s: s.name)[:MAX_SCANNED]
+    below = {**sampler.below, **sampler.across}
+    found: list[dict] = []
+    for symbol in symbols:
+        domain, span = sampler.domains[symbol], _span(sampler.domains[symbol])
+        if span is None:
+            continue
+        breaks = sorted({t for u, values in boundaries if symbol in u.free_symbols
+                         for t in _breakpoints(u, values, symbol, base, span)})
+        edges = [span[0], *breaks, span[1]]
+        values = []
+        for a, b in zip(edges, edges[1:]):
+            if math.isinf(a) and math.isinf(b):
+                continue
+            if math.isinf(b):
+                values += [a + max(1.0, abs(a)) * share for share in OUTER_SHARES]
+            elif math.isinf(a):
+                values += [b - max(1.0, abs(b)) * share for share in OUTER_SHARES]
+            else:
+                values += [a + (b - a) * share for share in REGION_SHARES]
+        for t in values:
+            if deadline is not None and time.monotonic() > deadline or len(found) >= MAX_DEFINED_POINTS:
+                return found
+            if not domain.contains(t):
+                continue
+            for i in range(4):
+                point = {**sampler.point(i), symbol: t}
+                if not all(point[a] < point[b] for a, b in below.items() if a in point and b in point):
+                    continue
+                try:
+                    ref.at(point, 64)
+                except Undefined:
+                    continue
+                except Unresolved:
+                    pass
+                found.append(point)
+    return found[:MAX_DEFINED_POINTS]
 
 
 def _to_float(x) -> float:
@@ -687,6 +758,16 @@ def compare_expressions(
         ref, ans = Compiled(reference, backend, reference_conditions), Compiled(answer, backend, answer_conditions)
         sampler = _OffGridSampler(sampler)
         result = compare_numeric(ref, ans, sampler, options, deadline)
+    if result.equivalent is None and not result.budget_exceeded and options.method == "arb":
+        # sqrt(x - 1e7), log(x - 1e12), sqrt(1e-9 - x): defined only past the sampled magnitudes (1e-3 .. 1e6), or
+        # asin(x - 10) on [9, 11] only, met once by chance; the boundaries of its own arguments say where (both
+        # compiled afresh: these are not their cached points)
+        fresh = Compiled(reference, backend, reference_conditions)
+        points = _where_defined(fresh, (reference, *reference_conditions), sampler, deadline)
+        if points:
+            ref, ans = fresh, Compiled(answer, backend, answer_conditions)
+            sampler = _PointsSampler(sampler, points)
+            result = compare_numeric(ref, ans, sampler, options, deadline)
     if result.equivalent and options.method == "arb":
         return (_hidden_difference(diff, answer, reference, ref, ans, sampler, options)
                 or _below_the_digits(ref, ans, sampler, options)
@@ -1448,13 +1529,13 @@ POLYNOMIAL_MAX_DEGREE = 12
 
 
 def _polynomial_roots(u, values, symbol, base, span) -> list[float]:
-    """The real roots of ``u - c`` and of its derivative, where ``u`` is a polynomial in ``symbol`` of degree 2 to
+    """The real roots of ``u - c`` and of its derivative, where ``u`` is a polynomial in ``symbol`` of degree 1 to
     `POLYNOMIAL_MAX_DEGREE` (numpy's companion-matrix roots, a double root's tiny imaginary part allowed)."""
     if not u.is_polynomial(symbol):
         return []
     try:
         poly = sympy.Poly(u, symbol)
-        if not 2 <= poly.degree() <= POLYNOMIAL_MAX_DEGREE:
+        if not 1 <= poly.degree() <= POLYNOMIAL_MAX_DEGREE:
             return []
         point = {s: sympy.Float(v) for s, v in base.items() if s != symbol}
         coefficients = [complex(c.xreplace(point).evalf()) for c in poly.all_coeffs()]

@@ -205,7 +205,9 @@ def test_an_expression_defined_only_far_from_zero_is_still_decided(reference, an
 def test_undefined_at_every_point_is_a_last_resort_that_says_so():
     from grader.answers import check
 
-    v = check("asin(x - 10)", "acos(x - 10)", X_REAL)  # defined only on [9, 11]
+    # defined nowhere on the real line (asin(x - 10), defined on [9, 11] only, is now compared there: see
+    # test_a_reference_defined_only_past_the_sampled_magnitudes_is_compared_where_it_is_defined)
+    v = check("log(-1 - x^2)", "log(-2 - x^2)", X_REAL)
     assert v.verdict == "invalid" and "undefined at all" in v.reason and "domains" in v.reason
 
 
@@ -544,3 +546,26 @@ def test_a_period_that_fits_every_float_is_compared_off_the_floats_grid(referenc
     assert verdict.verdict == expected, verdict.reason
     if verdict.counterexample:
         assert all(isinstance(v, float) for v in verdict.counterexample["values"].values())  # JSON numbers
+
+
+# -- red team 15: a reference defined only past the sampled magnitudes -------------------------------------------
+
+@pytest.mark.parametrize("reference, answer, domain, expected", [
+    # defined only for x >= 1e7, x >= 1e12, x <= 1e-9 or |x| >= 1e8: the boundary of its own argument says where
+    ("sqrt(x - 1e7)", "sqrt(x/1e7 - 1)*sqrt(1e7)", "positive", "equivalent"),
+    ("sqrt(x - 1e7)", "sqrt(x/1e7 - 1)*sqrt(1e7)*1.0001", "positive", "not_equivalent"),
+    ("log(x - 1e12)", "log(x/1e12 - 1) + log(1e12)", "real", "equivalent"),
+    ("log(x - 1e12)", "log(x/1e12 - 1) + log(1e12) + 1e-3", "real", "not_equivalent"),
+    ("sqrt(1e-9 - x)", "sqrt(1 - x*1e9)*sqrt(1e-9)", "positive", "equivalent"),
+    ("sqrt(1e-9 - x)", "sqrt(1 - x*1e9)*sqrt(1e-9)*1.0001", "positive", "not_equivalent"),
+    ("acosh(x/1e8)", "log(x/1e8 + sqrt(x^2/1e16 - 1))", "positive", "equivalent"),
+    ("acosh(x/1e8)", "log(x/1e8 + sqrt(x^2/1e16 - 1))*1.001", "positive", "not_equivalent"),
+    ("asin(x - 10)", "acos(x - 10)", "real", "not_equivalent"),   # defined on [9, 11] only; equal at one point
+    ("asin(x - 10)", "pi/2 - acos(x - 10)", "real", "equivalent"),
+])
+def test_a_reference_defined_only_past_the_sampled_magnitudes_is_compared_where_it_is_defined(reference, answer,
+                                                                                            domain, expected):
+    from grader.answers.checker import check
+
+    verdict = check(reference, answer, {"x": {"dimension": "dimensionless", "domain": domain}})
+    assert verdict.verdict == expected, verdict.reason
