@@ -41,6 +41,7 @@ from grader.answers.equivalence import (
     Options,
     _kink_arguments,
     _breakpoints,
+    _PointsSampler,
     _float_at,
     _range_bits,
     _sign_pattern,
@@ -49,6 +50,7 @@ from grader.answers.equivalence import (
     kink_region_states,
     off_grid,
     resonant,
+    _where_defined,
 )
 from grader.answers.sampling import GivenPoints, Sampler
 from grader.mechanics import budget
@@ -554,6 +556,25 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
             f"to at least {digits} digits (ball arithmetic)",
             evidence={"method": "ball arithmetic", "points": agreed, "digits": digits},
         )
+    if agreed < min(needed, 3) and not isinstance(parameters, _PointsSampler) and not _past(deadline):
+        # y = sqrt(x − 1e7), m ẍ = −k sqrt(x² − 1e8 L²): the reference is defined only past the sampled magnitudes;
+        # the boundaries of its own arguments say where (`_where_defined`), and the equations are compared there
+        # (compiled afresh: these are not the shared cache's points)
+        # (from the first parameter point alone: a state found for other parameters need not be one for these)
+        every = {**parameters.domains, **states.domains}
+        first = states.joint(parameters.point(0), states.point(0))
+        defined = _where_defined(_AllRows([Compiled(r, backend) for r in reference]), tuple(reference),
+                                 _PointsSampler(states, [first], every), deadline)
+        if defined:
+            result = _compare_equations(
+                reference, answer,
+                _PointsSampler(parameters, [{s: v for s, v in p.items() if s in parameters.domains} for p in defined]),
+                _PointsSampler(states, [{s: v for s, v in p.items() if s in states.domains} for p in defined]),
+                options, deadline, None, answer_conditions, unknowns)
+            if result.equivalent:
+                result.reason = (f"{result.reason}, all at the first parameter point, with states drawn where the "
+                                 "reference is defined (past the sampled magnitudes)")
+            return result
     return Comparison(None, "none", "could not decide: the equations could not be evaluated reliably")
 
 
@@ -999,6 +1020,16 @@ def _not_a_multiple(k, points, R, S, j, i):
         example = {"values": _named(points[j]), "answer": [as_float(v) for v in S[j]],
                    "reference": [as_float(v) for v in R[j]]}
     return reason, example
+
+
+class _AllRows:
+    """The rows of a system, compiled, as one `Compiled` for `_where_defined`: defined where every row is."""
+
+    def __init__(self, rows: list[Compiled]):
+        self._rows = rows
+
+    def at(self, point: dict, prec: int, key=None):
+        return [row.at(point, prec) for row in self._rows][0]  # each row raises where it is undefined
 
 
 def _rows_peeled(reference, answer, domains, parameters, states, options, deadline, compiled_reference,

@@ -539,8 +539,10 @@ MAX_DEFINED_POINTS = 48
 class _PointsSampler:
     """A `Sampler` whose ordinary and wide points are the given ones, in turn (its domains and orders kept)."""
 
-    def __init__(self, sampler, points: list[dict]):
+    def __init__(self, sampler, points: list[dict], domains: dict | None = None):
         self._sampler, self._points = sampler, list(points)
+        if domains is not None:  # a sampler over more variables than the one given (parameters and states)
+            self.domains = domains
 
     def __getattr__(self, name):
         return getattr(self._sampler, name)

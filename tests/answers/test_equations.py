@@ -1695,3 +1695,23 @@ def test_a_row_of_a_system_under_a_one_to_one_function_has_its_solutions(answer,
 def test_a_factor_whose_function_never_reaches_the_value_that_zeroes_it_is_nonzero(factor, expected):
     verdict = check("m*xddot = -k*x", f"m*xddot*({factor}) = -k*x*({factor})", _SPRING, kind="equation")
     assert verdict.verdict == expected, verdict.reason
+
+
+_FAR = {"x": {"dimension": "length", "domain": "positive", "kind": "coordinate"},
+        "y": {"dimension": "length", "domain": "real", "kind": "coordinate"}}
+
+
+@pytest.mark.parametrize("reference, answer, variables, expected", [
+    # defined only for x >= 1e7 (or x >= 1e4 L): past the sampled magnitudes, found from the root's own argument
+    ("y = sqrt(x - 1e7)", "y = sqrt(x/1e7 - 1)*sqrt(1e7)", _FAR, "equivalent"),
+    ("y = sqrt(x - 1e7)", "y = sqrt(x/1e7 - 1)*sqrt(1e7)*1.0001", _FAR, "not_equivalent"),
+    ("y = sqrt(x - 1e7)", "y^2 = x - 1e7", _FAR, "not_equivalent"),       # y = -sqrt(x - 1e7) too
+    ("m*xddot = -k*sqrt(x^2 - 1e8*L^2)", "m*xddot = -k*x*sqrt(1 - 1e8*L^2/x^2)",
+     {**_SPRING, "x": _FAR["x"]}, "equivalent"),
+    ("m*xddot = -k*sqrt(x^2 - 1e8*L^2)", "m*xddot = -k*x*sqrt(1 - 1e8*L^2/x^2)*1.001",
+     {**_SPRING, "x": _FAR["x"]}, "not_equivalent"),
+])
+def test_an_equation_defined_only_past_the_sampled_magnitudes_is_compared_where_it_is_defined(reference, answer,
+                                                                                           variables, expected):
+    verdict = check(reference, answer, variables, kind="equation")
+    assert verdict.verdict == expected, verdict.reason
