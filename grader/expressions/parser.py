@@ -186,6 +186,9 @@ def _empty_group_before_power(tokens: list[Token]) -> list[Token]:
     return tokens if keep is None else [t for t in keep if t is not None]
 
 
+# Functions whose powers are written before the argument (sin²x): sin x² could mean that, and is noted
+_SQUARED_BEFORE = frozenset({"sin", "cos", "tan", "cot", "sec", "csc", "sinh", "cosh", "tanh", "coth", "sech", "csch"})
+
 # Two-argument functions whose Mathematica form takes its arguments in our order (Power[x, y], Surd[x, n])
 _SAME_ORDER_IN_MATHEMATICA = frozenset({"pow", "surd"})
 _ARGUMENT_NAMES = {"pow": "x, y", "surd": "x, n"}  # what a refusal shows as their arguments (atan2's are y, x)
@@ -946,9 +949,16 @@ class _Parser:
         Factors typed glued together stay together: ``sin 2x`` (and ``sin 2 x``) is sin(2x) and
         ``cos ωt`` is cos(ω·t), because nobody means sin(2)·x.
         """
+        begin = self.i
         arg = self.glued_factors(self.expression(_MUL), token.pos, name)
         if name not in _ANY_DIMENSION:
             arg = self.dimensionless_argument(arg, token.pos, name)
+        raised = next((t for t in self.tokens[begin:self.i] if t.kind == "sup" or (t.kind == "op" and t.value == "^")),
+                      None)
+        if raised is not None and name in _SQUARED_BEFORE and self.tokens[begin].kind != "open":
+            # sin α² is sin(α²), as convention has it; sin²α, the square of the sine, is often what was meant
+            shown = self.text[token.pos:self.tokens[self.i - 1].end]
+            self.note(f"read '{shown}' as {name}({arg}): write {name}^2(…) or {name}(…)^2 for a power of {name}")
         following = self.peek()
         if following.kind == "name" and following.value.lower() not in FUNCTIONS \
                 and not following.forced_function:

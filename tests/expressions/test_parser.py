@@ -1184,3 +1184,14 @@ def test_a_power_of_ten_beside_a_variable_e_is_ambiguous_with_any_minus(text):
 ])
 def test_mathematicas_derivative_of_a_name_is_the_dotted_name(ns, text, name):
     assert parse(text, ns) == sym(ns, name)
+
+
+@pytest.mark.parametrize("text, noted", [
+    ("sin theta^2", True), ("cos theta²", True), ("sinh x^2/l", True),
+    ("sin(theta)^2", False), ("sin(theta^2)", False), ("sin^2 theta", False), ("exp x^2", False),
+])
+def test_a_trigonometric_function_of_a_power_says_how_it_was_read(ns, text, noted):
+    # sin θ² is sin(θ²), as convention has it, and was read so without a word: the read-back now says it,
+    # with how to write the power of the sine that is often meant
+    notes = parse_expression(text, ns).notes
+    assert any("for a power of" in note for note in notes) == noted
