@@ -574,6 +574,13 @@ def _check(reference, answer, variables, kind, feedback, budget_s, state, option
         evidence = {"error": {"code": error.code, "position": error.position, "hint": error.hint}}
         return Verdict("invalid", "none", str(error), parsed={"text": answer, "latex": "", "notes": []},
                        evidence=evidence)
+    except OverflowError:
+        # sympy, simplifying while the text is read, tests a huge exact number for a perfect power in floats:
+        # sqrt(cos(atan(1e-200))) is (1 + 10^-400)^(-1/4)
+        return Verdict("invalid", "none", "a number in your answer is too large or too small to work with exactly; "
+                       "write it with fewer digits or a smaller exponent",
+                       parsed={"text": answer, "latex": "", "notes": []},
+                       evidence={"error": {"code": "too_large", "position": None, "hint": None}})
     # One quick walk over the answer for both checks below; it almost never finds anything.
     suspicious = any(_contains(e, _SUSPICIOUS_IDS) for e in exprs)
     if suspicious and any(e.has(*_UNDEFINED) for e in exprs):

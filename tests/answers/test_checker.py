@@ -263,3 +263,11 @@ def test_an_answer_defined_where_the_reference_is_not_is_refused_whatever_the_se
 ])
 def test_an_answer_restricted_only_outside_the_domain_is_still_right(reference, answer):
     assert check(reference, answer, _TWO).verdict == "equivalent"
+
+
+@pytest.mark.parametrize("answer", ["m*g*sqrt(cos(atan(1e-200)))/3", "m*g*(cos(atan(1e-200)))^(1/2)/3",
+                                    "m*g*cos(atan(1e-200))^(1/3)/3"])
+def test_an_exact_number_sympy_cannot_test_for_a_perfect_power_is_refused_not_an_internal_error(answer):
+    # cos(atan(1e-200)) is (1 + 10^-400)^(-1/2); a root of it sends sympy's perfect-power test into float overflow
+    v = check("m*g/3", answer, YOYO)
+    assert v.verdict == "invalid" and "internal error" not in v.reason and "too large" in v.reason
