@@ -543,8 +543,10 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
         raise ExpressionError(f"unknown name '{typed}': '{greek}' is the Greek letter {GREEK_CHARS[greek]}, "
                               f"which looks like the Latin '{letter}'", position, "unknown_name",
                               f"type {name} with the Latin '{letter}' if that is what you meant")
-    raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name",
-                          _suggestion(raw, ns) or "this answer uses no variables: write a number")
+    suggestion = _suggestion(raw, ns) or "this answer uses no variables: write a number"
+    if raw in _UPRIGHT_UNITS:  # √(5gR) m/s: 's' may be a variable the problem lacks, or a unit
+        suggestion += f"; if '{typed}' is a unit, delete it: units are not part of the answer"
+    raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name", suggestion)
 
 
 # Greek letters that look like Latin ones in most fonts, and the Latin letter.

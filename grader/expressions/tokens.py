@@ -171,6 +171,7 @@ _LATEX_PRIMES = re.compile(r"\^\s*(?:\{\s*(?:(?:\\(?:prime|doubleprime|dprime)|[
 # After a middle dot between digits: 1·10⁻³, 2·10^3 is a mantissa times a power of ten, not 1.10.
 _POWER_OF_TEN = re.compile(r"10(?:\^|[⁰¹²³⁴⁵⁶⁷⁸⁹⁻])")
 _DIGIT_RUN = re.compile(r"[0-9]+")
+_DECIMAL = re.compile(r"[0-9]+\.[0-9]")  # 5·9.81: a decimal after the dot, so the dot is a product
 # The exponent of e-notation right after a bare decimal point (3.e10).
 _EXPONENT_AFTER_POINT = re.compile(r"[eE][+-]?[0-9]+")
 
@@ -406,8 +407,9 @@ class _Tokenizer:
             self.command()
         elif ch == "·" and self.tokens and self.tokens[-1].kind == "number" and self.tokens[-1].end == start \
                 and self.tokens[-1].text.isdigit() and _is_digit(self.peek(1)) \
-                and not _POWER_OF_TEN.match(self.text, start + 1):
-            # 2·5: the raised decimal point of British print (2.5), or a product (10); after 1.2 it is a product
+                and not _POWER_OF_TEN.match(self.text, start + 1) and not _DECIMAL.match(self.text, start + 1):
+            # 2·5: the raised decimal point of British print (2.5), or a product (10); after 1.2 or before 9.81 it
+            # is a product
             number = _DIGIT_RUN.match(self.text, start + 1).group()
             before = self.tokens[-1].text
             self.emit("bad", ch, start, start + 1,

@@ -213,3 +213,12 @@ def test_a_greek_letter_that_looks_latin_is_named_with_the_latin_variable(text, 
 def test_a_greek_letter_the_problem_declares_is_its_variable():
     ns = Namespace([Variable("nu", "frequency", "positive"), Variable("v", "velocity", "real")])
     assert parse_expression("ν v", ns).expr == ns.symbol("nu") * ns.symbol("v")
+
+
+@pytest.mark.parametrize("text, unit", [("sqrt(g*l) m/s", "s"), ("l ms", "ms"), ("l km", "km")])
+def test_an_unknown_name_that_is_a_unit_symbol_says_units_are_not_part_of_the_answer(text, unit):
+    ns = Namespace([Variable("g", "acceleration", "positive"), Variable("l", "length", "positive"),
+                    Variable("m", "mass", "positive")])
+    with pytest.raises(ExpressionError) as refused:
+        parse_expression(text, ns)
+    assert f"if '{unit}' is a unit, delete it" in refused.value.hint

@@ -497,3 +497,11 @@ def test_a_calculators_radian_mark_is_refused_naming_both_readings():
     with pytest.raises(ExpressionError) as refused:
         tokenize("sin(0.5ʳ)")
     assert "radian mark" in refused.value.message and "delete the 'ʳ'" in refused.value.hint
+
+
+@pytest.mark.parametrize("text, value", [("5·9.81", sympy.Rational(981, 20)), ("2·0.5", 1)])
+def test_a_raised_dot_before_a_decimal_is_a_product(text, value):
+    # 5·9.81 was refused as '5·9': the British decimal 5.9 or a product, though 9.81 has its own point
+    tokens = tokenize(text)[:-1]
+    assert [t.kind for t in tokens] == ["number", "op", "number"]
+    assert tokens[0].value * tokens[2].value == value
