@@ -863,7 +863,11 @@ class _Parser:
                                       f"{token.text}(x, 3); write x^(1/n) for a power")
             value = self.root(args[0], int(index), token.pos)
         else:
-            value = checked(spec.build(*args), token.pos)
+            try:
+                value = checked(spec.build(*args), token.pos)
+            except (TypeError, AttributeError):  # sympy's own failure on a huge argument: asin(sin(1e400))
+                raise ExpressionError(f"cannot work out {token.text} of this exactly", token.pos, "too_large",
+                                      "no answer here needs numbers that size") from None
             if spec.name in _RESTRICTED:
                 self.domain_nodes.append((value, spec.sympy_func(args[0], evaluate=False)))
             # asin(3/2), acosh(1/2), log(-2): a number with no real value, which is a slip.

@@ -1195,3 +1195,11 @@ def test_a_trigonometric_function_of_a_power_says_how_it_was_read(ns, text, note
     # with how to write the power of the sine that is often meant
     notes = parse_expression(text, ns).notes
     assert any("for a power of" in note for note in notes) == noted
+
+
+@pytest.mark.parametrize("text", ["asin(sin(1e400))", "x*acos(cos(1e400))"])
+def test_a_function_sympy_fails_on_for_a_huge_argument_is_refused_with_a_reason(text):
+    # sympy raises TypeError building asin(sin(10^400)) (it cannot place 10^400 among multiples of pi)
+    with pytest.raises(ExpressionError) as error:
+        parse_expression(text, Namespace([Variable("x", "dimensionless", "real")]))
+    assert error.value.code == "too_large"
