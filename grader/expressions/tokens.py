@@ -1157,6 +1157,19 @@ class _Tokenizer:
                                   "write the power with ^, as in x^-1")
         if len(body) > 4:
             raise ExpressionError("exponent too large", start, "too_large", "no answer here needs powers that high")
+        if j < self.n and self.text[j] == "√" and digits.isdigit() and int(digits) >= 2:
+            # ³√(x): a calculator's (TI's) root of index 3, as ∛ is. Glued to what comes before (2³√x) it
+            # could as well raise that: neither reading is taken. It was read as the power (2 ³√k was 8√k).
+            last = self.tokens[-1] if self.tokens else None
+            if last is not None and last.end == start and last.kind in ("name", "number", "close", "sup"):
+                typed = self.text[last.pos:j + 1]
+                raise ExpressionError(f"'{typed}…' reads as {last.text}^{digits}·√… or as {last.text}·(root of "
+                                      f"index {digits})", last.pos, "ambiguous",
+                                      f"write {last.text}^{digits}*sqrt(…) for the power, or {last.text}*"
+                                      f"{'cbrt' if digits == '3' else 'surd'}(…{'' if digits == '3' else ', ' + digits}) "
+                                      "for the root")
+            self.emit("root", int(digits), start, j + 1)
+            return
         self.emit("sup", int(digits), start, j)
 
     def superscript_letters(self, start: int, j: int) -> None:

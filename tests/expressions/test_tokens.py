@@ -505,3 +505,22 @@ def test_a_raised_dot_before_a_decimal_is_a_product(text, value):
     tokens = tokenize(text)[:-1]
     assert [t.kind for t in tokens] == ["number", "op", "number"]
     assert tokens[0].value * tokens[2].value == value
+
+
+@pytest.mark.parametrize("text, expected", [
+    # a calculator's root with its index as a superscript (TI's ³√(): the index, not a power of what is before
+    ("³√(x)", [("root", 3), ("open", "("), ("name", "x"), ("close", ")")]),
+    ("2 ⁴√x", [("number", 2), ("root", 4), ("name", "x")]),
+    ("2·³√x", [("number", 2), ("op", "*"), ("root", 3), ("name", "x")]),
+    ("x² √y", [("name", "x"), ("sup", 2), ("root", 2), ("name", "y")]),  # set apart from the √: a power
+])
+def test_a_superscript_index_on_a_root_sign_is_the_roots_index(text, expected):
+    assert kinds(text) == expected
+
+
+@pytest.mark.parametrize("text", ["2³√x", "x³√(y)"])
+def test_a_superscript_index_glued_to_an_operand_is_refused_naming_both_readings(text):
+    # 2 ³√k was 2³·√k = 8√k; glued, 2³√x could be either
+    with pytest.raises(ExpressionError) as refused:
+        tokenize(text)
+    assert refused.value.code == "ambiguous" and "root of index 3" in refused.value.message
