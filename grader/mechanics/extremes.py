@@ -35,6 +35,7 @@ from grader.mechanics.special_values import (
     _bounded,
     _depends_on_parameters,
     _travel,
+    _unvalued_scan,
     energy_speed_squared,
     solve_for,
 )
@@ -96,8 +97,9 @@ def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
     _one_coordinate_moves(evaluator, spec, u, key)
     periodic = _periodic(value, u.symbol)
     want_max = spec.kind == "maximum"
-    chosen = None
-    for point in _parameter_points(scene):
+
+    def best_at(point):
+        """(value, candidate index, sign) of the extreme at ``point``, or SceneError."""
         legs = _motion_legs(evaluator, u, point, key)
         if not periodic and any(low is not None and high - low >= 2 * math.pi - 1e-12 for _, low, high in legs):
             raise SceneError(scene.source, key, f"the motion from [initial] goes round and round in {u.name}, and "
@@ -140,11 +142,28 @@ def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
             raise SceneError(scene.source, key,
                              f"{spec.expr} has no {spec.kind} on the motion from [initial] (no stationary or "
                              f"turning point between {u.name} = {low:.6g} and {high:.6g})")
+        return best
+
+    def same_as_chosen(point, best) -> bool:
+        at = _evaluate(candidates[chosen[0]], point)
+        amount = None if at is None else _evaluate(branches[chosen[1]].xreplace({u.symbol: candidates[chosen[0]]}), point)
+        return amount is not None and abs(amount - best[0]) <= 1e-9 * max(1, abs(best[0]))
+
+    chosen = None
+    for point in _parameter_points(scene):
+        best = best_at(point)
         if chosen is None:
             chosen = best[1:]
-        elif _evaluate(candidates[chosen[0]], point) is None or abs(
-                _evaluate(branches[chosen[1]].xreplace({u.symbol: candidates[chosen[0]]}), point) - best[0]
-        ) > 1e-9 * max(1, abs(best[0])):
+        elif not same_as_chosen(point, best):
+            raise SceneError(scene.source, key, _depends_on_parameters(point, f"where the {spec.kind} lies"))
+    # A parameter without a number gives no regime: the same closed form across its domain, where the
+    # motion there lets it be found (elsewhere it says nothing).
+    for point in _unvalued_scan(scene):
+        try:
+            best = best_at(point)
+        except SceneError:
+            continue
+        if not same_as_chosen(point, best):
             raise SceneError(scene.source, key, _depends_on_parameters(point, f"where the {spec.kind} lies"))
     result = human_form(branches[chosen[1]].xreplace({u.symbol: candidates[chosen[0]]}))
     leftover = result.free_symbols - evaluator.target(spec, default_state=False)

@@ -709,8 +709,8 @@ def _depends_on_parameters(point: dict, what: str = "which root holds") -> str:
     at ``point`` (another point of the domains, or a student's draw) another closed form holds."""
     where = ", ".join(f"{s} = {v:.4g}" for s, v in sorted(point.items(), key=lambda i: str(i[0])))
     return (f"{what} depends on the parameter values: the closed form that holds at the scene's "
-            f"values is not the one reached at {where}; narrow the parameters' domains or random ranges (or "
-            "write the scene with a ratio of them) so that one closed form holds throughout")
+            f"values (generic ones for a parameter without a number) is not the one reached at {where}; narrow the parameters' domains or random ranges, or give "
+            "them values (or write the scene with a ratio of them), so that one closed form holds throughout")
 
 
 # -- the condition --------------------------------------------------------------------------------
@@ -1344,6 +1344,23 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str, at_rest:
             continue
         if _differ(chosen, indices, group_of):
             raise SceneError(scene.source, key, _depends_on_parameters(parameters))
+    # A parameter without a number gives no regime: wherever across its domain a root is chosen, it is
+    # the same one, however many roots there are (the bead on a hoop turned at an omega with no number
+    # rests at the bottom below the critical rate and off the axis above it).
+    for parameters in _unvalued_scan(scene) if len(roots) > 1 else ():
+        point = _with_state(evaluator, {**parameters, **state}, symbols)
+        numeric = _numeric_roots(roots, point, variable)
+        if not numeric:
+            continue
+        try:
+            indices, group_of = _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key,
+                                        at_rest)
+        except SceneError:
+            continue
+        if len(indices) > 1 or (len(chosen) > 1 and set(indices) <= set(chosen)):
+            continue
+        if _differ(chosen, indices, group_of):
+            raise SceneError(scene.source, key, _depends_on_parameters(parameters))
     if not chosen:
         # Nothing chosen (the answer has no real value at any admissible root, so no root to
         # choose by it): refused here, by name, never an empty choice for the caller to unpack.
@@ -1791,6 +1808,34 @@ def _domain_points(scene, roots) -> list[dict]:
     if len(roots) < 2:
         return []
     return _domain_samples(scene)
+
+
+#: Decades each side of its generic value that a parameter without a number is scanned over.
+SCAN_DECADES = 3
+
+
+def _unvalued_scan(scene) -> list[dict]:
+    """Each parameter without a number (no value, no draw) scanned across its domain, the others at
+    the scene's values: half-decades over ``SCAN_DECADES`` each side of its generic value on an
+    unbounded domain (both signs on the real line), eight points across an interval.
+
+    Such a parameter gives no regime: a choice made at its generic value (about 1, in the SI units of
+    its dimension) is one of several. A bob launched at a v0 with no number goes over the top for
+    v0 > 2√(gl), 6.3 m/s with g = 9.81 and l = 1, and generic values (0.5 to 3) never get there.
+    """
+    base = _base_point(scene)
+    points = []
+    for p in scene.parameters.values():
+        if p.value is not None or p.draw is not None:
+            continue
+        if p.domain.kind == "interval":
+            values = [p.domain.sample_stratum(numpy.random.default_rng(17 + j), j, 8) for j in range(8)]
+        else:
+            values = [base[p.symbol] * 10 ** (k / 2) for k in range(-2 * SCAN_DECADES, 2 * SCAN_DECADES + 1)]
+            if p.domain.kind == "real":
+                values += [-v for v in values]
+        points += [{**base, p.symbol: v} for v in values if v != base[p.symbol]]
+    return [point for point in points if _keeps_orders(scene, point)]
 
 
 def _parameter_points(scene) -> list[dict]:

@@ -222,3 +222,22 @@ def test_an_extreme_whose_closed_form_changes_within_the_draws_is_refused_naming
     with pytest.raises(SceneError, match=rf"where the minimum lies depends on the parameter values.*({named})"
                                          r".*random ranges"):
         derive(parse_scene(ROD_BOB.replace("DRAW", draw), "rod_bob_drawn.toml"))
+
+
+@pytest.mark.parametrize("domain, expected", [
+    ('domain = [3, 6]', "m*(g - v0^2/(2*l))"),
+    ('domain = [7, 9]', "m*(v0^2/l - 5*g)"),
+])
+def test_an_extreme_in_a_parameter_without_a_number_holds_across_its_declared_interval(domain, expected):
+    derivation = derive(parse_scene(ROD_BOB.replace('domain = "positive", DRAW', domain), "rod_bob.toml"))
+    want = parse_expression(expected, derivation.scene.namespace).expr
+    assert sympy.simplify(derivation.answers["least_tension"] - want) == 0
+
+
+@pytest.mark.parametrize("domain", ['domain = "positive"', 'domain = [3, 9]'])
+def test_an_extreme_in_a_parameter_without_a_number_whose_closed_form_changes_is_refused(domain):
+    # No number for v0: nothing says whether the bob goes over the top; a generic v0 (about 1 m/s)
+    # chose the swing back, silently
+    with pytest.raises(SceneError, match=r"where the minimum lies depends on the parameter values.*v0 = .*give them "
+                                         r"values"):
+        derive(parse_scene(ROD_BOB.replace('domain = "positive", DRAW', domain), "rod_bob.toml"))

@@ -1042,3 +1042,18 @@ def test_a_root_chosen_for_drawn_parameters_is_the_one_of_the_draws(draw):
 def test_a_root_that_changes_within_the_draws_is_refused_naming_a_draw(draw, named):
     with pytest.raises(SceneError, match=rf"which root holds depends on the parameter values.*{named}.*random ranges"):
         derive(parse_scene(DRIVEN_HOOP.replace("DRAW", draw), "driven_hoop_drawn.toml"))
+
+
+def test_a_root_in_a_parameter_without_a_number_holds_across_its_declared_interval():
+    text = DRIVEN_HOOP.replace('domain = "positive", DRAW', "domain = [5, 9]")
+    derivation = derive(parse_scene(text, "driven_hoop.toml"))
+    want = parse_expression("g/(a*omega^2)", derivation.scene.namespace).expr
+    assert sympy.simplify(derivation.answers["equilibrium_cos"] - want) == 0
+
+
+@pytest.mark.parametrize("domain", ['domain = "positive"', "domain = [2, 9]"])
+def test_a_root_in_a_parameter_without_a_number_that_changes_across_its_domain_is_refused(domain):
+    # No number for omega: a generic one (about 1 rad/s, below the critical 4.43) chose the bottom,
+    # cos(theta) = 1, silently; above it the bead rests off the axis
+    with pytest.raises(SceneError, match=r"which root holds depends on the parameter values.*omega = .*give them values"):
+        derive(parse_scene(DRIVEN_HOOP.replace('domain = "positive", DRAW', domain), "driven_hoop.toml"))
