@@ -263,10 +263,11 @@ _TABLE = [
     Function("cbrt", lambda x: sympy.sign(x) * sympy.Abs(x) ** sympy.Rational(1, 3),
              aliases=("cuberoot",)),  # Mathematica's CubeRoot[x]
     # pow(x, y) (Python, C, JavaScript's Math.pow, Excel's POWER, Mathematica's Power[x, y]) is x^y, and
-    # surd(x, n) (Maple, Mathematica's Surd[x, n], GeoGebra's nroot(x, n)) the real n-th root: the parser
-    # builds both, as it builds sqrt, so that the power is size-checked and its real domain kept.
+    # surd(x, n) (Maple, Mathematica's Surd[x, n], GeoGebra's nroot(x, n), MATLAB's nthroot(x, n)) the real
+    # n-th root: the parser builds both, as it builds sqrt, so that the power is size-checked and its real
+    # domain kept.
     Function("pow", None, 2, 2, aliases=("power",)),
-    Function("surd", None, 2, 2, aliases=("nroot",)),
+    Function("surd", None, 2, 2, aliases=("nroot", "nthroot")),
     Function("abs", sympy.Abs, aliases=("Abs",), sympy_func=sympy.Abs, text="Abs", dimension="same",
              arb=lambda x: abs(x), real=lambda lib, x: abs(x)),
     Function("sign", sympy.sign, aliases=("sgn",), sympy_func=sympy.sign, latex=_op("sgn"), dimension="any",

@@ -65,8 +65,9 @@ _ANY_DIMENSION = {"√", "sqrt", "cbrt", "abs", "sign", "sgn", "Abs"}
 # cos ω t: at most this many factors after an argument with a dimension are taken into it.
 _MOST_FACTORS_TAKEN = 2
 _TIME = parse_dimension("time")
-# The exponent letter of a number in e-notation (2E+3, 1.5e-2), which may also be a declared variable.
-_EXPONENT_LETTER = re.compile(r"^[0-9.]+([eE])[-+−–—‒‐‑﹣－＋]?[0-9]+$")  # every minus tokens.number signs with
+# The exponent letter of a number in e-notation (2E+3, 1.5e-2), which may also be a declared variable; the
+# exponent signed with any minus tokens.number takes.
+_EXPONENT_LETTER = re.compile(r"^[0-9.]+([eE])[-+−–—‒‐‑﹣－＋]?[0-9]+$")
 _MINUSES = str.maketrans({ch: "-" for ch in "−–—‒‐‑﹣－"} | {"＋": "+"})
 # \pi2, \omega12, \pi2x: a LaTeX command with digits (and letters) after it, which the tokenizer reads
 # as one name (see latex_argument).

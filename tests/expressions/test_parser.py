@@ -1105,7 +1105,7 @@ def test_an_operator_word_the_problem_declares_is_its_variable():
     # the real n-th root: Maple's surd(x, n), Mathematica's Surd[x, n] and CubeRoot[x], GeoGebra's nroot(x, n)
     ("surd(x, 3)", lambda s: sympy.sign(s("x")) * sympy.Abs(s("x")) ** sympy.Rational(1, 3)),
     ("Surd[x, 3]", lambda s: sympy.sign(s("x")) * sympy.Abs(s("x")) ** sympy.Rational(1, 3)),
-    ("nroot(l, 4)", lambda s: s("l") ** sympy.Rational(1, 4)),
+    ("nroot(l, 4)", lambda s: s("l") ** sympy.Rational(1, 4)), ("nthroot(l, 4)", lambda s: s("l") ** sympy.Rational(1, 4)),
     ("CubeRoot[x]", lambda s: sympy.sign(s("x")) * sympy.Abs(s("x")) ** sympy.Rational(1, 3)),
     ("Math.PI*l", lambda s: sympy.pi * s("l")),
 ])
