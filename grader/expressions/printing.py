@@ -110,7 +110,60 @@ def _symbol_power_key(factor: sympy.Expr) -> tuple:
 
 
 def _sort_key(expr: sympy.Basic):
-    return expr.sort_key()  # what default_sort_key returns for a sympy object, minus its overhead
+    return _SortKey(expr)
+
+
+class _SortKey:
+    """``expr.sort_key()`` (what default_sort_key returns for a sympy object), compared lazily.
+
+    A sort key starts with the ``class_key`` of the factor (of its base, for a power), which is
+    cheap; the rest (for a sum, its terms in printed order) is slow to build for a new factor. Two
+    keys whose class keys differ compare as those do, as tuples compare by their first differing
+    item; only factors of one class (two sums, two cosines) need the whole key.
+    """
+
+    __slots__ = ("expr", "head", "key")
+
+    def __init__(self, expr: sympy.Basic):
+        self.expr = expr
+        self.head = _class_key_head(expr)
+        self.key = None
+
+    def full(self):
+        if self.key is None:
+            self.key = self.expr.sort_key()
+        return self.key
+
+    def __lt__(self, other: "_SortKey") -> bool:
+        if self.head is not None and other.head is not None and self.head != other.head:
+            return self.head < other.head
+        return self.full() < other.full()
+
+
+def _class_key_head(expr: sympy.Basic):
+    """The first item of ``expr.sort_key()`` without the rest, or None where it is not known cheaply."""
+    method = type(expr).sort_key
+    if method is _EXPR_SORT_KEY:
+        # as Expr.sort_key: the class of the factor without its coefficient and, for a power, of its base
+        _, rest = expr.as_coeff_Mul()
+        if rest.is_Pow:
+            rest, _ = rest.as_base_exp()
+            if rest is sympy.S.Exp1:
+                return None  # sorted as the function exp
+        return _class_key(type(rest))
+    if method in _CLASS_FIRST_SORT_KEYS:
+        return _class_key(type(expr))
+    return None
+
+
+_EXPR_SORT_KEY = sympy.Expr.sort_key
+# sort_key methods whose key starts with the object's own class_key.
+_CLASS_FIRST_SORT_KEYS = (sympy.Atom.sort_key, sympy.Symbol.sort_key, sympy.Number.sort_key)
+
+
+@lru_cache(maxsize=None)
+def _class_key(cls: type) -> tuple:
+    return cls.class_key()
 
 
 def _precedence(expr: sympy.Expr) -> int:
