@@ -8,7 +8,7 @@ import pytest
 import sympy
 
 from grader.expressions import Namespace, Variable, parse_expression
-from grader.expressions.printing import _minus, to_latex, to_text
+from grader.expressions.printing import _minus, _printing_order, to_latex, to_text
 
 NS = Namespace([
     Variable("m", "mass", "positive"), Variable("m1", "mass", "positive"), Variable("m2", "mass", "positive"),
@@ -110,3 +110,29 @@ def test_equations_print_with_the_fast_printers_and_read_back(text):
         again = parse_system(equation.text, NS)[0]
         assert (again.lhs, again.rhs) == (equation.lhs, equation.rhs)
         assert equation.latex.count("=") == 1 and "*" not in equation.latex
+
+
+def _mixed_products(seed: int, count: int):
+    # Factors of one class and of several: sums, functions of one name and of several, powers of them,
+    # exp and E**x, numbers; the printer compares their class keys first and sort keys only on a tie.
+    rng = random.Random(seed)
+    syms = [NS.symbol(n) for n in ("m", "m1", "m2", "g", "l", "theta", "alpha")]
+    makers = [
+        lambda: rng.choice(syms),
+        lambda: rng.choice(syms) + rng.choice([1, 2, -3]) * rng.choice(syms),
+        lambda: sympy.cos(rng.choice(syms)), lambda: sympy.sin(rng.choice(syms) - rng.choice(syms)),
+        lambda: sympy.tan(rng.choice(syms)), lambda: sympy.atan2(rng.choice(syms), rng.choice(syms)),
+        lambda: sympy.exp(rng.choice(syms)), lambda: sympy.log(rng.choice(syms)), lambda: sympy.Abs(rng.choice(syms)),
+        lambda: sympy.sqrt(rng.choice(syms) + 1),
+    ]
+    for _ in range(count):
+        factors = [rng.choice(makers)() ** rng.choice([1, 1, 2, 3, sympy.Rational(1, 2)]) for _ in range(rng.randint(2, 5))]
+        factors.append(rng.choice([1, 2, sympy.Rational(1, 3)]))
+        yield sympy.Mul(*factors)
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_products_of_sums_and_functions_order_their_factors_as_sympy_does(seed):
+    for expr in _mixed_products(seed, 200):
+        factors = list(sympy.Mul.make_args(expr))
+        assert _printing_order(factors) == sorted(factors, key=sympy.default_sort_key), expr
