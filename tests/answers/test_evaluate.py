@@ -7,6 +7,7 @@ import pytest
 import sympy
 
 from grader.answers.evaluate import (
+    _log2_mag,
     SCALE,
     ArbBackend,
     FloatBackend,
@@ -165,3 +166,34 @@ def test_a_float64_constant_beyond_the_largest_float_is_undefined_where_evaluate
 def test_a_float64_rational_of_huge_integers_is_its_correctly_rounded_value():
     f = compile_expr(sympy.Rational(10 ** 400 + 1, 4 * 10 ** 399), FloatBackend())
     assert f({}) == 2.5
+
+
+def _exact_log2_mag(x) -> float:
+    # The definition: the upper bound's mantissa and exponent, as integers.
+    u = x.abs_upper()
+    if u.is_zero():
+        return -math.inf
+    if not u.is_finite():
+        return math.inf
+    man, exp = u.man_exp()
+    return float(int(exp) + int(man).bit_length())
+
+
+@pytest.mark.parametrize("prec", [53, 132, 1024, 4096])
+@pytest.mark.parametrize("make", [
+    lambda: flint.arb(2) ** 40,                                      # a power of two: its own exponent
+    lambda: flint.arb(2) ** 40 - flint.arb(2) ** -20,                # just below one: rounds up to it as a float
+    lambda: flint.arb(2) ** -30 - flint.arb(2) ** -3000,             # (at every precision that holds it)
+    lambda: -(flint.arb(2) ** 7 - flint.arb(2) ** -200),
+    lambda: flint.arb(3).sqrt() * flint.arb(2) ** 1000,
+    lambda: flint.arb(3).sqrt() * flint.arb(2) ** 1100,              # beyond the floats
+    lambda: flint.arb(3).sqrt() * flint.arb(2) ** -1100,             # below their normal range
+    lambda: flint.arb(0),
+    lambda: flint.arb(1.5, 2.0 ** -60),                              # a ball: its upper bound counts
+    lambda: (flint.arb(2).sqrt() * flint.arb(5).log()).rad(),
+])
+def test_a_balls_log2_magnitude_is_its_upper_bounds_exponent(prec, make):
+    # _log2_mag reads the exponent from the bound's float where that cannot be off by one
+    with flint.ctx.workprec(prec):
+        x = make()
+        assert _log2_mag(x) == _exact_log2_mag(x)
