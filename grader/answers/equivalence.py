@@ -1221,6 +1221,31 @@ DOMAIN_DRAWS = 64
 MAX_DOMAIN_CHECKS = 4
 
 
+def _instance_test(classes: tuple) -> Callable[[Any], bool]:
+    """``isinstance(node, classes)``, remembered per type of node.
+
+    isinstance with a sympy function class goes through its metaclass and costs some 150 ns a class: 2 µs a
+    node for `_BRANCHES`, most of a walk over an answer. For these classes it depends on the node's type alone
+    (none has an ``__instancecheck__`` of its own, as ``exp`` has: E**x is an exp to isinstance).
+    """
+    if not all(type(c).__instancecheck__ is type.__instancecheck__ for c in classes):
+        raise TypeError(f"isinstance with {classes} depends on more than the type")
+    memo: dict = {}
+
+    def test(node) -> bool:
+        kind = type(node)
+        found = memo.get(kind)
+        if found is None:
+            found = memo[kind] = isinstance(node, classes)
+        return found
+
+    return test
+
+
+_is_log, _is_acosh = _instance_test((sympy.log,)), _instance_test((sympy.acosh,))
+_is_unit_bounded = _instance_test((sympy.asin, sympy.acos, sympy.atanh))
+
+
 def _restricted_arguments(exprs) -> list[sympy.Expr]:
     """What must be nonnegative for ``exprs`` (an expression and its typed conditions) to be real: the u
     of log u (positive), the base of a fractional power (√u), 1 - u² of asin u, acos u and atanh u, u - 1 of
@@ -1233,13 +1258,13 @@ def _restricted_arguments(exprs) -> list[sympy.Expr]:
         if not args:
             continue
         stack.extend(args)
-        if isinstance(node, sympy.log):
+        if _is_log(node):
             argument = args[0]
         elif node.is_Pow and not args[1].is_Integer:
             argument = args[0]
-        elif isinstance(node, (sympy.asin, sympy.acos, sympy.atanh)):
+        elif _is_unit_bounded(node):
             argument = 1 - args[0] ** 2
-        elif isinstance(node, sympy.acosh):
+        elif _is_acosh(node):
             argument = args[0] - 1
         else:
             continue
@@ -1312,13 +1337,16 @@ _BRANCHES = (sympy.asin, sympy.acos, sympy.atan, sympy.acot, sympy.asec, sympy.a
              sympy.sign, sympy.tan, sympy.cot, sympy.sec, sympy.csc, sympy.log, sympy.floor, sympy.ceiling)
 
 
+_is_branch = _instance_test(_BRANCHES)
+
+
 def _has_branch(exprs) -> bool:
     """Whether an expression has a function that is one formula on part of its argument's range only (an
     inverse trigonometric function, abs, sign, a root of a variable, a pole, a logarithm)."""
     stack = list(exprs)
     while stack:
         node = stack.pop()
-        if isinstance(node, _BRANCHES) or (node.is_Pow and not node.exp.is_Integer and node.base.free_symbols):
+        if _is_branch(node) or (node.is_Pow and not node.exp.is_Integer and node.base.free_symbols):
             return True
         stack.extend(node.args)
     return False
@@ -1329,8 +1357,12 @@ def _past_the_branches(ref: Compiled, ans: Compiled, sampler: Sampler, exprs, op
     """A counterexample among the first `BRANCH_POINTS` points (those past ``options.points``) and at the
     ends of the intervals, where the expressions have a branch and a variable of theirs ranges over a
     finite interval, or None."""
+    # The cheap tests first (no banded variable, no branch: most answers stop there); free_symbols walks
+    # the whole answer, and sympy does not remember it.
+    if not sampler.banded or not _has_branch(exprs):
+        return None
     symbols = set().union(*(e.free_symbols for e in exprs))
-    if not sampler.banded & symbols or not _has_branch(exprs):
+    if not sampler.banded & symbols:
         return None
     points = [(sampler.point(i), i) for i in range(options.points, BRANCH_POINTS)]
     for symbol in sorted(sampler.banded & symbols, key=str):

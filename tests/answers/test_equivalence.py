@@ -3,6 +3,7 @@
 import pytest
 import sympy
 
+from grader.answers import equivalence
 from grader.answers.equivalence import Options, compare_expressions, symbolic_zero
 from grader.answers.sampling import Sampler, seed_for
 from grader.expressions import parse_domain
@@ -569,3 +570,24 @@ def test_a_reference_defined_only_past_the_sampled_magnitudes_is_compared_where_
 
     verdict = check(reference, answer, {"x": {"dimension": "dimensionless", "domain": domain}})
     assert verdict.verdict == expected, verdict.reason
+# Node types an answer can hold (elementary functions, E**x, which isinstance takes for an exp, an undefined
+# function), against each class set the walks after agreement test with a memo per type.
+@pytest.mark.parametrize("classes", [
+    equivalence._BRANCHES, (sympy.log,), (sympy.acosh,), (sympy.asin, sympy.acos, sympy.atanh),
+])
+def test_the_remembered_instance_tests_agree_with_isinstance(classes):
+    x = sympy.Symbol("x", real=True)
+    nodes = [f(x) for f in (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc, sympy.asin, sympy.acos,
+                            sympy.atan, sympy.acot, sympy.asec, sympy.acsc, sympy.sinh, sympy.cosh, sympy.tanh,
+                            sympy.coth, sympy.asinh, sympy.acosh, sympy.atanh, sympy.exp, sympy.log, sympy.Abs,
+                            sympy.sign, sympy.floor, sympy.ceiling, sympy.sqrt, sympy.Function("f"))]
+    nodes += [sympy.atan2(x, m), sympy.E ** x, x, x ** 2, x + m, 2 * x, sympy.pi, sympy.Integer(3)]
+    test = equivalence._instance_test(classes)
+    for node in nodes + nodes:  # the second time from the memo
+        assert test(node) == isinstance(node, classes), node
+
+
+def test_no_instance_test_is_remembered_for_classes_whose_isinstance_looks_further():
+    # E**x is a Pow, and an exp to isinstance: the answer cannot come from its type
+    with pytest.raises(TypeError):
+        equivalence._instance_test((sympy.exp,))
