@@ -77,6 +77,13 @@ class _Reference:
     # Values of reference-side feedback candidates (the reference less a term, ...) at the first
     # sample point, for the one-point screen: every wrong answer to this reference tries the same ones.
     screen: dict = field(default_factory=dict)
+    _free_symbols: frozenset | None = None
+
+    def free_symbols(self) -> frozenset:
+        """The symbols of the reference's expressions (sympy walks them afresh on every ``free_symbols``)."""
+        if self._free_symbols is None:
+            self._free_symbols = frozenset().union(*(e.free_symbols for e in self.exprs))
+        return self._free_symbols
 
     def compiled_for(self, options: Options):
         backend = options.backend()
@@ -604,7 +611,7 @@ def _check(reference, answer, variables, kind, feedback, budget_s, state, option
         return Verdict("invalid", "none", f"the checker cannot evaluate {error}", parsed=parsed)
     example = None
     if comparison.counterexample is not None:  # the symbols are only needed to trim its values
-        symbols = set().union(*(e.free_symbols for e in ref.exprs + exprs))
+        symbols = ref.free_symbols() | set().union(*(e.free_symbols for e in exprs))
         example = _filter_values(comparison.counterexample, symbols)
     if comparison.equivalent is None:
         reason = comparison.reason

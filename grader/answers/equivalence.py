@@ -1221,7 +1221,7 @@ DOMAIN_DRAWS = 64
 MAX_DOMAIN_CHECKS = 4
 
 
-def _instance_test(classes: tuple) -> Callable[[Any], bool]:
+def instance_test(classes: tuple) -> Callable[[Any], bool]:
     """``isinstance(node, classes)``, remembered per type of node.
 
     isinstance with a sympy function class goes through its metaclass and costs some 150 ns a class: 2 µs a
@@ -1242,8 +1242,8 @@ def _instance_test(classes: tuple) -> Callable[[Any], bool]:
     return test
 
 
-_is_log, _is_acosh = _instance_test((sympy.log,)), _instance_test((sympy.acosh,))
-_is_unit_bounded = _instance_test((sympy.asin, sympy.acos, sympy.atanh))
+_is_log, _is_acosh = instance_test((sympy.log,)), instance_test((sympy.acosh,))
+_is_unit_bounded = instance_test((sympy.asin, sympy.acos, sympy.atanh))
 
 
 def _restricted_arguments(exprs) -> list[sympy.Expr]:
@@ -1337,7 +1337,7 @@ _BRANCHES = (sympy.asin, sympy.acos, sympy.atan, sympy.acot, sympy.asec, sympy.a
              sympy.sign, sympy.tan, sympy.cot, sympy.sec, sympy.csc, sympy.log, sympy.floor, sympy.ceiling)
 
 
-_is_branch = _instance_test(_BRANCHES)
+_is_branch = instance_test(_BRANCHES)
 
 
 def _has_branch(exprs) -> bool:

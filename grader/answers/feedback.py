@@ -23,7 +23,7 @@ from typing import Callable, Iterator, Sequence
 
 import sympy
 
-from grader.answers.equivalence import SYMBOLIC_MAX_TERMS, expansion_terms
+from grader.answers.equivalence import SYMBOLIC_MAX_TERMS, expansion_terms, instance_test
 from grader.expressions.magnitudes import node_count
 
 __all__ = ["diagnose", "factor_message"]
@@ -69,6 +69,21 @@ def _simple_ratio(value: float) -> Fraction | None:
     if q == 1 or q == 0 or abs(float(q) - value) > 1e-9 * abs(value):
         return None
     return q
+
+
+_is_sin_or_cos = instance_test((sympy.sin, sympy.cos))
+
+
+def _has_sin_or_cos(expr: sympy.Expr) -> bool:
+    """``expr.has(sympy.sin, sympy.cos)``: the same nodes, without sympy's generator and its isinstance with
+    each function class at each node (see `instance_test`)."""
+    stack = [expr]
+    while stack:
+        node = stack.pop()
+        if _is_sin_or_cos(node):
+            return True
+        stack.extend(node.args)
+    return False
 
 
 def _swap_sin_cos(expr: sympy.Expr) -> sympy.Expr:
@@ -247,7 +262,7 @@ def diagnose(
                 yield ("sign" if q == -1 else "factor",
                        lambda: same(sympy.Rational(q.numerator, q.denominator) * reference, answer),
                        factor_message(q, detail))
-        if answer.has(sympy.sin, sympy.cos):
+        if _has_sin_or_cos(answer):
             yield ("sin_cos",
                    lambda: (swap_could_match is None or swap_could_match())
                    and same(reference, _swap_sin_cos(answer)),
