@@ -7,7 +7,7 @@ import pytest
 import sympy
 
 from grader.answers import check
-from grader.answers.feedback import _terms
+from grader.answers.feedback import _has_sin_or_cos, _terms
 
 TENSION = "m*l*thetadot^2 + m*g*cos(theta)"
 INSTRUCTOR = [{"expr": "m*g*cos(theta)", "message": "That is the tension of a bob at rest."}]
@@ -197,3 +197,16 @@ def test_a_wrong_answer_that_multiplies_out_to_thousands_of_terms_gets_its_verdi
     nested = "((a+b+c)^5 + (d+e)^5)"
     verdict = check(f"{nested}^5", f"{nested}^4 * ({nested} + (a-b)*(a+b) - a^2)", positive)
     assert verdict.verdict == "not_equivalent" and verdict.counterexample is not None
+
+
+_x, _y = sympy.symbols("x y", real=True)
+
+
+@pytest.mark.parametrize("expr", [
+    _x * _y, sympy.sin(_x), 2 * sympy.cos(_x + _y), sympy.sqrt(1 + sympy.sin(_x) ** 2), sympy.tan(_x),
+    sympy.asin(_x / 2), sympy.sinh(_x), sympy.exp(sympy.cos(_x)), sympy.log(1 + _x ** 2) / (1 + sympy.cos(_y)),
+    sympy.atan2(sympy.sin(_x), _y), sympy.Abs(_x - _y), sympy.Function("f")(sympy.sin(_x)), sympy.Integer(3),
+])
+def test_the_sin_cos_slip_is_tried_exactly_where_sympy_finds_a_sin_or_a_cos(expr):
+    # our walk for the sin/cos candidate gives what expr.has(sin, cos) gives
+    assert _has_sin_or_cos(expr) == expr.has(sympy.sin, sympy.cos)
