@@ -17,6 +17,7 @@ tell raises `Unresolved`, and the caller raises the precision and tries again.
 from __future__ import annotations
 
 import math
+from operator import itemgetter
 from typing import Any, Callable
 
 import flint
@@ -162,6 +163,12 @@ class ArbBackend:
 
     def mul(self, fs):
         arb = flint.arb
+        if len(fs) == 2:  # the same products in the same order as the loop below, without it
+            f0, f1 = fs
+            return lambda env: arb(1) * f0(env) * f1(env)
+        if len(fs) == 3:
+            f0, f1, f2 = fs
+            return lambda env: arb(1) * f0(env) * f1(env) * f2(env)
 
         def mul(env):
             total = arb(1)
@@ -401,7 +408,7 @@ def compile_expr(expr: sympy.Expr, backend) -> Callable[[dict], Any]:
     0.0
     """
     if expr.is_Symbol:
-        return lambda env: env[expr]
+        return itemgetter(expr)  # env[expr]
     if expr.is_Integer:
         return backend.integer(int(expr))
     if expr.is_Rational:
