@@ -64,6 +64,7 @@ _COMMAND_NAME = re.compile(r"\\[A-Za-z]+")
 # is left alone).
 _SUPERSCRIPT_FIRST = re.compile(r"(?<=[A-Za-z0-9}])(\s*\^(?:\{[^{}]*\}|\\[A-Za-z]+|[A-Za-z0-9]))"
                                 r"(_(?:\{[^{}]*\}|\\[A-Za-z]+|[A-Za-z0-9](?![A-Za-z0-9])))")
+_FULLWIDTH = re.compile("[" + "".join(map(chr, FULLWIDTH_SYMBOLS)) + "]")
 # What can continue a name or mark its derivative (see _Tokenizer.identifier and finish_name):
 # a plain ASCII name followed by none of these is emitted as it is.
 _NAME_GOES_ON = frozenset(_ASCII_ALNUM | {"_"} | set(GREEK_CHARS) | set(MATH_LETTERS) | set(SUBSCRIPT_DIGITS)
@@ -210,7 +211,11 @@ def _sign(ch: str) -> str:
 class _Tokenizer:
     def __init__(self, text: str) -> None:
         # full-width ＋（２） is +(2), one for one; x^2_1 is x_1^2, as TeX sets both on x (same length)
-        self.text = _SUPERSCRIPT_FIRST.sub(r"\2\1", text.translate(FULLWIDTH_SYMBOLS))
+        # (each step only where it can change something: translate looks every character up in a dict,
+        # raising inside for each one it lacks, and the pattern has a ^ and a _)
+        if _FULLWIDTH.search(text):
+            text = text.translate(FULLWIDTH_SYMBOLS)
+        self.text = _SUPERSCRIPT_FIRST.sub(r"\2\1", text) if "^" in text and "_" in text else text
         self.n = len(text)
         self.i = 0
         self.tokens: list[Token] = []
@@ -349,7 +354,7 @@ class _Tokenizer:
             self.emit("bad", "//", start, start + 2, error=ExpressionError(
                 "'//' is floor division in Python, a postfix function in Mathematica and a slash in ASCIIMath",
                 start, "ambiguous", "write / for a quotient"))
-        elif _NOT_EQUAL.match(self.text, start):
+        elif ch in "=/<" and _NOT_EQUAL.match(self.text, start):  # (the first characters of its spellings)
             # =/= (KAS), /= (Fortran, Haskell), <> (BASIC, SQL), =\= (Prolog): "not equal", named as such
             # rather than as a stray '/', a second '=' or an inequality
             typed = _NOT_EQUAL.match(self.text, start).group()
@@ -1232,6 +1237,9 @@ def _function_name(token: Token) -> bool:
     return token.kind == "name" and str(token.value).lstrip("\\").lower() in FUNCTIONS
 
 
+_DEPTH_CHANGE = {"open": 1, "close": -1}
+
+
 def _equation_numbers(tokens: list[Token]) -> None:  # changes tokens in place
     r"""``(2) y = l`` and ``x + y = l (2)``: a whole number in brackets set apart by a space at the start or
     the end of a line reads as the equation's number or as a factor 2; it is refused, naming both (read
@@ -1239,7 +1247,7 @@ def _equation_numbers(tokens: list[Token]) -> None:  # changes tokens in place
     as such by the tokenizer; ``2(x + y)`` and ``(2)(3)`` are products."""
     breaks, depth = [], 0  # where lines and equations end: new lines, and ';' or ',' outside brackets
     for n, t in enumerate(tokens):
-        depth += {"open": 1, "close": -1}.get(t.kind, 0)
+        depth += _DEPTH_CHANGE.get(t.kind, 0)
         if t.kind in ("newline", "end") or (t.kind == "op" and t.value in ";," and depth == 0):
             breaks.append(n)
     starts, ends = [0] + [n + 1 for n in breaks], breaks
