@@ -86,7 +86,7 @@ def _split_fraction(expr: sympy.Mul) -> tuple[sympy.Expr, tuple, tuple]:
     numerator, denominator = [], []
     for factor in factors:
         if factor.is_Pow and factor.exp.is_Rational and factor.exp.is_negative:
-            denominator.append(factor.base if factor.exp == -1 else sympy.Pow(factor.base, -factor.exp))
+            denominator.append(factor.base if _equals(factor.exp, -1, 1) else sympy.Pow(factor.base, -factor.exp))
         else:
             numerator.append(factor)
     return coefficient, tuple(numerator), tuple(denominator)
@@ -166,6 +166,14 @@ def _class_key(cls: type) -> tuple:
     return cls.class_key()
 
 
+def _equals(number: sympy.Expr, p: int, q: int) -> bool:
+    """``number == Rational(p, q)``, without sympy's comparison, which sympifies both sides first: for a
+    rational from its numerator and denominator, for anything else (a float 0.5) as sympy compares."""
+    if number.is_Rational:
+        return number.p == p and number.q == q
+    return number == sympy.Rational(p, q)
+
+
 def _precedence(expr: sympy.Expr) -> int:
     if expr.is_Add:
         return _ADD
@@ -223,13 +231,13 @@ def _text(expr: sympy.Expr) -> str:
             return "-" + _text_wrapped(_negated(expr), _MUL)
         coefficient, numerator, denominator = _split_fraction(expr)
         numerator, denominator = list(numerator), list(denominator)
-        parts = [] if coefficient == 1 else [str(coefficient.p)] if coefficient.q == 1 else None
+        parts = [] if _equals(coefficient, 1, 1) else [str(coefficient.p)] if coefficient.q == 1 else None
         if parts is None:
             numerator = [sympy.Integer(coefficient.p)] + numerator if coefficient.p != 1 else numerator
             denominator = [sympy.Integer(coefficient.q)] + denominator
             parts = []
         ordered = _printing_order(numerator) if len(numerator) > 1 else numerator
-        parts += [_text_wrapped(f, _MUL) for f in ordered if not (f.is_Integer and f == 1 and numerator)]
+        parts += [_text_wrapped(f, _MUL) for f in ordered if not (f.is_Integer and f.p == 1 and numerator)]
         top = "*".join(parts) or "1"
         if not denominator:
             return top
@@ -238,13 +246,13 @@ def _text(expr: sympy.Expr) -> str:
         return f"{top}/{bottom_text}"
     if expr.is_Pow:
         base, exp = expr.args
-        if exp == sympy.S.Half:
+        if _equals(exp, 1, 2):
             return f"sqrt({_text(base)})"
-        if exp == -sympy.S.Half:
+        if _equals(exp, -1, 2):
             return f"1/sqrt({_text(base)})"
         if exp.is_Rational and exp.is_negative:
             return f"1/{_text_wrapped(sympy.Pow(base, -exp), _POW)}"
-        exp_text = _text(exp) if exp.is_Symbol or (exp.is_Integer and exp >= 0) else f"({_text(exp)})"
+        exp_text = _text(exp) if exp.is_Symbol or (exp.is_Integer and exp.p >= 0) else f"({_text(exp)})"
         return f"{_text_wrapped(base, _POW + 1)}**{exp_text}"
     if isinstance(expr, sympy.Function) and not isinstance(expr, AppliedUndef):
         spec = BY_SYMPY.get(expr.func)
@@ -315,7 +323,7 @@ class _Latex:
             return rf"\frac{{{top}}}{{{bottom}}}"
         if expr.is_Pow:
             base, exp = expr.args
-            if exp == sympy.S.Half:
+            if _equals(exp, 1, 2):
                 return rf"\sqrt{{{self.print(base)}}}"
             if exp.is_Rational and exp.is_negative:
                 return rf"\frac{{1}}{{{self.print(sympy.Pow(base, -exp))}}}"
