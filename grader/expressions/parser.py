@@ -1246,18 +1246,24 @@ def _real_and_flat(expr: sympy.Expr, position: int) -> sympy.Expr:
     args = expr.args
     if not args:
         return expr
-    flat, changed = [], False
-    for arg in args:
+    flat = None  # the arguments, copied once one of them is rebuilt (most trees need nothing rebuilt)
+    for k, arg in enumerate(args):
         if arg.args:
             new = _real_and_flat(arg, position)
-            changed = changed or new is not arg
+            if new is not arg and flat is None:
+                flat = list(args[:k])
             arg = new
         elif arg is _I:
             raise not_real(position)
-        flat.append(arg)
-    nested = (expr.is_Mul or expr.is_Add) and any(arg.func is expr.func for arg in flat)
-    if nested or changed:
-        return expr.func(*flat)
+        if flat is not None:
+            flat.append(arg)
+    func = expr.func
+    if flat is not None:
+        return func(*flat)
+    if expr.is_Mul or expr.is_Add:
+        for arg in args:
+            if arg.func is func:
+                return func(*args)  # nested: rebuilt flat
     return expr
 
 
