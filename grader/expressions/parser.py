@@ -1321,6 +1321,11 @@ def _answer_only(tokens: list[Token], text: str) -> tuple[list[Token], list[str]
         tokens = tokens[:-2] + tokens[-1:]
         notes.append("ignored the comma at the end")
     equals = [n for n, t in enumerate(tokens) if t.kind == "op" and t.value == "="]
+    if len(equals) > 1 and tokens[0].kind == "name" and (equals[0] == 1 or tokens[1].kind == "open"):
+        # T = m(g cos θ + l θ̇²) = m g cos θ + …: the work shown on paper, several answers for one
+        second = tokens[equals[1]]
+        raise ExpressionError("a chain of '=' after a label gives more than one answer", second.pos, "syntax",
+                              "give one answer: the label and the last expression (T = …), or that expression alone")
     if len(equals) != 1 or tokens[0].kind != "name" or tokens[equals[0] + 1].kind == "end":
         return tokens, notes
     split = equals[0]

@@ -1203,3 +1203,11 @@ def test_a_function_sympy_fails_on_for_a_huge_argument_is_refused_with_a_reason(
     with pytest.raises(ExpressionError) as error:
         parse_expression(text, Namespace([Variable("x", "dimensionless", "real")]))
     assert error.value.code == "too_large"
+
+
+@pytest.mark.parametrize("text", ["T = m(x + l) = m x + m l", "T(x) = m(x + l) = m x + m l", "T = x = l"])
+def test_a_chain_of_equals_after_a_label_is_refused_saying_to_give_one_answer(ns, text):
+    # the work shown on paper was refused as "unknown name 'T'", which names the label, not the problem
+    with pytest.raises(ExpressionError) as refused:
+        parse(text, ns)
+    assert "chain of '='" in refused.value.message and "give one answer" in refused.value.hint
