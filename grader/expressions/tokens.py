@@ -1162,6 +1162,13 @@ class _Tokenizer:
                                   "write the power with ^, as in x^-1")
         if len(body) > 4:
             raise ExpressionError("exponent too large", start, "too_large", "no answer here needs powers that high")
+        if len(self.tokens) >= 2 and self.tokens[-1].kind == "number" \
+                and self.tokens[-2].kind == "op" and self.tokens[-2].value == "^":
+            # θ̇^2²: the square typed twice (a keyboard made the second one raised), or the power 2²?
+            power = self.tokens[-1].text
+            raise ExpressionError(f"'^{power} {self.text[start:j]}' gives the power twice", self.tokens[-2].pos,
+                                  "ambiguous", f"write it once: ^{power} (or ^({power}^{digits}) for a power of "
+                                               "the power)")
         if j < self.n and self.text[j] == "√" and digits.isdigit() and int(digits) >= 2:
             # ³√(x): a calculator's (TI's) root of index 3, as ∛ is. Glued to what comes before (2³√x) it
             # could as well raise that: neither reading is taken. It was read as the power (2 ³√k was 8√k).
