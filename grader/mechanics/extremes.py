@@ -101,7 +101,9 @@ def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
     def best_at(point):
         """(value, candidate index, sign) of the extreme at ``point``, or SceneError."""
         legs = _motion_legs(evaluator, u, point, key)
-        if not periodic and any(low is not None and high - low >= 2 * math.pi - 1e-12 for _, low, high in legs):
+        # (an angle's turn: a length that swings over more than 6.28 of its unit goes round nothing)
+        if not periodic and u.dimension.is_dimensionless and any(
+                low is not None and high - low >= 2 * math.pi - 1e-12 for _, low, high in legs):
             raise SceneError(scene.source, key, f"the motion from [initial] goes round and round in {u.name}, and "
                                                 f"{spec.expr} is not periodic in it: it has no {spec.kind}")
         if squared is None and len(legs) > 1:

@@ -241,3 +241,35 @@ def test_an_extreme_in_a_parameter_without_a_number_whose_closed_form_changes_is
     with pytest.raises(SceneError, match=r"where the minimum lies depends on the parameter values.*v0 = .*give them "
                                          r"values"):
         derive(parse_scene(ROD_BOB.replace('domain = "positive", DRAW', domain), "rod_bob.toml"))
+
+
+HANGING_SPRING = '''
+id = "hanging_spring"
+title = "Block released from rest on a hanging spring, unstretched"
+[parameters]
+m = { dimension = "mass", domain = "positive", value = 10.0 }
+g = { dimension = "acceleration", domain = "positive", value = 9.81 }
+k = { dimension = "stiffness", domain = "positive", value = STIFFNESS }
+[coordinates]
+x = { dimension = "length" }
+[energy]
+kinetic = "m/2*xdot^2"
+potential = "k/2*x^2 - m*g*x"
+[initial]
+x = 0
+xdot = 0
+[[answers]]
+name = "lowest"
+kind = "maximum"
+expr = "x"
+dimension = "length"
+'''
+
+
+@pytest.mark.parametrize("stiffness", ["1000.0", "10.0", "1.0", "0.01"])
+def test_an_extreme_of_a_length_is_found_whatever_the_length_of_the_swing(stiffness):
+    # x swings over [0, 2 m g/k]: 0.2 m, 19.6 m, 196 m, 19.6 km; a swing longer than 2π in its unit was
+    # taken for an angle going round ('the motion goes round and round in x')
+    derivation = derive(parse_scene(HANGING_SPRING.replace("STIFFNESS", stiffness), "hanging_spring.toml"))
+    want = parse_expression("2*m*g/k", derivation.scene.namespace).expr
+    assert sympy.simplify(derivation.answers["lowest"] - want) == 0
