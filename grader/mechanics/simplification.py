@@ -299,8 +299,8 @@ def _squares_in_sums(expr: sympy.Expr) -> sympy.Expr:
 
 
 def pythagorean_pairs(expr: sympy.Expr) -> sympy.Expr:
-    """In each sum, a term k sin²x beside −k as −k cos²x, and k cos²x beside −k as −k sin²x; the
-    rest of the sum as it is.
+    """In each sum, a term k sin²x beside −k as −k cos²x, and k cos²x beside −k as −k sin²x; k sin²x
+    beside k cos²x as k; the rest of the sum as it is.
 
     :func:`_squares_in_sums` writes every square of a sum the other way or none; a denominator
     M + m − m sin²θ needs only one of its terms rewritten, and sums such as it are often built by
@@ -311,6 +311,8 @@ def pythagorean_pairs(expr: sympy.Expr) -> sympy.Expr:
     M + m*cos(theta)**2
     >>> pythagorean_pairs(m1*sympy.cos(th)**2 - m2*sympy.cos(th)**2 + m2)
     m1*cos(theta)**2 + m2*sin(theta)**2
+    >>> pythagorean_pairs(12*m1**2*sympy.sin(th)**2 + 12*m1**2*sympy.cos(th)**2 - 9*m1*m2*sympy.cos(th))
+    12*m1**2 - 9*m1*m2*cos(theta)
     """
     def paired(total):
         terms = list(sympy.Add.make_args(total))
@@ -320,7 +322,13 @@ def pythagorean_pairs(expr: sympy.Expr) -> sympy.Expr:
                 i = 0
                 while i < len(terms):
                     k = terms[i] / power  # terms[i] = k·sin²x exactly, whatever k is
-                    if terms[i].has(power) and -k in terms[:i] + terms[i + 1:]:
+                    partner = k * other(power.base.args[0]) ** 2
+                    if terms[i].has(power) and partner in terms[:i] + terms[i + 1:]:
+                        terms.remove(partner)  # k sin²x + k cos²x = k
+                        terms[terms.index(k * power)] = k
+                        changed = True
+                        i = 0
+                    elif terms[i].has(power) and -k in terms[:i] + terms[i + 1:]:
                         j = terms.index(-k, i + 1) if -k in terms[i + 1:] else terms.index(-k)
                         terms[i] = -k * other(power.base.args[0]) ** 2  # k sin²x − k = −k cos²x
                         del terms[j]
