@@ -87,9 +87,27 @@ def _readable_by_the_checker(scene, spec, texts: list[str], namespace: Namespace
             else:
                 parse_expression(text, namespace, printed=False)
         except ExpressionError as error:
-            numeric = "" if spec.numeric is not None else ' (asked as kind = "numeric", it is found numerically)'
             raise SceneError(scene.source, f"answers ({spec.name})",
-                             f"the closed form {text} cannot be checked: {error.message}{numeric}") from None
+                             f"the closed form {text} cannot be checked: {error.message}{_what_to_ask(spec)}") from None
+
+
+# Kinds that have a value only in closed form: kind = "numeric" is another kind, so it cannot ask for them.
+_CLOSED_FORM_ONLY = {
+    "equation": "an equation is checked in closed form only",
+    "small_oscillation": "a small-oscillation frequency is computed in closed form only; the equilibrium "
+                         "itself may be asked as kind = \"numeric\"",
+    "maximum": "a maximum is computed in closed form only",
+    "minimum": "a minimum is computed in closed form only",
+}
+
+
+def _what_to_ask(spec) -> str:
+    """What the instructor can do about a closed form the checker cannot read, by the answer's kind."""
+    if spec.numeric is not None:
+        return ""
+    if spec.kind in _CLOSED_FORM_ONLY:
+        return f" ({_CLOSED_FORM_ONLY[spec.kind]})"
+    return ' (asked as kind = "numeric", it is found numerically)'
 
 
 def reference_answers(derivation) -> list[dict[str, Any]]:
