@@ -119,6 +119,15 @@ CONFIRMED_ELSEWHERE = {
     ("cone_orbit_inverse_attraction", "small_oscillation_frequency"),
     # Red team 12's: test_red_team_confirmed.py (the swing about the normal to the incline).
     ("pendulum_on_block_on_incline", "small_oscillation_frequency"),
+    # Red team 16's: test_red_team_confirmed.py (frequencies from nudged swings, the equilibrium located
+    # numerically, the balancing mass by a release, the least floor force over the integrated fall).
+    ("pendulum_winding_on_cylinder", "small_oscillation_frequency"),
+    ("bead_on_free_hoop", "small_oscillation_frequency"),
+    ("rod_in_bowl_on_rim", "equilibrium_cos"),
+    ("rod_in_bowl_on_rim", "small_oscillation_frequency"),
+    ("cylinder_in_free_cylinder", "small_oscillation_frequency"),
+    ("compound_atwood_massive_pulleys", "balancing_mass"),
+    ("hinged_rods_on_floor", "least_floor_force"),
 }
 
 

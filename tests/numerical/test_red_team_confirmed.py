@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
 from grader.simulate.constrained import Event, simulate
 from grader.simulate.lagrangian_numeric import snapshot
@@ -425,3 +425,104 @@ def test_pendulum_hung_from_a_block_sliding_down_an_incline_swings_about_the_nor
     expected = closed_form(model, answers, "small_oscillation_frequency")
     measured = _frequency(model, *state(rest + 1e-4), angle, rest, 2 * math.pi / expected)
     assert abs(measured - expected) < 1e-6 * expected
+
+
+# -- Red team 16: textbook scenes written independently of the engine -----------------------------------
+
+def test_pendulum_whose_string_winds_round_a_cylinder_oscillates_at_the_engines_rate():
+    # The bob at (x, y), the winding angle θ (no kinetic energy of its own): released at rest a little
+    # off the vertical, the string leaving the cylinder at (R cos θ, R sin θ) with the free length l + Rθ.
+    model, answers = engine("pendulum_winding_on_cylinder")
+    R, l = model.values["R"], model.values["l"]
+    theta = 1e-4
+    q0 = [R * math.cos(theta) + (l + R * theta) * math.sin(theta),
+          R * math.sin(theta) - (l + R * theta) * math.cos(theta), theta]
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, q0, [0.0, 0.0, 0.0], lambda s: s.q[2], 0.0, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_bead_on_a_freely_turning_hoop_oscillates_about_the_bottom_with_the_releases_angular_momentum():
+    # The scene's release (θ0, hoop at Ω0) fixes the angular momentum h = (I + m a² sin²θ0) Ω0 about the
+    # vertical; the bead is started at rest on the hoop a little off the bottom with that momentum.
+    model, answers = engine("bead_on_free_hoop")
+    m, inertia, a = (model.values[n] for n in ("m", "I", "a"))
+    h = (inertia + m * a ** 2 * math.sin(model.values["theta0"]) ** 2) * model.values["Omega0"]
+    theta = 1e-4
+    phidot = h / (inertia + m * a ** 2 * math.sin(theta) ** 2)
+    q0 = [a * math.sin(theta), 0.0, -a * math.cos(theta), 0.0]
+    qdot0 = [0.0, a * math.sin(theta) * phidot, 0.0, phidot]
+
+    def angle(s):  # from the bottom, signed in the hoop's plane
+        return math.atan2(s.q[0] * math.cos(s.q[3]) + s.q[1] * math.sin(s.q[3]), -s.q[2])
+
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, q0, qdot0, angle, 0.0, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def _bowl_state(model, theta: float):
+    a, l = model.values["a"], model.values["l"]
+    return [a + (l - 2 * a * math.cos(theta)) * math.cos(theta), (l - 2 * a * math.cos(theta)) * math.sin(theta),
+            theta], [0.0, 0.0, 0.0]
+
+
+def test_rod_in_a_bowl_on_its_rim_rests_and_oscillates_where_the_engine_says():
+    model, answers = engine("rod_in_bowl_on_rim")
+    rest = brentq(lambda th: snapshot(model.numeric, 0.0, *_bowl_state(model, th)).qddot[2], 0.1, 1.1, xtol=1e-15)
+    assert abs(math.cos(rest) - closed_form(model, answers, "equilibrium_cos")) < 1e-9
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, *_bowl_state(model, rest + 1e-4), lambda s: s.q[2], rest, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+def test_cylinder_in_a_freely_turning_cylinder_oscillates_at_the_engines_rate():
+    model, answers = engine("cylinder_in_free_cylinder")
+    R, r = model.values["R"], model.values["r"]
+    phi = 1e-4  # rolling contact, everything at rest (no angular momentum about the axle, as released)
+    expected = closed_form(model, answers, "small_oscillation_frequency")
+    measured = _frequency(model, [R - r, phi, -(R - r) * phi / r, 0.0], [0.0, 0.0, 0.0, 0.0], lambda s: s.q[1],
+                          0.0, 2 * math.pi / expected)
+    assert abs(measured - expected) < 1e-6 * expected
+
+
+@pytest.mark.parametrize("factor, sign", [(1.0, 0), (1.01, -1), (0.99, 1)])
+def test_compound_atwood_with_the_engines_balancing_mass_leaves_m1_at_rest(factor, sign):
+    from tests.numerical.test_special_values_confirmed import scene_of
+    from grader.simulate.scene_numeric import SceneModel
+
+    model, answers = engine("compound_atwood_massive_pulleys")
+    m1 = factor * closed_form(model, answers, "balancing_mass")
+    line = 'm1 = { dimension = "mass", domain = "positive", value = 3.0 }'
+    balanced = SceneModel(scene_of("compound_atwood_massive_pulleys",
+                                   ((line, line.replace("3.0", repr(m1))),)))
+    acceleration = snapshot(balanced.numeric, 0.0, [0.0] * 6, [0.0] * 6).qddot[0]  # m1's, up
+    if sign == 0:
+        assert abs(acceleration) < 1e-12 * balanced.values["g"]
+    else:  # heavier sinks, lighter rises: the balance is the threshold
+        assert math.copysign(1.0, acceleration) == sign and abs(acceleration) > 1e-4
+
+
+def test_hinged_rods_floor_force_is_least_where_the_engine_says_before_the_hinge_lands():
+    model, answers = engine("hinged_rods_on_floor")
+    l, theta0 = model.values["l"], model.values["theta0"]
+
+    def rod(theta, side):  # x, y, θ of a rod's centre, the hinge at x = 0
+        return [side * l / 2 * math.sin(theta), l / 2 * math.cos(theta), theta]
+
+    landed = Event("landed", lambda s: s.q[1] + l / 2 * math.cos(s.q[2]), terminal=True)  # the hinge's height
+    motion = simulate(model.numeric, rod(theta0, 1) + rod(theta0, -1), [0.0] * 6, 1.5, events=[landed],
+                      sample_times=np.linspace(0.0, 1.5, 301))
+    assert motion.first("landed") is not None
+    samples = [s for s in motion.samples if s.t <= motion.first("landed").t]
+    i = min(range(1, len(samples) - 1), key=lambda k: samples[k].multiplier("foot1"))  # not at either end
+    before = samples[i - 1]
+
+    def floor_force(t):  # refined between the neighbouring samples
+        return simulate(model.numeric, before.q, before.qdot, t, t0=before.t, sample_times=[t]).samples[0].multiplier("foot1")
+
+    least = minimize_scalar(floor_force, bounds=(before.t, samples[i + 1].t), method="bounded",
+                            options={"xatol": 1e-10}).fun
+    expected = closed_form(model, answers, "least_floor_force")
+    assert abs(least - expected) < 1e-6 * expected
+    assert min(s.multiplier("foot1") for s in samples) >= expected * (1 - 1e-9)
