@@ -125,6 +125,14 @@ def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
                 if best is None or (amount > best[0] + 1e-12 * abs(amount) if want_max
                                     else amount < best[0] - 1e-12 * abs(amount)):
                     best = (amount, index, sign * start)
+        missed = _beyond_the_candidates(branches, start, u, legs, point, None if best is None else best[0], want_max)
+        if missed is not None:
+            # A stationary or turning point whose condition has no closed form (x beside sin x, as energy
+            # gives where a winding pendulum turns back) was left out: the best of the others is wrong.
+            raise SceneError(scene.source, key,
+                             f"the {spec.kind} of {spec.expr} on the motion from [initial] is near {u.name} = "
+                             f"{missed:.6g}, a stationary or turning point that has no closed form here; only "
+                             "the points found in closed form could be compared, so it is not given")
         if best is None:
             low, high = legs[0][1], legs[0][2]
             if low is None or high is None:
@@ -203,6 +211,39 @@ def _coupled_in_the_energy(evaluator, u) -> list:
         return []
     cross = sympy.expand(sympy.diff(h, u.dot))
     return [v for v in reduction.independent.values() if v is not u and v.dot in cross.free_symbols]
+
+
+#: Samples per stretch of the motion in the check that no extreme lies off the closed-form candidates.
+_SCAN_SAMPLES = 400
+
+
+def _beyond_the_candidates(branches: dict, start: int, u, legs, point: dict, best: float | None,
+                           want_max: bool) -> float | None:
+    """Where, on the stretches of the motion, the quantity sampled beats the best closed-form candidate
+    (or any value, where there is none): an extreme at a point that solving in closed form missed.
+    None where nothing does, or where the quantity cannot be evaluated in floats."""
+    numbers = {s: sympy.Float(v, 30) for s, v in point.items()}
+    found = None
+    for sign, low, high in legs:
+        if low is None or high is None or not high > low:
+            continue
+        try:
+            f = sympy.lambdify(u.symbol, branches[sign * start].xreplace(numbers), "math")
+        except Exception:  # noqa: BLE001 - a form lambdify cannot print: no check, as before
+            return None
+        for i in range(_SCAN_SAMPLES + 1):
+            x = low + (high - low) * i / _SCAN_SAMPLES
+            try:
+                y = complex(f(x))
+            except (ValueError, ZeroDivisionError, OverflowError, TypeError):
+                continue
+            if not math.isfinite(y.real) or abs(y.imag) > 1e-12 * max(1.0, abs(y.real)):
+                continue
+            margin = 1e-9 * max(1.0, abs(y.real))
+            if best is None or (y.real > best + margin if want_max else y.real < best - margin):
+                if found is None or (y.real > found[1] if want_max else y.real < found[1]):
+                    found = (x, y.real)
+    return None if found is None else found[0]
 
 
 def _stationary_points(value: sympy.Expr, x: sympy.Symbol, source: str, key: str) -> list[sympy.Expr]:

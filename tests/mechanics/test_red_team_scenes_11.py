@@ -29,6 +29,11 @@ tests/numerical/test_red_team_confirmed.py. No scene was refused and no value wa
    quartic, 124,524 characters) was refused with 'asked as kind = "numeric", it is found numerically',
    which a small_oscillation, equation, maximum or minimum answer cannot be; the advice now fits the kind.
 
+3. Extremes: a stationary or turning point whose condition has no closed form (the winding pendulum turns
+   back where R (θ cos θ − sin θ) + l cos θ is its start's value) was left out, and the extreme taken among
+   the others: the highest point of the bob was answered y = −l (its lowest), the least cos θ as 1. WRONG
+   references. The quantity is now sampled along the motion, and an extreme the candidates miss is refused.
+
 The rod in the bowl derives in 2.9 s (best of 3), over the 2 s the issue asks for one degree of freedom.
 """
 
@@ -36,6 +41,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 from pathlib import Path
 
 import pytest
@@ -383,3 +389,36 @@ def test_the_rod_in_the_bowl_prints_its_forces_without_a_pythagorean_pair():
                 pairs = [t for t in sympy.Add.make_args(total) if t.has(sympy.sin(angle) ** 2)]
                 assert not any(t.subs(sympy.sin(angle) ** 2, sympy.cos(angle) ** 2) in sympy.Add.make_args(total)
                                for t in pairs), f"{name}: {total}"
+
+
+# -- an extreme at a point with no closed form is not replaced by the best of the others -------------------
+# The winding pendulum released at rest at θ0 = 0.8 swings to θ1 = −0.883216 (the root of its energy,
+# R (θ cos θ − sin θ) + l cos θ = const, which has no closed form) and back. Its highest point is at the ends
+# (y = y0 there, by energy) and cos θ is least at θ1; solving in closed form found only θ = 0 (and −l/R,
+# off the swing), and the engine answered the highest point y = −l and the least cos θ = 1: the lowest point
+# and the largest value, WRONG references. A quantity sampled along the swing that beats every closed-form
+# candidate now refuses the extreme, naming where it lies; where the candidates hold the extreme it stays.
+@pytest.mark.parametrize("kind, expr, expected", [
+    ("maximum", "y", "near theta = 0.8,"),
+    ("minimum", "cos(theta)", "near theta = -0.883216,"),
+    ("maximum", "cos(theta)", "1"),
+    ("minimum", "y", "-l"),
+])
+def test_an_extreme_at_a_turning_point_without_closed_form_is_refused_not_taken_elsewhere(kind, expr, expected):
+    from grader.mechanics.scene import SceneError, parse_scene
+
+    text = (SCENES / "pendulum_winding_on_cylinder.toml").read_text() + f'''
+[[answers]]
+name = "extreme"
+prompt = "the {kind} over the swing"
+kind = "{kind}"
+expr = "{expr}"
+'''
+    if expected.startswith("near"):
+        with pytest.raises(SceneError, match=f"the {kind} of {re.escape(expr)} on the motion from \\[initial\\] is "
+                                             f"{re.escape(expected)} a stationary or turning point that has no closed form"):
+            derive(parse_scene(text, source="extreme.toml"))
+    else:
+        derivation = derive(parse_scene(text, source="extreme.toml"))
+        point = {"m": 0.3, "g": 9.81, "l": 1.2, "R": 0.2, "theta0": 0.8}
+        assert at(derivation, derivation.answers["extreme"], point) == pytest.approx(at(derivation, expected, point))
