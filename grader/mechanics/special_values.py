@@ -2081,6 +2081,11 @@ def _travel(u, u0: float, d: float, speed2, skip: bool = False, end_of_branch=No
     if speed2 is None:
         return (limit, "leaves the domain") if limit is not None else (None, "never turns back")
     step = (2 * math.pi if u.dimension.is_dimensionless else max(abs(u0), 1.0)) / _SCAN_STEPS
+    turn = None if u.dimension.is_dimensionless else _nearby_turn(speed2, u0, d, step)
+    if turn is not None:
+        # A turn within a few steps (a block on a stiff spring swings over 20 µm; lengths in km): the
+        # scan's steps are made a fraction of its distance, as they are of a metre's motion.
+        step = turn / _SCAN_STEPS
     x, previous = u0, speed2(u0)
     # The scan has no fixed range: it goes on until the motion turns back or leaves the domain;
     # the step doubles every _SCAN_STEPS steps (a step a few thousandths of the distance covered),
@@ -2106,6 +2111,39 @@ def _travel(u, u0: float, d: float, speed2, skip: bool = False, end_of_branch=No
             return x, "turns back"
         x, previous = nxt, value
     return None, "never turns back"
+
+
+#: Distances, halving from eight scan steps, at which a nearby turn is probed (down to 2^-60 of them).
+_TURN_PROBES = 61
+
+
+def _nearby_turn(speed2, u0: float, d: float, step: float) -> float | None:
+    """The distance from u0 (direction d) to where u̇² first turns negative after it has grown positive,
+    if that is within eight of the scan's ``step``s, probed at distances halving from there down to
+    2^-60 of it; None otherwise.
+
+    The scan's step is a fraction of a unit of u (a metre): a motion that turns back within a few steps
+    of it was stepped over (a block on a spring of 10^7 N/m, or any scene with its lengths in km, was
+    said to turn back at once, the way it came).
+    """
+    reach = 8 * step
+    distances = [reach * 2.0 ** -k for k in range(_TURN_PROBES - 1, -1, -1)]
+    # Moving: u̇² positive and growing at three distances in a row (near a start at a turning point,
+    # the rounding of u̇² ≈ 0 gives either sign and no growth).
+    growing, last = 0, 0.0
+    for h in distances:
+        value = speed2(u0 + d * h)
+        if not math.isfinite(value):
+            growing, last = 0, 0.0
+        elif value > 0:
+            # (once moving, u̇² may fall again before the turn: a spring past its rest point)
+            growing = growing + 1 if value > last or growing >= 3 else 1
+            last = value
+        elif value < 0 and growing >= 3:
+            return h
+        else:
+            growing, last = 0, 0.0
+    return None
 
 
 def _branch_end_between(end_of_branch, a: float, b: float) -> float:

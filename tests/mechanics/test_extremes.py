@@ -273,3 +273,15 @@ def test_an_extreme_of_a_length_is_found_whatever_the_length_of_the_swing(stiffn
     derivation = derive(parse_scene(HANGING_SPRING.replace("STIFFNESS", stiffness), "hanging_spring.toml"))
     want = parse_expression("2*m*g/k", derivation.scene.namespace).expr
     assert sympy.simplify(derivation.answers["lowest"] - want) == 0
+
+
+@pytest.mark.parametrize("stiffness", ["1e7", "1e12"])
+def test_a_motion_far_shorter_than_a_metre_is_followed_to_where_it_turns(stiffness):
+    # m g/k = 9.81 µm and 98 pm: the scan stepped a four-thousandth of a metre and took the first step,
+    # past the whole swing, for the motion turning back where it started
+    text = HANGING_SPRING.replace("STIFFNESS", stiffness).replace(
+        "[[answers]]", '[[answers]]\nname = "rest"\nexpr = "x"\nwhere = "xddot = 0"\n\n[[answers]]', 1)
+    derivation = derive(parse_scene(text, "hanging_spring.toml"))
+    for name, expected in (("rest", "m*g/k"), ("lowest", "2*m*g/k")):
+        want = parse_expression(expected, derivation.scene.namespace).expr
+        assert sympy.simplify(derivation.answers[name] - want) == 0
