@@ -1326,11 +1326,16 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str, at_rest:
     # and another root on the other (Cardano's branches), so that a reference right at the scene's
     # values is wrong elsewhere. With as many roots there as at the scene's values, the same one must
     # be chosen; a point where the roots are others (no off-axis equilibrium below the critical ω),
-    # or where nothing decides, says nothing.
-    for parameters in _domain_points(scene, roots):
+    # or where nothing decides, says nothing. A parameter without a number gives no regime: across
+    # its domain (_unvalued_scan) the same root is chosen wherever one is, however many roots there
+    # are (the bead on a hoop turned at an omega with no number rests at the bottom below the
+    # critical rate and off the axis above it).
+    across = [(p, True) for p in _domain_points(scene, roots)]
+    across += [(p, False) for p in (_unvalued_scan(scene) if len(roots) > 1 else ())]
+    for parameters, as_many in across:
         point = _with_state(evaluator, {**parameters, **state}, symbols)
         numeric = _numeric_roots(roots, point, variable)
-        if _distinct(numeric) != base_count:
+        if not numeric or (as_many and _distinct(numeric) != base_count):
             continue
         try:
             indices, group_of = _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key,
@@ -1341,23 +1346,6 @@ def _choose_root(evaluator, spec, condition, x, roots, value, key: str, at_rest:
             # Nothing decides there, or at the scene's values, where every root is an answer: the
             # one decided here is among them (a top spun fast: slow and fast precession have its
             # sense; an oblate one drawn: only one has).
-            continue
-        if _differ(chosen, indices, group_of):
-            raise SceneError(scene.source, key, _depends_on_parameters(parameters))
-    # A parameter without a number gives no regime: wherever across its domain a root is chosen, it is
-    # the same one, however many roots there are (the bead on a hoop turned at an omega with no number
-    # rests at the bottom below the critical rate and off the axis above it).
-    for parameters in _unvalued_scan(scene) if len(roots) > 1 else ():
-        point = _with_state(evaluator, {**parameters, **state}, symbols)
-        numeric = _numeric_roots(roots, point, variable)
-        if not numeric:
-            continue
-        try:
-            indices, group_of = _select(evaluator, spec, x, roots, value, variable, condition, numeric, point, key,
-                                        at_rest)
-        except SceneError:
-            continue
-        if len(indices) > 1 or (len(chosen) > 1 and set(indices) <= set(chosen)):
             continue
         if _differ(chosen, indices, group_of):
             raise SceneError(scene.source, key, _depends_on_parameters(parameters))
