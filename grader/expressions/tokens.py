@@ -1162,11 +1162,16 @@ class _Tokenizer:
                                   "write the power with ^, as in x^-1")
         if len(body) > 4:
             raise ExpressionError("exponent too large", start, "too_large", "no answer here needs powers that high")
-        if len(self.tokens) >= 2 and self.tokens[-1].kind == "number" \
-                and self.tokens[-2].kind == "op" and self.tokens[-2].value == "^":
-            # θ̇^2²: the square typed twice (a keyboard made the second one raised), or the power 2²?
-            power = self.tokens[-1].text
-            raise ExpressionError(f"'^{power} {self.text[start:j]}' gives the power twice", self.tokens[-2].pos,
+        last = self.tokens[-4:]
+        bracketed = (len(last) == 4 and [t.kind for t in last] == ["op", "open", "number", "close"]
+                     and last[0].value == "^" and last[1].value in "({")
+        if bracketed or (len(self.tokens) >= 2 and self.tokens[-1].kind == "number"
+                         and self.tokens[-2].kind == "op" and self.tokens[-2].value == "^"):
+            # θ̇^2² (or x^(2)², x^{2}²): the square typed twice (a keyboard made the second one raised),
+            # or the power 2²?
+            caret, number = (last[0], last[2]) if bracketed else (self.tokens[-2], self.tokens[-1])
+            power = number.text
+            raise ExpressionError(f"'^{power} {self.text[start:j]}' gives the power twice", caret.pos,
                                   "ambiguous", f"write it once: ^{power} (or ^({power}^{digits}) for a power of "
                                                "the power)")
         if j < self.n and self.text[j] == "√" and digits.isdigit() and int(digits) >= 2:

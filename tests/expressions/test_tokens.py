@@ -526,14 +526,15 @@ def test_a_superscript_index_glued_to_an_operand_is_refused_naming_both_readings
     assert refused.value.code == "ambiguous" and "root of index 3" in refused.value.message
 
 
-@pytest.mark.parametrize("text", ["x^2²", "θ̇^2 ²", "2^3²"])
+@pytest.mark.parametrize("text", ["x^2²", "θ̇^2 ²", "2^3²", "x^(2)²", "x^{2}²", "θ̇^( 2 )²"])
 def test_a_power_given_twice_is_refused(text):
-    # θ̇^2² was θ̇^(2²) = θ̇⁴ without a word: the square typed twice, or a power of the power?
+    # θ̇^2² was θ̇^(2²) = θ̇⁴ without a word: the square typed twice, or a power of the power? Its
+    # exponent in brackets, x^(2)² (x^{2}² in LaTeX), was read as x⁴ too
     with pytest.raises(ExpressionError) as refused:
         tokenize(text)
     assert refused.value.code == "ambiguous" and "gives the power twice" in refused.value.message
 
 
-@pytest.mark.parametrize("text", ["x²", "(x^2)²", "x^2 y²"])
+@pytest.mark.parametrize("text", ["x²", "(x^2)²", "x^2 y²", "x^(2) + y²", "x^(n)²"])
 def test_a_superscript_after_a_power_that_is_closed_is_still_read(text):
     assert all(t.kind != "bad" for t in tokenize(text))
