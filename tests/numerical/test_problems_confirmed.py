@@ -128,6 +128,18 @@ CONFIRMED_ELSEWHERE = {
     ("cylinder_in_free_cylinder", "small_oscillation_frequency"),
     ("compound_atwood_massive_pulleys", "balancing_mass"),
     ("hinged_rods_on_floor", "least_floor_force"),
+    # Red team 18's: tests/mechanics/test_red_team_scenes_12.py (extremes over the integrated swing, the
+    # frequency from its period, the hovering acceleration by Newton's laws at and beside it).
+    ("bead_vertical_ellipse_cartesian", "largest_speed_squared"),
+    ("bead_vertical_ellipse_cartesian", "frequency"),
+    ("disk_incline_spring_axle", "frequency"),
+    ("disk_incline_spring_axle", "least_friction_coefficient"),
+    ("disk_incline_spring_axle", "largest_speed"),
+    ("incline_peg_spring_hanging", "frequency"),
+    ("incline_peg_spring_hanging", "largest_stretch"),
+    ("incline_peg_spring_hanging", "least_tension"),
+    ("incline_peg_spring_hanging", "largest_tension"),
+    ("yoyo_pulled_up_accelerating", "hovering_acceleration"),
 }
 
 
