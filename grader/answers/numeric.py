@@ -294,6 +294,7 @@ def _read_quantity(text: str) -> Quantity:
     if not math.isfinite(number) or underflow or (number != 0 and not 1e-300 < abs(number) < 1e300):
         raise QuantityError("the number is too large or too small")
     rest = text[match.end():].strip()
+    rest = rest.rstrip(";").rstrip()  # "14.7 N;": a statement's closing ';', ignored as in a formula
     if rest.endswith(".") and not rest.endswith(".."):
         rest = rest[:-1].rstrip()  # "14.7 N." at the end of a sentence
     if re.match(r"·\d", rest) and "." not in mantissa:

@@ -62,6 +62,9 @@ _ADD, _MUL, _POW = 10, 20, 30
 MAX_ROOT_INDEX = 1000
 # Functions whose argument may have a dimension (√(g l), |v|); every other one needs a dimensionless one.
 _ANY_DIMENSION = {"√", "sqrt", "cbrt", "abs", "sign", "sgn", "Abs"}
+#: Roots read by `_Parser.function_argument`, by their index (√ and ∛ carry theirs in the token).
+_ROOT_INDEX = {"√": None, "sqrt": 2, "cbrt": 3}
+
 # cos ω t: at most this many factors after an argument with a dimension are taken into it.
 _MOST_FACTORS_TAKEN = 2
 _TIME = parse_dimension("time")
@@ -500,6 +503,12 @@ class _Parser:
             return inner
         if kind == "root":
             bracketed = self.peek().kind == "open"
+            if bracketed and self.raised_after_bracket():
+                # √(x)² is the square of √(x), as sqrt(x)² is: the bracket closes the radicand
+                opener = self.advance()
+                radicand = self.expression(0)
+                self.expect_close(opener)
+                return self.root(radicand, token.value, token.pos)
             value = self.root(self.function_argument(token, "√"), token.value, token.pos)
             after = self.peek()
             if not bracketed and after.kind == "op" and after.value in "+-" and not value.is_number:
@@ -517,6 +526,17 @@ class _Parser:
         if kind == "time_derivative":  # d/dt(…) of an expression: the bracket, differentiated
             return self.time_derivative(token)
         raise self.unexpected(token)
+
+    def raised_after_bracket(self) -> bool:
+        """Whether the bracket that opens at the next token is followed, once closed, by a power."""
+        depth = 0
+        for n in range(self.i, len(self.tokens)):
+            kind = self.tokens[n].kind
+            depth += {"open": 1, "close": -1}.get(kind, 0)
+            if depth == 0:
+                after = self.tokens[n + 1] if n + 1 < len(self.tokens) else None
+                return after is not None and (after.kind == "sup" or (after.kind == "op" and after.value == "^"))
+        return False
 
     def time_derivative(self, token: Token) -> sympy.Expr:
         """``d/dt(m r² φ̇)``: the bracket after the operator, differentiated by the chain rule through the
@@ -960,6 +980,8 @@ class _Parser:
             arg = self.dimensionless_argument(arg, token.pos, name)
         raised = next((t for t in self.tokens[begin:self.i] if t.kind == "sup" or (t.kind == "op" and t.value == "^")),
                       None)
+        if raised is not None and name in _ROOT_INDEX and self.tokens[begin].kind != "open":
+            self.unbracketed_root_of_a_power(token, name, begin, arg)
         if raised is not None and name in _SQUARED_BEFORE and self.tokens[begin].kind != "open":
             # sin α² is sin(α²), as convention has it; sin²α, the square of the sine, is often what was meant
             shown = self.text[token.pos:self.tokens[self.i - 1].end]
@@ -976,6 +998,37 @@ class _Parser:
             self.note(f"read '{shown}' as {name}({arg}){following.value}{self.peek(1).text}: write "
                       f"{name}(…) around everything the {name} covers")
         return arg
+
+    def unbracketed_root_of_a_power(self, token: Token, name: str, begin: int, arg: sympy.Expr) -> None:
+        """``sqrt x^2``, ``√x²``, ``cbrt x^3``: a root without brackets before a power. Precedence (and
+        sin x² = sin(x²)) says the root of the power, √(x²) = |x|; ASCIIMath, whose unary functions take
+        the next simple term, and TeX's ``\\sqrt x^2`` say the power of the root, (√x)² = x. Where the
+        two differ (x real, or glued factors as in ``sqrt 2x^2``) it is refused naming both; where they
+        are the same (x > 0, a number) it is read with a note."""
+        depth, raised = 0, None
+        for t in self.tokens[begin:self.i]:
+            depth += {"open": 1, "close": -1}.get(t.kind, 0)
+            if depth == 0 and (t.kind == "sup" or (t.kind == "op" and t.value == "^")):
+                raised = t
+                break
+        if raised is None:
+            return  # sqrt 2(x^2): the power is inside brackets
+        index = token.value if token.kind == "root" else _ROOT_INDEX[name]
+        # The readings differ only by an even root of an even power of what may be negative: an odd root
+        # or power keeps the sign, and a fractional power needs its base >= 0 in both.
+        same = arg.is_number or (isinstance(arg, sympy.Pow) and (
+            index % 2 == 1 or not (arg.exp.is_Integer and arg.exp.is_even) or arg.base.is_nonnegative))
+        end = self.tokens[self.i - 1].end
+        shown, radicand = self.text[token.pos:end], self.text[self.tokens[begin].pos:end]
+        base, exponent = self.text[self.tokens[begin].pos:raised.pos].strip(), self.text[raised.pos:end].strip()
+        written = token.text if token.kind == "root" else name
+        of_power, of_root = f"{written}({radicand})", f"{written}({base}){exponent}"
+        if same:
+            self.note(f"read '{shown}' as {of_power}, which is {of_root} here")
+            return
+        raise ExpressionError(f"'{shown}' could be the root of the power, {of_power}, or the power of the root, "
+                              f"{of_root}", token.pos, "ambiguous",
+                              f"write {of_power} or {of_root}")
 
     def dimensionless_argument(self, arg: sympy.Expr, start: int, name: str) -> sympy.Expr:
         """``arg`` times the factors that follow it while it has a dimension and they make it dimensionless:
@@ -1305,6 +1358,20 @@ def _remember(key, value) -> None:
             _remembered.popitem(last=False)
 
 
+def _without_closing_semicolons(tokens: list[Token]) -> tuple[list[Token], list[str]]:
+    """``m*g/3;`` and ``θ̈ = -g/l sin θ;``: the ';' (one or more, new lines between) that ends the answer,
+    as MATLAB's and Maxima's statements end, is ignored with a note, in an expression, an equation and a
+    system alike, as a full stop is. A ';' between two expressions is still refused."""
+    n, found = len(tokens) - 1, False  # tokens[-1] is the end token
+    while n > 0 and (tokens[n - 1].kind == "newline"
+                     or (tokens[n - 1].kind == "op" and tokens[n - 1].value == ";" and tokens[n - 1].text.strip() == ";")):
+        found = found or tokens[n - 1].kind == "op"
+        n -= 1
+    if not found or n == 0:  # nothing to drop, or nothing but ';'
+        return tokens, []
+    return tokens[:n] + tokens[-1:], ["ignored the ';' at the end"]
+
+
 def _answer_only(tokens: list[Token], text: str) -> tuple[list[Token], list[str]]:
     """The tokens of the answer itself, without the label or the full stop a student may add.
 
@@ -1312,7 +1379,7 @@ def _answer_only(tokens: list[Token], text: str) -> tuple[list[Token], list[str]
     single name (with, at most, its arguments in brackets) that the right side does not use, so
     ``x = 2x - 1``, an equation, is still refused. A full stop (or a comma) at the very end ends a sentence.
     """
-    notes = []
+    tokens, notes = _without_closing_semicolons(tokens)
     if len(tokens) > 2 and tokens[-2].kind == "bad" and tokens[-2].text == ".":
         tokens = tokens[:-2] + tokens[-1:]
         notes.append("ignored the full stop at the end")
@@ -1435,8 +1502,10 @@ def parse_equation(text: str, namespace: Namespace, *, printed: bool = True) -> 
     (x**2, l**2, 'x**2 = l**2')
     """
     namespace = _namespace(namespace)
-    tokens = _without_newlines(_prepare(text))
-    return _equation(_Parser(tokens, namespace, text), printed)
+    tokens, notes = _without_closing_semicolons(_without_newlines(_prepare(text)))
+    parser = _Parser(tokens, namespace, text)
+    parser.notes.extend(notes)
+    return _equation(parser, printed)
 
 
 def _joins_equations(tokens: list[Token], i: int, namespace: Namespace, before: list[Token]) -> bool:
@@ -1486,7 +1555,7 @@ def parse_system(text: str, namespace: Namespace, *, printed: bool = True) -> li
     found = _recall(key) if key is not None else None
     if found is not None:
         return [replace(eq, notes=list(eq.notes)) for eq in found]
-    tokens = _prepare(text, 4 * MAX_LENGTH)
+    tokens, closing = _without_closing_semicolons(_prepare(text, 4 * MAX_LENGTH))
     stop = len(tokens) > 2 and tokens[-2].kind == "bad" and tokens[-2].text == "."
     if stop:  # a sentence's full stop, as after an expression ("= 0." reads the same either way)
         tokens = tokens[:-2] + tokens[-1:]
@@ -1514,7 +1583,8 @@ def parse_system(text: str, namespace: Namespace, *, printed: bool = True) -> li
         equations.append(_equation(_Parser(_without_newlines(chunk) + [end], namespace, text), printed))
     if not equations:
         raise ExpressionError("no equations found", 0, "empty", "write left side = right side")
-    if stop:
-        equations[-1] = replace(equations[-1], notes=equations[-1].notes + ["ignored the full stop at the end"])
+    if stop or closing:
+        said = closing + (["ignored the full stop at the end"] if stop else [])
+        equations[-1] = replace(equations[-1], notes=equations[-1].notes + said)
     _remember(key, tuple(equations))
     return [replace(eq, notes=list(eq.notes)) for eq in equations]

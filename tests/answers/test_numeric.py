@@ -100,6 +100,12 @@ def test_units_convert_to_si(text, si, dimension):
     assert quantity.dimension == parse_dimension(dimension)
 
 
+@pytest.mark.parametrize("text", ["14.7 N;", "14.7 N ;", "14.7;", "1.47e1 kg*m/s^2;", "14.7 N.;"])
+def test_a_closing_semicolon_is_ignored_as_in_a_formula(text):
+    # MATLAB's and Maxima's statements end with ';': as m*g/3; and θ̈ = -g/l sin θ; are read
+    assert parse_quantity(text).si == pytest.approx(14.7, rel=1e-12)
+
+
 @pytest.mark.parametrize("text, figures", [
     ("14.7", 3), ("14.70", 4), ("0.0147", 3), ("1.47e1", 3), ("1500", 4), ("0.5", 1), ("0", 1), ("1.470×10^1", 4),
 ])

@@ -232,8 +232,8 @@ def test_an_equation_number_after_a_variable_is_still_refused(xy):
 
 @pytest.mark.parametrize("text, read_as, note", [
     # readings that follow precedence but that other parsers flag: said in a note, never silent
-    ("√x²+y²", "y**2 + Abs(x)", "write √(…) around everything the root covers"),
-    ("√x^2+y^2", "y**2 + Abs(x)", "write √(…) around everything the root covers"),
+    ("√x+y²", "sqrt(x) + y**2", "write √(…) around everything the root covers"),
+    ("√x-y^2", "sqrt(x) - y**2", "write √(…) around everything the root covers"),
     ("cos 2*x", "x*cos(2)", "write cos(…) around everything the cos covers"),
     ("sin x/2", "sin(x)/2", "write sin(…) around everything the sin covers"),
     ("x^1/2", "x/2", "write ^(1/2) for the power 1/2"),

@@ -893,7 +893,6 @@ def test_answers_pasted_from_other_tools_mean_what_they_mean_there(student_ns, s
     # a console's prompt or output label pasted with the formula, and MATLAB's closing ';'
     ("Out[3]= x/l", "syntax", "'Out[3]=' is a console prompt"), ("In[1]:= x/l", "syntax", "'In[1]:=' is a console prompt"),
     (">> x/l", "syntax", "'>>' is a console prompt"), ("(%o1) x/l", "syntax", "'(%o1)' is a console prompt"),
-    ("x/l;", "syntax", "a ';' at the end is not part of a formula"),
     ("arctan(y, x)", "syntax", "write atan2(y, x)"),  # Maple's two-argument arctan
     # a decimal comma, and a British raised decimal point between digits (2·5: 2.5 or 10?)
     ("0,5*x", "syntax", "write a decimal point, as in 0.5"),
@@ -1211,3 +1210,58 @@ def test_a_chain_of_equals_after_a_label_is_refused_saying_to_give_one_answer(ns
     with pytest.raises(ExpressionError) as refused:
         parse(text, ns)
     assert "chain of '='" in refused.value.message and "give one answer" in refused.value.hint
+
+
+# -- a root without brackets before a power, and a ';' that ends the answer ------
+
+@pytest.mark.parametrize("text", [
+    # x is real: the root of the power is |x|, the power of the root (ASCIIMath's and TeX's reading) is x
+    "sqrt x^2", "sqrt x²", "√x²", "√x^2", "√x^2 + y^2", "sqrt theta^4", "√thetadot^2",
+    # glued factors: sqrt(2x²) = √2·|x| or sqrt(2x)² = 2x, whatever the domain
+    "sqrt 2x^2", "sqrt 2l^2", "√2l²",
+])
+def test_a_root_without_brackets_before_a_power_that_reads_two_ways_is_refused(ns, text):
+    with pytest.raises(ExpressionError) as err:
+        parse(text, ns)
+    assert err.value.code == "ambiguous" and "the root of the power" in err.value.message
+    assert "the power of the root" in err.value.message
+
+
+@pytest.mark.parametrize("text, expected", [
+    # the two readings agree: l > 0, an odd power or an odd root, a number
+    ("sqrt l^2", "l"), ("√l²", "l"), ("sqrt x^3", "sqrt(x^3)"), ("cbrt x^3", "cbrt(x^3)"), ("∛x³", "cbrt(x^3)"),
+    ("sqrt 3^2", "3"),
+    # brackets say which: √(x)² is the square of √(x), as sqrt(x)² is
+    ("√(x)^2", "sqrt(x)^2"), ("√(x)²", "sqrt(x)^2"), ("√(x + l)^2", "sqrt(x + l)^2"), ("∛(x)^3", "cbrt(x)^3"),
+    ("√(x^2)", "abs(x)"), ("sqrt(x)^2", "sqrt(x)^2"), ("sqrt 2(x^2)", "sqrt(2*x^2)"),
+    # TeX's \sqrt takes one token: \sqrt x^2 is (√x)²
+    (r"\sqrt x^2", "sqrt(x)^2"),
+])
+def test_a_root_before_a_power_that_reads_one_way_is_read(ns, text, expected):
+    assert parse(text, ns) == parse(expected, ns)
+
+
+def test_the_power_of_a_bracketed_root_keeps_the_roots_domain(ns):
+    # √(x)² = x only where x >= 0: read as |x| before, which is defined everywhere
+    assert parse_expression("√(x)^2", ns).conditions == parse_expression("sqrt(x)^2", ns).conditions != ()
+
+
+@pytest.mark.parametrize("text, expected, parse_as", [
+    # MATLAB's and Maxima's statements end with ';': ignored with a note, whatever the answer's kind
+    ("x/l;", "x/l", parse_expression), ("x/l ;", "x/l", parse_expression), ("x/l;;", "x/l", parse_expression),
+    ("x/l;\n", "x/l", parse_expression), ("T = m*g;", "m*g", parse_expression),
+    ("thetaddot = -g/l*sin(theta);", "thetaddot = -g/l*sin(theta)", parse_equation),
+    ("x = l; y = 0;", "x = l; y = 0", parse_system), ("x = l;\n", "x = l", parse_system),
+])
+def test_a_closing_semicolon_is_ignored_with_a_note(ns, text, expected, parse_as):
+    read = parse_as(text, ns)
+    want = parse_as(expected, ns)
+    if parse_as is parse_expression:
+        with pytest.raises(ExpressionError, match="cannot be used in a single expression"):
+            parse_expression(text.replace(";", "; y", 1), ns)  # one between two expressions is still refused
+        assert read.expr == want.expr and "ignored the ';' at the end" in read.notes
+    elif parse_as is parse_equation:
+        assert (read.lhs, read.rhs) == (want.lhs, want.rhs) and "ignored the ';' at the end" in read.notes
+    else:
+        assert [(e.lhs, e.rhs) for e in read] == [(e.lhs, e.rhs) for e in want]
+        assert "ignored the ';' at the end" in read[-1].notes
