@@ -185,9 +185,12 @@ UNITS: dict[str, tuple[float, Dimension, bool]] = {
     "grad": (math.pi / 200, DIMENSIONLESS, False),
     "dyn": (1e-5, _M * _L / _T ** 2, False), "kgf": (9.80665, _M * _L / _T ** 2, False),
     "lbf": (4.4482216152605, _M * _L / _T ** 2, False),
+    "t": (1000.0, _M, False),  # the tonne, accepted for use with SI (unprefixed: kt is also the knot)
 }
-PREFIXES: dict[str, float] = {"T": 1e12, "G": 1e9, "M": 1e6, "k": 1e3, "h": 1e2, "da": 1e1, "d": 1e-1, "c": 1e-2,
-                              "m": 1e-3, "µ": 1e-6, "μ": 1e-6, "u": 1e-6, "n": 1e-9, "p": 1e-12}
+# Every SI prefix from yocto to yotta (a nucleus is a few fm across, a laser pulse some fs or as long)
+PREFIXES: dict[str, float] = {"Y": 1e24, "Z": 1e21, "E": 1e18, "P": 1e15, "T": 1e12, "G": 1e9, "M": 1e6, "k": 1e3,
+                              "h": 1e2, "da": 1e1, "d": 1e-1, "c": 1e-2, "m": 1e-3, "µ": 1e-6, "μ": 1e-6, "u": 1e-6,
+                              "n": 1e-9, "p": 1e-12, "f": 1e-15, "a": 1e-18, "z": 1e-21, "y": 1e-24}
 _SI_UNITS: dict[str, Dimension] = {name: dim for name, (size, dim, _) in UNITS.items()
                                    if size == 1.0 and name != "g"}
 
@@ -199,11 +202,12 @@ _UNIT_WORDS: dict[str, str] = {
     "joule": "J", "watt": "W", "pascal": "Pa", "radian": "rad", "rad": "rad", "degree": "deg", "deg": "deg",
     "hertz": "Hz", "minute": "min", "min": "min", "hour": "h", "hr": "h", "percent": "%", "kg": "kg", "kilo": "kg",
     "revolution": "rev", "rev": "rev", "turn": "rev", "arcminute": "arcmin", "arcsecond": "arcsec",
-    "gradian": "grad", "dyne": "dyn",
+    "gradian": "grad", "dyne": "dyn", "tonne": "t",
 }
-_PREFIX_WORDS: dict[str, str] = {"tera": "T", "giga": "G", "mega": "M", "kilo": "k", "hecto": "h", "deca": "da",
-                                 "deka": "da", "deci": "d",
-                                 "centi": "c", "milli": "m", "micro": "µ", "nano": "n", "pico": "p"}
+_PREFIX_WORDS: dict[str, str] = {"yotta": "Y", "zetta": "Z", "exa": "E", "peta": "P", "tera": "T", "giga": "G",
+                                 "mega": "M", "kilo": "k", "hecto": "h", "deca": "da", "deka": "da", "deci": "d",
+                                 "centi": "c", "milli": "m", "micro": "µ", "nano": "n", "pico": "p", "femto": "f",
+                                 "atto": "a", "zepto": "z", "yocto": "y"}
 _PURE_WORDS = ("dimensionless", "unitless")
 # Look-alikes of the degree sign and of the multiplication dot.
 _UNIT_LOOKALIKES = str.maketrans({"º": "°", "˚": "°", "⋅": "·", "∙": "·", "•": "·", "×": "*", "\u2212": "-"})
@@ -276,8 +280,8 @@ def parse_unit(text: str) -> tuple[float, Dimension]:
     """Read a unit as a student writes it after a number: (size in SI units, dimension).
 
     Units are ``kg g m s min h N J W Pa rad Hz deg ° %`` with SI prefixes (``kN``, ``cm``, ``ms``,
-    ``µs``, ``daN``), the turn and parts of a degree (``rev arcmin arcsec grad gon``) and forces outside SI
-    (``dyn kgf lbf``), combined with ``* / ^ **``, ``·``, a space (``kg m/s^2``), parentheses and
+    ``µs``, ``daN``, ``fm``, ``PJ``: every prefix from yocto to yotta), the tonne (``t``, unprefixed), the turn
+    and parts of a degree (``rev arcmin arcsec grad gon``) and forces outside SI (``dyn kgf lbf``), combined with ``* / ^ **``, ``·``, a space (``kg m/s^2``), parentheses and
     superscripts (``m/s²``); an empty text is a pure number. Also as students type them: symbols
     written together (``Nm``, ``kgm/s^2``; refused where two readings differ, ``Nms``), an exponent
     right after its unit (``m/s2``, ``m s-2``), a hyphen between units (``N-m``), a unit in words

@@ -251,3 +251,16 @@ def test_scene_dimensions_keep_the_strict_grammar():
     for text in ("newtons", "%", "m/s2", "Nm"):
         with pytest.raises(DimensionError):
             parse_dimension(text)
+
+
+@pytest.mark.parametrize("typed, size, dimension", [
+    # every SI prefix, yocto to yotta: a nucleus is some fm across, a laser pulse some fs or as long
+    ("fm", 1e-15, L), ("am", 1e-18, L), ("zm", 1e-21, L), ("ym", 1e-24, L), ("fs", 1e-15, T), ("as", 1e-18, T),
+    ("Pm", 1e15, L), ("Em", 1e18, L), ("Zg", 1e18, M), ("Yg", 1e21, M), ("PJ", 1e15, M * L ** 2 / T ** 2),
+    ("fN", 1e-15, M * L / T ** 2), ("femtometres", 1e-15, L), ("attoseconds", 1e-18, T), ("petajoules", 1e15, M * L ** 2 / T ** 2),
+    ("exametre", 1e18, L), ("yoctograms", 1e-27, M),
+    # the tonne, accepted for use with SI
+    ("t", 1e3, M), ("tonnes", 1e3, M), ("t/h", 1e3 / 3600, M / T),
+])
+def test_every_si_prefix_and_the_tonne_are_read(typed, size, dimension):
+    assert parse_unit(typed) == (pytest.approx(size, rel=1e-12), dimension)
