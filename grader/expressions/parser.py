@@ -860,6 +860,9 @@ class _Parser:
         # Sin[x]^2 is Mathematica's call sin(x)^2, as sin(x)^2 is: read as grouping, the square went
         # inside (sin(x²)) and a right sin²x was proved wrong.
         if following.kind == "open" and following.value in "({[":
+            if (following.text == "{" and token.text.startswith("\\") and spec.min_args == 1
+                    and name not in _ROOT_INDEX and name not in _ANY_DIMENSION):
+                self.refuse_a_power_after_braces(token, name)
             args = self.call_arguments(token, spec)
             if name == "sqrt" and following.value == "[":
                 index_root = self.bracket_index_root(token, args[0])
@@ -897,6 +900,38 @@ class _Parser:
         if token.text.lower() in ("log", "\\log"):
             self.note("log is the natural logarithm (ln)")
         return guarded_pow(value, power, token.pos) if power is not None else value
+
+    def refuse_a_power_after_braces(self, token: Token, name: str) -> None:
+        """``\\sin{\\theta}^2``: TeX shows sin θ², and some readers (CortexJS) take the braces as a group,
+        sin(θ²); others take them as the call's brackets, sin(θ)², as ``\\frac{1}{2}\\sin{x}^2`` in answer
+        keys means. Refused naming both, unless the braces hold one bracket (``\\sin{\\left(x\\right)}^2``
+        shows sin(x)², the power of the sine as sin(x)^2 is)."""
+        depth, n = 0, self.i
+        for n in range(self.i, len(self.tokens)):
+            depth += {"open": 1, "close": -1}.get(self.tokens[n].kind, 0)
+            if depth == 0:
+                break
+        after = self.tokens[n + 1] if n + 1 < len(self.tokens) else None
+        if depth != 0 or after is None or not (after.kind == "sup" or (after.kind == "op" and after.value == "^")):
+            return
+        inner = self.tokens[self.i + 1:n]
+        if any(t.kind == "op" and t.value == "," for t in inner):
+            return  # \\log{x, 2}: arguments, not a group
+        if inner and inner[0].kind == "open":
+            level = 0
+            for m, t in enumerate(inner):
+                level += {"open": 1, "close": -1}.get(t.kind, 0)
+                if level == 0:
+                    break
+            if m == len(inner) - 1:
+                return  # \sin{(x)}^2: the bracket inside says it is the call's
+        power = after.text if after.kind == "sup" else "^…"
+        shown = self.text[token.pos:self.tokens[n].end] + power
+        argument = self.text[self.tokens[self.i].end:self.tokens[n].pos].strip()
+        raise ExpressionError(f"'{shown}' could be {name} of the power (TeX shows the power on {argument}) or the power "
+                              f"of {name}", token.pos, "ambiguous",
+                              f"write {token.text}^2 {argument} or {token.text}({argument})^2 for the power of {name}, or "
+                              f"put the power inside the braces ({token.text}{{{argument}^2}}) for {name} of the power")
 
     def bracket_index_root(self, token: Token, index: sympy.Expr) -> sympy.Expr | None:
         """``sqrt[3]{x}``: LaTeX's n-th root typed without the backslash (as KAS and MathQuill's

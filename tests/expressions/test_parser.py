@@ -1228,16 +1228,20 @@ def test_a_root_without_brackets_before_a_power_that_reads_two_ways_is_refused(n
 
 
 @pytest.mark.parametrize("text, expected", [
-    # the two readings agree: l > 0, an odd power or an odd root, a number
+    # the two readings agree: l > 0, an odd power or an odd root, a number; read, and said
     ("sqrt l^2", "l"), ("√l²", "l"), ("sqrt x^3", "sqrt(x^3)"), ("cbrt x^3", "cbrt(x^3)"), ("∛x³", "cbrt(x^3)"),
     ("sqrt 3^2", "3"),
-    # brackets say which: √(x)² is the square of √(x), as sqrt(x)² is
-    ("√(x)^2", "sqrt(x)^2"), ("√(x)²", "sqrt(x)^2"), ("√(x + l)^2", "sqrt(x + l)^2"), ("∛(x)^3", "cbrt(x)^3"),
-    ("√(x^2)", "abs(x)"), ("sqrt(x)^2", "sqrt(x)^2"), ("sqrt 2(x^2)", "sqrt(2*x^2)"),
-    # TeX's \sqrt takes one token: \sqrt x^2 is (√x)²
-    (r"\sqrt x^2", "sqrt(x)^2"),
 ])
-def test_a_root_before_a_power_that_reads_one_way_is_read(ns, text, expected):
+def test_a_root_before_a_power_that_reads_one_way_is_read_with_a_note(ns, text, expected):
+    parsed = parse_expression(text, ns)
+    assert parsed.expr == parse(expected, ns) and any("which is" in note for note in parsed.notes), parsed.notes
+
+
+@pytest.mark.parametrize("text, expected", [
+    # a bracket right after the root closes the radicand: √(x)² is the square of √(x), as sqrt(x)² is
+    ("√(x)^2", "sqrt(x)^2"), ("√(x)²", "sqrt(x)^2"), ("√(x + l)^2", "sqrt(x + l)^2"), ("∛(x)^3", "cbrt(x)^3"),
+])
+def test_the_power_of_a_bracketed_root_is_the_power_of_the_root(ns, text, expected):
     assert parse(text, ns) == parse(expected, ns)
 
 
@@ -1265,3 +1269,17 @@ def test_a_closing_semicolon_is_ignored_with_a_note(ns, text, expected, parse_as
     else:
         assert [(e.lhs, e.rhs) for e in read] == [(e.lhs, e.rhs) for e in want]
         assert "ignored the ';' at the end" in read[-1].notes
+
+
+# -- a LaTeX function's argument in braces, then a power ------------------------
+
+@pytest.mark.parametrize("text", [
+    # TeX shows sin θ²; CortexJS reads sin(θ²), answer keys (\frac{1}{2}\sin{x}^2 + c) mean sin²x
+    r"\sin{\theta}^2", r"\sin{\theta}^{2}", r"\sin{\theta}²", r"\frac{1}{2}\sin{\theta}^2", r"\cos{2\theta}^2",
+    r"\ln{l}^2", r"\exp{\theta}^2", r"\operatorname{sin}{\theta}^2", r"\mathrm{cos}{\theta}^2", r"\sin{\theta} ^ 2",
+])
+def test_a_power_after_a_functions_braces_is_refused_naming_both(ns, text):
+    with pytest.raises(ExpressionError) as err:
+        parse(text, ns)
+    assert err.value.code == "ambiguous" and "of the power" in err.value.message
+    assert "^2" in err.value.hint
