@@ -47,14 +47,14 @@ from grader.expressions.implicit import Implicit, ImplicitError
 from grader.expressions import (DimensionError, ExpressionError, Namespace, dimension_of, parse_dimension,
                                 parse_expression)
 from grader.expressions.dimensions import UnitReading, parse_unit, read_unit
-from grader.expressions.unicode_input import misleading_character
+from grader.expressions.unicode_input import MINUS_SIGNS, misleading_character
 
 __all__ = ["DEFAULT_TOLERANCE", "NumericRequestError", "Quantity", "QuantityError", "asked_unit", "check_numeric",
            "parse_quantity", "reference_value", "within_tolerance"]
 
 DEFAULT_TOLERANCE = {"relative": 0.01}
 _MAX_TEXT = 200
-_MINUSES = str.maketrans({"\u2212": "-", "\u2012": "-", "\u2013": "-", "\ufe63": "-", "\uff0d": "-"})
+_MINUSES = str.maketrans(dict.fromkeys(MINUS_SIGNS, "-"))  # − – — ‒ ‐ ‑ ﹣ －: the minuses formulas read
 _SUPERSCRIPT_DIGITS = str.maketrans("⁺⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "+-0123456789")
 _NUMBER = re.compile(r"""
     \s*(?P<sign>[-+])?\s*

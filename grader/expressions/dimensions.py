@@ -18,6 +18,7 @@ import sympy
 from sympy.core.function import AppliedUndef
 
 from .errors import DimensionError
+from .unicode_input import MINUS_SIGNS
 from .functions import BY_SYMPY
 
 __all__ = ["Dimension", "parse_dimension", "parse_unit", "read_unit", "UnitReading", "dimension_of", "NAMED_DIMENSIONS",
@@ -210,7 +211,8 @@ _PREFIX_WORDS: dict[str, str] = {"yotta": "Y", "zetta": "Z", "exa": "E", "peta":
                                  "atto": "a", "zepto": "z", "yocto": "y"}
 _PURE_WORDS = ("dimensionless", "unitless")
 # Look-alikes of the degree sign and of the multiplication dot.
-_UNIT_LOOKALIKES = str.maketrans({"º": "°", "˚": "°", "⋅": "·", "∙": "·", "•": "·", "×": "*", "\u2212": "-"})
+_UNIT_LOOKALIKES = str.maketrans({"º": "°", "˚": "°", "⋅": "·", "∙": "·", "•": "·", "×": "*",
+                                  **dict.fromkeys(MINUS_SIGNS, "-")})
 _SUPERSCRIPT_RUN = re.compile("[⁺⁻⁰¹²³⁴⁵⁶⁷⁸⁹]+")
 _FROM_SUPERSCRIPTS = str.maketrans("⁺⁻⁰¹²³⁴⁵⁶⁷⁸⁹", "+-0123456789")
 

@@ -37,7 +37,7 @@ from .latex_input import WRAPPER_COMMANDS, classify_command, subscript_text, wra
 from .magnitudes import MAX_DIGITS
 from .names import WRITE_INSTEAD
 from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, FULLWIDTH_SYMBOLS, GREEK_CHARS, MATH_LETTERS,
-                            OPERATOR_CHARS, PRIME_CHARS,
+                            MINUS_SIGNS, OPERATOR_CHARS, PRIME_CHARS,
                             ROOT_CHARS, SUBSCRIPT_DIGITS, SUBSCRIPT_LETTERS, SUPERSCRIPT_CHARS, SUPERSCRIPT_OTHERS,
                             VULGAR_FRACTIONS,
                             bad_character,
@@ -113,7 +113,6 @@ _LINE_BREAKS = frozenset("\n\u2028\u2029\u0085\v\f")
 
 # What may follow a number's digits to start its power of ten, and the exponent's signs.
 _EXPONENT_MARKS = frozenset("eEᴇ")
-_EXPONENT_MINUSES = frozenset({"-", "－"} | {ch for ch, op in OPERATOR_CHARS.items() if op == "-"})
 _EXPONENT_PLUSES = frozenset("+＋")
 
 # ASCIIMath's subscript in round brackets, which it does not print: x_(1), theta_(0), v_(max), m_(α).
@@ -571,7 +570,7 @@ class _Tokenizer:
         # word processor or PDF makes of '-' (1.5e−3 was 1.5·e − 3, Euler's number), and after ᴇ TI's raised ⁻.
         if j < self.n and text[j] in _EXPONENT_MARKS:
             k = j + 1
-            negative = k < self.n and (text[k] in _EXPONENT_MINUSES or (text[k] == "⁻" and text[j] == "ᴇ"))
+            negative = k < self.n and (text[k] in MINUS_SIGNS or (text[k] == "⁻" and text[j] == "ᴇ"))
             if k < self.n and (negative or text[k] in _EXPONENT_PLUSES):
                 k += 1
             if k < self.n and _is_digit(text[k]):

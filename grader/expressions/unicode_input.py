@@ -14,7 +14,7 @@ from fractions import Fraction
 
 from .errors import ExpressionError
 
-__all__ = ["GREEK_CHARS", "MATH_LETTERS", "OPERATOR_CHARS", "FULLWIDTH_SYMBOLS", "SUPERSCRIPT_CHARS",
+__all__ = ["GREEK_CHARS", "MATH_LETTERS", "MINUS_SIGNS", "OPERATOR_CHARS", "FULLWIDTH_SYMBOLS", "SUPERSCRIPT_CHARS",
            "SUPERSCRIPT_OTHERS", "SUBSCRIPT_DIGITS", "SUBSCRIPT_LETTERS", "ROOT_CHARS",
            "COMBINING_DOTS", "DOTTED_LETTERS", "PRIME_CHARS", "VULGAR_FRACTIONS", "is_space", "bad_character"]
 
@@ -67,6 +67,9 @@ OPERATOR_CHARS = {"·": "*", "⋅": "*", "×": "*", "∗": "*", "•": "*", "∙
                   # every other dash a word processor or PDF makes of a typed minus
                   "—": "-", "‒": "-", "‐": "-", "‑": "-", "﹣": "-",
                   "÷": "/", "∕": "/", "⁄": "/"}
+#: Every character read as a minus sign: the hyphen-minus, the dashes above and the full-width minus. A
+#: number's sign and exponent (`grader.answers.numeric`) and a unit's exponent read the same ones.
+MINUS_SIGNS = frozenset({"-", "－"} | {ch for ch, op in OPERATOR_CHARS.items() if op == "-"})
 
 #: Full-width digits, operators and brackets (what a CJK input method types: ｍ－（ｎ＋ｍ）) -> ASCII, one
 #: character for one, so positions stay. Full-width letters are not here: they stay refused, named

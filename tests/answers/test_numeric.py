@@ -100,6 +100,13 @@ def test_units_convert_to_si(text, si, dimension):
     assert quantity.dimension == parse_dimension(dimension)
 
 
+@pytest.mark.parametrize("minus", ["\u2010", "\u2011", "\u2014"])  # hyphen, non-breaking hyphen, em dash
+@pytest.mark.parametrize("form", ["{m}14.7 N", "{m}1.47e1 N", "-1.47e{m}2 kN", "{m}1.47×10^{m}2 kN"])
+def test_every_dash_a_formula_reads_as_a_minus_is_one_in_a_number(minus, form):
+    # a word processor's or PDF's dash for a typed minus, as the formula's tokens read it (OPERATOR_CHARS)
+    assert parse_quantity(form.format(m=minus)).si == pytest.approx(-14.7, rel=1e-12)
+
+
 @pytest.mark.parametrize("text", ["14.7 N;", "14.7 N ;", "14.7;", "1.47e1 kg*m/s^2;", "14.7 N.;"])
 def test_a_closing_semicolon_is_ignored_as_in_a_formula(text):
     # MATLAB's and Maxima's statements end with ';': as m*g/3; and θ̈ = -g/l sin θ; are read

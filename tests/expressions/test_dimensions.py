@@ -264,3 +264,8 @@ def test_scene_dimensions_keep_the_strict_grammar():
 ])
 def test_every_si_prefix_and_the_tonne_are_read(typed, size, dimension):
     assert parse_unit(typed) == (pytest.approx(size, rel=1e-12), dimension)
+
+
+@pytest.mark.parametrize("typed", ["m s\u20102", "m·s^\u20112", "kg m s\u20142", "m s^(\u20122)"])
+def test_a_units_exponent_takes_every_dash_read_as_a_minus(typed):
+    assert parse_unit(typed)[1] in (L / T ** 2, M * L / T ** 2)
