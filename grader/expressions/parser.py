@@ -433,11 +433,12 @@ class _Parser:
             bracketed = self.peek().kind == "open"
             exponent = self.expression(_POW - 1)
             after = self.peek()
-            if exponent == 1 and self.tokens[self.i - 1].text == "1" and after.kind == "op" and after.value == "/":
-                # x^1/2 is x/2 by precedence, and the classic slip for the square root
-                divisor = self.peek(1).text
-                self.note(f"read '^1/{divisor}' as the power 1, then divided by {divisor}: write "
-                          f"^(1/{divisor}) for the power 1/{divisor}")
+            if (exponent in (1, -1) and self.tokens[self.i - 1].text == "1" and after.kind == "op"
+                    and after.value == "/"):
+                # x^1/2 is x/2 and x^-1/2 is 1/(2x) by precedence, the classic slips for √x and 1/√x
+                divisor, power = self.peek(1).text, "1" if exponent == 1 else "-1"
+                self.note(f"read '^{power}/{divisor}' as the power {power}, then divided by {divisor}: write "
+                          f"^({power}/{divisor}) for the power {power}/{divisor}")
             if left is sympy.E and base.kind == "name":
                 # e^-kt, e^2x: the factors typed glued to the exponent stay in it, as nobody means
                 # e^(-k)·t (x^2y stays x²·y: only the exponential's exponent is read so). Not in LaTeX,

@@ -237,6 +237,7 @@ def test_an_equation_number_after_a_variable_is_still_refused(xy):
     ("cos 2*x", "x*cos(2)", "write cos(…) around everything the cos covers"),
     ("sin x/2", "sin(x)/2", "write sin(…) around everything the sin covers"),
     ("x^1/2", "x/2", "write ^(1/2) for the power 1/2"),
+    ("x^-1/2", "1/(2*x)", "write ^(-1/2) for the power -1/2"), ("x^−1/3", "1/(3*x)", "write ^(-1/3) for the power -1/3"),
 ])
 def test_a_reading_other_parsers_call_ambiguous_is_said(xy, text, read_as, note):
     parsed = parse_expression(text, xy)
