@@ -47,8 +47,9 @@ __all__ = ["read_leibniz", "dotted", "time_derivative"]
 _TIME = parse_dimension("time")
 _OPEN_OPERAND = {"(": ")", "[": "]", "{": "}"}
 _ATOMS = ("number", "name", "open", "root", "command", "derivative", "time_derivative")
-# ``\mathrm{d}x``, ``\operatorname{d}x``: the wrapper the tokenizer read into the name ``dx``.
-_WRAPPED_D = re.compile(r"^\\[A-Za-z]+\s*\{d\}")
+# ``\mathrm{d}x``, ``\operatorname{d}x``, ``\mathrm dx`` (TeX's one-letter argument, which needs the space):
+# the wrapper the tokenizer read into the name ``dx``.
+_WRAPPED_D = re.compile(r"^\\[A-Za-z]+(?:\s*\{d\}|\s+d)")
 # The d of Word's equations, a mathematical italic 𝑑 (read as the letter d), typed first.
 _ITALIC_D = "\U0001d451"
 
@@ -120,7 +121,7 @@ def _order_mark(tokens: list[Token], j: int) -> tuple[int | None, int]:
 
 @dataclass(frozen=True, slots=True)
 class _Numerator:
-    """``d``, ``d²``, ``dθ``, ``d θ``, ``d(θ)``, ``d²θ``, ``\\mathrm{d}\\theta``: what was matched.
+    """``d``, ``d²``, ``dθ``, ``d θ``, ``d(θ)``, ``d²θ``, ``\\mathrm{d}\\theta``, ``d\\dot\\theta``: what was matched.
 
     ``coordinate`` is None for the operator ``d/dt``; ``raw`` is its name text (``theta_1``),
     ``typed`` as typed (``θ₁``), and ``end`` the index of the token after the numerator.
@@ -132,6 +133,7 @@ class _Numerator:
     raw: str | None
     typed: str | None
     end: int
+    dots: int = 0  # the \dot (1) or \ddot (2) over the coordinate: \frac{d\dot\theta}{dt} is θ̈
 
 
 def _numerator(tokens: list[Token], i: int) -> _Numerator | None:
@@ -148,6 +150,12 @@ def _numerator(tokens: list[Token], i: int) -> _Numerator | None:
         inner = _at(tokens, j + 1)
         if _is(following, "open", "(") and _plain_name(inner) and _is(_at(tokens, j + 2), "close", ")"):
             return _Numerator(order, [token], inner, inner.value, inner.text, j + 3)  # d(θ)/dt
+        if following.kind == "command" and following.value in ("dot", "ddot"):
+            # d\dot\theta, d\dot{\theta}: LaTeX's dθ̇, as the dotted letter typed is read
+            dotted_name, raw, total, end = _operand(tokens, j)
+            if dotted_name is not None:
+                typed = f"\\{following.value}{{{dotted_name.text}}}"
+                return _Numerator(order, [token], dotted_name, raw, typed, end, total - dotted_name.order)
         return _Numerator(order, [token], None, None, None, j)
     value, text = token.value, token.text
     if len(value) > 1 and value[0] == "d" and value[1] != "_":
@@ -360,7 +368,7 @@ def _match(tokens: list[Token], i: int, ns, text: str, memo: dict) -> tuple[Toke
         error = _time_error(time, ns, shown)
         if error is None and top.order != order:
             error = _mismatch(start, last, text, top.order, order, top.typed)
-        return _derivative(start, last, text, top.raw, top.order + top.coordinate.order, ns, error), k
+        return _derivative(start, last, text, top.raw, top.order + top.coordinate.order + top.dots, ns, error), k
     # the operator d/dt, applied to what follows
     operator = text[start.pos:last.end]
     error = _time_error(time, ns, operator)

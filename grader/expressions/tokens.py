@@ -850,30 +850,37 @@ class _Tokenizer:
             k += 1  # \operatorname*{sin}: the star only moves limits, which a name has none of
         while k < self.n and is_space(text[k]):
             k += 1
-        if k >= self.n or text[k] != "{":
-            raise ExpressionError(f"\\{command} needs braces, as in \\{command}{{x}}", start, "syntax")
-        close = self.matching_brace(k)
-        if text[k + 1:close].strip().endswith(":") and all(token.kind == "newline" for token in self.tokens):
+        if k < self.n and text[k] == "{":
+            close = self.matching_brace(k)
+            inside, after = k + 1, close + 1
+        else:
+            # \mathrm dt, \mathrm d\theta, \boldsymbol\omega: without braces TeX takes one character or one
+            # command, as \mathrm{d}t and \boldsymbol{\omega}
+            word = re.match(r"\\[A-Za-z]+|[A-Za-z0-9]", text[k:]) if k < self.n else None
+            if word is None:
+                raise ExpressionError(f"\\{command} needs braces, as in \\{command}{{x}}", start, "syntax")
+            close, inside, after = k + word.end(), k, k + word.end()
+        if text[inside:close].strip().endswith(":") and all(token.kind == "newline" for token in self.tokens):
             # \text{Answer: } before the whole answer: a caption, as a label T = is
             self.space = True
-            self.i = close + 1
+            self.i = after
             return
-        kind, value = wrapped_text(text[start:close + 1], text[k + 1:close], k + 1)
+        kind, value = wrapped_text(text[start:after], text[inside:close], inside)
         if kind == "space":
             self.space = True
-            self.i = close + 1
-        elif kind == "number":  # \mathrm{2}: the number
-            self.i = k + 1 + text[k + 1:close].index(value)
+            self.i = after
+        elif kind == "number":  # \mathrm{2}: the number (\mathrm 12, as TeX shows it, 12)
+            self.i = inside + text[inside:close].index(value)
             self.number()
-            self.i = close + 1
+            self.i = max(self.i, after)
         elif kind == "punctuation":  # \text{.}, \text{,}: read as the mark itself
-            self.i = k + 1 + text[k + 1:close].index(value)
+            self.i = inside + text[inside:close].index(value)
             self.step()
-            self.i = close + 1
+            self.i = after
         elif kind == "and":  # eq1 \text{ and } eq2: two equations, as with ';'
-            self.emit("op", ";", start, close + 1)
+            self.emit("op", ";", start, after)
         else:
-            self.identifier(start, value, close + 1)
+            self.identifier(start, value, after)
 
     def transparent(self, start: int, j: int, name: str) -> None:
         r"""``\boxed{…}`` (a final answer in a box), ``\displaylines{… \\ …}``, ``\textcolor{red}{…}``: only

@@ -473,3 +473,23 @@ def test_asciimath_fraction_of_unequal_differentials_is_refused_by_name(ns, text
     with pytest.raises(ExpressionError) as refused:
         parse_expression(text, ns)
     assert words in refused.value.message and text in refused.value.message
+
+
+@pytest.mark.parametrize("text, name", [
+    # the derivative of a dotted variable in LaTeX, as dθ̇/dt typed is
+    (r"\frac{d\dot\theta}{dt}", "thetaddot"), (r"\frac{d\dot{\theta}}{dt}", "thetaddot"),
+    (r"\frac{d \dot{x}}{d t}", "xddot"), (r"\frac{\mathrm{d}\dot{\theta}}{\mathrm{d}t}", "thetaddot"),
+    (r"d\dot{x}/dt", "xddot"), (r"(d\dot x)/(dt)", "xddot"),
+    # TeX's \mathrm takes one letter without braces: \mathrm dt is \mathrm{d}t
+    (r"\frac{\mathrm d\theta}{\mathrm dt}", "thetadot"), (r"\frac{\mathrm d^2\theta}{\mathrm dt^2}", "thetaddot"),
+    (r"\mathrm d\theta/\mathrm dt", "thetadot"), (r"\frac{\mathrm d}{\mathrm dt}\theta", "thetadot"),
+    (r"\frac{\mathrm d\dot x}{\mathrm dt}", "xddot"),
+])
+def test_a_dotted_variable_and_an_unbraced_mathrm_d_in_latex_leibniz(ns, text, name):
+    assert parse(text, ns) == ns.symbol(name)
+
+
+def test_the_orders_of_a_dotted_variables_derivative_must_agree(ns):
+    with pytest.raises(ExpressionError, match=r"has d on top but dt² below") as err:
+        parse(r"\frac{d\dot x}{dt^2}", ns)
+    assert r"d\dot{x}/dt" in err.value.hint

@@ -61,7 +61,7 @@ def test_decimals_are_exact_and_flagged():
     ("|x", "unbalanced", 0),                # an absolute value never closed
     ("x + ||", "syntax", 4),                # empty bars
     ("\\rvert x", "unbalanced", 0),         # a closing bar with none open
-    ("\\mathrm x", "syntax", 0),
+    ("\\mathrm", "syntax", 0), ("\\mathrm +x", "syntax", 0),  # no argument TeX reads as a name
     ("x⁻", "syntax", 1),
 ])
 def test_tokenizer_errors(text, code, position):
@@ -538,3 +538,13 @@ def test_a_power_given_twice_is_refused(text):
 @pytest.mark.parametrize("text", ["x²", "(x^2)²", "x^2 y²", "x^(2) + y²", "x^(n)²"])
 def test_a_superscript_after_a_power_that_is_closed_is_still_read(text):
     assert all(t.kind != "bad" for t in tokenize(text))
+
+
+@pytest.mark.parametrize("text, braced", [
+    # without braces TeX's \mathrm, \text, \boldsymbol take one character or one command
+    (r"\mathrm l", r"\mathrm{l}"), (r"\text l", r"\text{l}"), (r"\mathbf g", r"\mathbf{g}"),
+    (r"\boldsymbol\omega", r"\boldsymbol{\omega}"), (r"\mathrm ll", r"\mathrm{l}l"), (r"\mathrm e^x", r"\mathrm{e}^x"),
+    (r"\mathrm 12", r"\mathrm{12}"),
+])
+def test_a_font_command_without_braces_takes_one_character_as_tex_does(text, braced):
+    assert [(t.kind, t.value) for t in tokenize(text)] == [(t.kind, t.value) for t in tokenize(braced)]
