@@ -269,6 +269,12 @@ def _dsolve(evaluator, coordinates: list, accelerations: dict) -> dict[sympy.Sym
     if not solutions:
         raise SceneError(scene.source, "", "the equations of motion are linear, but sympy finds no closed form of "
                                            f"the motion in t within {_DSOLVE_BUDGET_S:g} s")
+    # A coefficient that varies in t (r̈ = r (ω₀ + α t)², a rod spun up at a constant rate) has no
+    # closed form; dsolve then answers with a truncated power series, r(t) = … + O(t⁶), not a motion.
+    if any(s.rhs.has(sympy.Order) for s in solutions):
+        raise SceneError(scene.source, "", "the equations of motion are linear, but their coefficients vary in t "
+                                           "and sympy finds only a truncated power series of the motion in t, "
+                                           "no closed form")
     by_function = {s.lhs: s.rhs for s in solutions}
     motion = {}
     for u in coordinates:

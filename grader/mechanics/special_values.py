@@ -91,11 +91,13 @@ def _special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     scene = evaluator.scene
     key = f"answers ({spec.name}).where"
     target = evaluator.target(spec, default_state=False)
+    # At the start first: an answer that depends on t itself (the force of a rod spun up at a rate
+    # ω₀ + α t) is read at [initial]'s state and t = 0, with no need of the motion in time.
+    if spec.where[0] - spec.where[1] in (scene.time, -scene.time) and spec.kind != "small_oscillation":
+        return _at_start(evaluator, spec, target, key)
     asks_time = scene.time in spec.expr.xreplace(evaluator.values).free_symbols
     if asks_time and scene.time not in target and spec.kind != "small_oscillation":
         return _at_time(evaluator, spec, target, key)
-    if spec.where[0] - spec.where[1] in (scene.time, -scene.time) and spec.kind != "small_oscillation":
-        return _at_start(evaluator, spec, target, key)
     if scene.time not in target and spec.kind != "small_oscillation" and _condition_in_time(evaluator, spec, key):
         # A condition that holds at moments (ẍ = 0 on a plank driven by A sin Ωt: ẍ = A Ω² sin Ωt/3)
         # names a moment of the motion, not a state: read at rest it gave ẋ = 0, at the start.

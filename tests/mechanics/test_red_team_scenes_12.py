@@ -380,3 +380,46 @@ def test_bead_on_swinging_rod_force_from_newton_in_cartesian_coordinates(point):
     # At the engine's point r the rod pushes nothing.
     moved = {**point, "r": _engine("bead_on_swinging_rod", "no_force_point", point)}
     assert abs(_engine("bead_on_swinging_rod", "normal_force", moved)) < 1e-10 * m * g
+
+
+# -- Found and fixed: an answer at the start that depends on t itself ------------------------------------
+# The spun-up rod's force m (α r + 2 ṙ (ω₀ + α t)) at the release (t = 0, r = r0, ṙ = 0) is m α r0: the
+# state [initial] gives, as for any answer at t = 0. Because the answer's expression holds t, it was sent to
+# the motion in time first, which has no closed form here (r̈ = r (ω₀ + α t)²), and the file was refused.
+_SPUN_TEXT = (SCENES / "bead_rod_spun_up.toml").read_text()
+
+
+def test_an_answer_at_the_start_that_depends_on_t_is_read_at_initial():
+    from grader.mechanics.scene import parse_scene
+    text = _SPUN_TEXT + '''
+[[answers]]
+name = "rod_force_at_start"
+prompt = "The rod's force on the bead at the release"
+expr = "rod_force"
+where = "t = 0"
+in_terms_of = ["m", "omega0", "alpha", "r0"]
+'''
+    derivation = derive(parse_scene(text, source="spun.toml"))
+    point = {"m": 0.3, "omega0": 1.7, "alpha": 0.6, "r0": 0.25}
+    assert at(derivation, derivation.answers["rod_force_at_start"], point) == pytest.approx(0.3 * 0.6 * 0.25, rel=1e-12)
+
+
+# -- Found and fixed: a truncated power series taken for the motion in time -------------------------------
+# With r̈ = r (ω₀ + α t)², sympy's dsolve answers r(t) = … + O(t⁶), a series; the engine compared it with the
+# numerical motion and refused "the closed form r(t) = … O(t**6) disagrees with a numerical integration …:
+# None against 0.2125", which reads as an engine fault. It is now refused as having no closed form.
+def test_a_power_series_from_dsolve_is_refused_as_no_closed_form():
+    from grader.mechanics.scene import SceneError, parse_scene
+    text = _SPUN_TEXT + '''
+[[answers]]
+name = "rod_force_without_rdot"
+prompt = "The rod's force in terms of r and t"
+expr = "lambda_motor/r"
+in_terms_of = ["m", "omega0", "alpha", "r", "t", "r0"]
+dimension = "force"
+'''
+    with pytest.raises(SceneError) as refused:
+        derive(parse_scene(text, source="spun.toml"))
+    message = str(refused.value)
+    assert "energy is not conserved" in message and "truncated power series" in message, message
+    assert "O(t" not in message and "disagrees" not in message, message
