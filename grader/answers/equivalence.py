@@ -1590,10 +1590,12 @@ def _polynomial_roots(u, values, symbol, base, span) -> list[float]:
 
 def _test_values(breaks: list[float], span: tuple[float, float], near: float) -> list[float]:
     """One value inside each region between consecutive breakpoints and past the outermost (the regions at an
-    interval's ends narrower than `END_OFFSET` of it left out: an end written to a few digits means its round
-    value); of many breakpoints, the `MAX_BREAKS` nearest ``near``."""
+    interval's ends narrower than `END_OFFSET` of it left out where that end has decimals: 1.5708 written to a
+    few digits means its round value π/2; a whole end, 0 or 1, is exact, and |x - 0.0005| is not x - 0.0005 on
+    [0, 1]); of many breakpoints, the `MAX_BREAKS` nearest ``near``."""
     lo, hi = span
     margin = END_OFFSET * (hi - lo) if math.isfinite(hi - lo) else 0.0
+    low_margin, high_margin = (0.0 if math.isfinite(end) and end == int(end) else margin for end in (lo, hi))
     kept: list[float] = []
     for b in sorted(breaks):
         if not kept or b - kept[-1] > 1e-9 * max(1.0, abs(b)):
@@ -1610,10 +1612,10 @@ def _test_values(breaks: list[float], span: tuple[float, float], near: float) ->
         elif math.isinf(b):
             t = a + max(1.0, abs(a)) * REGION_SHARE
         else:
-            if (a == lo or b == hi) and b - a <= margin:
+            if (a == lo and b - a <= low_margin) or (b == hi and b - a <= high_margin):
                 continue
             t = a + (b - a) * REGION_SHARE
-        if lo + margin < t < hi - margin:
+        if lo + low_margin < t < hi - high_margin:
             values.append(t)
     return values
 

@@ -591,3 +591,27 @@ def test_no_instance_test_is_remembered_for_classes_whose_isinstance_looks_furth
     # E**x is a Pow, and an exp to isinstance: the answer cannot come from its type
     with pytest.raises(TypeError):
         equivalence.instance_test((sympy.exp,))
+
+
+# Red team 17: a kink within 0.1% of a whole end of an interval. A region that narrow beside an end written with
+# decimals (1.5708 for π/2) is left out, as the end's round value is meant; beside a whole end (0, 1) it is a
+# region of the domain: |x - 0.001| is not x - 0.001 on [0, 1], which it was taken for.
+UNIT = {"x": {"dimension": "dimensionless", "domain": [0, 1]}}
+_NEAR_A_WHOLE_END = [
+    ("abs(x - 1/1000)", "x - 1/1000", UNIT, "expression"),
+    ("sqrt((x - 1/10^6)^2)", "x - 1/10^6", UNIT, "expression"),
+    ("abs(x^2 - 1/10^8)", "x^2 - 1/10^8", UNIT, "expression"),
+    ("abs(x - 0.9999)", "0.9999 - x", UNIT, "expression"),
+    ("sign(x - 1/10^4)", "1", UNIT, "expression"),
+    ("abs(x - 1/1000)", "x - 1/1000", {"x": {"dimension": "dimensionless", "domain": [0, 2]}}, "expression"),
+    ("y = abs(x - 1/2000)", "y = x - 1/2000", {**UNIT, "y": {"dimension": "dimensionless", "domain": "real"}},
+     "equation"),
+]
+
+
+@pytest.mark.parametrize("reference, answer, variables, kind", _NEAR_A_WHOLE_END)
+def test_a_kink_within_a_thousandth_of_a_whole_end_is_compared_beside_it(reference, answer, variables, kind):
+    from grader.answers.checker import check
+
+    verdict = check(reference, answer, variables, kind=kind)
+    assert verdict.verdict == "not_equivalent", verdict.reason
