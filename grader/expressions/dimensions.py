@@ -91,7 +91,9 @@ class Dimension:
                 continue
             (num if exp > 0 else den).append(_unit_power(symbol, abs(exp)))
         top = "·".join(num) or "1"
-        return top if not den else f"{top}/{'·'.join(den)}"
+        if len(den) > 1:  # kg/(m·s): kg/m·s is read kg·s/m, as a quantity's unit is (_UnitParser.product)
+            return f"{top}/({'·'.join(den)})"
+        return top if not den else f"{top}/{den[0]}"
 
     def describe(self) -> str:
         """The dimension in words with its SI unit, e.g. ``'a length (m)'``."""
@@ -540,10 +542,24 @@ class _UnitParser:
             else:
                 return size, dim
             right_size, right = self.power(depth)
+            if op == "/" and self.scaled and self._multiplies_next():
+                # m/s·s, kg/m s: (m/s)·s by precedence, but m/(s·s) as many write it (and as "J/kg K" means)
+                raise DimensionError(self._after_solidus())
             if op == "/":
                 size, dim = size / right_size, dim / right
             else:
                 size, dim = size * right_size, dim * right
+
+    def _multiplies_next(self) -> bool:
+        """Whether the next token multiplies what comes before it (``*``, ``·``, ``.``, or a unit after a space)."""
+        token = self.peek()
+        return token in (("op", "*"), ("op", "·"), ("op", ".")) or (
+            token is not None and (token[0] == "unit" or token == ("op", "(")))
+
+    def _after_solidus(self) -> str:
+        """The refusal of a product after a '/' (``m/s·s``), saying both readings."""
+        return (f"{self.text.strip()!r} could have every unit after the '/' below it, or only the first: put the units "
+                f"below the '/' in brackets, as in m/(s·s), or write their powers, as in m·s^-2")
 
     def power(self, depth: int) -> tuple[float, Dimension]:
         kind, value = self.take()

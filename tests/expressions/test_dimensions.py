@@ -269,3 +269,17 @@ def test_every_si_prefix_and_the_tonne_are_read(typed, size, dimension):
 @pytest.mark.parametrize("typed", ["m s\u20102", "m·s^\u20112", "kg m s\u20142", "m s^(\u20122)"])
 def test_a_units_exponent_takes_every_dash_read_as_a_minus(typed):
     assert parse_unit(typed)[1] in (L / T ** 2, M * L / T ** 2)
+
+
+@pytest.mark.parametrize("typed", ["m/s·s", "m/s s", "m/s.s", "m/s*s", "kg/m s", "N/m·s", "J/kg·m", "m/s s^-1", "m/s²kg"])
+def test_a_product_after_a_solidus_is_refused_naming_both_readings(typed):
+    # m/s·s is (m/s)·s = m by precedence and m/(s·s) as many write it; the grader itself printed kg/m·s for kg/(m·s)
+    with pytest.raises(DimensionError, match="every unit after the '/' below it, or only the first"):
+        parse_unit(typed)
+
+
+@pytest.mark.parametrize("typed, printed", [
+    ("kg/(m s)", "kg/(m·s)"), ("kg/m/s", "kg/(m·s)"), ("m^3/(kg*s^2)", "m³/(kg·s²)"),
+])
+def test_a_denominator_of_several_units_is_printed_in_brackets(typed, printed):
+    assert parse_unit(typed)[1].unit() == printed and parse_unit(printed) == parse_unit(typed)
