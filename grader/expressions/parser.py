@@ -1415,14 +1415,20 @@ def _answer_only(tokens: list[Token], text: str) -> tuple[list[Token], list[str]
     single name (with, at most, its arguments in brackets) that the right side does not use, so
     ``x = 2x - 1``, an equation, is still refused. A full stop (or a comma) at the very end ends a sentence.
     """
-    tokens, notes = _without_closing_semicolons(tokens)
-    if len(tokens) > 2 and tokens[-2].kind == "bad" and tokens[-2].text == ".":
-        tokens = tokens[:-2] + tokens[-1:]
-        notes.append("ignored the full stop at the end")
-    elif len(tokens) > 2 and tokens[-2].kind == "op" and tokens[-2].value == ",":
-        # a formula set inside a sentence ends with its comma (Mathpix: "… \text {, }"), as with a full stop
-        tokens = tokens[:-2] + tokens[-1:]
-        notes.append("ignored the comma at the end")
+    notes: list[str] = []
+    while True:  # the marks that end a statement or a sentence, in any order (x;. as x.;)
+        tokens, said = _without_closing_semicolons(tokens)
+        stop, comma = "ignored the full stop at the end", "ignored the comma at the end"
+        if len(tokens) > 2 and tokens[-2].kind == "bad" and tokens[-2].text == "." and stop not in notes:
+            tokens = tokens[:-2] + tokens[-1:]
+            said.append(stop)
+        elif len(tokens) > 2 and tokens[-2].kind == "op" and tokens[-2].value == "," and comma not in notes:
+            # a formula set inside a sentence ends with its comma (Mathpix: "… \text {, }"), as with a full stop
+            tokens = tokens[:-2] + tokens[-1:]
+            said.append(comma)
+        notes += [note for note in said if note not in notes]
+        if not said:
+            break
     equals = [n for n, t in enumerate(tokens) if t.kind == "op" and t.value == "="]
     if len(equals) > 1 and tokens[0].kind == "name" and (equals[0] == 1 or tokens[1].kind == "open"):
         # T = m(g cos θ + l θ̇²) = m g cos θ + …: the work shown on paper, several answers for one

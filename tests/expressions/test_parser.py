@@ -1283,3 +1283,10 @@ def test_a_power_after_a_functions_braces_is_refused_naming_both(ns, text):
         parse(text, ns)
     assert err.value.code == "ambiguous" and "of the power" in err.value.message
     assert "^2" in err.value.hint
+
+
+@pytest.mark.parametrize("text", ["x/l;.", "x/l ;.", "x/l;,", "x/l;;.", "x/l.,"])
+def test_the_marks_that_end_an_answer_are_ignored_in_any_order(ns, text):
+    # x/l.; was read and x/l;. refused: a ';', a full stop and a comma at the end are each ignored, in any order
+    parsed = parse_expression(text, ns)
+    assert parsed.expr == parse("x/l", ns) and all(note.startswith("ignored the") for note in parsed.notes)
