@@ -387,23 +387,32 @@ def test_the_governors_balls_lift_off_the_shaft_only_above_the_least_rate(factor
     assert (thetaddot > 0) == lifts
 
 
+def _stationary_points(model, q0, qdot0, t_end: float, rates: dict) -> dict:
+    """The snapshots where each named rate crosses zero along the integrated motion (located by the
+    integrator on its dense output, to a few ulps in t), with the start and the end: an extreme of a
+    quantity over the motion is at one of them, found exactly rather than between two samples."""
+    events = [Event(name, rate, terminal=False) for name, rate in rates.items()]
+    motion = simulate(model.numeric, q0, qdot0, t_end, sample_times=[0.0], events=events)
+    return motion, {name: motion.samples + motion.events[name] + (motion.end,) for name in rates}
+
+
 def test_extremes_of_a_spherical_pendulum_swinging_through_the_pole_are_those_of_the_integrated_swing():
     """Released at rest at θ₀ (θ on [0, π] from the downward vertical), the bob swings through the
     lowest point, the pole of θ, and up the other side: its largest θ̇ (the speed at the bottom over l,
     reached with θ rising again) and its largest and least ż along a whole swing are the engine's."""
     model, answers = engine("spherical_pendulum_through_the_pole")
     l, theta0 = model.values["l"], model.values["theta0"]
-    times = np.linspace(0.0, 3.0, 6001)  # more than a period (about 2 s)
     start = [l * math.sin(theta0), 0.0, -l * math.cos(theta0)]
-    motion = simulate(model.numeric, start, [0.0, 0.0, 0.0], float(times[-1]), sample_times=times)
-    assert len(motion.samples) == len(times)
-    assert min(s.q[0] for s in motion.samples) < -0.9 * start[0]  # it did swing through to the other side
-    speed = max(math.sqrt(sum(v * v for v in s.qdot)) for s in motion.samples)
-    rise = [s.qdot[2] for s in motion.samples]
-    # Sampled every 1/4000 of a period: an extreme is missed by at most (π/2000)²/2 of its size.
+    # More than a period (about 2 s); the speed is stationary where v·a = 0, ż where z̈ = 0.
+    motion, at = _stationary_points(model, start, [0.0, 0.0, 0.0], 3.0, {
+        "speed": lambda s: float(np.dot(s.qdot, s.qddot)), "rise": lambda s: float(s.qddot[2])})
+    assert min(motion.q[:, 0]) < -0.9 * start[0]  # it did swing through to the other side
+    assert len(motion.events["speed"]) >= 2 and len(motion.events["rise"]) >= 2
+    speed = max(float(np.linalg.norm(s.qdot)) for s in at["speed"])
+    rise = [float(s.qdot[2]) for s in at["rise"]]
     for measured, name in ((speed / l, "thetadot_max"), (max(rise), "rise_rate_max"), (min(rise), "rise_rate_min")):
         expected = closed_form(model, answers, name)
-        assert abs(measured - expected) < 1e-5 * abs(expected), name
+        assert abs(measured - expected) < 1e-8 * abs(expected), name
 
 
 def test_extremes_of_an_elastic_pendulum_released_hanging_straight_down_are_those_of_the_integrated_bounce():
@@ -413,14 +422,14 @@ def test_extremes_of_an_elastic_pendulum_released_hanging_straight_down_are_thos
     m, k, r0 = model.values["m"], model.values["k"], model.values["r0"]
     l0 = model.values["l0"]
     period = 2 * math.pi * math.sqrt(m / k)
-    times = np.linspace(0.0, 1.5 * period, 6001)
-    motion = simulate(model.numeric, [r0, 0.0], [0.0, 0.0], float(times[-1]), sample_times=times)
-    assert len(motion.samples) == len(times)
-    assert max(abs(s.q[1]) for s in motion.samples) < 1e-9  # it stays on θ = 0
-    lengths = [s.q[0] for s in motion.samples]
-    # Sampled every 1/4000 of a period: an extreme is missed by at most (π/2000)²/2 of the amplitude.
-    assert abs(max(lengths) - closed_form(model, answers, "r_max")) < 1e-6
-    assert abs(k * (min(lengths) - l0) - closed_form(model, answers, "tension_min")) < 1e-6 * k
+    # r is stationary where ṙ = 0 (at the release and at each turn of the bounce).
+    motion, at = _stationary_points(model, [r0, 0.0], [0.0, 0.0], 1.5 * period,
+                                    {"turn": lambda s: float(s.qdot[0])})
+    assert float(np.max(np.abs(motion.q[:, 1]))) < 1e-9  # it stays on θ = 0
+    assert len(motion.events["turn"]) >= 1
+    lengths = [float(s.q[0]) for s in at["turn"]]
+    assert abs(max(lengths) - closed_form(model, answers, "r_max")) < 1e-9
+    assert abs(k * (min(lengths) - l0) - closed_form(model, answers, "tension_min")) < 1e-9 * k
 
 
 def test_a_nudged_orbit_on_a_cone_oscillates_at_the_engines_rate():
