@@ -48,6 +48,22 @@ def without_uniform_force():
     finally:
         _UNIFORM_FORCE.reset(token)
 
+# Set while a special value is taken along the motion from [initial]: coordinates that motion leaves at
+# rest throughout (resting_coordinates) are at their start in what is reduced (the swinging Atwood machine
+# released with its bob hanging straight down: ṙ² where r = L/4 needs no θ, θ̇).
+_ALONG_THE_MOTION: contextvars.ContextVar[bool] = contextvars.ContextVar("along_the_motion", default=False)
+
+
+@contextlib.contextmanager
+def along_the_motion():
+    """Within it, :meth:`AnswerEvaluator.reduce` puts the coordinates the motion leaves at rest at their start."""
+    token = _ALONG_THE_MOTION.set(True)
+    try:
+        yield
+    finally:
+        _ALONG_THE_MOTION.reset(token)
+
+
 __all__ = ["AnswerEvaluator", "evaluate_answers"]
 
 
@@ -322,7 +338,10 @@ class AnswerEvaluator:
             # (An earlier answer read again, by a condition on it or an answer that is it, is in its
             # readable form already.)
             expr = human_form(expr) if readable else sympy.cancel(expr)
+        expr = self._at_rest_along_the_motion(expr, target, readable)
         expr = self.eliminate_velocities(expr, target, key, readable=readable, signs=signs)
+        # (The energy that removed a velocity may bring in the resting ones: ṙ² beside m r² θ̇².)
+        expr = self._at_rest_along_the_motion(expr, target, readable)
         leftover = expr.free_symbols - target
         hidden = leftover & self.state_symbols(velocities=False)
         if hidden:
@@ -338,6 +357,19 @@ class AnswerEvaluator:
             raise SceneError(self.scene.source, key,
                              f"cannot be written in terms of {wanted}: it still depends on {names}")
         return expr
+
+    def _at_rest_along_the_motion(self, expr: sympy.Expr, target: set[sympy.Symbol], readable: bool) -> sympy.Expr:
+        """expr with the coordinates the motion from [initial] leaves at rest at their start, inside
+        :func:`along_the_motion` and where it depends on them (and target does not name them)."""
+        if not _ALONG_THE_MOTION.get() or not (expr.free_symbols - target) & set(self.resting_coordinates()):
+            return expr
+        if {u.symbol for u in self.reduction.independent.values()} <= set(self.resting_coordinates()):
+            # Every coordinate at rest where nothing accelerates: an equilibrium the motion leaves by the
+            # push every search assumes (a body released at the top of a sphere), not a motion at rest.
+            return expr
+        rest = {s: e for s, e in self.resting_coordinates().items() if s not in target}
+        expr = expr.xreplace(rest)
+        return human_form(expr) if readable else sympy.cancel(expr)
 
     def eliminate_velocities(self, expr: sympy.Expr, target: set[sympy.Symbol], key: str,
                              readable: bool = True, signs: dict | None = None) -> sympy.Expr:

@@ -197,7 +197,12 @@ def _where(evaluator, spec, target: set, key: str, at_rest: bool) -> sympy.Expr:
     asked = None if at_rest else _velocity_sign_asked(evaluator, spec)
     token = _MOVING.set((asked[0].name, asked[1]) if asked else None)
     try:
-        return _where_moving(evaluator, spec, target, key, at_rest, {asked[0].name: asked[1]} if asked else None)
+        if at_rest:
+            return _where_moving(evaluator, spec, target, key, at_rest, None)
+        from grader.mechanics.answers import along_the_motion
+
+        with along_the_motion():
+            return _where_moving(evaluator, spec, target, key, at_rest, {asked[0].name: asked[1]} if asked else None)
     finally:
         _MOVING.reset(token)
 

@@ -423,3 +423,35 @@ dimension = "force"
     message = str(refused.value)
     assert "energy is not conserved" in message and "truncated power series" in message, message
     assert "O(t" not in message and "disagrees" not in message, message
+
+
+# -- Found and fixed: a special value along a motion that leaves a coordinate at rest ----------------------
+# The swinging Atwood machine released from rest with its bob hanging straight down (θ0 = 0, θ̇0 = 0, where
+# θ̈ = −(g sin θ + 2 ṙ θ̇)/r vanishes) is a plain Atwood machine: r̈ = g (m − M)/(M + m), so from r0 = 1 m
+# ṙ² = 2 g (m − M)(r − r0)/(M + m). Its ṙ² where r = L/4 was refused ('it still depends on theta,
+# thetadot'): the energy that removes ṙ holds m r² θ̇² and m g r cos θ. Extremes already took such
+# coordinates at their start (the elastic pendulum hanging straight down); special values along the motion
+# now do too. Released tilted (θ0 = 1), θ moves, and the answer is still refused.
+_ATWOOD_TEXT = (SCENES / "swinging_atwood.toml").read_text() + '''
+[[answers]]
+name = "speed_squared_at_quarter"
+prompt = "The square of the rate r changes at when r = L/4"
+expr = "rdot^2"
+where = "r = L/4"
+in_terms_of = ["M", "m", "g", "L"]
+'''
+
+
+def test_a_special_value_along_a_motion_that_leaves_a_coordinate_at_rest():
+    from grader.mechanics.scene import parse_scene
+    text = _ATWOOD_TEXT.replace("theta = 1.0\n", "theta = 0\n", 1)
+    derivation = derive(parse_scene(text, source="atwood.toml"))
+    for point in ({"M": 1.2, "m": 1.0, "g": 9.81, "L": 2.0}, {"M": 0.3, "m": 0.7, "g": 1.6, "L": 7.0}):
+        expected = 2 * point["g"] * (point["m"] - point["M"]) * (point["L"] / 4 - 1.0) / (point["M"] + point["m"])
+        assert at(derivation, derivation.answers["speed_squared_at_quarter"], point) == pytest.approx(expected, rel=1e-12)
+
+
+def test_a_special_value_along_a_motion_in_which_the_other_coordinate_moves_is_still_refused():
+    from grader.mechanics.scene import SceneError, parse_scene
+    with pytest.raises(SceneError, match="still depends on theta, thetadot"):
+        derive(parse_scene(_ATWOOD_TEXT, source="atwood.toml"))
