@@ -488,6 +488,7 @@ def _numeric(reference, answer, variables, values, unit, tolerance, dimension, f
             # Another accepted value (the mirror equilibrium) counts too; a wrong unit stays wrong.
             others = alternatives if isinstance(alternatives, (list, tuple)) else ()
             if verdict.verdict == "not_equivalent" and verdict.evidence.get("method") == "numeric_value":
+                misses = []
                 for index, other in enumerate(o for o in others if isinstance(o, str)):
                     try:
                         matched = check_numeric(other, text, variables, values, unit, tolerance, dimension,
@@ -500,6 +501,9 @@ def _numeric(reference, answer, variables, values, unit, tolerance, dimension, f
                         matched.evidence = {**matched.evidence, "matched": index + 1}
                         verdict = matched
                         break
+                    misses.append((index + 1, matched))
+                else:
+                    _nearest_slip(verdict, misses)
         except NumericRequestError as error:
             verdict = Verdict.invalid(str(error), text)
     verdict.ms = (time.monotonic() - started) * 1000
@@ -535,6 +539,7 @@ def _alternatives(verdict: Verdict, reference, alternatives, answer, variables, 
                 raise _RequestError(f"accepted answer {index} ({alternative[:60]!r}) is not an equation: write it "
                                     "whole, with its '=', as the reference is written")
     if verdict.verdict == "not_equivalent":
+        misses = []
         for index, alternative in enumerate(alternatives, 1):
             other = _check(alternative, answer, variables, kind, feedback, budget_s, state, options, started,
                            detail)
@@ -542,9 +547,47 @@ def _alternatives(verdict: Verdict, reference, alternatives, answer, variables, 
                 other.evidence = {**other.evidence, "matched": index}
                 other.reason = f"{other.reason} (matches accepted answer {index + 1} of {len(alternatives) + 1})"
                 return other
+            misses.append((index, other))
+        _nearest_slip(verdict, misses)
     if verdict.verdict == "equivalent":
         verdict.evidence = {**verdict.evidence, "matched": 0}
     return verdict
+
+
+# Feedback codes that name a slip against one reference (a sign, a factor, a term, sin for cos, a power of
+# ten): each is true of the answer compared with that reference only.
+_SLIP_CODES = frozenset({"sign", "factor", "sin_cos", "missing_term", "term_sign", "extra_term", "close",
+                         "power_of_ten"})
+
+
+def _says_sign(item: Mapping) -> bool:
+    """Whether a slip message tells the student their sign is wrong ("check the sign", a negative factor)."""
+    return item["code"] == "sign" or (item["code"] in ("factor", "power_of_ten") and "sign" in item["message"])
+
+
+def _nearest_slip(verdict: Verdict, misses: Sequence[tuple[int, Verdict]]) -> None:
+    """A wrong answer's slip is named against the accepted answer it is nearest to, not the first one only.
+
+    With the other sign convention accepted (a reaction force's ``alternatives = ["-N"]``), "check the
+    sign" against the main reference is false: the student's sign is an accepted one. So when the main
+    reference's feedback is only slips and speaks of the sign, or names no slip at all, the first accepted
+    answer whose diagnosis names a slip without the sign gives the feedback (``evidence["feedback_from"]``
+    says which, 1 for the first alternative); failing that, when the main one names nothing, the first
+    alternative's slip that does. An instructor's message or a dimension stays as it is.
+    """
+    main = verdict.feedback
+    if any(item.get("code") not in _SLIP_CODES for item in main):
+        return
+    if main and not any(_says_sign(item) for item in main):
+        return
+    candidates = [(index, other) for index, other in misses if other.verdict == "not_equivalent" and other.feedback
+                  and all(item.get("code") in _SLIP_CODES for item in other.feedback)]
+    chosen = next(((i, o) for i, o in candidates if not any(_says_sign(item) for item in o.feedback)), None)
+    if chosen is None and not main and candidates:
+        chosen = candidates[0]
+    if chosen is not None:
+        verdict.feedback = list(chosen[1].feedback)
+        verdict.evidence = {**verdict.evidence, "feedback_from": chosen[0]}
 
 
 def _check(reference, answer, variables, kind, feedback, budget_s, state, options, started, detail) -> Verdict:

@@ -109,3 +109,42 @@ def test_a_scene_alternative_of_the_wrong_dimension_is_refused():
 
     with pytest.raises(SceneError, match="alternatives"):
         parse_scene(SCENE.replace('alternatives = ["-acos(g/(omega^2*a))"]', 'alternatives = ["a"]'), source="test")
+
+
+# A reaction force accepted in either sign convention: the slip is named against the accepted answer it is
+# nearest to, never "check the sign" for a sign that is accepted (red team 19).
+SWING = {"m": {"dimension": "mass", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"},
+         "l": {"dimension": "length", "domain": "positive"},
+         "theta": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "coordinate"},
+         "thetadot": {"dimension": "angular_velocity", "domain": "real", "kind": "velocity"}}
+TENSION = "m*(g*cos(theta) + l*thetadot^2)"
+
+
+@pytest.mark.parametrize("answer, code, against", [
+    ("-2 m (g cos(theta) + l thetadot^2)", "factor", 1),      # twice the accepted -T: a factor, not a sign
+    ("-m g cos(theta)", "missing_term", 1),                    # -T less a term
+    ("-m (g sin(theta) + l thetadot^2)", "sin_cos", 1),        # -T with sin for cos
+    ("2 m (g cos(theta) + l thetadot^2)", "factor", None),     # nearest the main one: said against it
+    ("m g cos(theta)", "missing_term", None),
+])
+def test_a_slip_is_named_against_the_nearest_accepted_answer(answer, code, against):
+    v = check(TENSION, answer, SWING, alternatives=[f"-{TENSION}"])
+    assert v.verdict == "not_equivalent"
+    assert [f["code"] for f in v.feedback] == [code]
+    assert not any("sign" in f["message"].lower() for f in v.feedback)
+    assert v.evidence.get("feedback_from") == against
+
+
+@pytest.mark.parametrize("answer, message", [
+    ("-147 N", "Your value is off by a power of ten: check unit prefixes and conversions."),
+    ("-1.47 N", "Your value is off by a power of ten: check unit prefixes and conversions."),
+])
+def test_a_numeric_slip_is_named_against_the_nearest_accepted_value(answer, message):
+    v = check("m*g", answer, {k: SWING[k] for k in ("m", "g")}, kind="numeric", values={"m": 1.5, "g": 9.81},
+              unit="N", alternatives=["-m*g"])
+    assert v.verdict == "not_equivalent" and [f["message"] for f in v.feedback] == [message]
+
+
+def test_a_sign_is_still_said_when_no_accepted_answer_has_that_sign():
+    v = check(TENSION, "-m (g cos(theta) + l thetadot^2)", SWING, alternatives=["m*(g*cos(theta) + l*thetadot^2)*1"])
+    assert v.verdict == "not_equivalent" and [f["code"] for f in v.feedback] == ["sign"]
