@@ -9,7 +9,8 @@ layer's one injectable clock), so tests can stand on the boundary second. The ru
 - after ``due_at`` and up to and including ``closes_at`` it is late (``late``): each *started* day
   after ``due_at`` costs ``late_penalty_per_day`` of its score (never below zero);
 - after ``closes_at`` (after ``due_at`` when there is no ``closes_at``) it is refused (``closed``),
-  and the worked solutions are shown; an instructor may release them earlier.
+  and the worked solutions are shown; an instructor may release them earlier, which closes it
+  then (a solution on the page and hand-ins still accepted would be full marks for copying it).
 - each answer of each problem gets ``max_attempts`` submissions (None: unlimited).
 
 Times are naive UTC (as every stored time); ``time_zone`` is how pages state them.
@@ -84,8 +85,13 @@ def deadline_state(assignment: Assignment, now: datetime) -> str:
     >>> a = Assignment(opens_at=datetime(2026, 12, 1), due_at=datetime(2026, 12, 8), closes_at=datetime(2026, 12, 10))
     >>> [deadline_state(a, datetime(2026, 12, d)) for d in (1, 8, 9, 10, 11)]
     ['open', 'open', 'late', 'late', 'closed']
+    >>> a.solutions_released = True  # the solutions are shown: nothing more is handed in
+    >>> deadline_state(a, datetime(2026, 12, 8))
+    'closed'
     """
     now = _naive(now)
+    if assignment.solutions_released:
+        return "closed"
     if now < assignment.opens_at:
         return "not_open"
     if now <= assignment.due_at:
