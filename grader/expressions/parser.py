@@ -1446,6 +1446,15 @@ def _answer_only(tokens: list[Token], text: str) -> tuple[list[Token], list[str]
     name = label[0]
     if any(t.kind == "name" and t.value == name.value and t.order == name.order for t in tokens[split + 1:]):
         return tokens, notes  # x = 2x - 1 is an equation, not a label
+    if arguments and name.value.lower() in FUNCTIONS:
+        # cos(θ) = g/(ω²a) states the cosine of an angle, not a name for the answer: dropped as a label, its
+        # right side was graded as the angle itself, and sin(θ) = … was accepted where cos θ* is asked.
+        said = text[name.pos:tokens[split - 1].end].strip()
+        inverse = INVERSES.get(FUNCTIONS[name.value.lower()].name)
+        example = f"; an angle whose {name.value} is c is {inverse}(c)" if inverse else ""
+        raise ExpressionError(f"'{said} = …' gives the value of {said}, not the answer itself: '=' after a "
+                              "function is not a label", name.pos, "syntax",
+                              f"give the quantity asked for alone, without '{said} ='{example}")
     notes.append(f"read '{text[name.pos:tokens[split].end].strip()} …' as the expression after '='")
     return tokens[split + 1:], notes
 

@@ -1290,3 +1290,27 @@ def test_the_marks_that_end_an_answer_are_ignored_in_any_order(ns, text):
     # x/l.; was read and x/l;. refused: a ';', a full stop and a comma at the end are each ignored, in any order
     parsed = parse_expression(text, ns)
     assert parsed.expr == parse("x/l", ns) and all(note.startswith("ignored the") for note in parsed.notes)
+
+
+# -- a function of something before '=' is not a label (red team 19) ---------------
+
+@pytest.mark.parametrize("text, inverse", [
+    # cos θ* = g/(ω²a) for a hoop's equilibrium: the right side was graded as the angle itself, and
+    # sin(θ) = … passed where cos θ* was asked, the label dropped without a word about which function
+    ("cos(theta) = m/m1", "acos"),
+    ("sin(θ) = m/m1", "asin"),
+    ("tan(phi0) = x/l", "atan"),
+    ("arccos(theta) = x/l", None),
+    ("sqrt(g) = x", None),
+    ("exp(x) = m/m1", None),
+])
+def test_a_function_before_equals_is_refused_not_read_as_a_label(ns, text, inverse):
+    with pytest.raises(ExpressionError) as refused:
+        parse(text, ns)
+    assert "not the answer itself" in refused.value.message
+    assert (f"is {inverse}(c)" in refused.value.hint) == (inverse is not None)
+
+
+@pytest.mark.parametrize("text", ["N(theta) = m g", "T(x, y) = m g", "F_N = m g"])
+def test_a_name_with_arguments_is_still_a_label(ns, text):
+    assert parse(text, ns) == ns.symbol("m") * ns.symbol("g")
