@@ -4,7 +4,7 @@ A scene file becomes a problem version through one path, :func:`queue_scene`: th
 no engine (empty, too large, not TOML, another problem's id, the same file again), then the
 derivation queue (:mod:`grader.jobs.derivation_queue`), whose worker stores the version. Publishing,
 unpublishing, archiving and restoring are :func:`grader.store.problems.set_published` and
-:func:`~grader.store.problems.set_archived`. Who may do any of it is decided before, by
+:func:`~grader.store.problems.set_archived`. A regrade grades against :func:`regrade_version`. Who may do any of it is decided before, by
 :mod:`grader.web.policy` (``manage``); each surface only puts the outcome into its own words (a
 flash and a redirect, or a status and JSON), so the pages and the API cannot drift apart.
 """
@@ -16,11 +16,11 @@ from dataclasses import dataclass
 from grader.jobs.derivation import DerivationError, read_scene_id
 from grader.jobs.derivation_queue import TooManyDerivations, enqueue
 from grader.store.db import Database
-from grader.store.models import Problem
+from grader.store.models import Problem, ProblemVersion
 from grader.store.problems import latest_version
 from grader.web.policy import Action, Principal, require, require_upload
 
-__all__ = ["MAX_SCENE_BYTES", "Queued", "SceneRefused", "queue_scene"]
+__all__ = ["MAX_SCENE_BYTES", "Queued", "SceneRefused", "queue_scene", "regrade_version"]
 
 MAX_SCENE_BYTES = 256 * 1024
 
@@ -101,3 +101,10 @@ def queue_scene(principal: Principal, source: str, *, filename: str, publish: bo
     except TooManyDerivations as refused:
         raise SceneRefused("too-many-derivations", str(refused), retry_after_s=refused.retry_after_s) from None
     return Queued(job_id)
+
+
+def regrade_version(session, problem: Problem) -> ProblemVersion | None:
+    """The version a regrade of ``problem`` grades every submission against: the newest *published*
+    one, the references students answer (None: publish one first). Never a draft: its references are
+    unreviewed, and on a problem in no course any instructor may add one."""
+    return latest_version(session, problem, published_only=True)

@@ -15,7 +15,9 @@ from grader.store.scores import practice_scores
 from grader.web.api import spec
 from grader.web.api.problems import INSTRUCTORS, visible_version
 from grader.web.csv_export import csv_response
+from grader.web.errors import ApiProblem
 from grader.web.policy import Action, current_principal, students_in_view
+from grader.web.problem_life import regrade_version
 
 CSV_COLUMNS = ["user_id", "external_id", "name", "answer", "submissions", "latest_submission", "latest_status",
                "latest_verdict", "latest_score", "best_score", "score", "problem_score"]
@@ -84,18 +86,22 @@ def get_grades(slug: str):
     return {"problem": slug, "grades": rows}
 
 
-@spec.route("/problems/<slug>/regrade", "POST", roles=INSTRUCTORS, errors=(404,),
+@spec.route("/problems/<slug>/regrade", "POST", roles=INSTRUCTORS, errors=(404, 409),
             responses={202: ("Every submission of the problem is queued for a new grading round.", {
                 "application/json": {"type": "object", "properties": {
                     "queued": {"type": "integer"}, "version": {"type": "integer"}, "links": {"type": "object"}}}})})
 def regrade(slug: str):
-    """Grade every submission of a problem again, against its newest version's references.
+    """Grade every submission of a problem again, against its newest published version's references
+    (never a draft's; ``409`` when no version is published), as the instructor page does.
 
     Each submission gets a new grading round; its earlier verdicts stay stored but only the new
     one is in effect.
     """
     with db.read() as session:
-        version = visible_version(slug, session, Action.REGRADE)
+        version = regrade_version(session, visible_version(slug, session, Action.REGRADE).problem)
+        if version is None:
+            raise ApiProblem(409, f"Problem {slug!r} has no published version: publish one before regrading.",
+                             kind="conflict")
     queued = jobs.regrade(db, version)
     return {"queued": queued, "version": version.number,
             "links": {"grades": url_for("api.get_grades", slug=slug)}}, 202

@@ -31,7 +31,7 @@ from grader.answers.grouping import GroupingCache, group_wrong_answers
 from grader.web.instructor.stats import CSV_HEADER, csv_rows, per_answer, results, score_distribution, signature
 from grader.web.policy import (Action, allowed, current_principal, find_derivation, find_problem,
                                find_problem_version, managed_courses, managed_problems, students_in_view)
-from grader.web.problem_life import MAX_SCENE_BYTES
+from grader.web.problem_life import MAX_SCENE_BYTES, regrade_version
 from grader.web.student.statement import statement_problems
 
 SHOWN_GROUPS = 8
@@ -216,7 +216,7 @@ def regrade(slug: str):
     me = current_principal()
     with db.read() as session:  # the queue writes in its own transaction
         found = find_problem(session, me, slug, Action.REGRADE)
-        version = latest_version(session, found, published_only=True)
+        version = regrade_version(session, found)
     if version is None:
         flash("Publish a version before regrading.", "error")
         return redirect(url_for("instructor.problem", slug=slug))
