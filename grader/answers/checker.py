@@ -556,7 +556,7 @@ def _alternatives(verdict: Verdict, reference, alternatives, answer, variables, 
 
 # Feedback codes that name a slip against one reference (a sign, a factor, a term, sin for cos, a power of
 # ten): each is true of the answer compared with that reference only.
-_SLIP_CODES = frozenset({"sign", "factor", "sin_cos", "missing_term", "term_sign", "extra_term", "close",
+_SLIP_CODES = frozenset({"sign", "factor", "two_pi", "magnitude", "sin_cos", "missing_term", "term_sign", "extra_term", "close",
                          "power_of_ten"})
 
 

@@ -3,13 +3,16 @@
 Every message is earned by an equivalence check, never by pattern matching on the text: an
 instructor's ``[[answers.feedback]]`` entry matches when the student's answer is equivalent to its
 ``expr``; "check the sign" appears only when the answer is equivalent to minus the reference; and
-so on for a constant factor, sin <-> cos, a missing term, an extra term and one term's sign.
+so on for a constant factor, 2π (radians for cycles), a magnitude, sin <-> cos, a missing term,
+an extra term and one term's sign.
 Feedback runs only when the answer is not equivalent, and stops when the time budget runs low.
 
 Feedback never gives the reference away. By default (``detail="kind"``) a message names the kind of
 slip ("off by a constant factor", "check the sign", "a term is missing") but no value: a student
 who read "3/2 times the correct one", or a relative difference at a point the counterexample shows,
-could compute the reference from their own answer. An instructor may opt in per problem
+could compute the reference from their own answer (the slips that are one exact operation away, the sign,
+sin for cos, 2π for radians against cycles, say what they are: naming the slip is the feedback). An
+instructor may opt in per problem
 (``[feedback] detail = "full"`` in the scene file) to messages that also state the factor and the
 relative difference.
 """
@@ -26,7 +29,7 @@ import sympy
 from grader.answers.equivalence import SYMBOLIC_MAX_TERMS, expansion_terms, instance_test
 from grader.expressions.magnitudes import node_count
 
-__all__ = ["diagnose", "factor_message"]
+__all__ = ["diagnose", "factor_message", "MAGNITUDE_MESSAGE", "TWO_PI_MESSAGE"]
 
 MAX_TERMS = 6
 
@@ -192,6 +195,14 @@ def _reference_candidates(reference: sympy.Expr) -> tuple[tuple[sympy.Expr, ...]
 
 # The relative difference below which a wrong answer is "close" (rounded numbers, a tiny extra term).
 CLOSE = 1e-3
+# 2π or 1/(2π) times the correct answer: radians for cycles, the commonest slip in oscillations (ω for f,
+# a period 2π/ω for 1/ω), which "off by a constant factor" does not name (2π is no ratio of small integers).
+# |N| where the reference N is signed (a normal force that turns negative where the contact would pull): the
+# verdict is right, and without a word the student could not tell their magnitude from a wrong formula.
+MAGNITUDE_MESSAGE = ("Your answer is the magnitude of the correct one, which is negative for some values here: "
+                     "give it with its sign (the sign says the direction).")
+TWO_PI_MESSAGE = ("Your answer is off by a factor of 2π: check radians against cycles (the angular frequency ω "
+                  "against the frequency f = ω/2π, a period 2π/ω against 1/ω).")
 
 
 def diagnose(
@@ -262,6 +273,15 @@ def diagnose(
                 yield ("sign" if q == -1 else "factor",
                        lambda: same(sympy.Rational(q.numerator, q.denominator) * reference, answer),
                        factor_message(q, detail))
+        if ratio is not None and not equation and ratio > 0:
+            for factor in (2 * sympy.pi, 1 / (2 * sympy.pi)):
+                if abs(ratio / float(factor) - 1) <= 1e-9:
+                    yield ("two_pi", lambda f=factor: same(f * reference, answer), TWO_PI_MESSAGE)
+        factors = sympy.Mul.make_args(answer)
+        if not equation and any(f.func is sympy.Abs for f in factors) and answer.as_coeff_Mul()[0] > 0:
+            # |N|, m|g cos θ - R θ̇²| (sympy takes a positive m out of the bars): the bars taken off
+            signed = sympy.Mul(*(f.args[0] if f.func is sympy.Abs else f for f in factors))
+            yield ("magnitude", lambda: same(reference, signed) or same(reference, -signed), MAGNITUDE_MESSAGE)
         if _has_sin_or_cos(answer):
             yield ("sin_cos",
                    lambda: (swap_could_match is None or swap_could_match())

@@ -42,6 +42,7 @@ from typing import Any, Mapping, Sequence
 import sympy
 
 from grader.answers.evaluate import SCALE, FloatBackend, Unsupported, compile_expr
+from grader.answers.feedback import TWO_PI_MESSAGE
 from grader.answers.verdict import Verdict
 from grader.expressions.implicit import Implicit, ImplicitError
 from grader.expressions import (DimensionError, ExpressionError, Namespace, dimension_of, parse_dimension,
@@ -785,6 +786,8 @@ def _numeric_feedback(value: float, target: float, tol: Mapping[str, Any], feedb
             return [item]
     if target != 0 and within_tolerance(-value, target, band):
         return [{"code": "sign", "message": "Check the sign of your answer."}]
+    if target != 0 and any(within_tolerance(value, target * factor, band) for factor in (2 * math.pi, 1 / (2 * math.pi))):
+        return [{"code": "two_pi", "message": TWO_PI_MESSAGE}]
     if target != 0 and value != 0:
         ratio = math.log10(abs(value / target))
         if abs(ratio - round(ratio)) < 0.005 and round(ratio) != 0:

@@ -210,3 +210,48 @@ _x, _y = sympy.symbols("x y", real=True)
 def test_the_sin_cos_slip_is_tried_exactly_where_sympy_finds_a_sin_or_a_cos(expr):
     # our walk for the sin/cos candidate gives what expr.has(sin, cos) gives
     assert _has_sin_or_cos(expr) == expr.has(sympy.sin, sympy.cos)
+
+
+# Radians for cycles (red team 19): the frequency f = ω/2π typed where ω is asked, ω where f is, a period
+# 1/ω where 2π/ω is. 2π is no ratio of small integers, so these had no feedback at all; the slip is named
+# as such, and only where the answer is exactly 2π or 1/2π times the reference.
+SPRING = {"k": {"dimension": "kg/s^2", "domain": "positive"}, "m": {"dimension": "mass", "domain": "positive"}}
+
+
+@pytest.mark.parametrize("reference, answer, code", [
+    ("sqrt(k/m)", "sqrt(k/m)/(2 pi)", "two_pi"),           # f where ω is asked
+    ("sqrt(k/m)/(2*pi)", "sqrt(k/m)", "two_pi"),           # ω where f is asked
+    ("2*pi*sqrt(m/k)", "sqrt(m/k)", "two_pi"),             # 1/ω where the period is asked
+    ("sqrt(k/m)", "sqrt(k/m)/pi", None),                   # 1/π: not radians for cycles, no slip named
+    ("sqrt(k/m)/(2*pi)", "sqrt(k/m)/pi", "factor"),        # twice f: a factor of 2, not 2π
+    ("sqrt(k/m)", "sqrt(k/m)/(2 pi) + sqrt(k/m)/10^12", None),  # near 1/2π, but not exactly
+])
+def test_radians_for_cycles_is_named_as_such(reference, answer, code):
+    v = check(reference, answer, SPRING)
+    assert v.verdict == "not_equivalent"
+    assert [f["code"] for f in v.feedback if f["code"] != "close"][:1] == ([code] if code else [])
+    assert all(("2π" in f["message"]) == (f["code"] == "two_pi") for f in v.feedback)
+
+
+# A signed force given as its magnitude (red team 19): the normal force on a sphere, m(g cos θ - R θ̇²), turns
+# negative where the contact would have to pull; |N| is rightly wrong, and is now said to be the magnitude.
+SPHERE = {"m": {"dimension": "mass", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"},
+          "R": {"dimension": "length", "domain": "positive"},
+          "theta": {"dimension": "angle", "domain": [0, 1.5], "kind": "coordinate"},
+          "thetadot": {"dimension": "angular_velocity", "domain": "real", "kind": "velocity"}}
+NORMAL = "m*(g*cos(theta) - R*thetadot^2)"
+
+
+@pytest.mark.parametrize("answer, code", [
+    ("|m g cos θ - m R θ̇²|", "magnitude"),
+    ("abs(m*(g*cos(theta) - R*thetadot^2))", "magnitude"),   # sympy writes m|…|: the bars of a factor
+    ("m |g cos θ - R θ̇²|", "magnitude"),
+    ("sqrt((m g cos θ - m R θ̇²)^2)", "magnitude"),
+    ("|m g cos θ - 2 m R θ̇²|", None),                       # a magnitude of something else
+    ("|m R θ̇² - m g cos θ|", "magnitude"),                  # the bars hide which way round it was
+    ("-|m g cos θ - m R θ̇²|", None),                        # minus a magnitude is not the magnitude
+])
+def test_a_magnitude_given_for_a_signed_force_is_named(answer, code):
+    v = check(NORMAL, answer, SPHERE)
+    assert v.verdict == "not_equivalent"
+    assert [f["code"] for f in v.feedback] == ([code] if code else [])

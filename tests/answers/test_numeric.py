@@ -765,3 +765,18 @@ def test_the_written_forms_refused_are_never_looked_for_in_a_number_read(text, m
 
     monkeypatch.setattr(numeric, "_written_form", looked_for)
     assert numeric.parse_quantity(text).number > 0  # read without reaching the explanations of refusals
+
+
+# Radians for cycles in a number (red team 19): f typed where ω is asked, or the other way round, had no
+# feedback; it is named when the value is 2π or 1/2π times the right one within the tolerance.
+@pytest.mark.parametrize("reference, answer, unit, code", [
+    ("sqrt(k/m)", "3.18 1/s", "1/s", "two_pi"),       # f = 20/2π for ω = 20 s⁻¹
+    ("sqrt(k/m)", "125.7 1/s", "1/s", "two_pi"),
+    ("sqrt(k/m)/(2*pi)", "20 Hz", "Hz", "two_pi"),    # ω for f
+    ("2*pi*sqrt(m/k)", "0.05 s", "s", "two_pi"),      # 1/ω for the period
+    ("sqrt(k/m)", "6.37 1/s", "1/s", None),           # 20/π: no slip we can name
+])
+def test_a_value_off_by_two_pi_is_named_radians_for_cycles(reference, answer, unit, code):
+    spring = {"k": {"dimension": "kg/s^2", "domain": "positive"}, "m": {"dimension": "mass", "domain": "positive"}}
+    v = check(reference, answer, spring, kind="numeric", values={"k": 200.0, "m": 0.5}, unit=unit)
+    assert v.verdict == "not_equivalent" and [f["code"] for f in v.feedback] == ([code] if code else [])
