@@ -36,7 +36,10 @@ action                 who, besides admins
 ``view_submission``    its student; the LMS that sent it; instructors who manage its problem.
                        On a problem in no course (shared), an instructor sees, there and in
                        grades and exports, only the work of students of the courses they teach
-                       or assist and of students in no course (`students_in_view`).
+                       or assist and of students in no course (`students_in_view`). A hand-in
+                       for an assignment is its course's business: besides its student (and
+                       the LMS that sent it), only that course's instructors and TAs see it,
+                       never another course's instructor through a shared problem.
 ``view_derivation``    an uploaded scene's derivation job: the instructor who uploaded it, and
                        the instructors who teach its course (the course chosen at upload, or
                        the course of the problem it made).
@@ -271,22 +274,26 @@ def may_act_for(principal: Principal, student: Principal, version: ProblemVersio
 
 def students_in_view(principal: Principal, course_id: int | None):
     """Whose work on a problem of ``course_id`` a caller who may read its grades sees, as a condition
-    on a user-id column, or None for everyone's.
+    on a submission's user-id and assignment-id columns, ``condition(user_id, assignment_id)``, or None
+    for everyone's.
 
     A problem of a course: everyone's (its students'). A problem in no course is shared by every
     instructor, and by students of every course: each instructor sees the students of the courses
     they teach or assist and the students in no course, never another course's (an instructor of
-    OTHER read MECH's names and scores through a shared problem). Admins see everyone's.
+    OTHER read MECH's names and scores through a shared problem); and of their hand-ins, only those
+    for the assignments of those courses (an instructor of OTHER who enrolled a student of MECH read
+    her hand-ins for MECH's homework). Admins see everyone's.
     """
     if course_id is not None or principal.is_admin or principal.role == "lms":
         return None
     mine = principal.taught | principal.assisted
 
-    def condition(user_id):
+    def condition(user_id, assignment_id):
         a_student_somewhere = select(Enrolment.id).where(Enrolment.user_id == user_id,
                                                          Enrolment.role == "student").exists()
         one_of_mine = select(Enrolment.id).where(Enrolment.user_id == user_id, Enrolment.course_id.in_(mine)).exists()
-        return ~a_student_somewhere | one_of_mine
+        my_assignments = select(Assignment.id).where(Assignment.course_id.in_(mine))
+        return (~a_student_somewhere | one_of_mine) & (assignment_id.is_(None) | assignment_id.in_(my_assignments))
 
     return condition
 
@@ -314,9 +321,11 @@ def _may_view_submission(principal: Principal, submission: Submission) -> bool:
         return True
     if principal.role == "lms":
         return submission.requester_id == principal.user_id
-    if submission.assignment_id is not None and submission.assignment is not None and _may_course(
-            principal, Action.GRADE_COURSE, submission.assignment.course_id):
-        return True  # the course's TAs grade what was handed in for its assignments
+    if submission.assignment_id is not None:
+        # A hand-in is its course's business: its instructors and TAs grade it; nobody else does,
+        # not even an instructor who manages its (shared) problem.
+        return submission.assignment is not None and _may_course(
+            principal, Action.GRADE_COURSE, submission.assignment.course_id)
     course_id = submission.problem_version.problem.course_id
     return (principal.role == "instructor" and principal.manages_course(course_id)
             and _sees_student(principal, course_id, submission.user))

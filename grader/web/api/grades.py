@@ -43,7 +43,7 @@ def grade_rows(slug: str, action: Action = Action.READ_GRADES) -> list[dict[str,
              .order_by(Submission.user_id, Submission.answer_name, Submission.id))
     in_view = students_in_view(current_principal(), version.problem.course_id)
     if in_view is not None:  # a shared problem: the caller's students only (see the policy)
-        query = query.where(in_view(Submission.user_id))
+        query = query.where(in_view(Submission.user_id, Submission.assignment_id))
     submissions = db.session.scalars(query)
     rows: dict[tuple[int, str], dict[str, Any]] = {}
     for submission in submissions:

@@ -52,7 +52,7 @@ def results(session: Session, problem: Problem, in_view=None) -> list[Row]:
              .where(ProblemVersion.problem_id == problem.id)
              .order_by(Submission.id))
     if in_view is not None:
-        query = query.where(in_view(Submission.user_id))
+        query = query.where(in_view(Submission.user_id, Submission.assignment_id))
     return [Row(*row) for row in session.execute(query)]
 
 
