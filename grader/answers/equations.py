@@ -1126,7 +1126,38 @@ def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: d
         again = _state_dependent_factor(*squares, samplers=None, deadline=deadline)
         if again is not None and again.equivalent:
             return again
+    # l(M + m - m cos²θ) θ̈ = … is the reference times l(M + m sin²θ): cancel takes sin θ and cos θ for
+    # unrelated symbols, so the factor cancels only once every cos² is written 1 - sin² on both sides, products
+    # multiplied out first (m cos θ (l θ̈ cos θ - …)); the same values, so a factor found nonzero there is
+    # nonzero here.
+    pythagorean = tuple(_pythagorean(sympy.expand(e, trig=False) if _nodes(e) <= FACTOR_MAX_NODES else e)
+                        for e in (reference, answer))
+    if pythagorean != (reference, answer) and not (deadline is not None and time.monotonic() > deadline):
+        again = _state_dependent_factor(*pythagorean, domains, samplers, deadline)
+        if again is not None and (again.equivalent or found is None):
+            return again  # (or a multiple by a factor that vanishes: a truer reason than "not a multiple")
     return found
+
+
+_SQUARE_AS_ONE_LESS = {sympy.cos: (sympy.sin, -1), sympy.cosh: (sympy.sinh, 1)}
+
+
+def _pythagorean(expr: sympy.Expr) -> sympy.Expr:
+    """``expr`` with every power cos(u)ⁿ (|n| ≥ 2) written with (1 - sin(u)²) for each cos(u)², and cosh(u)ⁿ
+    with (1 + sinh(u)²): one form for the values sin² + cos² = 1 makes equal.
+
+    >>> t = sympy.Symbol("theta")
+    >>> _pythagorean(2 + sympy.cos(t)**3)
+    (1 - sin(theta)**2)*cos(theta) + 2
+    """
+    def rewritten(power: sympy.Pow) -> sympy.Expr:
+        other, sign = _SQUARE_AS_ONE_LESS[power.base.func]
+        n = int(power.exp)
+        form = power.base ** (abs(n) % 2) * (1 + sign * other(*power.base.args) ** 2) ** (abs(n) // 2)
+        return form if n > 0 else 1 / form
+
+    return expr.replace(lambda e: e.is_Pow and e.base.func in _SQUARE_AS_ONE_LESS and e.exp.is_Integer
+                        and abs(e.exp) >= 2, rewritten)
 
 
 def _positive_roots_as_squares(reference: sympy.Expr, answer: sympy.Expr, domains: dict):

@@ -1716,3 +1716,32 @@ def test_an_equation_defined_only_past_the_sampled_magnitudes_is_compared_where_
                                                                                            variables, expected):
     verdict = check(reference, answer, variables, kind="equation")
     assert verdict.verdict == expected, verdict.reason
+
+
+# A pendulum hanging from a block that slides freely (M), the block's coordinate eliminated: the reference is
+# solved for θ̈, students multiply through by l(M + m sin²θ), which never vanishes, and often write it
+# M + m - m cos²θ, as it comes out of eliminating ẍ (red team 19). sympy's cancel takes sin θ and cos θ for
+# unrelated symbols, so that form was refused as "not the reference multiplied by a factor free of the state".
+SLIDING_SUPPORT = {"M": {"dimension": "kg", "domain": "positive", "kind": "parameter"},
+                   "m": {"dimension": "kg", "domain": "positive", "kind": "parameter"},
+                   "g": {"dimension": "m*s^-2", "domain": "positive", "kind": "parameter"},
+                   "l": {"dimension": "m", "domain": "positive", "kind": "parameter"},
+                   "theta": {"dimension": "dimensionless", "domain": [-3.1416, 3.1416], "kind": "coordinate"},
+                   "thetadot": {"dimension": "s^-1", "domain": "real", "kind": "velocity"},
+                   "thetaddot": {"dimension": "s^-2", "domain": "real", "kind": "acceleration"}}
+SLIDING_EOM = "thetaddot = -(g*(M + m) + l*m*thetadot**2*cos(theta))*sin(theta)/(l*(M + m*sin(theta)**2))"
+
+
+@pytest.mark.parametrize("answer, verdict", [
+    ("l (M + m - m cos²θ) θ̈ = -(g (M + m) + m l θ̇² cos θ) sin θ", "equivalent"),
+    ("(M + m) l θ̈ - m l cos θ (l θ̈ cos θ - l θ̇² sin θ)/l + (M + m) g sin θ = 0", "equivalent"),  # ẍ eliminated
+    ("l (M + m - m cos²θ) θ̈ (2 - cos²θ) = -(g (M + m) + m l θ̇² cos θ) sin θ (1 + sin²θ)", "equivalent"),
+    ("l (M + m sin²θ) θ̈ = -(g (M + m) + m l θ̇² cos θ) sin θ", "equivalent"),      # as before
+    ("l (M + m - m cos²θ) θ̈ cos θ = -(g (M + m) + m l θ̇² cos θ) sin θ cos θ", "not_equivalent"),  # cos θ vanishes
+    ("l (M + m - m cos²θ) θ̈ (1 - cos²θ) = -(g (M + m) + m l θ̇² cos θ) sin³θ", "not_equivalent"),    # sin²θ does
+    ("l (M + m + m cos²θ) θ̈ = -(g (M + m) + m l θ̇² cos θ) sin θ", "not_equivalent"),
+    ("l (M - m cos²θ) θ̈ = -(g (M + m) + m l θ̇² cos θ) sin θ", "not_equivalent"),
+    ("l (M + m - m cos²θ) θ̈ = (g (M + m) + m l θ̇² cos θ) sin θ", "not_equivalent"),
+])
+def test_a_factor_written_with_cos_squared_for_one_less_sin_squared_is_recognised(answer, verdict):
+    assert check(SLIDING_EOM, answer, SLIDING_SUPPORT, kind="equation").verdict == verdict
