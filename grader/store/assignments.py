@@ -28,12 +28,13 @@ from sqlalchemy.orm import Session
 from grader.store.models import SCORE_POLICIES, Assignment, AssignmentProblem, Course, Enrolment, Problem, Submission
 from grader.store.problems import latest_version, problem_by_slug
 
-__all__ = ["AssignmentError", "MAX_PROBLEMS", "assignment_by_slug", "attempts_used", "create_assignment",
+__all__ = ["AssignmentError", "MAX_ATTEMPTS", "MAX_PROBLEMS", "assignment_by_slug", "attempts_used", "create_assignment",
            "deadline_state", "late_days", "late_factor", "local_time", "pending_assignment", "solutions_open",
            "to_utc", "zone"]
 
 DAY = timedelta(days=1)
 MAX_PROBLEMS = 50
+MAX_ATTEMPTS = 1000  # per answer; beyond it, "unlimited" (None) says it (and the column is 32-bit on PostgreSQL)
 
 
 class AssignmentError(ValueError):
@@ -176,8 +177,8 @@ def create_assignment(session: Session, course: Course, *, slug: str, title: str
         raise AssignmentError("A late penalty needs a closing time (closes_at) after the due time.")
     if not 0.0 <= late_penalty_per_day <= 1.0:
         raise AssignmentError("The late penalty per day is a fraction of the score, from 0 to 1.")
-    if max_attempts is not None and max_attempts < 1:
-        raise AssignmentError("An answer gets at least one attempt (or no limit).")
+    if max_attempts is not None and not 1 <= max_attempts <= MAX_ATTEMPTS:
+        raise AssignmentError(f"An answer gets at least one attempt and at most {MAX_ATTEMPTS} (or no limit).")
     if score_policy not in SCORE_POLICIES:
         raise AssignmentError(f"The score policy is one of {', '.join(SCORE_POLICIES)}.")
     if not problems or len(problems) > MAX_PROBLEMS or len(set(problems)) != len(problems):

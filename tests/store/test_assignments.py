@@ -87,6 +87,10 @@ def _make(database, course_id, **overrides):
     ({"closes_at": None}, "late penalty needs a closing time"),
     ({"late_penalty_per_day": 1.5}, "from 0 to 1"),
     ({"max_attempts": 0}, "at least one attempt"),
+    # the instructor page passed any digits on: 10**20 was a 500 (SQLite's OverflowError; PostgreSQL's
+    # integer column overflows past 2**31 - 1)
+    ({"max_attempts": 1001}, "at most 1000"),
+    ({"max_attempts": 10**20}, "at most 1000"),
     ({"score_policy": "worst"}, "score policy"),
     ({"problems": []}, "1 to 50 different problems"),
     ({"problems": ["yoyo", "yoyo"]}, "1 to 50 different problems"),

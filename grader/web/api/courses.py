@@ -17,7 +17,7 @@ from sqlalchemy.exc import IntegrityError
 
 from grader.jobs.assignment_submissions import HandInRefused, hand_in
 from grader.jobs.queue import MAX_ANSWER_CHARS, AnswerUnreadable, IdempotencyConflict, SubmissionRejected
-from grader.store.assignments import MAX_PROBLEMS, AssignmentError, create_assignment
+from grader.store.assignments import MAX_ATTEMPTS, MAX_PROBLEMS, AssignmentError, create_assignment
 from grader.store.courses import (COURSE_CODE_CHARS, COURSE_CODE_PATTERN, CourseError, Member, add_member,
                                    check_course_code, create_course, parse_roster, roster)
 from grader.store.db import db
@@ -66,7 +66,7 @@ ASSIGNMENT_REQUEST = {
         "opens_at": _TIME, "due_at": _TIME, "closes_at": {**_TIME, "nullable": True},
         "time_zone": {"type": "string", "maxLength": 64, "default": "UTC",
                       "description": "IANA name the pages show times in, e.g. Europe/Paris."},
-        "max_attempts": {"type": "integer", "nullable": True, "minimum": 1, "maximum": 1000,
+        "max_attempts": {"type": "integer", "nullable": True, "minimum": 1, "maximum": MAX_ATTEMPTS,
                          "description": "Per answer; null: unlimited."},
         "late_penalty_per_day": {"type": "number", "minimum": 0, "maximum": 1, "default": 0,
                                  "description": "Fraction of the score each started day late costs (needs closes_at)."},
