@@ -26,7 +26,7 @@ import sympy
 from grader.answers.equations import compare_equations, state_symbols, unknown_symbols
 from grader.answers.equivalence import Comparison, Compiled, Options, compare_expressions
 from grader.answers.evaluate import ArbBackend, Undefined, Unresolved, Unsupported
-from grader.answers.feedback import CLOSE, diagnose
+from grader.answers.feedback import CLOSE, counts_cycles, diagnose
 from grader.answers.reference import DETAILS, KINDS
 from grader.answers.sampling import Sampler, UnorderedPoint, seed_for
 from grader.answers.verdict import Verdict
@@ -354,7 +354,7 @@ def _feedback(ref: _Reference, exprs: list[sympy.Expr], comparison: Comparison, 
             worst = max(_relative_difference(ref.exprs[0], exprs[0], ref.sampler.point(i)) for i in _ORDINARY_POINTS)
             rel = rel if worst < CLOSE else worst  # (the difference stated is the counterexample's)
         return diagnose(ref.exprs[0], exprs[0], same, ref.instructor, ratio, rel, deadline,
-                        swap_could_match=swap_could_match, detail=detail)
+                        swap_could_match=swap_could_match, detail=detail, cycles=counts_cycles(ref.dimension))
 
     def same_equation(r, a, options=FEEDBACK_OPTIONS, unknowns=()):
         r_list = r if isinstance(r, list) else [r]

@@ -29,7 +29,7 @@ import sympy
 from grader.answers.equivalence import SYMBOLIC_MAX_TERMS, expansion_terms, instance_test
 from grader.expressions.magnitudes import node_count
 
-__all__ = ["diagnose", "factor_message", "MAGNITUDE_MESSAGE", "TWO_PI_MESSAGE"]
+__all__ = ["diagnose", "factor_message", "counts_cycles", "MAGNITUDE_MESSAGE", "TWO_PI_MESSAGE"]
 
 MAX_TERMS = 6
 
@@ -59,6 +59,17 @@ def factor_message(q: Fraction, detail: str = "kind") -> str:
     else:
         text = f"Your answer is {q} times the correct one: check the constant factors."
     return sign + (text[0].lower() + text[1:] if sign else text)
+
+
+def counts_cycles(dimension) -> bool:
+    """Whether a quantity of this dimension (exponents of mass, length and time) may be off by 2π from
+    radians for cycles: a frequency, an angular velocity, a period or an angle, none of mass or length.
+
+    >>> from grader.expressions.dimensions import Dimension
+    >>> counts_cycles(Dimension(0, 0, -1)), counts_cycles(Dimension(0, 0, 1)), counts_cycles(Dimension(1, 1, -2))
+    (True, True, False)
+    """
+    return dimension is not None and dimension.mass == 0 and dimension.length == 0
 
 
 def _simple_ratio(value: float) -> Fraction | None:
@@ -216,6 +227,7 @@ def diagnose(
     equation: bool = False,
     swap_could_match: Callable[[], bool] | None = None,
     detail: str = "kind",
+    cycles: bool = True,
 ) -> list[dict]:
     """Feedback items ``{"code", "message"}`` for an answer known not to be equivalent.
 
@@ -241,6 +253,9 @@ def diagnose(
     detail : {"kind", "full"}
         ``"kind"`` (the default) names the slip without any value that would reveal the reference;
         ``"full"`` also states the factor and the relative difference (the instructor's choice).
+    cycles : bool
+        Whether a factor of 2π may be named radians for cycles: the reference is a rate, a time or an
+        angle (`counts_cycles`); 2π in a tension is no such slip, and the message would mislead.
 
     Examples
     --------
@@ -273,7 +288,7 @@ def diagnose(
                 yield ("sign" if q == -1 else "factor",
                        lambda: same(sympy.Rational(q.numerator, q.denominator) * reference, answer),
                        factor_message(q, detail))
-        if ratio is not None and not equation and ratio > 0:
+        if ratio is not None and not equation and cycles and ratio > 0:
             for factor in (2 * sympy.pi, 1 / (2 * sympy.pi)):
                 if abs(ratio / float(factor) - 1) <= 1e-9:
                     yield ("two_pi", lambda f=factor: same(f * reference, answer), TWO_PI_MESSAGE)

@@ -42,7 +42,7 @@ from typing import Any, Mapping, Sequence
 import sympy
 
 from grader.answers.evaluate import SCALE, FloatBackend, Unsupported, compile_expr
-from grader.answers.feedback import TWO_PI_MESSAGE
+from grader.answers.feedback import TWO_PI_MESSAGE, counts_cycles
 from grader.answers.verdict import Verdict
 from grader.expressions.implicit import Implicit, ImplicitError
 from grader.expressions import (DimensionError, ExpressionError, Namespace, dimension_of, parse_dimension,
@@ -668,7 +668,8 @@ def check_numeric(reference: str, answer: str, variables: Mapping[str, Mapping],
     if within_tolerance(quantity.si, target, tol, quantity.size if target != 0 else expected.size):
         return Verdict("equivalent", "numeric", "within the tolerance of the expected value", parsed=parsed,
                        evidence={"method": "numeric_value", "tolerance": tol})
-    items = _numeric_feedback(quantity.si, target, tol, feedback or (), variables_json, values)
+    items = _numeric_feedback(quantity.si, target, tol, feedback or (), variables_json, values,
+                              counts_cycles(expected_dim))
     if not items and quantity.unit == "" and (angle or expected.size != 1.0):
         other = math.pi / 180 if expected.size == 1.0 else 1.0  # the other of rad and degrees (or % and 1)
         if within_tolerance(quantity.number * other, target, tol, other):
@@ -771,7 +772,7 @@ def _unit_conflict(meaning: str | None, typed: Sequence[str], dimension: Any) ->
 
 
 def _numeric_feedback(value: float, target: float, tol: Mapping[str, Any], feedback, variables_json: str,
-                      values: Mapping[str, Any]) -> list[dict[str, Any]]:
+                      values: Mapping[str, Any], cycles: bool = True) -> list[dict[str, Any]]:
     """The instructor's message for a known wrong value, else a slip we can name (never the value)."""
     band = {k: tol[k] for k in ("relative", "absolute") if tol.get(k) is not None} or DEFAULT_TOLERANCE
     for entry in feedback:
@@ -786,7 +787,7 @@ def _numeric_feedback(value: float, target: float, tol: Mapping[str, Any], feedb
             return [item]
     if target != 0 and within_tolerance(-value, target, band):
         return [{"code": "sign", "message": "Check the sign of your answer."}]
-    if target != 0 and any(within_tolerance(value, target * factor, band) for factor in (2 * math.pi, 1 / (2 * math.pi))):
+    if cycles and target != 0 and any(within_tolerance(value, target * f, band) for f in (2 * math.pi, 1 / (2 * math.pi))):
         return [{"code": "two_pi", "message": TWO_PI_MESSAGE}]
     if target != 0 and value != 0:
         ratio = math.log10(abs(value / target))

@@ -255,3 +255,10 @@ def test_a_magnitude_given_for_a_signed_force_is_named(answer, code):
     v = check(NORMAL, answer, SPHERE)
     assert v.verdict == "not_equivalent"
     assert [f["code"] for f in v.feedback] == ([code] if code else [])
+
+
+@pytest.mark.parametrize("answer", ["m*(g*cos(theta) + l*thetadot^2)/(2 pi)", "2 pi m (g cos(theta) + l thetadot^2)"])
+def test_two_pi_in_a_force_is_not_called_radians_for_cycles(pendulum, answer):
+    # a tension is no rate, time or angle: "check ω against f" would send the student the wrong way
+    v = check("m*(g*cos(theta) + l*thetadot^2)", answer, pendulum)
+    assert v.verdict == "not_equivalent" and "two_pi" not in [f["code"] for f in v.feedback]

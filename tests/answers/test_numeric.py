@@ -780,3 +780,9 @@ def test_a_value_off_by_two_pi_is_named_radians_for_cycles(reference, answer, un
     spring = {"k": {"dimension": "kg/s^2", "domain": "positive"}, "m": {"dimension": "mass", "domain": "positive"}}
     v = check(reference, answer, spring, kind="numeric", values={"k": 200.0, "m": 0.5}, unit=unit)
     assert v.verdict == "not_equivalent" and [f["code"] for f in v.feedback] == ([code] if code else [])
+
+
+def test_two_pi_in_a_force_value_is_not_called_radians_for_cycles():
+    mg = {"m": {"dimension": "mass", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"}}
+    v = check("m*g", "2.34 N", mg, kind="numeric", values={"m": 1.5, "g": 9.81}, unit="N")  # 14.7/2π
+    assert v.verdict == "not_equivalent" and v.feedback == []
