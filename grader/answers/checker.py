@@ -30,6 +30,7 @@ from grader.answers.feedback import CLOSE, counts_cycles, diagnose
 from grader.answers.reference import DETAILS, KINDS
 from grader.answers.sampling import Sampler, UnorderedPoint, seed_for
 from grader.answers.verdict import Verdict
+from grader.expressions.dimensions import Dimension
 from grader.expressions import (
     DimensionError,
     ExpressionError,
@@ -228,6 +229,55 @@ def _dimension_verdict(ref: _Reference, exprs: list[sympy.Expr], kind: str) -> t
         text = (f"Your answer is {_phrase(got)}, but the answer should be {_phrase(ref.dimension)}.")
         return text, text
     return None
+
+
+# m·9.81 for m g: "Your answer is a mass" is true, and leaves the student wondering what is wrong with g's value.
+G_VALUE_MESSAGE = ("Your answer has a number where the problem's symbol g belongs (its value in m/s²): write g. "
+                   "Answers are checked as formulas in the problem's symbols, not as numbers.")
+_G = 9.80665
+_ACCELERATION = Dimension(0, 1, -2)
+_G_MULTIPLES = (1, 2, sympy.Rational(1, 2))  # g, 2g (√(2gh) typed √(19.62 h)) and g/2 (4.9 t²)
+
+
+def _g_as_its_value(ref: _Reference, exprs: list[sympy.Expr], kind: str) -> bool:
+    """Whether the answer, of the wrong dimension, has the right one once a number within 0.5 % of g's value
+    (or twice or half of it, or the root of one of these) is read as that multiple of the problem's g (an
+    acceleration named g), or its root."""
+    g = next((s for s, d in ref.dims.items() if s.name == "g" and d == _ACCELERATION), None)
+    if g is None:
+        return False
+    # k g itself, or its root (√(19.62 h) is read as (3/10)·√218·√h: the number is a product's coefficient)
+    forms = [(float(k) * _G, k * g) for k in _G_MULTIPLES] + [(float(k * _G) ** 0.5, sympy.sqrt(k * g))
+                                                              for k in _G_MULTIPLES]
+    found = []
+
+    def as_g(number: sympy.Expr) -> sympy.Expr | None:
+        value = abs(float(number))
+        form = next((f for v, f in forms if abs(value / v - 1) < 0.005), None)
+        return None if form is None else (form if number > 0 else -form)
+
+    def swapped(e: sympy.Expr) -> sympy.Expr:
+        if e.is_number and not e.is_Integer and e.is_real:
+            form = as_g(e)
+            if form is not None:
+                found.append(e)
+                return form
+            return e
+        if e.is_Mul and e.free_symbols:
+            coeff, rest = e.as_independent(*e.free_symbols)
+            if coeff != 1 and coeff.is_real and (form := as_g(coeff)) is not None:
+                found.append(coeff)
+                return form * swapped(rest)
+        return e.func(*[swapped(a) for a in e.args]) if e.args else e
+
+    try:
+        candidates = [swapped(e) for e in exprs]
+        if not found:
+            return False
+        dims = [dimension_of(e, ref.dims) for e in candidates]
+    except (DimensionError, TypeError, ValueError, OverflowError):
+        return False
+    return kind == "equation" or dims[0] == ref.dimension
 
 
 def _phrase(dim) -> str:
@@ -645,8 +695,11 @@ def _check(reference, answer, variables, kind, feedback, budget_s, state, option
     wrong_dimension = _dimension_verdict(ref, exprs, kind)
     if wrong_dimension is not None:
         reason, message = wrong_dimension
-        return Verdict("not_equivalent", "proved", reason, parsed=parsed,
-                       feedback=[{"code": "dimension", "message": message}], evidence={"method": "dimensions"})
+        items = [{"code": "dimension", "message": message}]
+        if _g_as_its_value(ref, exprs, kind):
+            items.append({"code": "g_value", "message": G_VALUE_MESSAGE})
+        return Verdict("not_equivalent", "proved", reason, parsed=parsed, feedback=items,
+                       evidence={"method": "dimensions"})
 
     try:
         comparison = _compare(ref, exprs, options, deadline, conditions)

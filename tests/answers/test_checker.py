@@ -271,3 +271,30 @@ def test_an_exact_number_sympy_cannot_test_for_a_perfect_power_is_refused_not_an
     # cos(atan(1e-200)) is (1 + 10^-400)^(-1/2); a root of it sends sympy's perfect-power test into float overflow
     v = check("m*g/3", answer, YOYO)
     assert v.verdict == "invalid" and "internal error" not in v.reason and "too large" in v.reason
+
+
+# g's value typed for g (red team 19): m·9.81 for m g was told only "Your answer is a mass (kg), but the answer
+# should be a force", true, and no help to a student who wrote g's value; now the slip is named too.
+GRAVITY = {"m": {"dimension": "mass", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"},
+           "h": {"dimension": "length", "domain": "positive"}, "t": {"dimension": "time", "domain": "positive"},
+           "l": {"dimension": "length", "domain": "positive"},
+           "theta": {"dimension": "angle", "domain": "real", "kind": "coordinate"},
+           "thetaddot": {"dimension": "angular_acceleration", "domain": "real", "kind": "acceleration"}}
+
+
+@pytest.mark.parametrize("reference, answer, kind, named", [
+    ("m*g", "m*9.81", "expression", True),
+    ("m*g", "9.8 m", "expression", True),
+    ("m*g*h", "9.81 m h", "expression", True),
+    ("sqrt(2*g*h)", "sqrt(19.62 h)", "expression", True),     # 2g, read under the root as 4.43·√h
+    ("g*t^2/2", "4.9 t^2", "expression", True),               # g/2
+    ("thetaddot = -g/l*sin(theta)", "thetaddot = -9.81/l*sin(theta)", "equation", True),
+    ("m*g", "10 m", "expression", False),                     # 10 is any number: the dimension alone is said
+    ("m*g", "m*9.81 + m", "expression", False),               # g for 9.81 does not mend it
+    ("thetaddot = -g/l*sin(theta)", "thetaddot = -9.81*sin(theta)", "equation", False),
+])
+def test_a_number_for_g_is_named_beside_the_wrong_dimension(reference, answer, kind, named):
+    v = check(reference, answer, GRAVITY, kind=kind)
+    codes = [f["code"] for f in v.feedback]
+    assert v.verdict == "not_equivalent" and codes[0] == "dimension"
+    assert ("g_value" in codes) == named
