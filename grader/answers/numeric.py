@@ -208,6 +208,8 @@ _VULGAR_NUMBER = re.compile("(?P<whole>\\d*)\\s*(?P<part>[" + "".join(_VULGAR) +
 _DECIMAL_POWER = re.compile(r"\d\s*(?:[eE]|[×xX*·⋅∙]?\s*10\s*(?:\^|\*\*)\s*\(?)\s*[-+]?\d*\.\d"
                             r"|^\s*[-+]?10\s*(?:\^|\*\*)\s*\(?\s*[-+]?\d*\.\d")
 _PLUS_MINUS = re.compile(r"±|∓|\+\s*/\s*-|\+\s*-(?=\s*\d)|\\pm(?![A-Za-z])")
+# A ± before the number (after a label, if any): two values, ±x, not x ± its uncertainty.
+_LEADING_PLUS_MINUS = re.compile(r"\s*(?:[^\W\d][\w′'*{}]*\s*=\s*)?(?:±|∓|\+\s*/\s*-|\+\s*-(?=\s*\d)|\\pm(?![A-Za-z]))")
 _NOTE = re.compile(r"(?<![A-Za-z])(?:s\.\s?f\.?|sf|s\.f|sig\.?\s*figs?|significant\s+(?:figures?|digits?)|"
                    r"d\.\s?p\.?|dp|decimal\s+places?)(?![A-Za-z])", re.IGNORECASE)
 
@@ -244,6 +246,9 @@ def _written_form(text: str) -> str | None:
                 f"(fractions are not read)")
     if _DECIMAL_POWER.search(plain):
         return "a power of ten is a whole number (1.47e3, 1.47×10^3): type the value as one decimal number"
+    if _LEADING_PLUS_MINUS.match(plain):
+        # ±1.034 rad, θ = ±59.2°: both roots (the two equilibria), not an uncertainty
+        return "type one value with one sign (the answer with + or the one with -): ± gives two answers"
     if _PLUS_MINUS.search(plain):
         return "type one value (such as 14.7 N), without its uncertainty (±)"
     if _NOTE.search(plain):

@@ -786,3 +786,21 @@ def test_two_pi_in_a_force_value_is_not_called_radians_for_cycles():
     mg = {"m": {"dimension": "mass", "domain": "positive"}, "g": {"dimension": "acceleration", "domain": "positive"}}
     v = check("m*g", "2.34 N", mg, kind="numeric", values={"m": 1.5, "g": 9.81}, unit="N")  # 14.7/2π
     assert v.verdict == "not_equivalent" and v.feedback == []
+
+
+# A ± before the value (red team 19): ±1.034 rad for a hoop's two equilibria ±acos(g/ω²a) is two answers, not a
+# value with its uncertainty; it was refused "without its uncertainty (±)", which misreads the student.
+@pytest.mark.parametrize("answer, says", [
+    ("±1.034 rad", "one sign"),
+    ("θ = ±59.2°", "one sign"),
+    ("θ* = ±1.034", "one sign"),
+    ("+/- 1.034 rad", "one sign"),
+    ("1.034 ± 0.01 rad", "without its uncertainty (±)"),   # after the value: an uncertainty, as before
+    ("(1.034 +/- 0.01) rad", "without its uncertainty (±)"),
+])
+def test_a_plus_minus_before_the_value_is_two_answers_not_an_uncertainty(answer, says):
+    hoop = {"g": {"dimension": "acceleration", "domain": "positive"}, "a": {"dimension": "length", "domain": "positive"},
+            "omega": {"dimension": "angular_velocity", "domain": [5, 10]}}
+    v = check("acos(g/(omega^2*a))", answer, hoop, kind="numeric", values={"g": 9.81, "a": 0.3, "omega": 8.0},
+              unit="rad", alternatives=["-acos(g/(omega^2*a))"])
+    assert v.verdict == "invalid" and says in v.reason
