@@ -416,9 +416,28 @@ def _feedback(ref: _Reference, exprs: list[sympy.Expr], comparison: Comparison, 
     # unsolved Lagrange form too): such entries are few, unlike the slip candidates below.
     system = (SYSTEM_FEEDBACK_OPTIONS, ref.unknowns) if len(exprs) > 1 else ()
     found = [{"code": "instructor", "message": m} for e, m in ref.instructor if same_equation(e, exprs, *system)][:1]
-    if found or len(exprs) != 1 or len(ref.exprs) != 1:
+    if found:
         return found
-    return diagnose(ref.exprs[0], exprs[0], same_equation, (), None, None, deadline, equation=True, detail=detail)
+    bare = _without_acceleration(ref, exprs)
+    if len(exprs) != 1 or len(ref.exprs) != 1:
+        return bare
+    return diagnose(ref.exprs[0], exprs[0], same_equation, (), None, None, deadline, equation=True,
+                    detail=detail) or bare
+
+
+def _without_acceleration(ref: _Reference, exprs: list[sympy.Expr]) -> list[dict]:
+    """A note for equations of motion of which some has no acceleration (2 m r ṙ φ̇ = 0, d/dt(m r² φ̇) written
+    out and the φ̈ terms cancelled): "not a multiple of the reference" is all the verdict can say, and the student
+    is better told why it cannot be one. Only where every reference equation has an acceleration."""
+    unknowns = set(ref.unknowns)
+    if not unknowns or not all(e.free_symbols & unknowns for e in ref.exprs):
+        return []
+    bare = [n for n, e in enumerate(exprs, 1) if not e.free_symbols & unknowns]
+    if not bare:
+        return []
+    which = "Your equation has" if len(exprs) == 1 else f"Your equation {', '.join(map(str, bare))} has"
+    return [{"code": "no_acceleration", "message": f"{which} no acceleration in it: an equation of motion gives the "
+             "accelerations, and one that relates positions and velocities only cannot be one."}]
 
 
 def check(

@@ -298,3 +298,30 @@ def test_a_number_for_g_is_named_beside_the_wrong_dimension(reference, answer, k
     codes = [f["code"] for f in v.feedback]
     assert v.verdict == "not_equivalent" and codes[0] == "dimension"
     assert ("g_value" in codes) == named
+
+
+# An equation of motion with no acceleration in it (red team 19): d/dt(m r² φ̇) = m r² φ̈ is 2 m r ṙ φ̇ = 0, which
+# relates the state only; "not combinations of the reference equations with coefficients free of the state"
+# was all a student heard, as if another factor might have made it right.
+POLAR = {"m": {"dimension": "mass", "domain": "positive"}, "k": {"dimension": "kg/s^2", "domain": "positive"},
+         "r": {"dimension": "length", "domain": "positive", "kind": "coordinate"},
+         "rdot": {"dimension": "velocity", "domain": "real", "kind": "velocity"},
+         "rddot": {"dimension": "acceleration", "domain": "real", "kind": "acceleration"},
+         "phi": {"dimension": "angle", "domain": "real", "kind": "coordinate"},
+         "phidot": {"dimension": "angular_velocity", "domain": "real", "kind": "velocity"},
+         "phiddot": {"dimension": "angular_acceleration", "domain": "real", "kind": "acceleration"}}
+POLAR_EOM = "rddot = r*phidot^2 - k/m*r; phiddot = -2*rdot*phidot/r"
+
+
+@pytest.mark.parametrize("reference, answer, says", [
+    (POLAR_EOM, "m (r̈ - r φ̇²) = -k r; d/dt(m r² φ̇) = m r² φ̈", "Your equation 2 has no acceleration"),
+    (POLAR_EOM, "2 m r ṙ φ̇ = 0; m (r̈ - r φ̇²) = -k r", "Your equation 1 has no acceleration"),
+    ("phiddot = -2*rdot*phidot/r", "2 m r ṙ φ̇ = 0", "Your equation has no acceleration"),
+    (POLAR_EOM, "m r̈ = m r φ̇² + k r; d/dt(m r² φ̇) = 0", None),   # a wrong sign, accelerations in both
+    ("phiddot = -2*rdot*phidot/r", "r φ̈ = 2 ṙ φ̇", None),
+])
+def test_an_equation_of_motion_without_an_acceleration_is_said_to_be_one(reference, answer, says):
+    v = check(reference, answer, POLAR, kind="equation")
+    assert v.verdict == "not_equivalent"
+    notes = [f["message"] for f in v.feedback if f["code"] == "no_acceleration"]
+    assert (notes[0].startswith(says) if says else notes == [])
