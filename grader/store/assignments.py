@@ -30,6 +30,7 @@ from grader.store.problems import latest_version, problem_by_slug
 
 __all__ = ["AssignmentError", "MAX_ATTEMPTS", "MAX_PROBLEMS", "assignment_by_slug", "attempts_used", "create_assignment",
            "deadline_state", "late_days", "late_factor", "local_time", "pending_assignment", "solutions_open",
+           "unopened_problems",
            "to_utc", "zone"]
 
 DAY = timedelta(days=1)
@@ -154,6 +155,17 @@ def pending_assignment(session: Session, user_id: int, problem_id: int, now: dat
         .join(Enrolment, (Enrolment.course_id == Assignment.course_id) & (Enrolment.user_id == user_id))
         .where(AssignmentProblem.problem_id == problem_id, Enrolment.role == "student"))
     return next((a for a in candidates if deadline_state(a, now) != "closed"), None)
+
+
+def unopened_problems(session: Session, user_id: int, now: datetime) -> set[int]:
+    """The problems held by an assignment set to ``user_id`` (a student of its course) that has not
+    opened at ``now``: its students see them once it opens, as its page shows them (access policy)."""
+    rows = session.execute(
+        select(AssignmentProblem.problem_id, Assignment)
+        .join(Assignment, AssignmentProblem.assignment_id == Assignment.id)
+        .join(Enrolment, (Enrolment.course_id == Assignment.course_id) & (Enrolment.user_id == user_id))
+        .where(Enrolment.role == "student", Assignment.opens_at > _naive(now)))
+    return {problem_id for problem_id, assignment in rows if deadline_state(assignment, now) == "not_open"}
 
 
 def assignment_by_slug(session: Session, course: Course, slug: str) -> Assignment | None:

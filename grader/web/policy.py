@@ -16,6 +16,9 @@ action                 who, besides admins
                        else only a *published* version, and only of a problem in no course or
                        in a course they are enrolled in (as student or instructor). An LMS is
                        "enrolled" in the courses its account is linked to by an Enrolment.
+                       A problem held by an assignment that has not opened is hidden from the
+                       students of its course until it opens (`find_version`, `visible_versions`),
+                       as the assignment's page hides its statement.
 ``submit``             the same as ``see``: whoever sees a version may answer it. An *archived*
                        problem is seen by its managers only, and answered by nobody.
 ``submit_for_others``  an LMS for a published problem it sees (its linked courses or no course);
@@ -75,16 +78,19 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass
+from datetime import datetime, timezone
 from typing import NoReturn, Union
 
-from flask import abort, g
+from flask import abort, g, has_app_context
 from sqlalchemy import and_, func, select
 from sqlalchemy.orm import Session, selectinload
 
 from grader.store.db import db
 from grader.store.models import (Assignment, Course, DerivationJob, Enrolment, Problem, ProblemVersion, Submission,
                                  User)
+from grader.store.assignments import unopened_problems
 from grader.store.problems import latest_version, problem_by_slug
+from grader.web import clock
 from grader.web.errors import ApiProblem, wants_problem_json
 
 __all__ = [
@@ -417,10 +423,19 @@ def find_version(session: Session, principal: Principal, slug: str, action: Acti
     version = None
     if problem is not None:
         version = latest_version(session, problem, published_only=not allowed(principal, Action.MANAGE, problem))
-    if version is None:
+    if version is None or (not allowed(principal, Action.MANAGE, problem)
+                           and problem.id in _unopened(session, principal)):
         _not_found(f"There is no problem {slug!r}.")
     require(principal, action, version)
     return version
+
+
+def _unopened(session: Session, principal: Principal) -> set[int]:
+    """The problems a student may not see yet: held by an assignment of their course that has not opened."""
+    if principal.role != "student" or principal.user_id is None:
+        return set()
+    now = clock.now() if has_app_context() else datetime.now(timezone.utc)  # the server's one clock
+    return unopened_problems(session, principal.user_id, now)
 
 
 def find_submission(session: Session, principal: Principal, submission_id: int) -> Submission:
@@ -478,10 +493,11 @@ def visible_versions(session: Session, principal: Principal) -> list[ProblemVers
         return []
     newest_any = _newest(published_only=False)
     newest_published = _newest(published_only=True)
+    hidden = _unopened(session, principal)
     chosen: dict[int, ProblemVersion] = {}
     for query in (newest_any, newest_published):  # managed problems first: their newest, drafts too
         for version in session.scalars(query):
-            if version.problem_id in chosen:
+            if version.problem_id in chosen or (query is newest_published and version.problem_id in hidden):
                 continue
             if (query is newest_any and principal.manages_course(version.problem.course_id)) or (
                     query is newest_published and allowed(principal, Action.SEE, version)):

@@ -239,7 +239,9 @@ def test_a_retry_with_the_same_idempotency_key_uses_no_attempt_even_after_the_cl
     assert {a["name"]: a["attempts_used"] for a in view["problems"][0]["answers"]}["tension"] == 1
 
 
-@pytest.mark.parametrize("now, status", [(OPENS - SECOND, 409), (DUE, 409), (CLOSES, 409), (CLOSES + SECOND, 202)])
+# Before the opening the problem is hidden from the course's students altogether (404, as for any
+# problem they may not see: tests/web/test_unopened_assignments.py); then it is answered in the assignment.
+@pytest.mark.parametrize("now, status", [(OPENS - SECOND, 404), (DUE, 409), (CLOSES, 409), (CLOSES + SECOND, 202)])
 def test_a_problem_in_an_assignment_is_not_practised_until_it_closes(client, clock, student, now, status):
     """Practice verdicts would get round the attempt limit: the problem is answered in the assignment."""
     clock.now = now
