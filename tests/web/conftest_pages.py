@@ -28,6 +28,16 @@ class Account:
     password: str = PASSWORD
 
 
+class Clock:
+    """The server's clock (``app.config["CLOCK"]``), set by the test."""
+
+    def __init__(self, now):
+        self.now = now
+
+    def __call__(self):
+        return self.now
+
+
 def csrf(client: FlaskClient) -> str:
     """The CSRF token of the client's session, as a form on a page would carry it."""
     with client.session_transaction() as session:

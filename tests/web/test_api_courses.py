@@ -9,21 +9,13 @@ from datetime import datetime, timedelta, timezone
 
 import pytest
 
+from tests.web.conftest_pages import Clock
+
 OPENS = datetime(2026, 12, 1, 9, 0, tzinfo=timezone.utc)
 DUE = datetime(2026, 12, 8, 17, 0, tzinfo=timezone.utc)
 CLOSES = DUE + timedelta(days=3)
 SECOND = timedelta(seconds=1)
 ROSTER = "email,name,external_id\nada@example.org,Ada Lovelace,s-ada\nbob@example.org,Bob Hooke,s-bob\n"
-
-
-class Clock:
-    """The server's clock, set by the test."""
-
-    def __init__(self, now: datetime):
-        self.now = now
-
-    def __call__(self) -> datetime:
-        return self.now
 
 
 @pytest.fixture

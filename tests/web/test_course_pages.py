@@ -16,7 +16,7 @@ from sqlalchemy import select
 from grader.store.models import Course, Submission, User
 from grader.store.users import create_token, set_password
 from tests.web.conftest_pages import (  # noqa: F401  (fixtures)
-    PASSWORD, Account, accounts, as_instructor, csrf, grade_all, sign_in,
+    PASSWORD, Account, Clock, accounts, as_instructor, csrf, grade_all, sign_in,
 )
 
 PARIS = "Europe/Paris"
@@ -24,14 +24,6 @@ OPENS = datetime(2026, 12, 1, 9, 0, tzinfo=timezone.utc)
 DUE = datetime(2026, 12, 8, 17, 0, tzinfo=timezone.utc)  # 18:00 in Paris
 CLOSES = DUE + timedelta(days=2)
 ROSTER = b"email,name,external_id\ncy@example.org,Cy Young,s-cy\ndee@example.org,Dee Dirac,s-dee\n"
-
-
-class Clock:
-    def __init__(self, now: datetime):
-        self.now = now
-
-    def __call__(self) -> datetime:
-        return self.now
 
 
 @pytest.fixture

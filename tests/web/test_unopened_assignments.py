@@ -17,18 +17,10 @@ import pytest
 from grader.store.assignments import create_assignment
 from grader.store.models import Course
 from grader.store.users import create_token
-from tests.web.conftest_pages import accounts, as_instructor, as_student, csrf, problems  # noqa: F401  (fixtures)
+from tests.web.conftest_pages import Clock, accounts, as_instructor, as_student, csrf, problems  # noqa: F401  (fixtures)
 
 OPENS = datetime(2026, 12, 1, 9, 0, tzinfo=timezone.utc)
 STATEMENT = "A light string is wound around a solid cylinder"
-
-
-class Clock:
-    def __init__(self, now: datetime):
-        self.now = now
-
-    def __call__(self) -> datetime:
-        return self.now
 
 
 @pytest.fixture
