@@ -62,6 +62,22 @@ def _track_collection(phase: str, _info: dict) -> None:
 gc.callbacks.append(_track_collection)
 
 
+def _inside_collection(frame) -> bool:
+    """Whether the interrupted code runs for a garbage collection.
+
+    The flag covers the collection itself; the frames cover the other callbacks, which may run
+    before ours at the start or after it at the stop (hypothesis registers one of its own).
+    """
+    if _collecting[0]:
+        return True
+    callbacks = {getattr(callback, "__code__", None) for callback in gc.callbacks}
+    while frame is not None:
+        if frame.f_code in callbacks:
+            return True
+        frame = frame.f_back
+    return False
+
+
 def _can_interrupt() -> bool:
     return threading.current_thread() is threading.main_thread() and hasattr(signal, "setitimer")
 
@@ -85,7 +101,7 @@ def _alarm(seconds: float, token: object, cpu: bool = False):
     def handler(signum, frame):
         if not armed[0]:
             return  # the step has finished: a late tick changes nothing
-        if _collecting[0]:
+        if _inside_collection(frame):
             # An exception raised inside a garbage-collection callback would be lost (and reported
             # as unraisable); come back right after the collection instead.
             signal.setitimer(timer, 0.005)
