@@ -62,17 +62,19 @@ def _track_collection(phase: str, _info: dict) -> None:
 gc.callbacks.append(_track_collection)
 
 
-def _inside_collection(frame) -> bool:
-    """Whether the interrupted code runs for a garbage collection.
+def _exception_would_be_lost(frame) -> bool:
+    """Whether an exception raised now would be lost (reported as unraisable) instead of unwinding.
 
-    The flag covers the collection itself; the frames cover the other callbacks, which may run
-    before ours at the start or after it at the stop (hypothesis registers one of its own).
+    That is so inside a garbage collection and inside a finaliser (``__del__``). The flag covers the
+    collection itself; the frames cover the other collection callbacks, which may run before ours
+    at the start or after it at the stop (hypothesis registers one of its own), and finalisers run
+    by a reference count dropping to zero.
     """
     if _collecting[0]:
         return True
     callbacks = {getattr(callback, "__code__", None) for callback in gc.callbacks}
     while frame is not None:
-        if frame.f_code in callbacks:
+        if frame.f_code in callbacks or frame.f_code.co_name == "__del__":
             return True
         frame = frame.f_back
     return False
@@ -101,12 +103,11 @@ def _alarm(seconds: float, token: object, cpu: bool = False):
     def handler(signum, frame):
         if not armed[0]:
             return  # the step has finished: a late tick changes nothing
-        if _inside_collection(frame):
-            # An exception raised inside a garbage-collection callback would be lost (and reported
-            # as unraisable); come back right after the collection instead.
+        if _exception_would_be_lost(frame):
+            # come back right after the collection or the finaliser instead
             signal.setitimer(timer, 0.005)
             return
-        # Should this exception be swallowed anyway (a __del__ that runs now), fire again shortly.
+        # Should this exception be swallowed anyway (a weakref callback that runs now), fire again shortly.
         signal.setitimer(timer, 0.05)
         raise _Timeout(token)
 

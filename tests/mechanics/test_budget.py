@@ -115,3 +115,22 @@ def test_a_budget_never_raises_inside_another_libraries_collection_callback(monk
     finally:
         gc.callbacks.remove(slow_callback)
     assert lost == []
+
+
+def test_a_budget_never_raises_inside_a_finaliser(monkeypatch):
+    # an exception from __del__ is lost too (unraisable); the alarm waits for the finaliser to end
+    import sys
+
+    lost = []
+    monkeypatch.setattr(sys, "unraisablehook", lost.append)
+
+    class SlowToFinalise:
+        def __del__(self):
+            spin(0.2)
+
+    def drop_then_spin():
+        SlowToFinalise()  # finalised at once: its reference count drops to zero
+        spin(5)
+
+    assert attempt(drop_then_spin, 0.05, fallback=lambda: "fallback") == "fallback"
+    assert lost == []
