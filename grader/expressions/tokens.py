@@ -37,7 +37,7 @@ from .latex_input import WRAPPER_COMMANDS, classify_command, subscript_text, wra
 from .magnitudes import MAX_DIGITS
 from .names import WRITE_INSTEAD
 from .unicode_input import (COMBINING_DOTS, DOTTED_LETTERS, FULLWIDTH_SYMBOLS, GREEK_CHARS, MATH_LETTERS,
-                            MINUS_SIGNS, OPERATOR_CHARS, PRIME_CHARS,
+                            MIDDLE_DOTS, MINUS_SIGNS, OPERATOR_CHARS, PRIME_CHARS, VARIATION_SELECTORS,
                             ROOT_CHARS, SUBSCRIPT_DIGITS, SUBSCRIPT_LETTERS, SUPERSCRIPT_CHARS, SUPERSCRIPT_OTHERS,
                             VULGAR_FRACTIONS,
                             bad_character,
@@ -409,7 +409,7 @@ class _Tokenizer:
             self.finish_name(start, letter + suffix, end, order)
         elif ch == "\\":
             self.command()
-        elif ch == "·" and self.tokens and self.tokens[-1].kind == "number" and self.tokens[-1].end == start \
+        elif ch in MIDDLE_DOTS and self.tokens and self.tokens[-1].kind == "number" and self.tokens[-1].end == start \
                 and self.tokens[-1].text.isdigit() and _is_digit(self.peek(1)) \
                 and not _POWER_OF_TEN.match(self.text, start + 1) and not _DECIMAL.match(self.text, start + 1):
             # 2·5: the raised decimal point of British print (2.5), or a product (10); after 1.2 or before 9.81 it
@@ -417,7 +417,7 @@ class _Tokenizer:
             number = _DIGIT_RUN.match(self.text, start + 1).group()
             before = self.tokens[-1].text
             self.emit("bad", ch, start, start + 1,
-                      error=ExpressionError(f"'{before}·{number}' reads as the decimal {before}.{number} or as the "
+                      error=ExpressionError(f"'{before}{ch}{number}' reads as the decimal {before}.{number} or as the "
                                             f"product {before}×{number}", start, "ambiguous",
                                             f"write {before}.{number} for the decimal, or {before}*{number} "
                                             "for the product"))
@@ -426,7 +426,10 @@ class _Tokenizer:
         elif ch in "→⟶↦":
             self.emit("bad", ch, start, start + 1, error=_arrow_error(start, ch))
         elif ch in OPERATOR_CHARS:
-            self.emit("op", OPERATOR_CHARS[ch], start, start + 1)
+            end = start + 1
+            if end < self.n and self.text[end] in VARIATION_SELECTORS:  # ✖️, ➕️: the emoji's style, as typed
+                end += 1
+            self.emit("op", OPERATOR_CHARS[ch], start, end)
         elif ch in SUPERSCRIPT_CHARS or ch in SUPERSCRIPT_OTHERS:
             self.superscript()
         elif ch == "√" and (indexed := _UNICODEMATH_ROOT.match(self.text, start)):

@@ -14,7 +14,7 @@ from fractions import Fraction
 
 from .errors import ExpressionError
 
-__all__ = ["GREEK_CHARS", "MATH_LETTERS", "MINUS_SIGNS", "OPERATOR_CHARS", "FULLWIDTH_SYMBOLS", "SUPERSCRIPT_CHARS",
+__all__ = ["GREEK_CHARS", "MATH_LETTERS", "MIDDLE_DOTS", "MINUS_SIGNS", "OPERATOR_CHARS", "VARIATION_SELECTORS", "FULLWIDTH_SYMBOLS", "SUPERSCRIPT_CHARS",
            "SUPERSCRIPT_OTHERS", "SUBSCRIPT_DIGITS", "SUBSCRIPT_LETTERS", "ROOT_CHARS",
            "COMBINING_DOTS", "DOTTED_LETTERS", "PRIME_CHARS", "VULGAR_FRACTIONS", "is_space", "bad_character"]
 
@@ -66,7 +66,19 @@ MATH_LETTERS = _math_letters()
 OPERATOR_CHARS = {"·": "*", "⋅": "*", "×": "*", "∗": "*", "•": "*", "∙": "*", "−": "-", "–": "-",
                   # every other dash a word processor or PDF makes of a typed minus
                   "—": "-", "‒": "-", "‐": "-", "‑": "-", "﹣": "-",
-                  "÷": "/", "∕": "/", "⁄": "/"}
+                  "÷": "/", "∕": "/", "⁄": "/",
+                  # the middle dots of Japanese and Chinese input methods (m・g), and the hyphenation point
+                  # some PDFs give for a middle dot: a product, as · is (between digits, as ambiguous as ·)
+                  "・": "*", "･": "*", "‧": "*",
+                  # a phone's emoji keyboard (➕ ➖ ✖️ ➗), the multiplication X of symbol pickers (✕) and the cross
+                  # product sign OCR gives for × (⨯): the operators they are drawn as
+                  "➕": "+", "➖": "-", "✖": "*", "➗": "/", "✕": "*", "⨯": "*",
+                  # the spacing modifier letters some fonts and a Mac keyboard (Shift-Option-I: ˆ) give for + - ^
+                  "˖": "+", "˗": "-", "ˆ": "^"}
+#: The middle dots that are a product, or a decimal point between digits (2·5): see `tokens`.
+MIDDLE_DOTS = frozenset("·・･‧")
+#: What an emoji keyboard puts after ✖ or ➕: its emoji or text style, nothing to a formula after an operator.
+VARIATION_SELECTORS = frozenset("\ufe0e\ufe0f")
 #: Every character read as a minus sign: the hyphen-minus, the dashes above and the full-width minus. A
 #: number's sign and exponent (`grader.answers.numeric`) and a unit's exponent read the same ones.
 MINUS_SIGNS = frozenset({"-", "－"} | {ch for ch, op in OPERATOR_CHARS.items() if op == "-"})
@@ -75,6 +87,15 @@ MINUS_SIGNS = frozenset({"-", "－"} | {ch for ch, op in OPERATOR_CHARS.items() 
 #: character for one, so positions stay. Full-width letters are not here: they stay refused, named
 #: (see `bad_character`), as every other letter that merely looks like a Latin one.
 FULLWIDTH_SYMBOLS = {ord(chr(c)): chr(c - 0xFEE0) for c in range(0xFF01, 0xFF5F) if not chr(c - 0xFEE0).isalpha()}
+# The small and vertical forms of the same input methods (﹙ ﹚ ﹦ ︵), Unicode's own compatibility forms of ASCII
+# punctuation, and the Greek question mark a Greek keyboard types for ';' (U+037E, which is ';' to Unicode).
+FULLWIDTH_SYMBOLS.update({c: unicodedata.normalize("NFKC", chr(c)) for c in (0x37E, *range(0xFE10, 0xFE20),
+                                                                              *range(0xFE30, 0xFE70))
+                          if len(unicodedata.normalize("NFKC", chr(c))) == 1
+                          and unicodedata.normalize("NFKC", chr(c)) in "()[]{}+-*/=,.;:!<>"})
+# The ideographic full stop and comma that end a sentence and separate items in Chinese and Japanese text
+# (。 as a full stop is, 、 as a comma), and TeX's \lgroup \rgroup drawn as characters (⟮ ⟯): round brackets.
+FULLWIDTH_SYMBOLS.update({ord("。"): ".", ord("｡"): ".", ord("、"): ",", ord("､"): ",", ord("⟮"): "(", ord("⟯"): ")"})
 
 #: Vulgar fractions (½x is x/2): the numerator and denominator, from Unicode's own numeric values.
 VULGAR_FRACTIONS: dict[str, tuple[int, int]] = {
@@ -186,7 +207,7 @@ _SYMBOL_HINTS = {
     "∫": "give the result of the integral, not the integral",
     "∑": "write the sum out term by term",
     "≤": "give an expression, or an equation with =", "≥": "give an expression, or an equation with =",
-    "≠": "give an expression, or an equation with =", "≈": "use = for an equation",
+    "≠": "give an expression, or an equation with =",
     "∞": "no answer here is infinite",
     "…": "an answer has no '…': give it in full (an exact expression, or all its terms), without the '…'",
     "⋯": "an answer has no '⋯': give it in full (an exact expression, or all its terms), without the '⋯'",
@@ -196,6 +217,13 @@ _SYMBOL_HINTS = {
     "∓": "give one sign (the answer with + or the one with -)",
     # a phone's or word processor's quotation marks around a pasted answer (’ after a name is a prime)
     **dict.fromkeys("“”„‟«»‘‚‛", _QUOTES_HINT),
+    # relations that are no equation, as their LaTeX commands are refused (\\equiv, \\propto, \\leqslant)
+    **dict.fromkeys("≡≔≕≝≜≞≟", "it means 'identical to' or 'defined as', not an equation: write = between the two sides"),
+    **dict.fromkeys("≃≅≊∼≈", "it means 'approximately equal' (or 'of the order of'), not an equation: write = between the two sides"),
+    "∝": "it means 'proportional to', not an equation: write = and the factor, as in F = k x",
+    **dict.fromkeys("≦≧⩽⩾≲≳≪≫⋜⋝", "inequalities are not supported: give an expression, or an equation with ="),
+    "∶": "'∶' (a ratio) is not part of a formula: write a ratio with /, as in a/b",
+    "∥": "'∥' (parallel, or a norm) is not part of a formula: write |x| for the absolute value of a number",
 }
 
 
@@ -254,6 +282,18 @@ def bad_character(ch: str, position: int) -> ExpressionError:
     if ch in _INVISIBLE or unicodedata.category(ch) == "Cf":
         return ExpressionError(f"invisible character {name} (U+{ord(ch):04X})",
                                position, "bad_character", "delete it (it often comes with copy and paste)")
+    if ch in VARIATION_SELECTORS:  # after anything but an operator's emoji (✖️), where it is read
+        return ExpressionError(f"invisible character {name} (U+{ord(ch):04X}), an emoji's style mark",
+                               position, "bad_character", "delete it (it comes with an emoji keyboard's symbols)")
+    if unicodedata.category(ch) == "Co":  # a symbol font's character (Word's Symbol font, a PDF's): its glyph is
+        # that font's, so which letter it shows is not known here (in Symbol, U+F071 is θ; in Wingdings, no letter)
+        return ExpressionError(f"private-use character U+{ord(ch):04X}, which only a special font (such as Word's "
+                               "Symbol font, or a PDF's) draws as a symbol", position, "bad_character",
+                               "retype that symbol: a Greek letter as θ or theta, an operator as + - * /")
+    if unicodedata.category(ch) == "Nd" and not unicodedata.normalize("NFKC", ch).isascii():  # ٢, ۲, २: a digit of another script (an Arabic or Hindi keyboard)
+        return ExpressionError(f"'{ch}' ({name}) is the digit {unicodedata.digit(ch)} of another script",
+                               position, "bad_character", f"type the ordinary digit '{unicodedata.digit(ch)}' "
+                               "(digits 0-9, with a point for decimals)")
     if unicodedata.category(ch) == "Cs":  # half of a UTF-16 pair, alone: a broken copy or encoding
         return ExpressionError(f"broken character U+{ord(ch):04X} (a lone surrogate, not text)",
                                position, "bad_character", "delete it and retype what was there")

@@ -104,3 +104,61 @@ def test_every_exponential_e_of_editors_is_eulers_number(text):
     # UnicodeMath's ⅇ (Word's \ee) was refused while ℯ was read
     ns = Namespace([Variable("x", "dimensionless")])
     assert parse_expression(text, ns).expr == sympy.exp(ns.symbol("x"))
+
+
+# -- red team 22: operators as phones, input methods and symbol pickers type them --
+
+@pytest.mark.parametrize("typed, plain", [
+    ("m・n", "m*n"), ("m･n", "m*n"), ("m‧n", "m*n"),  # Japanese and Chinese input methods' middle dots
+    ("m ✕ n", "m*n"), ("m ✖ n", "m*n"), ("m ✖\ufe0f n", "m*n"), ("m ✖\ufe0e n", "m*n"), ("m ⨯ n", "m*n"),
+    ("m ➕ n", "m + n"), ("m ➕\ufe0f n", "m + n"), ("m ➖ n", "m - n"), ("➖m", "-m"), ("m ➗ n", "m/n"),
+    ("m ˖ n", "m + n"), ("m ˗ n", "m - n"), ("˗m", "-m"), ("mˆ2", "m^2"), ("(m + n)ˆ(-1)", "(m + n)^(-1)"),
+    ("m ﹢ n", "m + n"), ("m﹡n", "m*n"), ("﹙m + n﹚n", "(m + n)n"), ("m ﹦ n", "m = n"),
+    ("⟮m + n⟯n", "(m + n)n"), ("m︵n + 1︶", "m(n + 1)"),
+])
+def test_operators_drawn_by_other_characters_read_as_the_operator(typed, plain):
+    ns = Namespace([Variable(n, "dimensionless", "real") for n in "mn"])
+    if "=" in plain:
+        from grader.expressions import parse_equation
+        assert parse_equation(typed, ns).lhs - parse_equation(typed, ns).rhs \
+            == parse_equation(plain, ns).lhs - parse_equation(plain, ns).rhs
+    else:
+        assert parse_expression(typed, ns).expr == parse_expression(plain, ns).expr
+
+
+@pytest.mark.parametrize("typed", ["m n。", "m n｡", "m n、", "m n\u037e"])  # U+037E: GREEK QUESTION MARK, ';' to Unicode
+def test_a_sentence_end_of_chinese_japanese_or_greek_text_ends_the_answer(typed):
+    ns = Namespace([Variable(n, "dimensionless", "real") for n in "mn"])
+    assert parse_expression(typed, ns).expr == ns.symbol("m") * ns.symbol("n")
+
+
+@pytest.mark.parametrize("typed", ["2・5", "2･5", "2‧5"])
+def test_a_middle_dot_of_an_input_method_between_digits_is_as_ambiguous_as_the_latin_one(typed):
+    from grader.expressions import ExpressionError
+    with pytest.raises(ExpressionError) as caught:
+        parse_expression(typed, Namespace([]))
+    assert caught.value.code == "ambiguous" and "2.5" in caught.value.message and "2×5" in caught.value.message
+
+
+@pytest.mark.parametrize("char, words", [
+    ("≡", ["IDENTICAL TO", "not an equation", "write ="]), ("≔", ["COLON EQUALS", "defined as"]),
+    ("≝", ["defined as"]), ("≅", ["approximately"]), ("∼", ["approximately"]), ("≈", ["approximately", "write ="]),
+    ("∝", ["proportional", "write ="]), ("⩽", ["inequalities"]), ("≦", ["inequalities"]), ("≪", ["inequalities"]),
+    ("∶", ["RATIO", "with /"]),
+    ("\uf071", ["private-use character U+F071", "Symbol font", "retype"]),  # θ in Word's Symbol font
+    ("٢", ["ARABIC-INDIC DIGIT TWO", "digit 2", "'2'"]), ("۳", ["digit 3", "'3'"]), ("५", ["digit 5", "'5'"]),
+    ("\ufe0f", ["VARIATION SELECTOR-16", "emoji", "delete"]),
+])
+def test_relations_symbol_fonts_and_other_scripts_digits_are_named_with_the_fix(char, words):
+    error = bad_character(char, 3)
+    assert error.code == "bad_character" and error.position == 3
+    for word in words:
+        assert word in error.message + "; " + error.hint
+
+
+def test_a_variation_selector_after_a_letter_is_not_dropped():
+    # m️1 must not read as m·1 where m1 looks typed: the invisible mark is named
+    from grader.expressions import ExpressionError
+    with pytest.raises(ExpressionError) as caught:
+        parse_expression("m\ufe0f1", Namespace([Variable("m1", "dimensionless")]))
+    assert "VARIATION SELECTOR-16" in caught.value.message
