@@ -100,6 +100,14 @@ def _is_digit(ch: str) -> bool:
 # Spellings of "not equal" in other languages and graders ('!=' has its own branch, '≠' and \ne theirs).
 _NOT_EQUAL = re.compile(r"=/=|/=|<>|=\\=")
 
+# Markdown's bold around the whole answer: **…**, nothing but spaces outside, no ** inside.
+_MARKDOWN_BOLD = re.compile(r"\s*(\*\*)(?=\S)(?:(?!\*\*).)+?(?<=[^\s*])(\*\*)\s*", re.DOTALL)
+
+# A double quote after a name (θ", or θ” as a phone's smart punctuation makes it), and the quotation marks whose
+# presence before it makes it a quotation's end.
+_DOUBLE_QUOTES = frozenset('"”')
+_QUOTE_BEFORE = re.compile('["“”„‟«»]')
+
 # A MathML or HTML tag (<math>, <mi>, </mrow>, <mo stretchy="false">, <sup>, <span ...>) at a '<'.
 _MARKUP_TAG = re.compile(r"</?(math|mi|mn|mo|ms|mrow|msup|msub|msubsup|mfrac|msqrt|mroot|mover|munder|munderover"
                          r"|mtext|mspace|mstyle|mfenced|mtable|mtr|mtd|semantics|annotation|annotation-xml|mathml"
@@ -214,6 +222,10 @@ class _Tokenizer:
         # raising inside for each one it lacks, and the pattern has a ^ and a _)
         if _FULLWIDTH.search(text):
             text = text.translate(FULLWIDTH_SYMBOLS)
+        if "**" in text and (bold := _MARKDOWN_BOLD.fullmatch(text)):
+            # **T = m g cos θ**: Markdown's bold, as a chat assistant's copy button gives its final answer (never
+            # Python's power: nothing comes before the first ** to raise); spaces, so that positions stay
+            text = text[:bold.start(1)] + "  " + text[bold.end(1):bold.start(2)] + "  " + text[bold.end(2):]
         self.text = _SUPERSCRIPT_FIRST.sub(r"\2\1", text) if "^" in text and "_" in text else text
         self.n = len(text)
         self.i = 0
@@ -508,6 +520,15 @@ class _Tokenizer:
                 "not a formula", start, "syntax",
                 "paste the formula as plain text or LaTeX (in Word: Equation, then Convert to Linear or "
                 "copy as LaTeX), or type it, as in m*g*sin(theta)"))
+        elif ch in _DOUBLE_QUOTES and self.tokens and self.tokens[-1].kind == "name" \
+                and self.tokens[-1].end == start and not _QUOTE_BEFORE.search(self.text, 0, start):
+            # θ" (the ″ of a keyboard without one), which a phone's smart punctuation makes θ”: a double prime,
+            # or the end of a quotation whose start is not there? Neither is taken.
+            name = self.tokens[-1].text
+            self.emit("bad", ch, start, start + 1, error=ExpressionError(
+                f"'{name}{ch}' reads as {name}″ (a double prime: the second derivative) or as a closing quotation "
+                "mark", start, "ambiguous", f"for the second derivative write {name}'' (two apostrophes) or a dotted "
+                "letter such as θ̈; otherwise delete the quotation mark"))
         elif ch in _PUNCTUATION:
             message, code, hint = _PUNCTUATION[ch]
             self.emit("bad", ch, start, start + 1, error=ExpressionError(message, start, code, hint))

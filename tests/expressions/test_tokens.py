@@ -548,3 +548,39 @@ def test_a_superscript_after_a_power_that_is_closed_is_still_read(text):
 ])
 def test_a_font_command_without_braces_takes_one_character_as_tex_does(text, braced):
     assert [(t.kind, t.value) for t in tokenize(text)] == [(t.kind, t.value) for t in tokenize(braced)]
+
+
+# -- red team 22: a phone's smart quotes, a chat assistant's Markdown --
+
+@pytest.mark.parametrize("text, shown", [('θ" = 0', 'θ"'), ("θ” = 0", "θ”"), ('theta" + x', 'theta"'), ("x＂", 'x"'),
+                                         ("x_1” + 1", "x_1”")])
+def test_a_double_quote_after_a_name_is_refused_naming_the_double_prime_and_the_quotation_mark(text, shown):
+    # θ" (″ typed on a keyboard without one; a phone's smart punctuation makes it θ”) was told to delete the
+    # quotation marks, which loses the derivative the student meant
+    bad = [t for t in tokenize(text) if t.kind == "bad"]
+    assert bad and bad[0].error.code == "ambiguous"
+    assert shown in bad[0].error.message and "double prime" in bad[0].error.message \
+        and "quotation mark" in bad[0].error.message and "''" in bad[0].error.hint
+
+
+@pytest.mark.parametrize("text", ['"θ" = 0', "“θ” = 0"])
+def test_a_double_quote_that_closes_a_quotation_is_still_a_quotation_mark(text):
+    with pytest.raises(ExpressionError) as refused:
+        [t.error for t in tokenize(text) if t.kind == "bad" and t.error and _raise(t.error)]
+    assert "QUOT" in refused.value.message.upper() and refused.value.code != "ambiguous"
+
+
+def _raise(error):
+    raise error
+
+
+@pytest.mark.parametrize("text, plain", [
+    ("**m g + x**", "m g + x"), ("**T = m g**", "T = m g"), ("  **m g**\n", "m g\n"), ("**\\(m g\\)**", "\\(m g\\)"),
+])
+def test_markdown_bold_around_the_whole_answer_is_only_its_look(text, plain):
+    assert kinds(text) == kinds(plain)
+
+
+@pytest.mark.parametrize("text", ["m**2", "**m g** + x**", "**m**2**", "** m g **"])
+def test_double_asterisks_that_are_not_bold_around_the_answer_stay_what_they_were(text):
+    assert ("op", "^") in kinds(text)
