@@ -32,6 +32,10 @@ is a release (:meth:`Simulation._within_steps`). A gap fires only below −1e-13
 contact force only below −1e-9 of its scale, never at exactly zero: rounding is not an impact or
 a release, and a tension that touches zero (a whirl at exactly the critical speed) holds.
 
+**Impacts** (:meth:`Simulation._impacts`) follow Newton's law contact by contact: a resting contact
+that would have to pull lets go (a struck Atwood mass slackens its string), and one with
+restitution > 0 is struck in turn when the impulses drive it in (Newton's cradle).
+
 Examples
 --------
 A body released from rest at θ₀ = 0.3 on a smooth sphere leaves it where cos θ = (2/3) cos θ₀:
@@ -70,6 +74,7 @@ _MAX_EVENTS = 10_000
 _SCAN = np.array([0.0, 0.25, 0.5, 0.75])  # where inside each step event functions are also tested
 _NOISE = 1e-13      # relative: a gap or contact force this far below zero is rounding (event functions)
 _BAND = 1e-11        # relative: friction within this of μ_s N still holds (rounding, not physics)
+_MAX_IMPACT_ROUNDS = 1000  # contacts struck one after the other at one instant (Newton's cradle)
 
 
 @dataclass
@@ -363,23 +368,71 @@ class Simulation:
         impulse = np.linalg.solve(JB @ MinvJT, change)
         return MinvJT @ impulse
 
-    def _impact(self, t, q, v, mode: Mode, struck: list[int], rates, v_tol):
-        """Newton's impact law on the contacts ``struck`` at once, the holding ones kept:
-        (q̇ after, [(index, bounced)]), or None when an impulse on a struck contact would pull."""
-        rows = sorted(mode.active | set(struck))
-        target = np.zeros(len(rows))
-        hits = []
+    def _impacts(self, t, q, v, mode: Mode, struck: list[int]) -> tuple[np.ndarray, set[int], set[int]]:
+        """Newton's impact law on the contacts ``struck``, then on every contact the impulses
+        drive in, round after round: (q̇ after, unilateral contacts that hold after, contacts struck).
+
+        In each round the struck contacts take their impulses together, each by its own
+        restitution, with the bilateral and sticking constraints kept and the resting contacts
+        of restitution 0 kept at rest; a resting contact that could only be kept by pulling (a
+        string whose mass is struck towards the pulley, a ball under a block that the block's
+        string jerks away) lets go, and so does a struck one whose joint impulse would pull.
+        A resting contact with restitution > 0 takes no part in the round: if the impulses
+        drive it in, it is struck in the next one (Newton's cradle passes the blow on to the
+        last ball; a ball resting on a bigger one bounces off it after the big one's rebound).
+        """
+        f, _, f_tol, v_tol, _ = self._scales(t, np.concatenate([q, v]))
+        unilateral = {e.index for e in self.effects if e.kind == "unilateral"}
+        touching = {j for j in unilateral if abs(f[j]) <= f_tol[j]} | set(struck)
+        rigid = mode.active - unilateral
+        held = {j for j in mode.active & unilateral if self.effects[j].restitution == 0}
+        hit: set[int] = set()
+        for round_ in range(_MAX_IMPACT_ROUNDS + 1):
+            # Rounds of restitution below 1 shrink the approach geometrically and stop below the
+            # rounding band; if they do not, the last round takes them together inelastically.
+            inelastic = round_ == _MAX_IMPACT_ROUNDS
+            if inelastic:
+                rates = self.compiled.rates(t, q, v)
+                struck = sorted(j for j in touching - held if rates[j] <= v_tol[j])
+            v, held, bounced = self._impact_round(t, q, v, rigid, held, struck, v_tol, inelastic)
+            hit |= set(struck)
+            rates = self.compiled.rates(t, q, v)
+            struck = sorted(j for j in touching - held if rates[j] < -v_tol[j])
+            if not struck:
+                break
+        # Every contact that touches and does not move off holds (settle then releases it if it
+        # carries no load): a big ball left at rest on the floor by the small one's rebound.
+        rates = self.compiled.rates(t, q, v)
+        resting = {j for j in touching if rates[j] <= v_tol[j]}
+        return v, held | resting, hit
+
+    def _impact_round(self, t, q, v, rigid: set[int], held: set[int], struck: list[int], v_tol,
+                      inelastic: bool) -> tuple[np.ndarray, set[int], set[int]]:
+        """One round of :meth:`_impacts`: (q̇ after, contacts held, struck contacts that bounced)."""
+        rates = self.compiled.rates(t, q, v)
+        bounced = set()
+        targets = {}
         for j in struck:
-            bounce = -self.effects[j].restitution * rates[j]
-            hits.append((j, bool(bounce > v_tol[j])))
-            if hits[-1][1]:
-                target[rows.index(j)] = bounce
+            bounce = 0.0 if inelastic else -self.effects[j].restitution * rates[j]
+            if bounce > v_tol[j]:
+                bounced.add(j)
+            targets[j] = bounce if j in bounced else 0.0
         M, _, J, _ = self.compiled.terms(t, q, v)
-        MinvJT = np.linalg.solve(M, J[rows].T)
-        impulse = np.linalg.solve(J[rows] @ MinvJT, target - rates[rows])
-        if len(struck) > 1 and any(impulse[rows.index(j)] < 0 for j in struck):
-            return None
-        return v + MinvJT @ impulse, hits
+        let_go: set[int] = set()
+        while True:
+            rows = sorted((rigid | held | set(struck)) - let_go)
+            if not rows:
+                return v, set(), set()
+            MinvJT = np.linalg.solve(M, J[rows].T)
+            target = np.array([targets.get(r, 0.0) for r in rows])
+            impulse = np.linalg.lstsq(J[rows] @ MinvJT, target - rates[rows], rcond=None)[0]
+            band = 1e-9 * np.abs(impulse).max(initial=0.0)
+            pulling = [(impulse[k], r) for k, r in enumerate(rows) if r not in rigid and impulse[k] < -band]
+            if not pulling:
+                break
+            let_go.add(min(pulling)[1])
+        held = (held | (set(struck) - bounced)) - let_go
+        return v + MinvJT @ impulse, held, bounced - let_go
 
     def transition(self, t: float, y: np.ndarray, mode: Mode, effect: str, i: int
                    ) -> tuple[Mode, np.ndarray, list[tuple[str, int]]]:
@@ -409,17 +462,19 @@ class Simulation:
             f, rates, f_tol, v_tol, _ = self._scales(t, y)
             # Every open contact that touches and moves in at this instant is struck together
             # with i (a rod falling flat lands on both ends at once), each by its own restitution;
-            # one after the other, a symmetric rod with 0 < e < 1 was set spinning. Only when
-            # the joint impulses are not all pushes is it one contact at a time.
+            # one after the other, a symmetric rod with 0 < e < 1 was set spinning.
             struck = [i] + [e.index for e in self.effects
                             if e.kind == "unilateral" and e.index != i and e.index not in mode.active
                             and abs(f[e.index]) <= f_tol[e.index] and rates[e.index] < -v_tol[e.index]]
-            impact = self._impact(t, q, v, mode, struck, rates, v_tol) if len(struck) > 1 else None
-            v, hits = impact or self._impact(t, q, v, mode, [i], rates, v_tol)
-            for j, bounced in hits:
-                if not bounced:
-                    mode.active.add(j)
-                switches.append(("bounce" if bounced else "contact", j, False))
+            before = set(mode.active)
+            v, holding, hit = self._impacts(t, q, v, mode, struck)
+            unilateral = [e.index for e in self.effects if e.kind == "unilateral"]
+            for j in [i] + [j for j in unilateral if j != i]:
+                if j in hit:
+                    switches.append(("contact" if j in holding else "bounce", j, False))
+                elif j in before and j not in holding:
+                    switches.append(("release", j, False))
+            mode.active = (mode.active - set(unilateral)) | holding
             y = np.concatenate([q, v])
         mode, later = self.settle(t, self.project(t, y, mode), mode)
         return mode, self.project(t, y, mode), switches + later
