@@ -23,7 +23,8 @@ each before parsing (:mod:`.leibniz`) and read as ``θ̇``, ``ẍ`` do; ``d/dt(m
 differentiated by the chain rule.
 
 What other tools print reads as it means there: Mathematica's ``Sin[θ]^2`` (a call, squared),
-``θ''[t]``, ``D[θ[t], t]`` and ``Pi``; ``diff(θ(t), t)`` of Maple, SymPy and Maxima; Python's
+``θ''[t]``, ``D[θ[t], t]`` and ``Pi``; ``diff(θ(t), t)`` of Maple, SymPy and Maxima (Maple's ``diff(θ(t), t$2)``,
+SymPy's printed ``Derivative(θ(t), (t, 2))``); Python's
 ``np.sin``; MATLAB's ``.*``. Where the same text means different things in different tools
 (``ArcTan[x, y]``, capital ``ATAN2`` and ``LOG``, ``2·5``), the refusal names both readings.
 """
@@ -87,8 +88,9 @@ _SPREADSHEET_CAPITALS = {
             "is the natural logarithm ln", "write ln(x) for the natural logarithm, or log10(x) for base 10"),
 }
 # Calls that differentiate (Maple's, SymPy's and Maxima's diff, Mathematica's D), with their bracket.
-_DIFF_CALLS = {"diff": "(", "D": "["}
-_PAIRS_CLOSE = {"(": ")", "[": "]"}
+# SymPy prints a derivative as Derivative(θ(t), t) and Derivative(θ(t), (t, 2)).
+_DIFF_CALLS = {"diff": "(", "D": "[", "Derivative": "("}
+_PAIRS_CLOSE = {"(": ")", "[": "]", "{": "}"}
 # What to type instead of a two-argument call in square brackets (see Parser.call_arguments).
 _BRACKET_PAIR_HINTS = {
     "atan": "write atan2(y, x) for the angle of the point (x, y), or atan(y/x)",
@@ -597,9 +599,9 @@ class _Parser:
 
     def diff_order(self, token: Token) -> int:
         """How many times one more argument of `diff_call` differentiates: ``t`` once, ``t, 2`` (a
-        number after t) that often, Mathematica's ``{t, 2}`` likewise."""
+        number after t) that often, Mathematica's ``{t, 2}``, SymPy's ``(t, 2)`` and Maple's ``t$2`` likewise."""
         start = self.peek()
-        braced = start.kind == "open" and start.value == "{"
+        braced = start.kind == "open" and start.value in "{("
         if braced:
             self.advance()
         variable = self.advance()
@@ -611,8 +613,10 @@ class _Parser:
         count = 1
         after = self.peek()
         following = self.tokens[self.i + 1] if self.i + 1 < len(self.tokens) else after
-        if after.kind == "op" and after.value == "," and following.kind == "number":
-            self.advance()
+        sequence = after.kind == "number" and self.text[variable.end:after.pos].strip() == "$"  # Maple's t$2
+        if sequence or (after.kind == "op" and after.value == "," and following.kind == "number"):
+            if not sequence:
+                self.advance()
             number = self.advance()
             if not (number.value.is_Integer and 1 <= number.value <= 4):
                 raise ExpressionError(f"'{number.text}' is not an order of derivative", number.pos, "syntax",
@@ -620,8 +624,10 @@ class _Parser:
             count = int(number.value)
         if braced:
             closer = self.advance()
-            if not (closer.kind == "close" and closer.value == "}"):
-                raise ExpressionError("expected '}' after the order, as in D[x[t], {t, 2}]", closer.pos, "syntax")
+            if not (closer.kind == "close" and closer.value == _PAIRS_CLOSE[start.value]):
+                example = "D[x[t], {t, 2}]" if start.value == "{" else "Derivative(x(t), (t, 2))"
+                raise ExpressionError(f"expected '{_PAIRS_CLOSE[start.value]}' after the order, as in {example}",
+                                      closer.pos, "syntax")
         return count
 
     # -- names and functions ------------------------------------------------

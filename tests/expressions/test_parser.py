@@ -848,6 +848,12 @@ def test_an_index_in_square_brackets_without_such_a_variable_is_refused_not_mult
     ("diff(theta(t), t)", "thetadot"), ("diff(theta(t), t)^2", "thetadot^2"), ("diff(theta(t), t, t)", "thetaddot"),
     ("diff(theta(t), t, 2)", "thetaddot"), ("D[theta[t], t]", "thetadot"), ("D[theta[t], {t, 2}]", "thetaddot"),
     ("diff(m r^2 thetadot, t)", "2*m*r*rdot*thetadot + m*r^2*thetaddot"), ("diff(l, t)", "0"),
+    # SymPy's printed derivative and Maple's (Möbius's) sequence t$2 (red team 22: both refused, the first as a
+    # function we lack, the second as "unexpected '2'")
+    ("Derivative(theta(t), t)", "thetadot"), ("Derivative(theta(t), (t, 2))", "thetaddot"),
+    ("Derivative(theta(t), t, t)", "thetaddot"), ("Derivative(r, t)**2", "rdot^2"), ("diff(theta(t), (t, 2))", "thetaddot"),
+    ("diff(theta(t), t$2)", "thetaddot"), ("diff(theta(t), t $ 2)", "thetaddot"), ("diff(r(t),t$1)^2", "rdot^2"),
+    ("l*m*Derivative(theta(t), t)**2 + g*m*cos(theta(t))", "l*m*thetadot^2 + g*m*cos(theta)"),
     # Python modules and MATLAB's element-wise operators
     ("np.sin(theta)", "sin(theta)"), ("math.sqrt(g/l)", "sqrt(g/l)"), ("2*numpy.pi*r", "2*pi*r"),
     ("np.arctan2(y, x)", "atan2(y, x)"), ("m*(g*np.cos(theta) + l*thetadot**2)", "m*(g*cos(theta) + l*thetadot^2)"),
@@ -883,7 +889,9 @@ def test_answers_pasted_from_other_tools_mean_what_they_mean_there(student_ns, s
     ("diff(theta(t), t, 7)", "syntax", "'7' is not an order"),
     # what to type instead, named
     ("np.hypot(x, y)", "unsupported_function", "sqrt(x^2 + y^2)"),
-    ("Derivative(x, t)", "unsupported_function", "diff(θ(t), t)"),
+    ("Derivative(theta(t), x)", "syntax", "only time derivatives"),
+    ("Derivative(theta(t), (t, 2]) ", "unbalanced", "close it with ')'"),
+    ("diff(theta(t), t$x)", "syntax", "unexpected 'x'"),
     ("Derivative[1][theta + x][t]", "unsupported_function", "diff(θ(t), t)"),  # Mathematica's, of no one name
     ("“x”", "bad_character", "delete the quotation marks"),
     # a spreadsheet's ATAN2(x, y) has our arguments reversed; its PI() has brackets
