@@ -125,3 +125,162 @@ def test_a_small_ball_dropped_on_a_big_one_leaves_at_v_times_3M_minus_m_over_M_p
     energy = M / 2 * motion.qdot[:, 0] ** 2 + m / 2 * motion.qdot[:, 1] ** 2 + G * (M * motion.q[:, 0] + m * motion.q[:, 1])
     assert np.ptp(energy) < 1e-8 * M * G * h
     assert motion.q[:, 0].min() > -1e-12 and (motion.q[:, 1] - motion.q[:, 0]).min() > 0.24 - 1e-12
+
+
+# -- a block thrown off a platform on a spring ------------------------------------------------------
+
+def platform_flight(m, M, k, A):
+    """Hand-derived: release time and speed, then the first landing of the free block on the
+    platform oscillating alone (SHM about −Mg/k at √(k/M)), and the common velocity after it."""
+    w = math.sqrt(k / (M + m))
+    t1 = math.acos(-G / (A * w * w)) / w
+    v1 = A * w * math.sin(w * t1)
+    wp, c = math.sqrt(k / M), M * G / k
+
+    def gap(tau):
+        return v1 * tau - G * tau ** 2 / 2 - (-c + c * math.cos(wp * tau) + v1 / wp * math.sin(wp * tau))
+
+    taus = np.linspace(1e-3, 2.0, 2001)
+    j = next(j for j in range(1, len(taus)) if gap(taus[j]) < 0)
+    tau = brentq(gap, taus[j - 1], taus[j], xtol=1e-15)
+    block, plate = v1 - G * tau, -c * wp * math.sin(wp * tau) + v1 * math.cos(wp * tau)
+    return t1, v1, t1 + tau, (M * plate + m * block) / (M + m), (block - plate)
+
+
+@pytest.mark.parametrize("A", [0.15, 0.12])
+def test_a_block_leaves_a_platform_on_a_spring_where_the_spring_has_its_natural_length(A):
+    m, M, k = 0.5, 1.5, 200.0
+    motion = simulate_scene(load_scene(SCENES / "block_on_spring_platform.toml"), {"A": A}, t_end=0.8, samples=801)
+    t1, v1, t2, common, approach = platform_flight(m, M, k, A)
+    assert effects(motion)[:2] == [("release", "platform"), ("contact", "platform")]
+    release, landing = motion.events[:2]
+    assert release.t == pytest.approx(t1, abs=1e-10)
+    assert (release.state["y"], release.state["ydot"], release.state["zdot"]) == pytest.approx((0.0, v1, v1), abs=1e-9)
+    assert landing.t == pytest.approx(t2, abs=1e-9)
+    assert (landing.state["ydot"], landing.state["zdot"]) == pytest.approx((common, common), abs=1e-8)
+    energy = (M / 2 * motion.qdot[:, 0] ** 2 + m / 2 * motion.qdot[:, 1] ** 2 + k / 2 * motion.q[:, 0] ** 2
+              + G * (M * motion.q[:, 0] + m * motion.q[:, 1]))
+    flight, riding = between(motion, release.t, landing.t), motion.t < release.t
+    assert np.ptp(energy[riding]) < 1e-9 and np.ptp(energy[flight]) < 1e-9
+    # the inelastic landing loses (1/2) μ (relative speed)², μ = m M/(m + M)
+    lost = energy[flight][-1] - energy[motion.t > landing.t][0]
+    assert lost == pytest.approx(m * M / (m + M) * approach ** 2 / 2, rel=1e-7)
+    assert (motion.q[:, 1] - motion.q[:, 0]).min() > -1e-12
+    assert np.all(motion.multipliers[motion.active[:, 0], 0] >= 0)
+
+
+def test_a_block_on_a_platform_pushed_down_less_than_its_threshold_or_glued_to_it_never_leaves():
+    m, M, k = 0.5, 1.5, 200.0
+    below = simulate_scene(load_scene(SCENES / "block_on_spring_platform.toml"), {"A": 0.9 * (M + m) * G / k},
+                           t_end=1.0)
+    glued = simulate_scene(scene("block_on_spring_platform", "bilateral"), {}, t_end=1.0)
+    assert below.events == [] and glued.events == []
+    assert below.active.all() and below.multipliers[:, 0].min() > 0
+    # glued, the platform pulls the block down on the way up: N = m (g + ÿ) < 0 above y = 0
+    np.testing.assert_allclose(glued.multipliers[:, 0], m * (G + 0.15 * k / (M + m) * np.cos(math.sqrt(k / (M + m)) * glued.t)),
+                               rtol=1e-8, atol=1e-8)
+    assert glued.multipliers[:, 0].min() < -1
+
+
+# -- a particle on a cylinder that accelerates sideways --------------------------------------------
+
+@pytest.mark.parametrize("a", [3.0, -3.0, 12.0])
+def test_a_particle_leaves_a_sideways_accelerating_cylinder_where_the_effective_gravity_says(a):
+    R = 0.5
+    motion = simulate_scene(load_scene(SCENES / "cylinder_accelerating.toml"), {"a": a}, t_end=1.0, samples=401)
+    assert effects(motion) == [("release", "surface")]
+    release = motion.events[0]
+    ge = math.hypot(G, a)
+    x, y = release.state["x"] - a * release.t ** 2 / 2, release.state["y"]
+    assert (a * x + G * y) / (ge * R) == pytest.approx(2 / 3 * G / ge, abs=1e-9)
+    assert math.copysign(1, x) == -math.copysign(1, a)  # it slides off backwards
+    # An independent integration in the cylinder's frame: R ψ̈ = g_e sin ψ, ψ from (a, g)/g_e, from
+    # ψ₀ = atan(a/g) (towards −x for a > 0), until N/m = g_e cos ψ − R ψ̇² = 0.
+    def rhs(t, s):
+        return [s[1], ge / R * math.sin(s[0])]
+
+    def leaves(t, s):
+        return ge * math.cos(s[0]) - R * s[1] ** 2
+
+    leaves.terminal = True
+    check = solve_ivp(rhs, (0, 2), [math.atan(abs(a) / G), 0.0], method="DOP853", rtol=1e-12, atol=1e-12,
+                      events=leaves)
+    assert release.t == pytest.approx(check.t_events[0][0], abs=1e-9)
+    speed = R * check.y_events[0][0][1]  # relative to the cylinder, plus its velocity a t
+    assert math.hypot(release.state["xdot"] - a * release.t, release.state["ydot"]) == pytest.approx(speed, rel=1e-9)
+    before, after = motion.t < release.t, motion.t > release.t
+    xr = motion.q[:, 0] - a * motion.t ** 2 / 2
+    jacobi = (((motion.qdot[:, 0] - a * motion.t) ** 2 + motion.qdot[:, 1] ** 2) / 2 + a * xr + G * motion.q[:, 1])
+    assert np.ptp(jacobi[before]) < 1e-9
+    free = (motion.qdot ** 2).sum(axis=1) / 2 + G * motion.q[:, 1]
+    assert np.ptp(free[after]) < 1e-9
+    assert np.all(np.hypot(xr[after], motion.q[after, 1]) > R)
+
+
+def test_a_bead_on_a_sideways_accelerating_ring_never_leaves_it():
+    motion = simulate_scene(scene("cylinder_accelerating", "bilateral"), {}, t_end=1.0)
+    assert motion.events == []
+    xr = motion.q[:, 0] - 3.0 * motion.t ** 2 / 2
+    np.testing.assert_allclose(np.hypot(xr, motion.q[:, 1]), 0.5, rtol=1e-10)
+    assert motion.multipliers[:, 0].min() < 0 < motion.multipliers[:, 0].max()
+
+
+# -- a string in polar coordinates: slack, parabola, taut ------------------------------------------
+
+@pytest.mark.parametrize("v0", [5.5, 4.6])
+def test_a_bob_on_a_string_in_polar_coordinates_flies_a_parabola_and_keeps_only_its_tangential_velocity(v0):
+    m, l = 0.3, 0.8
+    motion = simulate_scene(load_scene(SCENES / "pendulum_polar_slack.toml"), {"v0": v0}, t_end=1.5, samples=601)
+    assert effects(motion) == [("release", "string"), ("contact", "string")]
+    slack, taut = motion.events
+    cos = (2 * G * l - v0 ** 2) / (3 * G * l)
+    assert math.cos(slack.state["theta"]) == pytest.approx(cos, abs=1e-9)
+    theta, v = math.acos(cos), math.sqrt(-G * l * cos)
+    x0, y0, vx, vy = l * math.sin(theta), -l * math.cos(theta), v * math.cos(theta), v * math.sin(theta)
+
+    def off(tau):
+        return math.hypot(x0 + vx * tau, y0 + vy * tau - G * tau * tau / 2) - l
+
+    taus = np.linspace(1e-3, 2.0, 4001)
+    j = next(j for j in range(1, len(taus)) if off(taus[j]) >= 0)
+    tau = brentq(off, taus[j - 1], taus[j], xtol=1e-15)
+    x, y, vyf = x0 + vx * tau, y0 + vy * tau - G * tau * tau / 2, vy - G * tau
+    assert taut.t == pytest.approx(slack.t + tau, abs=1e-10)
+    assert math.atan2(x, -y) % (2 * math.pi) == pytest.approx(taut.state["theta"] % (2 * math.pi), abs=1e-9)
+    assert taut.state["rdot"] == 0.0 or abs(taut.state["rdot"]) < 1e-12
+    assert l * taut.state["thetadot"] == pytest.approx((x * vyf - y * vx) / l, rel=1e-9)
+    energy = m / 2 * (motion.qdot[:, 0] ** 2 + (motion.q[:, 0] * motion.qdot[:, 1]) ** 2) - m * G * motion.q[:, 0] * np.cos(motion.q[:, 1])
+    for part in (motion.t < slack.t, between(motion, slack.t, taut.t), motion.t > taut.t):
+        assert np.ptp(energy[part]) < 1e-9
+    radial = (x * vx + y * vyf) / l
+    assert energy[motion.t < slack.t][0] - energy[motion.t > taut.t][0] == pytest.approx(m * radial ** 2 / 2, rel=1e-8)
+
+
+def test_a_bob_on_a_rod_in_polar_coordinates_swings_up_to_its_energy_level_and_the_rod_pushes():
+    # v0² = 30.25 < 4 g l: it turns back where cos θ = 1 − v0²/(2 g l), the rod pushing it up
+    motion = simulate_scene(scene("pendulum_polar_slack", "bilateral"), {}, t_end=1.5, samples=1501)
+    assert motion.events == []
+    assert math.cos(motion.q[:, 1].max()) == pytest.approx(1 - 5.5 ** 2 / (2 * G * 0.8), abs=1e-5)
+    np.testing.assert_allclose(motion.q[:, 0], 0.8, rtol=1e-12)
+    assert motion.multipliers[:, 0].min() < 0
+
+
+# -- a yo-yo struck upwards -----------------------------------------------------------------------
+
+@pytest.mark.parametrize("v, I", [(1.5, 1e-4), (0.4, 1e-5)])
+def test_a_yoyo_struck_upwards_flies_freely_and_its_string_jerks_taut_after_2v_over_g(v, I):
+    m, b, h = 0.2, 0.01, 0.5
+    motion = simulate_scene(load_scene(SCENES / "yoyo_struck_up.toml"), {"v": v, "I": I}, t_end=0.5, samples=501)
+    assert effects(motion) == [("contact", "string")]
+    taut = motion.events[0]
+    assert taut.t == pytest.approx(2 * v / G, abs=1e-12)
+    after = v * m * b * b / (m * b * b + I)
+    assert (taut.state["y"], taut.state["ydot"], taut.state["phidot"]) == pytest.approx((h, after, after / b), rel=1e-10)
+    flight = motion.t < taut.t
+    np.testing.assert_allclose(motion.q[flight, 0], h - v * motion.t[flight] + G * motion.t[flight] ** 2 / 2, atol=1e-12)
+    np.testing.assert_allclose(motion.qdot[flight, 1], 0.0, atol=1e-12)
+    falling = motion.t > taut.t
+    tau = motion.t[falling] - taut.t
+    np.testing.assert_allclose(motion.q[falling, 0], h + after * tau + G * m * b * b / (m * b * b + I) * tau ** 2 / 2,
+                               atol=1e-10)
+    np.testing.assert_allclose(motion.multipliers[falling, 0], m * G * I / (m * b * b + I), rtol=1e-9)
