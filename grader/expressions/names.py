@@ -543,10 +543,29 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
         raise ExpressionError(f"unknown name '{typed}': '{greek}' is the Greek letter {GREEK_CHARS[greek]}, "
                               f"which looks like the Latin '{letter}'", position, "unknown_name",
                               f"type {name} with the Latin '{letter}' if that is what you meant")
+    lowered = _capitalised_start(raw, ns, position)
+    if lowered is not None:  # Mg cos θ: a phone capitalises the first letter of what is typed
+        shown = typed[0].lower() + typed[1:] if typed[:1] == raw[:1] else lowered
+        raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name",
+                              f"did you mean '{shown}', with a lowercase '{raw[0].lower()}'? (a phone or editor may "
+                              "have capitalised the first letter of the answer)")
     suggestion = _suggestion(raw, ns) or "this answer uses no variables: write a number"
     if raw in _UPRIGHT_UNITS:  # √(5gR) m/s: 's' may be a variable the problem lacks, or a unit
         suggestion += f"; if '{typed}' is a unit, delete it: units are not part of the answer"
     raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name", suggestion)
+
+
+def _capitalised_start(raw: str, ns: "Namespace", position: int) -> str | None:
+    """The name with its first letter lowercase (``mg`` for ``Mg``) when the name starts the answer, only that
+    letter is a capital, and the lowercase reading names declared variables (``m``·``g``); None otherwise."""
+    if position != 0 or not raw[:1].isupper() or not raw[:1].isascii() or raw[1:2].isupper():
+        return None
+    lowered = raw[0].lower() + raw[1:]
+    try:
+        found = resolve_name(lowered, ns, typed=lowered, position=position)
+    except ExpressionError:
+        return None
+    return lowered if found.kind in ("symbol", "split") else None
 
 
 # Greek letters that look like Latin ones in most fonts, and the Latin letter.

@@ -222,3 +222,23 @@ def test_an_unknown_name_that_is_a_unit_symbol_says_units_are_not_part_of_the_an
     with pytest.raises(ExpressionError) as refused:
         parse_expression(text, ns)
     assert f"if '{unit}' is a unit, delete it" in refused.value.hint
+
+
+# -- red team 22: a phone capitalises the first letter of what is typed --
+
+@pytest.mark.parametrize("text, meant", [
+    ("Mg cos(theta)", "mg"), ("M g cos(theta)", "m"), ("Ml thetadot^2", "ml"), ("G m", "g"), ("Theta + phi", "theta"),
+])
+def test_a_capital_first_letter_where_the_problem_has_the_lowercase_name_says_so(ns, text, meant):
+    # 'Mg' was answered "did you mean 'g'?", which sends the student away from the m they typed
+    with pytest.raises(ExpressionError) as refused:
+        parse_expression(text, ns)
+    assert refused.value.code == "unknown_name" and f"did you mean '{meant}'" in refused.value.hint \
+        and "capitalised the first letter" in refused.value.hint
+
+
+@pytest.mark.parametrize("text", ["m Mg", "Mq", "MG", "(Mg)"])
+def test_a_capital_elsewhere_or_of_no_lowercase_name_gets_no_such_hint(ns, text):
+    with pytest.raises(ExpressionError) as refused:
+        parse_expression(text, ns)
+    assert "capitalised" not in (refused.value.hint or "")
