@@ -55,3 +55,26 @@ def test_a_decimal_exponent_with_too_many_digits_is_refused_for_its_digits_not_i
 @pytest.mark.parametrize("exponent", ["0.123456", "1.6", "0.5"])
 def test_a_decimal_exponent_with_six_decimals_is_built(exponent):
     assert guarded_pow(x, sympy.Rational(exponent), 0) == x ** sympy.Rational(exponent)
+
+
+# -- red team 22: exp(99999999), whose sign under sin took the parse without end --
+
+@pytest.mark.parametrize("text", ["log(sin(exp(99999999)))", "log(sin(sinh(99999999)))", "log(sin(cosh(-10^9)))",
+                                  "exp(1001)", "log(sin(exp(999)*exp(999)*exp(999)))", "log(sin(exp(1000)^3))"])
+def test_an_exponential_of_a_huge_number_is_refused_as_too_large(text):
+    from grader.expressions import Namespace, parse_expression
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text, Namespace([]))
+    assert err.value.code == "too_large"
+
+
+@pytest.mark.parametrize("text", ["exp(1000)", "exp(-1/2)", "sinh(3/10)", "exp(1000)*exp(1000)"])
+def test_an_exponential_of_a_number_an_answer_may_hold_is_built(text):
+    from grader.expressions import Namespace, parse_expression
+    assert parse_expression(text, Namespace([])).expr.is_number
+
+
+def test_checked_refuses_an_exponential_with_more_digits_than_a_number_may_have():
+    with pytest.raises(ExpressionError):
+        checked(sympy.exp(sympy.Integer(2400)), 0)
+    assert checked(sympy.exp(sympy.Integer(2300)), 0) == sympy.exp(2300)
