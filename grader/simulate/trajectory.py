@@ -18,7 +18,7 @@ A scene with only bilateral constraints has no event function, no extra unknowns
 switching: its right-hand side is :meth:`~grader.simulate.compiled.CompiledScene.rhs` itself.
 
 **Events.** scipy locates a sign change of an event function on DOP853's dense output; one Newton
-step along the flow (with the true right-hand side) then puts the event on the root to ~1e-12,
+steps along the flow (with the true right-hand side) then put the event on the root to ~1e-12,
 and the state is projected onto the constraints that hold. The new mode is decided from the state
 alone (:meth:`Simulation.settle`): a constraint force that is zero there counts by the sign of its
 time derivative, so restarting at an event, with the state the event reports, continues in the
@@ -238,7 +238,7 @@ class Simulation:
                         -1.0, "release", i, float(force_band[i]))
                 else:
                     add(lambda t, y, i=i, o=float(gap_band[i]): self.compiled.gaps(t, y[:self.n])[0][i] + o,
-                        -1.0, "contact", i)
+                        -1.0, "contact", i, float(gap_band[i]))
             elif e.kind == "rolling" and e.normal in mode.active:
                 if i in mode.active:
                     for sign in (1.0, -1.0):
@@ -394,7 +394,7 @@ class Simulation:
             if inelastic:
                 rates = self.compiled.rates(t, q, v)
                 struck = sorted(j for j in touching - held if rates[j] <= v_tol[j])
-            v, held, bounced = self._impact_round(t, q, v, rigid, held, struck, v_tol, inelastic)
+            v, held, bounced = self._impact_round(t, q, v, rigid, held, struck, v_tol, f_tol, inelastic)
             hit |= set(struck)
             rates = self.compiled.rates(t, q, v)
             struck = sorted(j for j in touching - held if rates[j] < -v_tol[j])
@@ -406,16 +406,25 @@ class Simulation:
         resting = {j for j in touching if rates[j] <= v_tol[j]}
         return v, held | resting, hit
 
-    def _impact_round(self, t, q, v, rigid: set[int], held: set[int], struck: list[int], v_tol,
+    def _impact_round(self, t, q, v, rigid: set[int], held: set[int], struck: list[int], v_tol, f_tol,
                       inelastic: bool) -> tuple[np.ndarray, set[int], set[int]]:
-        """One round of :meth:`_impacts`: (q̇ after, contacts held, struck contacts that bounced)."""
+        """One round of :meth:`_impacts`: (q̇ after, contacts held, struck contacts that bounced).
+
+        A rebound too slow to lift the gap out of its rounding (ḟ² < 2 |f̈| × 4 ε of its scale,
+        f̈ with the contact open) is no rebound: the last bounces of a Zeno sequence gained or
+        lost that much energy each at their impacts and went on for ever below 1e-7 m/s."""
         rates = self.compiled.rates(t, q, v)
+        y = np.concatenate([q, v])
         bounced = set()
         targets = {}
         for j in struck:
             bounce = 0.0 if inelastic else -self.effects[j].restitution * rates[j]
             if bounce > v_tol[j]:
-                bounced.add(j)
+                qddot, _, J, _ = self.solve(t, y, Mode(rigid | held))
+                pull = -(J[j] @ qddot + self.compiled.terms(t, q, v)[3][j])
+                noise = 4 * np.finfo(float).eps / _TOL * f_tol[j]
+                if pull <= 0 or bounce * bounce > 2 * pull * noise:
+                    bounced.add(j)
             targets[j] = bounce if j in bounced else 0.0
         M, _, J, _ = self.compiled.terms(t, q, v)
         let_go: set[int] = set()
@@ -542,8 +551,10 @@ class Simulation:
                 continue
             t_hit, k = min(hits)
             g, effect, i = functions[k]
-            # A release counts once λ is below the band; it happens where λ = 0.
-            t_hit, y_hit = self._refine(lambda tt, yy, g=g: g(tt, yy) - g.band, t_hit, solution.sol(t_hit), mode)
+            # A release counts once λ is below the band, a contact once the gap is; they happen
+            # where λ = 0 and the gap = 0. Located on the threshold (the gap at −1e-13), a bounce
+            # restarted there and the gap's rounding fired it again at once (a bead on a stop).
+            t_hit, y_hit = self._refine(lambda tt, yy, g=g: g(tt, yy) - g.band, t_hit, solution.sol(t_hit), mode, t)
             mode, y, switches = self.transition(t_hit, self.project(t_hit, y_hit, mode), mode, effect, i)
             events += self._records(t_hit, y, switches)
             done += 1
@@ -621,16 +632,28 @@ class Simulation:
             raise SimulationError(f"integration failed at t = {solution.t[-1]:.9g}: {solution.message}")
         return solution
 
-    def _refine(self, g, t_hit: float, y_hit: np.ndarray, mode: Mode) -> tuple[float, np.ndarray]:
-        """One Newton step along the flow from scipy's root on the dense output."""
-        value = g(t_hit, y_hit)
-        slope = self._flow_derivative(g, t_hit, y_hit, mode)
-        if slope and np.isfinite(slope):
+    def _refine(self, g, t_hit: float, y_hit: np.ndarray, mode: Mode, start: float) -> tuple[float, np.ndarray]:
+        """Newton steps along the flow from scipy's root on the dense output, each a second-order
+        Taylor step of the true right-hand side, never back before the segment's ``start`` nor
+        more than 10 µs from scipy's root (one Euler step went back before it, and left the root
+        off by a·dt²/2: the slow rebounds of a bead bouncing on a stop, struck that far inside
+        it, gained energy at every bounce and never ended)."""
+        t, y = t_hit, y_hit
+        for _ in range(4):
+            value = g(t, y)
+            slope = self._flow_derivative(g, t, y, mode)
+            if not (slope and np.isfinite(slope)):
+                break
             dt = -value / slope
-            if abs(dt) < 1e-6:
-                ydot = np.concatenate([y_hit[self.n:], self.solve(t_hit, y_hit, mode)[0]])
-                return t_hit + dt, y_hit + dt * ydot
-        return t_hit, y_hit
+            if not (abs(t + dt - t_hit) < 1e-5 and t + dt > start):
+                break
+            qddot = self.solve(t, y, mode)[0]
+            v = y[self.n:]
+            y = np.concatenate([y[:self.n] + dt * v + dt * dt / 2 * qddot, v + dt * qddot])
+            t += dt
+            if abs(dt) <= 4 * np.finfo(float).eps * max(1.0, abs(t)):
+                break
+        return t, y
 
     def _sample(self, solution, mode: Mode, times: np.ndarray, rows: list) -> None:
         if not len(times):

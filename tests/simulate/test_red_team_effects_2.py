@@ -284,3 +284,45 @@ def test_a_yoyo_struck_upwards_flies_freely_and_its_string_jerks_taut_after_2v_o
     np.testing.assert_allclose(motion.q[falling, 0], h + after * tau + G * m * b * b / (m * b * b + I) * tau ** 2 / 2,
                                atol=1e-10)
     np.testing.assert_allclose(motion.multipliers[falling, 0], m * G * I / (m * b * b + I), rtol=1e-9)
+
+
+# -- a bead on a spun rod bouncing against a stop (a rheonomic constraint held through impacts) ----
+
+@pytest.mark.parametrize("e", [0.5, 0.8, 0.0])
+def test_a_bead_flung_out_along_a_spun_rod_bounces_on_its_stop_and_comes_to_rest_there_in_finite_time(e):
+    # Before: each contact was located 1e-13 beyond the stop (where the gap function fires), so
+    # the restart after a rebound sat exactly on the next segment's firing threshold: the gap's
+    # rounding (L² − x² − y², ±5e-17) fired the same bounce again within 1e-14 s, the Newton step
+    # moved time backwards, and the run stopped after 10,000 events near t = 1.0889 (e = 0.5).
+    # Located on the stop, the last rebounds (1e-7 m/s) gained energy at every inexact impact and
+    # never ended either.
+    m, w, r0, L = 0.1, 4.0, 0.1, 0.5
+    motion = simulate_scene(load_scene(SCENES / "bead_spinning_rod_stop.toml"), {"e": e}, t_end=1.5 if e < 0.7 else 3.0,
+                            samples=301)
+    c = math.sqrt(L * L - r0 * r0)
+    times = [math.acosh(L / r0) / w]
+    for k in range(1, 200):
+        times.append(times[-1] + 2 / w * math.atanh(e ** k * c / L))
+    assert all(b.t > a.t for a, b in zip(motion.events, motion.events[1:]))
+    bounces = [x for x in motion.events if x.effect == "bounce"]
+    rest = motion.events[-1]
+    assert rest.effect == "contact" and {x.effect for x in motion.events[:-1]} <= {"bounce"}
+    for k, bounce in enumerate(bounces[:8]):
+        assert bounce.t == pytest.approx(times[k], abs=1e-9)
+        s = bounce.state
+        r = math.hypot(s["x"], s["y"])
+        assert r == pytest.approx(L, abs=1e-12)
+        # radial speed reversed times e; the velocity across the rod is the rod's, ω L
+        assert (s["x"] * s["xdot"] + s["y"] * s["ydot"]) / r == pytest.approx(-e ** (k + 1) * w * c, rel=1e-7)
+        assert (s["x"] * s["ydot"] - s["y"] * s["xdot"]) / r == pytest.approx(w * L, rel=1e-9)
+    # the sequence ends when a rebound could not lift the bead out of the rounding of its gap
+    # (~1e-7 m/s here), which leaves out the last ~1e-7 s of the infinitely many bounces
+    assert rest.t == pytest.approx(times[-1], abs=2e-7)
+    held = motion.t > rest.t
+    np.testing.assert_allclose(2 * L * motion.multipliers[held, 1], m * w * w * L, rtol=1e-8)
+    # between bounces ṙ² − ω² r² is constant (the Jacobi integral of the rotating frame)
+    r = np.hypot(motion.q[:, 0], motion.q[:, 1])
+    rdot = (motion.q * motion.qdot).sum(axis=1) / r
+    first = motion.t < times[0]
+    np.testing.assert_allclose(rdot[first] ** 2 - w * w * r[first] ** 2, -(w * r0) ** 2, atol=1e-10)
+    assert r.max() <= L + 1e-10  # held at the stop the constraint drifts by ~1e-11 over the run
