@@ -17,7 +17,7 @@ rolling, slipping with sign σ   σ ḟ ↓ 0                ``stick`` (or slip 
 A scene with only bilateral constraints has no event function, no extra unknowns and no
 switching: its right-hand side is :meth:`~grader.simulate.compiled.CompiledScene.rhs` itself.
 
-**Events.** scipy locates a sign change of an event function on DOP853's dense output; one Newton
+**Events.** scipy locates a sign change of an event function on DOP853's dense output; a few Newton
 steps along the flow (with the true right-hand side) then put the event on the root to ~1e-12,
 and the state is projected onto the constraints that hold. The new mode is decided from the state
 alone (:meth:`Simulation.settle`): a constraint force that is zero there counts by the sign of its
