@@ -326,3 +326,43 @@ def test_a_bead_flung_out_along_a_spun_rod_bounces_on_its_stop_and_comes_to_rest
     first = motion.t < times[0]
     np.testing.assert_allclose(rdot[first] ** 2 - w * w * r[first] ** 2, -(w * r0) ** 2, atol=1e-10)
     assert r.max() <= L + 1e-10  # held at the stop the constraint drifts by ~1e-11 over the run
+
+
+# -- a string jerked taut lifts a block off the floor ----------------------------------------------
+
+@pytest.mark.parametrize("m1, m2", [(1.0, 2.0), (2.0, 1.0)])
+def test_a_falling_mass_jerks_its_string_taut_and_lifts_the_block_off_the_floor(m1, m2):
+    # Before: for m1 < m2 the cycles of landing and jerking (each leaving m1/(m1 + m2) of the
+    # speed) went on below 1e-7 m/s, where each inexact impact gained as much energy as it lost,
+    # until the run stopped at 10,000 events near t = 1.0096.
+    s, L, D = 0.2, 3.0, 2.0
+    motion = simulate_scene(load_scene(SCENES / "atwood_jerk_off_floor.toml"), {"m1": m1, "m2": m2},
+                            t_end=1.5, samples=301)
+    v, t1 = math.sqrt(2 * G * s), math.sqrt(2 * s / G)
+    V = m1 * v / (m1 + m2)
+    assert effects(motion)[:2] == [("contact", "string"), ("release", "floor")]
+    jerk = motion.events[0]
+    assert jerk.t == pytest.approx(t1, abs=1e-12)
+    assert (jerk.state["y1dot"], jerk.state["y2dot"]) == pytest.approx((V, -V), rel=1e-10)
+    a = (m1 - m2) * G / (m1 + m2)
+    if m1 > m2:
+        assert len(motion.events) == 2
+        after = motion.t > t1
+        tau = motion.t[after] - t1
+        np.testing.assert_allclose(motion.q[after, 1], D - V * tau - a * tau ** 2 / 2, atol=1e-10)
+        return
+    # The block rises and lands at V after 2V/|a|; mass 1 flies up on the slack string and jerks
+    # it taut again at V after 2V/g; each cycle leaves m1/(m1 + m2) of the speed.
+    cycle = 2 / G + 2 / abs(a)
+    landing, slack, again = motion.events[2], motion.events[3], motion.events[4]
+    assert [(x.effect, x.constraint) for x in (landing, slack, again)] == [
+        ("contact", "floor"), ("release", "string"), ("contact", "string")]
+    assert landing.t == pytest.approx(t1 + 2 * V / abs(a), abs=1e-10)
+    assert again.t == pytest.approx(t1 + cycle * V, abs=1e-10)
+    assert again.state["y1dot"] == pytest.approx(V * m1 / (m1 + m2), rel=1e-9)
+    rest = t1 + cycle * V / (1 - m1 / (m1 + m2))
+    assert motion.events[-1].t == pytest.approx(rest, abs=3e-7)
+    still = motion.t > motion.events[-1].t
+    assert motion.active[still].all()
+    np.testing.assert_allclose(motion.multipliers[still], [[m1 * G, (m2 - m1) * G]] * still.sum(), rtol=1e-9)
+    np.testing.assert_allclose(motion.qdot[still], 0.0, atol=1e-12)
