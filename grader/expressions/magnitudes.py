@@ -29,8 +29,6 @@ _UNDEFINED = (sympy.zoo, sympy.nan, sympy.oo, -sympy.oo)
 _UNDEFINED_IDS = frozenset(map(id, _UNDEFINED))
 _I = sympy.I
 _SMALL = 10 ** 300
-_EXP = sympy.exp
-_EXP_LIMIT = int(MAX_DIGITS * math.log(10)) + 1  # e^2303 has a thousand digits
 
 
 def node_count(expr: sympy.Expr, limit: int) -> int:
@@ -127,8 +125,5 @@ def checked(expr: sympy.Expr, position: int | None) -> sympy.Expr:
             raise not_real(position)
         # digits() only for numbers that could have that many (both parts below 10**300 cannot)
         if node.is_Rational and (abs(node.p) > _SMALL or node.q > _SMALL) and digits(node) > MAX_DIGITS:
-            raise _too_large(position)
-        # exp(999)*exp(999)*…, which sympy merges into one exp: e^x has x/ln 10 digits, as many as a number may
-        if node.func is _EXP and node.args[0].is_Number and abs(node.args[0]) > _EXP_LIMIT:
             raise _too_large(position)
     return expr

@@ -45,7 +45,7 @@ from .dimensions import dimension_of, parse_dimension
 from .errors import DimensionError, ExpressionError
 from .functions import FUNCTIONS, INVERSES
 from .leibniz import dotted, read_leibniz, time_derivative
-from .magnitudes import MAX_EXPONENT, checked, guarded_pow, not_real
+from .magnitudes import MAX_DIGITS, checked, guarded_pow, not_real
 from .names import GREEK_LETTERS, INVERSE_INSTEAD, WRITE_INSTEAD, derivative_name, resolve_name
 from .tokens import Token, check_brackets, tokenize
 from .variables import Namespace
@@ -88,12 +88,14 @@ _SPREADSHEET_CAPITALS = {
             "is the natural logarithm ln", "write ln(x) for the natural logarithm, or log10(x) for base 10"),
 }
 # Calls that differentiate (Maple's, SymPy's and Maxima's diff, Mathematica's D), with their bracket.
-# Functions whose value has about as many digits as their argument's size: exp(x) is e^x.
-_GROWING = frozenset({"exp", "sinh", "cosh"})
+# The periodic functions, whose value at x needs x reduced modulo π to as many digits as x has.
+_PERIODIC = frozenset({"sin", "cos", "tan", "cot", "sec", "csc"})
+_PERIODIC_LIMIT = sympy.Integer(10) ** MAX_DIGITS
 
 
-def _beyond(number: sympy.Expr, bound: int) -> bool:
-    """Whether the number (built by the parser, so of bounded size) is larger than ``bound`` in absolute value."""
+def _beyond(number: sympy.Expr, bound: sympy.Integer) -> bool:
+    """Whether the number (built by the parser) is larger than ``bound`` in absolute value; found at 15 digits,
+    which an exponential of any size costs no more than its exponent's."""
     value = number.evalf(15)
     return value.is_comparable and abs(value) > bound
 
@@ -904,11 +906,11 @@ class _Parser:
                                       f"{token.text}(x, 3); write x^(1/n) for a power")
             value = self.root(args[0], int(index), token.pos)
         else:
-            if spec.name in _GROWING and args[0].is_number and _beyond(args[0], MAX_EXPONENT):
-                # exp(99999999) is e^99999999, refused as that is: built, the sign of sin of it (in log(sin(…)))
-                # needs it to millions of digits, and the parse did not end
-                raise ExpressionError(f"{token.text} of a number beyond {MAX_EXPONENT}", token.pos, "too_large",
-                                      "no answer here needs numbers that size")
+            if spec.name in _PERIODIC and args[0].is_number and _beyond(args[0], _PERIODIC_LIMIT):
+                # sin(exp(99999999)): its sign (asked for in log(sin(…))) needs the angle to millions of digits,
+                # and the parse did not end; no answer takes the sine of a number with more digits than a number may have
+                raise ExpressionError(f"{token.text} of a number with more than {MAX_DIGITS} digits", token.pos,
+                                      "too_large", "no answer here needs numbers that size")
             try:
                 value = checked(spec.build(*args), token.pos)
             except (TypeError, AttributeError):  # sympy's own failure on a huge argument: asin(sin(1e400))

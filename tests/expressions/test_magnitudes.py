@@ -57,24 +57,20 @@ def test_a_decimal_exponent_with_six_decimals_is_built(exponent):
     assert guarded_pow(x, sympy.Rational(exponent), 0) == x ** sympy.Rational(exponent)
 
 
-# -- red team 22: exp(99999999), whose sign under sin took the parse without end --
+# -- red team 22: log(sin(exp(99999999))), whose sign took the parse without end --
 
-@pytest.mark.parametrize("text", ["log(sin(exp(99999999)))", "log(sin(sinh(99999999)))", "log(sin(cosh(-10^9)))",
-                                  "exp(1001)", "log(sin(exp(999)*exp(999)*exp(999)))", "log(sin(exp(1000)^3))"])
-def test_an_exponential_of_a_huge_number_is_refused_as_too_large(text):
+@pytest.mark.parametrize("text", ["log(sin(exp(99999999)))", "log(sin(sinh(99999999)))", "log(cos(cosh(-10^9)))",
+                                  "log(sin(exp(999)*exp(999)*exp(999)))", "tan(exp(exp(exp(exp(1)))))", "sec(exp(99999))"])
+def test_a_periodic_function_of_a_number_with_more_digits_than_a_number_may_have_is_refused(text):
     from grader.expressions import Namespace, parse_expression
     with pytest.raises(ExpressionError) as err:
         parse_expression(text, Namespace([]))
-    assert err.value.code == "too_large"
+    assert err.value.code == "too_large" and "more than 1000 digits" in err.value.message
 
 
-@pytest.mark.parametrize("text", ["exp(1000)", "exp(-1/2)", "sinh(3/10)", "exp(1000)*exp(1000)"])
-def test_an_exponential_of_a_number_an_answer_may_hold_is_built(text):
+@pytest.mark.parametrize("text", ["sin(exp(1000))", "sin(10^999)", "exp(99999999)", "exp(-4000)", "sinh(3/10)",
+                                  "exp(exp(exp(exp(1))))", "log(sin(exp(2000)))"])
+def test_the_same_numbers_elsewhere_or_smaller_are_built(text):
+    # exp(exp(exp(e))) times an answer is a wrong answer (the corpus's yoyo item), not an unreadable one
     from grader.expressions import Namespace, parse_expression
     assert parse_expression(text, Namespace([])).expr.is_number
-
-
-def test_checked_refuses_an_exponential_with_more_digits_than_a_number_may_have():
-    with pytest.raises(ExpressionError):
-        checked(sympy.exp(sympy.Integer(2400)), 0)
-    assert checked(sympy.exp(sympy.Integer(2300)), 0) == sympy.exp(2300)
