@@ -366,3 +366,28 @@ def test_a_falling_mass_jerks_its_string_taut_and_lifts_the_block_off_the_floor(
     assert motion.active[still].all()
     np.testing.assert_allclose(motion.multipliers[still], [[m1 * G, (m2 - m1) * G]] * still.sum(), rtol=1e-9)
     np.testing.assert_allclose(motion.qdot[still], 0.0, atol=1e-12)
+
+
+# -- a ball thrown along a rough floor with backspin ---------------------------------------------
+
+@pytest.mark.parametrize("w0", [0.0, 200.0, 300.0])
+def test_a_ball_thrown_with_backspin_slides_until_it_rolls_at_5v0_minus_2R_w0_over_7(w0):
+    # Sliding: ẍ = −μ_k g, R θ̈ = (5/2) μ_k g (I = 2/5 m R², the backspin counts as θ̇ < 0): the
+    # slip ẋ − R θ̇ falls at (7/2) μ_k g to zero, then it rolls on (backwards for 2 R ω0 > 5 v0).
+    m, R, mu, v0 = 0.16, 0.03, 0.2, 3.0
+    motion = simulate_scene(load_scene(SCENES / "ball_with_backspin.toml"), {"w0": w0}, t_end=2.0, samples=401)
+    assert effects(motion) == [("stick", "roll")]
+    stick = motion.events[0]
+    assert stick.t == pytest.approx(2 * (v0 + R * w0) / (7 * mu * G), abs=1e-10)
+    final = (5 * v0 - 2 * R * w0) / 7
+    assert (stick.state["xdot"], R * stick.state["thetadot"]) == pytest.approx((final, final), abs=1e-9)
+    sliding, rolling = motion.t < stick.t, motion.t > stick.t
+    t = motion.t[sliding]
+    np.testing.assert_allclose(motion.q[sliding, 0], v0 * t - mu * G * t ** 2 / 2, atol=1e-10)
+    np.testing.assert_allclose(motion.multipliers[sliding, 0], -mu * m * G, rtol=1e-9)  # kinetic friction, backwards
+    np.testing.assert_allclose(motion.qdot[rolling, 0], final, atol=1e-9)
+    np.testing.assert_allclose(motion.multipliers[rolling, 0], 0.0, atol=1e-9)
+    assert motion.active[:, 1].all() and not motion.active[sliding, 0].any()
+    kinetic = m / 2 * motion.qdot[:, 0] ** 2 + m * R * R / 5 * motion.qdot[:, 1] ** 2
+    lost = kinetic[0] - kinetic[rolling][0]
+    assert lost == pytest.approx(m / 2 * v0 ** 2 + m * R * R / 5 * w0 ** 2 - 7 / 10 * m * final ** 2, rel=1e-8)
