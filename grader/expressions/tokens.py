@@ -100,6 +100,9 @@ def _is_digit(ch: str) -> bool:
 # Spellings of "not equal" in other languages and graders ('!=' has its own branch, '≠' and \ne theirs).
 _NOT_EQUAL = re.compile(r"=/=|/=|<>|=\\=")
 
+# The combining dots above, which on a space are the spacing dots ˙ and ¨.
+_COMBINING_ACCENTS = frozenset("\u0307\u0308")
+
 # Markdown's bold around the whole answer: **…**, nothing but spaces outside, no ** inside.
 _MARKDOWN_BOLD = re.compile(r"\s*(\*\*)(?=\S)(?:(?!\*\*).)+?(?<=[^\s*])(\*\*)\s*", re.DOTALL)
 
@@ -317,6 +320,16 @@ class _Tokenizer:
                     self.attach_subscript()
         elif ch in _DIGITS:
             self.number()
+        elif ch == " " and self.peek(1) in _COMBINING_ACCENTS and self.tokens and self.tokens[-1].kind == "name" \
+                and self.tokens[-1].end == start and not self.tokens[-1].forced_function:
+            # θ ̇: a combining dot on a space is Unicode's spacing dot (˙), as Word's linear format writes 〖𝜃 ̇〗:
+            # the dot of the name before it, as θ˙ is
+            name, end = self.tokens[-1], start + 1
+            while end < self.n and self.text[end] in _COMBINING_ACCENTS:
+                name.order += COMBINING_DOTS[self.text[end]]
+                end += 1
+            name.end, self.i = end, end
+            name.text = self.text[name.pos:end]
         elif ch == " ":
             self.space = True
             self.i += 1
@@ -467,6 +480,10 @@ class _Tokenizer:
                 end += 1
             name.end, self.i = end, end
             name.text = self.text[name.pos:name.end]
+        elif ch == "'" and self.text.startswith("diff(", start + 1):
+            # Maxima's noun form 'diff(y, t), as STACK asks for a derivative in an equation: the diff itself
+            self.space = True
+            self.i += 1
         elif ch in PRIME_CHARS:
             self.emit("prime", PRIME_CHARS[ch], start, start + 1)
         elif ch == "." and self.peek(1) in ("*", "/", "^") and self.tokens \

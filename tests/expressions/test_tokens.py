@@ -584,3 +584,25 @@ def test_markdown_bold_around_the_whole_answer_is_only_its_look(text, plain):
 @pytest.mark.parametrize("text", ["m**2", "**m g** + x**", "**m**2**", "** m g **"])
 def test_double_asterisks_that_are_not_bold_around_the_answer_stay_what_they_were(text):
     assert ("op", "^") in kinds(text)
+
+
+@pytest.mark.parametrize("text, order", [("θ \u0307", 1), ("𝜃 \u0307", 1), ("θ \u0308", 2), ("x \u0307 \u0307", 2),
+                                         ("〖𝜃 \u0307〗", 1), ("(θ \u0307)", 1)])
+def test_a_combining_dot_on_a_space_after_a_name_is_the_names_spacing_dot(text, order):
+    # Unicode's spacing form of a combining mark is the mark on a space: Word's linear format writes θ̇ as 〖𝜃 ̇〗,
+    # which was "accent COMBINING DOT ABOVE does not follow a variable name"
+    names = [t for t in tokenize(text) if t.kind == "name"]
+    assert len(names) == 1 and names[0].order == order and all(t.kind != "bad" for t in tokenize(text))
+
+
+@pytest.mark.parametrize("text", ["θ  \u0307", "2 \u0307", "( \u0307"])
+def test_a_combining_dot_after_a_gap_or_no_name_is_still_refused(text):
+    with pytest.raises(ExpressionError) as refused:
+        tokenize(text)
+    assert "COMBINING DOT ABOVE" in refused.value.message or "COMBINING DIAERESIS" in refused.value.message
+
+
+@pytest.mark.parametrize("text, plain", [("'diff(y, t)", "diff(y, t)"), ("2*'diff(y,t,2)", "2*diff(y,t,2)")])
+def test_maximas_noun_form_of_diff_is_diff(text, plain):
+    # STACK asks for 'diff(y, x) in a differential equation; the quote was "a prime can only follow a variable"
+    assert kinds(text) == kinds(plain)
