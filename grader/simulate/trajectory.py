@@ -368,9 +368,10 @@ class Simulation:
         impulse = np.linalg.solve(JB @ MinvJT, change)
         return MinvJT @ impulse
 
-    def _impacts(self, t, q, v, mode: Mode, struck: list[int]) -> tuple[np.ndarray, set[int], set[int]]:
+    def _impacts(self, t, q, v, mode: Mode, struck: list[int]) -> tuple[np.ndarray, set[int], set[int], set[int]]:
         """Newton's impact law on the contacts ``struck``, then on every contact the impulses
-        drive in, round after round: (q̇ after, unilateral contacts that hold after, contacts struck).
+        drive in, round after round: (q̇ after, unilateral contacts that hold after, contacts struck,
+        rolling constraints that slip).
 
         In each round the struck contacts take their impulses together, each by its own
         restitution, with the bilateral and sticking constraints kept and the resting contacts
@@ -397,6 +398,7 @@ class Simulation:
         slow = np.sqrt(np.maximum(2 * pull * 4 * np.finfo(float).eps / _TOL * f_tol, 0.0))
         v_tol = np.maximum(v_tol, slow)
         hit: set[int] = set()
+        slipped: set[int] = set()
         for round_ in range(_MAX_IMPACT_ROUNDS + 1):
             # Rounds of restitution below 1 shrink the approach geometrically and stop below the
             # rounding band; if they do not, the last round takes them together inelastically.
@@ -404,7 +406,9 @@ class Simulation:
             if inelastic:
                 rates = self.compiled.rates(t, q, v)
                 struck = sorted(j for j in touching - held if rates[j] <= v_tol[j])
-            v, held, bounced = self._impact_round(t, q, v, rigid, held, struck, v_tol, inelastic)
+            v, held, bounced, sliding = self._impact_round(t, q, v, rigid, held, struck, v_tol, inelastic)
+            rigid -= sliding
+            slipped |= sliding
             hit |= set(struck)
             rates = self.compiled.rates(t, q, v)
             struck = sorted(j for j in touching - held if rates[j] < -v_tol[j])
@@ -414,11 +418,18 @@ class Simulation:
         # carries no load): a big ball left at rest on the floor by the small one's rebound.
         rates = self.compiled.rates(t, q, v)
         resting = {j for j in touching if rates[j] <= v_tol[j]}
-        return v, held | resting, hit
+        return v, held | resting, hit, slipped
 
     def _impact_round(self, t, q, v, rigid: set[int], held: set[int], struck: list[int], v_tol,
-                      inelastic: bool) -> tuple[np.ndarray, set[int], set[int]]:
-        """One round of :meth:`_impacts`: (q̇ after, contacts held, struck contacts that bounced)."""
+                      inelastic: bool) -> tuple[np.ndarray, set[int], set[int], set[int]]:
+        """One round of :meth:`_impacts`: (q̇ after, contacts held, struck contacts that bounced,
+        rolling constraints that slip).
+
+        A rolling constraint keeps rolling through the impact only if its friction impulse stays
+        within μ_s times its normal contact's impulse (Coulomb's law for impulses); otherwise it
+        takes none and slips. Held rigid, a ball rolling into a smooth wall had its spin reversed
+        by a friction impulse from a floor that took no impulse at all, and rolled back at e v
+        instead of (2 − 5e) v/7."""
         rates = self.compiled.rates(t, q, v)
         bounced = set()
         targets = {}
@@ -432,17 +443,28 @@ class Simulation:
         while True:
             rows = sorted((rigid | held | set(struck)) - let_go)
             if not rows:
-                return v, set(), set()
+                return v, set(), set(), set()
             MinvJT = np.linalg.solve(M, J[rows].T)
             target = np.array([targets.get(r, 0.0) for r in rows])
             impulse = np.linalg.lstsq(J[rows] @ MinvJT, target - rates[rows], rcond=None)[0]
             band = 1e-9 * np.abs(impulse).max(initial=0.0)
             pulling = [(impulse[k], r) for k, r in enumerate(rows) if r not in rigid and impulse[k] < -band]
-            if not pulling:
+            if pulling:
+                let_go.add(min(pulling)[1])
+                continue
+            sliding = []
+            for k, r in enumerate(rows):
+                effect = self.effects[r]
+                if effect.kind == "rolling":
+                    normal = impulse[rows.index(effect.normal)] if effect.normal in rows else 0.0
+                    excess = abs(impulse[k]) - effect.mu_s * max(normal, 0.0)
+                    if excess > band:
+                        sliding.append((excess, r))
+            if not sliding:
                 break
-            let_go.add(min(pulling)[1])
+            let_go.add(max(sliding)[1])
         held = (held | (set(struck) - bounced)) - let_go
-        return v + MinvJT @ impulse, held, bounced - let_go
+        return v + MinvJT @ impulse, held, bounced - let_go, let_go & rigid
 
     def transition(self, t: float, y: np.ndarray, mode: Mode, effect: str, i: int
                    ) -> tuple[Mode, np.ndarray, list[tuple[str, int]]]:
@@ -477,14 +499,15 @@ class Simulation:
                             if e.kind == "unilateral" and e.index != i and e.index not in mode.active
                             and abs(f[e.index]) <= f_tol[e.index] and rates[e.index] < -v_tol[e.index]]
             before = set(mode.active)
-            v, holding, hit = self._impacts(t, q, v, mode, struck)
+            v, holding, hit, slipped = self._impacts(t, q, v, mode, struck)
             unilateral = [e.index for e in self.effects if e.kind == "unilateral"]
             for j in [i] + [j for j in unilateral if j != i]:
                 if j in hit:
                     switches.append(("contact" if j in holding else "bounce", j, False))
                 elif j in before and j not in holding:
                     switches.append(("release", j, False))
-            mode.active = (mode.active - set(unilateral)) | holding
+            mode.active = (mode.active - set(unilateral) - slipped) | holding
+            switches += [("slip", r, False) for r in sorted(slipped)]
             y = np.concatenate([q, v])
         mode, later = self.settle(t, self.project(t, y, mode), mode)
         return mode, self.project(t, y, mode), switches + later

@@ -391,3 +391,30 @@ def test_a_ball_thrown_with_backspin_slides_until_it_rolls_at_5v0_minus_2R_w0_ov
     kinetic = m / 2 * motion.qdot[:, 0] ** 2 + m * R * R / 5 * motion.qdot[:, 1] ** 2
     lost = kinetic[0] - kinetic[rolling][0]
     assert lost == pytest.approx(m / 2 * v0 ** 2 + m * R * R / 5 * w0 ** 2 - 7 / 10 * m * final ** 2, rel=1e-8)
+
+
+@pytest.mark.parametrize("e", [1.0, 0.5, 0.0])
+def test_a_ball_rolling_into_a_smooth_wall_rebounds_with_its_spin_and_rolls_back_at_2_minus_5e_over_7(e):
+    # Before: the rolling constraint was held rigid through the wall's impact, so a friction
+    # impulse from a floor that took no impulse reversed the spin: the ball rolled straight back
+    # at e v (energy kept for e = 1) instead of sliding first.
+    m, R, mu, v, d = 0.16, 0.03, 0.2, 2.0, 0.5
+    motion = simulate_scene(load_scene(SCENES / "ball_rolling_into_wall.toml"), {"e": e}, t_end=1.2, samples=241)
+    hit_t = (d - R) / v
+    assert effects(motion) == [("bounce" if e else "contact", "wall"), ("slip", "roll"), ("stick", "roll")]
+    hit, slip, stick = motion.events
+    assert hit.t == slip.t == pytest.approx(hit_t, abs=1e-12)
+    assert (hit.state["xdot"], R * hit.state["thetadot"]) == pytest.approx((-e * v, v), rel=1e-10)
+    if e:
+        # sliding away from the wall: ẍ = +μ g, R θ̈ = −(5/2) μ g; rolling again at (2 − 5e) v/7
+        assert stick.t == pytest.approx(hit_t + 2 * (1 + e) * v / (7 * mu * G), abs=1e-10)
+        final = (2 - 5 * e) * v / 7
+    else:
+        # pressed against the wall by the friction while the spin runs down: I θ̈ = −μ m g R
+        assert stick.t == pytest.approx(hit_t + 2 * v / (5 * mu * G), abs=1e-10)
+        final = 0.0
+    assert (stick.state["xdot"], R * stick.state["thetadot"]) == pytest.approx((final, final), abs=1e-9)
+    after = motion.t > stick.t
+    np.testing.assert_allclose(motion.qdot[after, 0], final, atol=1e-9)
+    # the floor's normal force stays m g: the impact never lifted the ball
+    np.testing.assert_allclose(motion.multipliers[:, 1], m * G, rtol=1e-9)
