@@ -30,8 +30,8 @@ import mpmath
 import numpy as np
 import sympy
 
-from grader.answers.evaluate import (SCALE, ArbBackend, FloatBackend, Undefined, Unresolved, Unsupported, _log2_mag,
-                                     compile_expr)
+from grader.answers.evaluate import (SCALE, ArbBackend, FloatBackend, MpmathBackend, Undefined, Unresolved,
+                                     Unsupported, _log2_mag, compile_expr)
 from grader.answers.equivalence import (
     CONFIRM_BITS,
     LOG2_10,
@@ -1108,6 +1108,13 @@ FACTOR_MAX_NODES = 200
 FACTOR_MAX_POWER = 8
 # Boxes the ball-arithmetic proof may split a bounded domain into.
 FACTOR_MAX_BOXES = 256
+# Boxes of the second proof, tried only for a factor the first neither proved nonzero nor saw change sign.
+FACTOR_MORE_BOXES = 8192
+# Working digits of the search for a zero such a factor touches, and the size (relative to the factor's value where
+# the search starts) below which a value found there counts as zero.
+WITNESS_DPS = 50
+WITNESS_ZERO = mpmath.mpf(10) ** -30
+WITNESS_STEPS = 16
 
 
 def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: dict,
@@ -1262,9 +1269,21 @@ def _state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: 
                           "on the state and is zero somewhere in the declared domain (it changes sign between "
                           "the two states in the counterexample): there your equation no longer determines "
                           "the motion", evidence={"method": "ball arithmetic"}, counterexample=example)
-    return Comparison(False, "numeric", "your equation is the reference multiplied by a factor that depends on "
-                      "the state and could not be shown to be nonzero on the whole declared domain",
-                      evidence={"method": "symbolic"})
+    # Neither proved nonzero nor seen to change sign: a factor that touches zero (1 + cos θ at θ = π, θ̇², l θ̇² +
+    # g(1 − cos θ) at rest at the bottom) is found where it vanishes; one that stays off zero by less than the first
+    # proof's boxes resolve (1.4143 − cos θ − sin θ ≥ 8.6e-5) is proved with more. Either way never a guess.
+    touched = _zero_witness(numerator, domains, samplers, deadline) if samplers is not None else None
+    if touched is not None:
+        return Comparison(False, "numeric", "your equation is the reference multiplied by a factor that depends on "
+                          "the state and is zero at the state in the counterexample (to 30 digits; it touches zero "
+                          "there without changing sign): there your equation no longer determines the motion",
+                          evidence={"method": "root search"}, counterexample={"values": touched})
+    if _nonzero_on(numerator, domains, boxes=FACTOR_MORE_BOXES) is True:
+        return Comparison(True, "proved", "the reference multiplied by a factor that depends on the state and is "
+                          "nonzero on the whole declared domain", evidence={"method": "ball arithmetic"})
+    return Comparison(None, "none", "your equation is the reference multiplied by a factor that depends on the state, "
+                      "which the checker could neither prove nonzero on the whole declared domain nor find zero "
+                      "anywhere in it: it cannot decide whether your equation is right", evidence={"method": "symbolic"})
 
 
 _QUOTIENTS = {sympy.tan: lambda u: sympy.sin(u) / sympy.cos(u), sympy.cot: lambda u: sympy.cos(u) / sympy.sin(u),
@@ -2646,7 +2665,7 @@ def _positive_quadratic(expr: sympy.Expr, domains: dict | None = None) -> bool:
     return False
 
 
-def _nonzero_on(expr: sympy.Expr, domains: dict) -> bool | None:
+def _nonzero_on(expr: sympy.Expr, domains: dict, boxes: int = FACTOR_MAX_BOXES) -> bool | None:
     """True when ``expr`` is provably nonzero (and finite) on the whole declared domain, else None.
 
     Factor by factor: cancelling a ratio multiplies out a product of nonzero factors ((2 + cos θ₁)
@@ -2667,7 +2686,7 @@ def _nonzero_on(expr: sympy.Expr, domains: dict) -> bool | None:
                 or _no_real_root(_dehomogenised(factor, domains), domains) or _outside_the_range(factor) \
                 or _positive_quadratic(factor, domains) or _signed_by_the_order(factor):
             continue
-        if _nonzero_in_balls(factor, domains) is not True:
+        if _nonzero_in_balls(factor, domains, boxes) is not True:
             return None
     return True
 
@@ -2783,7 +2802,7 @@ def _signed_as_squares(expr: sympy.Expr) -> bool:
     return False
 
 
-def _nonzero_in_balls(expr: sympy.Expr, domains: dict) -> bool | None:
+def _nonzero_in_balls(expr: sympy.Expr, domains: dict, most_boxes: int = FACTOR_MAX_BOXES) -> bool | None:
     """Ball arithmetic over the whole box of bounded domains: True if ``expr`` provably excludes 0.
 
     A polynomial in variables over the half-line x > 0 is first brought onto 0 <= t <= 1 (`_compactified`):
@@ -2820,7 +2839,7 @@ def _nonzero_in_balls(expr: sympy.Expr, domains: dict) -> bool | None:
         while pending:
             box = pending.pop()
             tried += 1
-            if tried > FACTOR_MAX_BOXES:
+            if tried > most_boxes:
                 return None
             # the ball of both ends: a midpoint (lo + hi)/2 rounded in floats can leave out a zero
             # at the box's edge once bisection reaches the last bits of a float
@@ -2949,6 +2968,72 @@ def _sign_change(expr: sympy.Expr, parameters: Sampler, states: Sampler) -> dict
             seen[sign] = point
             if len(seen) == 2:
                 return {"values": _named(seen[1]), "other_state": _named(seen[-1])}
+    return None
+
+
+def _zero_witness(expr: sympy.Expr, domains: dict, samplers: tuple[Sampler, Sampler],
+                  deadline: float | None = None) -> dict | None:
+    """A point of the declared domains where ``expr`` is zero to 30 digits, found by a root search for multiple
+    roots (`mpmath.findroot`'s ``mnewton``) in one variable at a time, or None.
+
+    For a factor that touches zero without changing sign, which `_sign_change` cannot see: ``1 + cos θ`` at θ = π,
+    ``θ̇²``, and ``l θ̇² + g (1 − cos θ)``, zero only where θ = θ̇ = 0 (each search starts also from the sampled
+    state with every variable whose domain holds 0 set to 0). A root within 1e-12 of an end of an interval counts
+    as inside it: an end typed ``pi/2`` is stored rounded.
+    """
+    try:
+        f = compile_expr(expr, MpmathBackend())
+    except Unsupported:
+        return None
+    parameters, states = samplers
+    sampled = [states.joint(parameters.point(0), states.point(0))]
+
+    def holds_zero(symbol) -> bool:
+        domain = domains.get(symbol)
+        return getattr(domain, "kind", None) in ("real", "nonnegative") or (
+            getattr(domain, "kind", None) == "interval" and domain.lo <= 0 <= domain.hi)
+
+    starts = [{s: (0.0 if holds_zero(s) else v) for s, v in point.items()} for point in sampled] + sampled
+    symbols = sorted(expr.free_symbols, key=lambda s: s.name)
+    with mpmath.workdps(WITNESS_DPS):
+        def value(env):
+            try:
+                return f({**env, SCALE: -math.inf})
+            except (Undefined, Unresolved, ZeroDivisionError, ValueError, TypeError):
+                return None
+
+        for start in starts:
+            env = {s: mpmath.mpf(v) for s, v in start.items()}
+            size = value(env)
+            if size is None:
+                continue
+            for symbol in symbols:
+                if symbol not in env or _past(deadline):
+                    continue
+                domain = domains.get(symbol)
+                lo, hi = getattr(domain, "lo", -math.inf), getattr(domain, "hi", math.inf)
+                if getattr(domain, "kind", None) in ("positive", "nonnegative"):
+                    lo, hi = 0.0, math.inf
+                slack = 1e-12 * max([1.0, *(abs(x) for x in (lo, hi) if math.isfinite(x))])
+                guesses = [env[symbol]] + [x for x in (lo, hi, 0.0) if math.isfinite(x) and lo <= x <= hi]
+                for guess in guesses:
+                    def along(x, symbol=symbol):
+                        y = value({**env, symbol: x})
+                        if y is None:
+                            raise ValueError("undefined")
+                        return y
+                    try:
+                        root = mpmath.findroot(along, mpmath.mpf(guess), solver="mnewton", maxsteps=WITNESS_STEPS,
+                                               tol=mpmath.mpf(10) ** -(2 * WITNESS_DPS // 3), verify=False)
+                    except (ValueError, ZeroDivisionError, TypeError, OverflowError):
+                        continue
+                    if isinstance(root, mpmath.mpc) or not mpmath.isfinite(root) or not lo - slack <= root <= hi + slack \
+                            or (getattr(domain, "kind", None) == "positive" and root <= slack):
+                        # (positive: open at 0, where a factor l·(…) only tends to zero)
+                        continue
+                    there = value({**env, symbol: root})
+                    if there is not None and abs(there) <= WITNESS_ZERO * max(abs(size), 1):
+                        return {s.name: float(v) for s, v in {**env, symbol: root}.items()}
     return None
 
 

@@ -1745,3 +1745,23 @@ SLIDING_EOM = "thetaddot = -(g*(M + m) + l*m*thetadot**2*cos(theta))*sin(theta)/
 ])
 def test_a_factor_written_with_cos_squared_for_one_less_sin_squared_is_recognised(answer, verdict):
     assert check(SLIDING_EOM, answer, SLIDING_SUPPORT, kind="equation").verdict == verdict
+
+
+# A state-dependent factor that is neither proved nonzero nor seen to change sign was refused as "could not be
+# shown to be nonzero": a guess, wrong for 1.4143 − cos θ − sin θ (at least 8.6e-5 on [−π, π]: the reference
+# times a factor that never vanishes, only closer to zero than the 256 boxes of the first proof reach). A factor
+# that touches zero without changing sign (1 + cos θ at θ = π, l θ̇² + g(1 − cos θ) where θ = θ̇ = 0) is shown to
+# vanish there; one neither proved nonzero nor found to vanish is left undecided, never refused.
+@pytest.mark.parametrize("factor, verdict", [
+    ("1.4143 - cos(theta) - sin(theta)", "equivalent"),      # ≥ 8.6e-5 > 0: proved with more boxes
+    ("1.41425 - cos(theta) - sin(theta)", "equivalent"),     # ≥ 3.6e-5
+    ("1.0001 + 2*sin(theta)*cos(theta)", "equivalent"),      # 1.0001 + sin 2θ ≥ 1e-4
+    ("1.4142 - cos(theta) - sin(theta)", "not_equivalent"),  # √2 > 1.4142: changes sign near θ = π/4
+    ("1 + cos(theta)", "not_equivalent"),                    # touches zero at θ = π, inside [−3.1416, 3.1416]
+    ("l*thetadot^2 - g*cos(theta) + g", "not_equivalent"),   # zero where θ = θ̇ = 0, positive elsewhere
+    ("(sin(theta) - cos(theta))^2 + thetadot^2", "not_equivalent"),  # zero at θ = π/4, θ̇ = 0
+])
+def test_a_state_factor_is_proved_nonzero_or_found_to_vanish_never_guessed(pendulum, factor, verdict):
+    v = check(PENDULUM_EOM, f"({factor})*(l*thetaddot + g*sin(theta)) = 0", pendulum, kind="equation")
+    assert v.verdict == verdict, v.reason
+    assert "could not be shown" not in v.reason
