@@ -655,6 +655,8 @@ class _Parser:
             two = self.asciimath_pair(token)
             if two is not None:
                 return two
+        if raw == "D" and not token.order and raw not in self.ns.names and called and following.pos == token.end:
+            return self.maple_d(token)
         if (raw in _DIFF_CALLS and not token.order and raw not in self.ns.names and following.kind == "open"
                 and following.value == _DIFF_CALLS[raw] and following.pos == token.end):
             return self.diff_call(token)
@@ -1162,6 +1164,24 @@ class _Parser:
                                   inner.pos, "syntax")
         self.expect_close(opener)
         return self.derivative_of(inner, order)
+
+    def maple_d(self, token: Token) -> sympy.Expr:
+        """Maple's derivative operator, as Maple and Möbius print it: ``D(θ)(t)`` is θ̇, ``D(D(θ))(t)`` is θ̈."""
+        openers = [self.advance()]
+        while self.peek().kind == "name" and self.peek().value == "D" and not self.peek().order \
+                and self.tokens[self.i + 1].kind == "open" and self.tokens[self.i + 1].value == "(":
+            self.advance()
+            openers.append(self.advance())
+        inner = self.advance()
+        if inner.kind != "name":
+            raise ExpressionError("Maple's D(…) takes a variable name, as in D(theta)(t)", inner.pos, "syntax",
+                                  "write the time derivative as θ̇ (thetadot), or as diff(θ(t), t)")
+        for opener in reversed(openers):
+            self.expect_close(opener)
+        shown = self.text[token.pos:self.tokens[self.i - 1].end]
+        value = self.derivative_of(inner, len(openers))
+        self.note(f"read '{shown}' as {dotted(value.name)}")
+        return value
 
     def derivative_of(self, inner: Token, order: int) -> sympy.Expr:
         following = self.peek()

@@ -546,6 +546,14 @@ class _Tokenizer:
                 f"'{name}{ch}' reads as {name}″ (a double prime: the second derivative) or as a closing quotation "
                 "mark", start, "ambiguous", f"for the second derivative write {name}'' (two apostrophes) or a dotted "
                 "letter such as θ̈; otherwise delete the quotation mark"))
+        elif ch == "@" and self.tokens and self.tokens[-1].kind == "name" and self.tokens[-1].value == "D" \
+                and self.tokens[-1].end == start:
+            # Maple's (D@@2)(θ)(t): named where the D is, which the parser meets first (as an unknown name)
+            d = self.tokens.pop()
+            self.space = d.space_before
+            self.emit("bad", "D@", d.pos, start + 1, error=ExpressionError(
+                "'@' (composition, as in Maple's D@@2) is not part of a formula", start, "syntax",
+                "write a second time derivative as θ̈, D(D(θ))(t) or diff(θ(t), t, 2)"))
         elif ch in _PUNCTUATION:
             message, code, hint = _PUNCTUATION[ch]
             self.emit("bad", ch, start, start + 1, error=ExpressionError(message, start, code, hint))

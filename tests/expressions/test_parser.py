@@ -854,6 +854,8 @@ def test_an_index_in_square_brackets_without_such_a_variable_is_refused_not_mult
     ("Derivative(theta(t), t, t)", "thetaddot"), ("Derivative(r, t)**2", "rdot^2"), ("diff(theta(t), (t, 2))", "thetaddot"),
     ("diff(theta(t), t$2)", "thetaddot"), ("diff(theta(t), t $ 2)", "thetaddot"), ("diff(r(t),t$1)^2", "rdot^2"),
     ("l*m*Derivative(theta(t), t)**2 + g*m*cos(theta(t))", "l*m*thetadot^2 + g*m*cos(theta)"),
+    # Maple's (and Möbius's) derivative operator D, as it prints initial conditions and derivatives
+    ("D(theta)(t)", "thetadot"), ("D(D(theta))(t)", "thetaddot"), ("D(r)(t)^2", "rdot^2"), ("(D(theta)(t))^2", "thetadot^2"),
     # Python modules and MATLAB's element-wise operators
     ("np.sin(theta)", "sin(theta)"), ("math.sqrt(g/l)", "sqrt(g/l)"), ("2*numpy.pi*r", "2*pi*r"),
     ("np.arctan2(y, x)", "atan2(y, x)"), ("m*(g*np.cos(theta) + l*thetadot**2)", "m*(g*cos(theta) + l*thetadot^2)"),
@@ -892,6 +894,8 @@ def test_answers_pasted_from_other_tools_mean_what_they_mean_there(student_ns, s
     ("Derivative(theta(t), x)", "syntax", "only time derivatives"),
     ("Derivative(theta(t), (t, 2]) ", "unbalanced", "close it with ')'"),
     ("diff(theta(t), t$x)", "syntax", "unexpected 'x'"),
+    ("D(2)(t)", "syntax", "Maple's D(…) takes a variable name"),
+    ("(D@@2)(theta)(t)", "syntax", "'@' (composition, as in Maple's D@@2)"),
     ("Derivative[1][theta + x][t]", "unsupported_function", "diff(θ(t), t)"),  # Mathematica's, of no one name
     ("“x”", "bad_character", "delete the quotation marks"),
     # a spreadsheet's ATAN2(x, y) has our arguments reversed; its PI() has brackets
