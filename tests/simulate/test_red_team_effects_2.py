@@ -418,3 +418,36 @@ def test_a_ball_rolling_into_a_smooth_wall_rebounds_with_its_spin_and_rolls_back
     np.testing.assert_allclose(motion.qdot[after, 0], final, atol=1e-9)
     # the floor's normal force stays m g: the impact never lifted the ball
     np.testing.assert_allclose(motion.multipliers[:, 1], m * G, rtol=1e-9)
+
+
+# -- counting π with elastic collisions -----------------------------------------------------------
+
+def billiard(m: float, M: float, v: float) -> tuple[int, float, float]:
+    """Galperin's blocks by hand: collisions of the blocks and of the light one with the wall,
+    alternately, until the light block is no faster towards the wall than the heavy one."""
+    v1, v2, count = 0.0, -v, 0
+    while True:
+        if v2 < v1:
+            v1, v2 = ((m - M) * v1 + 2 * M * v2) / (m + M), ((M - m) * v2 + 2 * m * v1) / (m + M)
+        elif v1 < 0:
+            v1 = -v1
+        else:
+            return count, v1, v2
+        count += 1
+
+
+@pytest.mark.parametrize("M, touching", [(1.0, False), (100.0, False), (1e4, True)])
+def test_a_heavy_block_pushing_a_light_one_into_a_wall_makes_pi_sqrt_M_over_m_elastic_collisions(M, touching):
+    # Touching from the start, all 3,141 collisions (M = 10⁶ m) happen at t = 0. Before: after
+    # 1,000 of them the rest were taken together inelastically, and both blocks stopped dead.
+    m, v = 0.01, 1.0
+    count, v1, v2 = billiard(m, M, v)
+    assert count == math.floor(math.pi * math.sqrt(M / m))
+    motion = simulate_scene(load_scene(SCENES / "pi_billiard.toml"), {"M": M}, t_end=6.0, samples=61,
+                            initial={"x1": 0.0, "x2": 0.0} if touching else None)
+    assert len(motion.events) == (2 if touching else count)
+    assert {x.effect for x in motion.events} == {"bounce"}
+    assert motion.qdot[-1] == pytest.approx([v1, v2], rel=1e-9)
+    kinetic = m / 2 * motion.qdot[:, 0] ** 2 + M / 2 * motion.qdot[:, 1] ** 2
+    np.testing.assert_allclose(kinetic, M / 2 * v * v, rtol=1e-9)
+    assert motion.q[:, 0].min() >= -1e-12 and (motion.q[:, 1] - motion.q[:, 0]).min() >= -1e-12
