@@ -451,3 +451,29 @@ def test_a_heavy_block_pushing_a_light_one_into_a_wall_makes_pi_sqrt_M_over_m_el
     kinetic = m / 2 * motion.qdot[:, 0] ** 2 + M / 2 * motion.qdot[:, 1] ** 2
     np.testing.assert_allclose(kinetic, M / 2 * v * v, rtol=1e-9)
     assert motion.q[:, 0].min() >= -1e-12 and (motion.q[:, 1] - motion.q[:, 0]).min() >= -1e-12
+
+
+# -- a ball bouncing on a vibrating plate (impacts on a moving surface) -----------------------------
+
+def test_a_ball_bouncing_on_a_vibrating_plate_rebounds_at_e_times_its_speed_relative_to_the_plate():
+    # An independent event-driven calculation: free fall between impacts, the plate at A cos ωt,
+    # each impact leaving v⁺ = u − e (v⁻ − u) with u the plate's velocity there.
+    A, w, e = 0.05, 20.0, 0.7
+    text = (SCENES / "vibrating_plate.toml").read_text().replace('kind = "unilateral"', f'kind = "unilateral"\nrestitution = {e}')
+    motion = simulate_scene(parse_scene(text, source="vibrating_plate_bouncing.toml"), {}, t_end=1.0, samples=11)
+    assert effects(motion)[0] == ("release", "plate") and motion.events[0].t == 0.0
+    bounces = motion.events[1:]
+    t, y, v = 0.0, A, 0.0
+    for bounce in bounces:
+        def gap(s):
+            return y + v * (s - t) - G * (s - t) ** 2 / 2 - A * math.cos(w * s)
+
+        grid = np.linspace(t + 1e-6, t + 2.0, 20001)
+        values = np.array([gap(s) for s in grid])
+        j = int(np.argmax(values < 0))
+        s = brentq(gap, grid[j - 1], grid[j], xtol=1e-15)
+        u = -A * w * math.sin(w * s)
+        t, y, v = s, A * math.cos(w * s), u - e * (v - G * (s - t) - u)
+        assert (bounce.effect, bounce.t, bounce.state["ydot"]) == ("bounce", pytest.approx(t, abs=1e-9),
+                                                                   pytest.approx(v, abs=1e-8))
+    assert len(bounces) == 5
