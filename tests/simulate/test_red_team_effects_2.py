@@ -477,3 +477,36 @@ def test_a_ball_bouncing_on_a_vibrating_plate_rebounds_at_e_times_its_speed_rela
         assert (bounce.effect, bounce.t, bounce.state["ydot"]) == ("bounce", pytest.approx(t, abs=1e-9),
                                                                    pytest.approx(v, abs=1e-8))
     assert len(bounces) == 5
+
+
+# -- a string whose upper end is driven down faster than g ------------------------------------------
+
+@pytest.mark.parametrize("x0", [0.0, 0.2])
+def test_a_string_whose_end_is_pulled_down_faster_than_g_goes_slack_at_once_and_jerks_taut_above_it(x0):
+    # Relative to the end the bob moves up at (a − g) t²/2 from (x0, −h); taut again where that
+    # puts it a length l from the end, h above it; the jerk keeps the relative tangential velocity.
+    m, l, a = 0.5, 0.6, 15.0
+    motion = simulate_scene(load_scene(SCENES / "pendulum_pivot_dropped.toml"), {"x0": x0}, t_end=1.0, samples=201)
+    assert effects(motion) == [("release", "string"), ("contact", "string")]
+    slack, taut = motion.events
+    h = math.sqrt(l * l - x0 * x0)
+    t = math.sqrt(4 * h / (a - G))
+    assert slack.t == 0.0 and taut.t == pytest.approx(t, abs=1e-10)
+    assert (taut.state["x"], taut.state["y"]) == pytest.approx((x0, h - a * t * t / 2), abs=1e-9)
+    rise = (a - G) * t                     # the bob's velocity relative to the end, straight up
+    tangent = (h / l, -x0 / l)
+    along = rise * tangent[1]
+    expected = (along * tangent[0], -a * t + along * tangent[1])
+    assert (taut.state["xdot"], taut.state["ydot"]) == pytest.approx(expected, abs=1e-9)
+    flight = motion.t < taut.t
+    np.testing.assert_allclose(motion.q[flight, 1], -h - G * motion.t[flight] ** 2 / 2, atol=1e-12)
+    if x0 == 0.0:
+        np.testing.assert_allclose(2 * l * motion.multipliers[motion.t > taut.t, 0], m * (a - G), rtol=1e-9)
+
+
+def test_a_rod_whose_end_is_pulled_down_faster_than_g_pushes_the_bob_down_with_it():
+    m, l, a = 0.5, 0.6, 15.0
+    motion = simulate_scene(scene("pendulum_pivot_dropped", "bilateral"), {}, t_end=1.0)
+    assert motion.events == []
+    np.testing.assert_allclose(2 * l * motion.multipliers[:, 0], -m * (a - G), rtol=1e-9)
+    np.testing.assert_allclose(motion.q[:, 1], -l - a * motion.t ** 2 / 2, atol=1e-9)
