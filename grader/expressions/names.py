@@ -490,6 +490,8 @@ WRITE_INSTEAD = {
     "pi": "write pi (or π) without brackets",  # a spreadsheet's PI()
     "eq": "write the equation with =, as in x = y",  # SymPy's Eq(x, y)
     "frac": "write a/b for a fraction (or \\frac{a}{b})",  # Typst's frac(a, b)
+    # the functions' names spelt out, as dictation gives them ('cosine' was "did you mean 'cosec' or 'sin' or 'cos'?")
+    "sine": "write sin, as in sin(θ)", "cosine": "write cos, as in cos(θ)", "tangent": "write tan, as in tan(θ)",
 }
 
 #: How to write the inverse of a function that has no inverse in the grammar, for ``f^-1``
@@ -513,7 +515,7 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
         raise ExpressionError(f"'{typed}' is not a function you can use here", position,
                               "unsupported_function",
                               suggestion or "allowed functions: " + ", ".join(function_names()))
-    if raw in _UNIT_WORDS or (raw in _UPRIGHT_UNITS and typed.startswith("\\")):  # \mathrm{s}: upright, as units are
+    if raw in _UNIT_WORDS or raw.lower() in _UNIT_WORDS or (raw in _UPRIGHT_UNITS and typed.startswith("\\")):  # \mathrm{s}: upright, as units are
         raise ExpressionError(f"unknown name '{typed}': units are not part of the answer", position, "unknown_name",
                               f"write the answer in the problem's symbols and delete '{typed}'")
     if raw.lower() in ("deg", "degs", "degree", "degrees"):  # sin(30 deg): the degree sign is read, the word is not
@@ -543,6 +545,9 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
         raise ExpressionError(f"unknown name '{typed}': '{greek}' is the Greek letter {GREEK_CHARS[greek]}, "
                               f"which looks like the Latin '{letter}'", position, "unknown_name",
                               f"type {name} with the Latin '{letter}' if that is what you meant")
+    spoken = _SPOKEN_WORDS.get(raw.lower())
+    if spoken is not None:  # m l θ̇ squared: a phone's dictation, or the formula read aloud
+        raise ExpressionError(f"unknown name '{typed}': it is a word, not a symbol", position, "unknown_name", spoken)
     lowered = _capitalised_start(raw, ns, position)
     if lowered is not None:  # Mg cos θ: a phone capitalises the first letter of what is typed
         shown = typed[0].lower() + typed[1:] if typed[:1] == raw[:1] else lowered
@@ -550,9 +555,27 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
                               f"did you mean '{shown}', with a lowercase '{raw[0].lower()}'? (a phone or editor may "
                               "have capitalised the first letter of the answer)")
     suggestion = _suggestion(raw, ns) or "this answer uses no variables: write a number"
+    if raw in ("x", "X"):  # m x g: the letter a keyboard without × gives for times
+        suggestion += "; if 'x' stands for times, type * (or ×)"
     if raw in _UPRIGHT_UNITS:  # √(5gR) m/s: 's' may be a variable the problem lacks, or a unit
         suggestion += f"; if '{typed}' is a unit, delete it: units are not part of the answer"
     raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name", suggestion)
+
+
+# Words for operators and functions, as dictation or a formula read aloud gives them, and what to type instead
+# (their near spellings misled: 'squared' was "did you mean 'surd'?", 'cosine' "'cosec' or 'sin' or 'cos'?").
+_SPOKEN_WORDS = {
+    **dict.fromkeys(("squared", "square"), "write ^2 for a square, as in θ̇^2 (or θ̇²)"),
+    **dict.fromkeys(("cubed", "cube"), "write ^3 for a cube, as in x^3"),
+    "plus": "write + for plus", "minus": "write - for minus",
+    **dict.fromkeys(("over", "divided", "by"), "write / for a quotient, as in g/l"),
+    **dict.fromkeys(("equals", "equal", "is"), "write = for an equation"),
+    **dict.fromkeys(("prime", "primes"), "write a prime as an apostrophe, as in θ', or a dot, as in θ̇"),
+    **{word: f"write the number {n} in digits" for n, word in enumerate(
+        "zero one two three four five six seven eight nine ten".split()) if word not in ("one",)},
+    "half": "write 1/2 for a half", "quarter": "write 1/4 for a quarter",
+    **dict.fromkeys(("of", "the", "and", "times"), "give the formula alone, with + - * / ^ and brackets"),
+}
 
 
 def _capitalised_start(raw: str, ns: "Namespace", position: int) -> str | None:
@@ -598,4 +621,4 @@ _UPRIGHT_UNITS = frozenset("s m N kg J W Pa Hz rad ms cm mm km kN".split())
 
 # Units students append to an answer (m g N, 2.5 newtons): undeclared, they are named as units.
 _UNIT_WORDS = frozenset("N newton newtons kg J joule joules W watt watts Pa Nm rad radians sec seconds meters "
-                        "metres".split())
+                        "metres kilograms kilogram metre meter second pascal pascals".split())

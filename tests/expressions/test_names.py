@@ -108,7 +108,8 @@ def test_a_declared_name_glued_to_e_before_a_power_reads_as_the_name_times_e(ns,
 def test_other_names_ending_in_e_are_not_split_before_a_power(ns, typed):
     with pytest.raises(ExpressionError) as err:
         resolve_name(typed + "x" if typed == "e" else typed, ns, before_power=True)
-    assert err.value.code == "unknown_name"
+    # (sine is the function's name spelt out: refused as that, saying to write sin)
+    assert err.value.code == ("unsupported_function" if typed == "sine" else "unknown_name")
 
 
 def test_without_a_power_after_it_ye_is_refused_with_the_product_to_type(ns):
@@ -242,3 +243,40 @@ def test_a_capital_elsewhere_or_of_no_lowercase_name_gets_no_such_hint(ns, text)
     with pytest.raises(ExpressionError) as refused:
         parse_expression(text, ns)
     assert "capitalised" not in (refused.value.hint or "")
+
+
+# -- red team 22: words for operators, as dictation or a formula read aloud gives them --
+
+@pytest.mark.parametrize("text, word, fix", [
+    ("m l thetadot squared", "squared", "^2"), ("x cubed", "cubed", "^3"), ("m g plus m l", "plus", "+"),
+    ("m g minus m l", "minus", "-"), ("g over l", "over", "/"),
+    ("theta prime", "prime", "θ'"), ("m g two", "two", "2"),
+    ("half m g", "half", "1/2"),
+])
+def test_a_word_for_an_operator_is_named_with_the_symbol_to_type(ns, text, word, fix):
+    # 'squared' was "did you mean 'surd'?", 'cosine' "did you mean 'cosec' or 'sin' or 'cos'?"
+    with pytest.raises(ExpressionError) as refused:
+        parse_expression(text, ns)
+    assert f"'{word}'" in refused.value.message and "word" in refused.value.message and fix in refused.value.hint
+
+
+def test_a_lone_x_that_is_no_variable_may_be_a_times_sign(ns):
+    small = Namespace([Variable("m", "mass", "positive"), Variable("g", "acceleration", "positive")])
+    with pytest.raises(ExpressionError) as refused:
+        parse_expression("m x g", small)
+    assert "if 'x' stands for times, type *" in refused.value.hint
+
+
+@pytest.mark.parametrize("text", ["m g Newtons", "m g Kilograms"])
+def test_a_unit_word_with_a_capital_is_a_unit(ns, text):
+    with pytest.raises(ExpressionError) as refused:
+        parse_expression(text, ns)
+    assert "units are not part of the answer" in refused.value.message
+
+
+@pytest.mark.parametrize("text, fix", [("m g cosine(theta)", "write cos, as in cos(θ)"), ("sine theta", "write sin"),
+                                       ("tangent(theta)", "write tan")])
+def test_a_function_spelt_out_is_named_with_its_name_here(ns, text, fix):
+    with pytest.raises(ExpressionError) as refused:
+        parse_expression(text, ns)
+    assert refused.value.hint.startswith(fix)
