@@ -427,11 +427,14 @@ class Simulation:
         """One round of :meth:`_impacts`: (q̇ after, contacts held, struck contacts that bounced,
         rolling constraints that slip).
 
-        A rolling constraint keeps rolling through the impact only if its friction impulse stays
-        within μ_s times its normal contact's impulse (Coulomb's law for impulses); otherwise it
-        takes none and slips. Held rigid, a ball rolling into a smooth wall had its spin reversed
-        by a friction impulse from a floor that took no impulse at all, and rolled back at e v
-        instead of (2 − 5e) v/7."""
+        Friction at the contacts that take an impulse follows Coulomb's law for impulses: a
+        rolling constraint whose normal contact is in the round sticks through it if the friction
+        impulse that needs stays within μ_s times the normal impulse, else it takes μ_k times the
+        normal impulse, against the slip it would otherwise stop. Before, a rolling constraint
+        that rolled was held rigid (a ball rolling into a smooth wall had its spin reversed by a
+        friction impulse from a floor that took no impulse at all, and rolled back at e v instead
+        of (2 − 5e) v/7), and one that did not roll took no impulse (a spinning ball landing on
+        a rough floor bounced with its spin unchanged)."""
         rates = self.compiled.rates(t, q, v)
         bounced = set()
         targets = {}
@@ -441,16 +444,26 @@ class Simulation:
                 bounced.add(j)
             targets[j] = bounce if j in bounced else 0.0
         M, _, J, _ = self.compiled.terms(t, q, v)
+        contacts = rigid | held | set(struck)
+        rough = {e.index for e in self.effects if e.kind == "rolling" and e.normal in contacts}
         let_go: set[int] = set()
+        saturated: dict[int, float] = {}   # rolling index -> sign of its friction impulse
         while True:
-            rows = sorted((rigid | held | set(struck)) - let_go)
+            rows = sorted((contacts | rough) - let_go - set(saturated))
             if not rows:
-                return v, set(), set(), set()
-            MinvJT = np.linalg.solve(M, J[rows].T)
+                return v, set(), set(), rough & rigid
+            # Δq̇ = M⁻¹ (J_rowsᵀ P + Σ J_rᵀ σ μ_k P_normal) for the saturated frictions
+            B = J[rows].T.copy()
+            for r, sign in saturated.items():
+                effect = self.effects[r]
+                if effect.normal in rows:
+                    B[:, rows.index(effect.normal)] += sign * effect.mu_k * J[r]
+            MinvB = np.linalg.solve(M, B)
             target = np.array([targets.get(r, 0.0) for r in rows])
-            impulse = np.linalg.lstsq(J[rows] @ MinvJT, target - rates[rows], rcond=None)[0]
+            impulse = np.linalg.lstsq(J[rows] @ MinvB, target - rates[rows], rcond=None)[0]
             band = 1e-9 * np.abs(impulse).max(initial=0.0)
-            pulling = [(impulse[k], r) for k, r in enumerate(rows) if r not in rigid and impulse[k] < -band]
+            pulling = [(impulse[k], r) for k, r in enumerate(rows)
+                       if self.effects[r].kind == "unilateral" and impulse[k] < -band]
             if pulling:
                 let_go.add(min(pulling)[1])
                 continue
@@ -461,12 +474,13 @@ class Simulation:
                     normal = impulse[rows.index(effect.normal)] if effect.normal in rows else 0.0
                     excess = abs(impulse[k]) - effect.mu_s * max(normal, 0.0)
                     if excess > band:
-                        sliding.append((excess, r))
+                        sliding.append((excess, r, 1.0 if impulse[k] > 0 else -1.0))
             if not sliding:
                 break
-            let_go.add(max(sliding)[1])
+            _, r, sign = max(sliding)
+            saturated[r] = sign
         held = (held | (set(struck) - bounced)) - let_go
-        return v + MinvJT @ impulse, held, bounced - let_go, let_go & rigid
+        return v + MinvB @ impulse, held, bounced - let_go, (let_go | set(saturated)) & rigid
 
     def transition(self, t: float, y: np.ndarray, mode: Mode, effect: str, i: int
                    ) -> tuple[Mode, np.ndarray, list[tuple[str, int]]]:

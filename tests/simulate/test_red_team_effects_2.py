@@ -510,3 +510,28 @@ def test_a_rod_whose_end_is_pulled_down_faster_than_g_pushes_the_bob_down_with_i
     assert motion.events == []
     np.testing.assert_allclose(2 * l * motion.multipliers[:, 0], -m * (a - G), rtol=1e-9)
     np.testing.assert_allclose(motion.q[:, 1], -l - a * motion.t ** 2 / 2, atol=1e-9)
+
+
+@pytest.mark.parametrize("v0, w0, mu_s, mu_k", [(3.0, 50.0, 0.3, 0.2), (1.0, 10.0, 5.0, 5.0), (3.0, 50.0, 0.0, 0.0)])
+def test_a_spinning_ball_bouncing_on_a_rough_floor_takes_a_coulomb_friction_impulse_at_every_impact(v0, w0, mu_s, mu_k):
+    # Before: an impact took no friction impulse at all; the ball bounced with its horizontal
+    # velocity and spin unchanged until its bounces ended, and only then slid.
+    m, R, e, h = 0.16, 0.03, 0.5, 0.03
+    u = math.sqrt(2 * G * h)
+    motion = simulate_scene(load_scene(SCENES / "ball_with_backspin.toml"),
+                            {"v0": v0, "w0": w0, "mu_s": mu_s, "mu_k": mu_k, "e": e}, t_end=1.5, samples=301,
+                            initial={"y": h})
+    first = motion.events[0]
+    assert (first.effect, first.constraint, first.t) == ("bounce", "floor", pytest.approx(math.sqrt(2 * h / G), abs=1e-12))
+    if 2 * (v0 + R * w0) / 7 <= mu_s * (1 + e) * u:
+        after = ((5 * v0 - 2 * R * w0) / 7,) * 2                    # it sticks: rolls as it leaves
+    else:
+        after = (v0 - mu_k * (1 + e) * u, -R * w0 + 5 / 2 * mu_k * (1 + e) * u)
+    assert (first.state["xdot"], R * first.state["thetadot"], first.state["ydot"]) == pytest.approx(
+        (*after, e * u), abs=1e-9)
+    # Every impulse acts at the contact point, which keeps the angular momentum about it: it
+    # ends up rolling at (5 v0 − 2 R ω0)/7 (or, without friction, sliding as it started).
+    final = (5 * v0 - 2 * R * w0) / 7 if mu_k else v0
+    assert motion.qdot[-1, 0] == pytest.approx(final, abs=1e-8)
+    energy = m / 2 * (motion.qdot[:, 0] ** 2 + motion.qdot[:, 2] ** 2) + m * R * R / 5 * motion.qdot[:, 1] ** 2 + m * G * motion.q[:, 2]
+    assert np.all(np.diff(energy) <= 1e-9)
