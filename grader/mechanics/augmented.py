@@ -125,10 +125,10 @@ def _fraction_free_solve(dA: DomainMatrix, dB: DomainMatrix) -> sympy.Matrix:
     the field's canonical form (integer content and sign). Rows with fractions in them (1/R) are
     first multiplied by their denominators' lcm, which leaves the solution as it is.
     """
-    if dA.domain.is_Field:
-        if not dA.domain.is_FractionField:  # QQ: no polynomials to cancel
-            return dA.lu_solve(dB).to_Matrix()
+    if dA.domain.is_FractionField:
         dA, dB = _cleared_rows(dA, dB)
+    elif not dA.domain.is_PolynomialRing:  # numbers (ZZ, QQ): nothing to cancel
+        return dA.to_field().lu_solve(dB.to_field()).to_Matrix()
     ring = dA.domain
     numerators, determinant = dA.solve_den(dB)
     _, factors = determinant.factor_list()
