@@ -555,7 +555,7 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
                               f"did you mean '{shown}', with a lowercase '{raw[0].lower()}'? (a phone or editor may "
                               "have capitalised the first letter of the answer)")
     suggestion = _suggestion(raw, ns) or "this answer uses no variables: write a number"
-    if raw in ("x", "X"):  # m x g: the letter a keyboard without × gives for times
+    if raw in ("x", "X") and not any(name[:1] == raw for name in ns.names):  # m x g: a keyboard without ×
         suggestion += "; if 'x' stands for times, type * (or ×)"
     if raw in _UPRIGHT_UNITS:  # √(5gR) m/s: 's' may be a variable the problem lacks, or a unit
         suggestion += f"; if '{typed}' is a unit, delete it: units are not part of the answer"

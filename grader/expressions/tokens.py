@@ -103,8 +103,9 @@ _NOT_EQUAL = re.compile(r"=/=|/=|<>|=\\=")
 # The combining dots above, which on a space are the spacing dots ˙ and ¨.
 _COMBINING_ACCENTS = frozenset("\u0307\u0308")
 
-# Markdown's bold around the whole answer: **…**, nothing but spaces outside, no ** inside.
-_MARKDOWN_BOLD = re.compile(r"\s*(\*\*)(?=\S)(?:(?!\*\*).)+?(?<=[^\s*])(\*\*)\s*", re.DOTALL)
+# Markdown's bold around the whole answer: **…**, nothing but spaces outside (and the sentence's full stop or
+# comma after it, read as after any answer), no ** inside.
+_MARKDOWN_BOLD = re.compile(r"\s*(\*\*)(?=\S)(?:(?!\*\*).)+?(?<=[^\s*])(\*\*)[.,;。]?\s*", re.DOTALL)
 
 # A double quote after a name (θ", or θ” as a phone's smart punctuation makes it), and the quotation marks whose
 # presence before it makes it a quotation's end.
@@ -320,9 +321,10 @@ class _Tokenizer:
                     self.attach_subscript()
         elif ch in _DIGITS:
             self.number()
-        elif ch == " " and self.peek(1) in _COMBINING_ACCENTS and self.tokens and self.tokens[-1].kind == "name" \
+        elif ch in " \u00a0" and self.peek(1) in _COMBINING_ACCENTS and self.tokens and self.tokens[-1].kind == "name" \
                 and self.tokens[-1].end == start and not self.tokens[-1].forced_function:
-            # θ ̇: a combining dot on a space is Unicode's spacing dot (˙), as Word's linear format writes 〖𝜃 ̇〗:
+            # θ ̇: a combining dot on a space (or a no-break space) is Unicode's spacing dot (˙), as Word's linear
+            # format writes 〖𝜃 ̇〗:
             # the dot of the name before it, as θ˙ is
             name, end = self.tokens[-1], start + 1
             while end < self.n and self.text[end] in _COMBINING_ACCENTS:

@@ -576,6 +576,7 @@ def _raise(error):
 
 @pytest.mark.parametrize("text, plain", [
     ("**m g + x**", "m g + x"), ("**T = m g**", "T = m g"), ("  **m g**\n", "m g\n"), ("**\\(m g\\)**", "\\(m g\\)"),
+    ("**T = m g**.", "T = m g."), ("**m g**。", "m g。"),  # the sentence's full stop after the bold
 ])
 def test_markdown_bold_around_the_whole_answer_is_only_its_look(text, plain):
     assert kinds(text) == kinds(plain)
@@ -587,6 +588,7 @@ def test_double_asterisks_that_are_not_bold_around_the_answer_stay_what_they_wer
 
 
 @pytest.mark.parametrize("text, order", [("θ \u0307", 1), ("𝜃 \u0307", 1), ("θ \u0308", 2), ("x \u0307 \u0307", 2),
+                                         ("θ\u00a0\u0307", 1),  # on a no-break space, Unicode's preferred base
                                          ("〖𝜃 \u0307〗", 1), ("(θ \u0307)", 1)])
 def test_a_combining_dot_on_a_space_after_a_name_is_the_names_spacing_dot(text, order):
     # Unicode's spacing form of a combining mark is the mark on a space: Word's linear format writes θ̇ as 〖𝜃 ̇〗,
