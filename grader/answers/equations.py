@@ -784,7 +784,9 @@ def _parameter_factor(reference: list[sympy.Expr], answer: list[sympy.Expr], par
             if _cancels_inside(row, factor, base):
                 continue  # (g - c)*(l*thetaddot/(g - c) + ...): it cancels, as tan(x)*cos(x) does
             if _nonzero_on(base, parameters.domains) is not True and not (exempt and exempt(base)):
-                return _factor_may_vanish(base, f" {i + 1}" if len(answer) > 1 else "")
+                verdict = _factor_may_vanish(base, f" {i + 1}" if len(answer) > 1 else "", parameters)
+                if verdict is not None:
+                    return verdict
     if len(answer) == 1 and len(reference) == 1:
         # The factor as a whole, not only as typed: (m1 - m2)^2 xddot = (m1 - m2)^3 g/(m1 + m2) has none in
         # common, and a square never changes sign between the parameter points.
@@ -793,7 +795,9 @@ def _parameter_factor(reference: list[sympy.Expr], answer: list[sympy.Expr], par
             if not part.is_number and _nonzero_on(part, parameters.domains) is not True and not (
                     exempt and all(_nonzero_on(base, parameters.domains) is True or exempt(base)
                                    for base in _bases(part))):
-                return _factor_may_vanish(ratio, "")
+                verdict = _factor_may_vanish(ratio, "", parameters, part)
+                if verdict is not None:
+                    return verdict
     return None
 
 
@@ -802,10 +806,24 @@ def _bases(product: sympy.Expr) -> list:
     return [f.base if f.is_Pow and f.exp.is_Integer else f for f in sympy.Mul.make_args(product) if not f.is_number]
 
 
-def _factor_may_vanish(factor: sympy.Expr, which: str) -> Comparison:
-    return Comparison(False, "numeric", f"your equation{which} is multiplied by {factor}, which depends on the "
-                      "parameters and could not be shown nonzero (and finite) for all their values: where it "
-                      "vanishes your equation no longer gives the motion", evidence={"method": "symbolic"})
+def _factor_may_vanish(factor: sympy.Expr, which: str, parameters: Sampler,
+                       part: sympy.Expr | None = None) -> Comparison | None:
+    """The verdict on an equation multiplied by ``factor`` (of the parameters; ``part``, its numerator or
+    denominator, the one the first proof did not show nonzero): refused where it is found zero (a sign change or a
+    zero it touches, `_zero_witness`), None where a proof with more boxes shows it nonzero after all (1.4143 − cos α
+    − sin α), undecided otherwise: never refused on a guess."""
+    part = factor if part is None else part
+    decided = _zero_or_nonzero(part, parameters.domains, [parameters.point(0), parameters.point(1)])
+    if isinstance(decided, dict):
+        return Comparison(False, "numeric", f"your equation{which} is multiplied by {factor}, which depends on the "
+                          "parameters and is zero (or undefined) at the values in the counterexample: there your "
+                          "equation no longer gives the motion", evidence={"method": "root search"},
+                          counterexample={"values": decided})
+    if decided is True:
+        return None
+    return Comparison(None, "none", f"your equation{which} is multiplied by {factor}, which depends on the parameters "
+                      "and which the checker could neither prove nonzero (and finite) for all their values nor find "
+                      "zero for any: it cannot decide whether your equation is right", evidence={"method": "symbolic"})
 
 
 def _state_free_ratio(reference: sympy.Expr, answer: sympy.Expr, state: set) -> sympy.Expr | None:
@@ -1112,9 +1130,15 @@ FACTOR_MAX_BOXES = 256
 FACTOR_MORE_BOXES = 8192
 # Working digits of the search for a zero such a factor touches, and the size (relative to the factor's value where
 # the search starts) below which a value found there counts as zero.
-WITNESS_DPS = 50
+WITNESS_DPS = 40
 WITNESS_ZERO = mpmath.mpf(10) ** -30
-WITNESS_STEPS = 16
+WITNESS_STEPS = 10
+# mnewton for a zero touched without a sign change; the secant method where mnewton leaves the domain (−cot θ from
+# θ = 0.76 jumps to −7π/2, not to π/2)
+WITNESS_SOLVERS = ("mnewton", "secant")
+# Points of the scan along each variable's domain, and how many of the least values found there start a search.
+WITNESS_SCAN_POINTS = 64
+WITNESS_SCAN_STARTS = 2
 
 
 def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: dict,
@@ -1272,13 +1296,13 @@ def _state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: 
     # Neither proved nonzero nor seen to change sign: a factor that touches zero (1 + cos θ at θ = π, θ̇², l θ̇² +
     # g(1 − cos θ) at rest at the bottom) is found where it vanishes; one that stays off zero by less than the first
     # proof's boxes resolve (1.4143 − cos θ − sin θ ≥ 8.6e-5) is proved with more. Either way never a guess.
-    touched = _zero_witness(numerator, domains, samplers, deadline) if samplers is not None else None
-    if touched is not None:
+    decided = _zero_or_nonzero(numerator, domains, [] if samplers is None else [_first_state(*samplers)], deadline)
+    if isinstance(decided, dict):
         return Comparison(False, "numeric", "your equation is the reference multiplied by a factor that depends on "
-                          "the state and is zero at the state in the counterexample (to 30 digits; it touches zero "
-                          "there without changing sign): there your equation no longer determines the motion",
-                          evidence={"method": "root search"}, counterexample={"values": touched})
-    if _nonzero_on(numerator, domains, boxes=FACTOR_MORE_BOXES) is True:
+                          "the state and is zero (or undefined) at the state in the counterexample (to 30 digits): "
+                          "there your equation no longer determines the motion",
+                          evidence={"method": "root search"}, counterexample={"values": decided})
+    if decided is True:
         return Comparison(True, "proved", "the reference multiplied by a factor that depends on the state and is "
                           "nonzero on the whole declared domain", evidence={"method": "ball arithmetic"})
     return Comparison(None, "none", "your equation is the reference multiplied by a factor that depends on the state, "
@@ -1426,9 +1450,18 @@ def state_dependent_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr]
         if example is not None:
             return Comparison(False, "proved", _SINGULAR_MIXING, evidence={"method": "ball arithmetic"},
                               counterexample=example)
-        return Comparison(False, "numeric", "your equations are combinations of the reference equations whose "
-                          "mixing matrix depends on the state and could not be shown invertible on the whole "
-                          "declared domain", evidence={"method": "symbolic"})
+        decided = _zero_or_nonzero(numerator, domains, [_first_state(*samplers)], deadline)
+        if isinstance(decided, dict):
+            return Comparison(False, "numeric", "your equations are combinations of the reference equations whose "
+                              "mixing matrix depends on the state and is singular at the state in the counterexample "
+                              "(its determinant is zero or undefined there, to 30 digits): there your equations no "
+                              "longer determine the motion",
+                              evidence={"method": "root search"}, counterexample={"values": decided})
+        if decided is not True:
+            return Comparison(None, "none", "your equations are combinations of the reference equations whose mixing "
+                              "matrix depends on the state, and which the checker could neither prove invertible on "
+                              "the whole declared domain nor find singular anywhere in it: it cannot decide whether "
+                              "your equations are right", evidence={"method": "symbolic"})
     proved = _combination_proved(m_r, c_r, m_s, c_s, deadline)
     if proved is None:
         return _out_of_time()
@@ -2971,10 +3004,27 @@ def _sign_change(expr: sympy.Expr, parameters: Sampler, states: Sampler) -> dict
     return None
 
 
-def _zero_witness(expr: sympy.Expr, domains: dict, samplers: tuple[Sampler, Sampler],
+_POLES = (sympy.tan, sympy.cot, sympy.sec, sympy.csc, sympy.coth, sympy.csch)
+
+
+def _zero_or_nonzero(expr: sympy.Expr, domains: dict, sampled: list[dict], deadline: float | None = None):
+    """For a factor the first proof (`_nonzero_on`) left open and no sign change showed to vanish: True where a proof
+    with more boxes shows it nonzero after all (1.4143 − cos θ − sin θ, at least 8.6e-5), else a point where it is
+    zero or has a pole (`_zero_witness` of it or of its reciprocal: 1 + cos θ touches zero at π), else None:
+    undecided, which is no refusal."""
+    if _nonzero_on(expr, domains, boxes=FACTOR_MORE_BOXES) is True:  # (a tenth of a second at most)
+        return True
+    touched = _zero_witness(expr, domains, sampled, deadline)
+    if touched is None and any(isinstance(n, _POLES) or (n.is_Pow and n.exp.is_negative)
+                               for n in sympy.preorder_traversal(expr)):
+        touched = _zero_witness(1 / expr, domains, sampled, deadline)  # a pole: tan θ at π/2 is undefined there
+    return touched
+
+
+def _zero_witness(expr: sympy.Expr, domains: dict, sampled: list[dict],
                   deadline: float | None = None) -> dict | None:
     """A point of the declared domains where ``expr`` is zero to 30 digits, found by a root search for multiple
-    roots (`mpmath.findroot`'s ``mnewton``) in one variable at a time, or None.
+    roots (`mpmath.findroot`'s ``mnewton``) in one variable at a time from the ``sampled`` points, or None.
 
     For a factor that touches zero without changing sign, which `_sign_change` cannot see: ``1 + cos θ`` at θ = π,
     ``θ̇²``, and ``l θ̇² + g (1 − cos θ)``, zero only where θ = θ̇ = 0 (each search starts also from the sampled
@@ -2985,8 +3035,6 @@ def _zero_witness(expr: sympy.Expr, domains: dict, samplers: tuple[Sampler, Samp
         f = compile_expr(expr, MpmathBackend())
     except Unsupported:
         return None
-    parameters, states = samplers
-    sampled = [states.joint(parameters.point(0), states.point(0))]
 
     def holds_zero(symbol) -> bool:
         domain = domains.get(symbol)
@@ -3016,14 +3064,22 @@ def _zero_witness(expr: sympy.Expr, domains: dict, samplers: tuple[Sampler, Samp
                     lo, hi = 0.0, math.inf
                 slack = 1e-12 * max([1.0, *(abs(x) for x in (lo, hi) if math.isfinite(x))])
                 guesses = [env[symbol]] + [x for x in (lo, hi, 0.0) if math.isfinite(x) and lo <= x <= hi]
-                for guess in guesses:
+                # and the least values along a scan of the whole domain: a local search from the sample alone
+                # leaves it (1 + sin Ωt from t = 0.9 goes to t = −π/(2Ω) < 0, not to 3π/(2Ω))
+                scanned = []
+                for x in _witness_grid(lo, hi, float(env[symbol])):
+                    y = value({**env, symbol: mpmath.mpf(x)})
+                    if y is not None:
+                        scanned.append((abs(y), x))
+                guesses += [x for _, x in sorted(scanned)[:WITNESS_SCAN_STARTS]]
+                for guess, solver in itertools.product(guesses, WITNESS_SOLVERS):
                     def along(x, symbol=symbol):
                         y = value({**env, symbol: x})
                         if y is None:
                             raise ValueError("undefined")
                         return y
                     try:
-                        root = mpmath.findroot(along, mpmath.mpf(guess), solver="mnewton", maxsteps=WITNESS_STEPS,
+                        root = mpmath.findroot(along, mpmath.mpf(guess), solver=solver, maxsteps=WITNESS_STEPS,
                                                tol=mpmath.mpf(10) ** -(2 * WITNESS_DPS // 3), verify=False)
                     except (ValueError, ZeroDivisionError, TypeError, OverflowError):
                         continue
@@ -3035,6 +3091,25 @@ def _zero_witness(expr: sympy.Expr, domains: dict, samplers: tuple[Sampler, Samp
                     if there is not None and abs(there) <= WITNESS_ZERO * max(abs(size), 1):
                         return {s.name: float(v) for s, v in {**env, symbol: root}.items()}
     return None
+
+
+def _witness_grid(lo: float, hi: float, at: float) -> list[float]:
+    """Points across a domain for `_zero_witness`'s scan: evenly over a finite interval, geometrically over a
+    half-line or the real line (from a thousandth to ten thousand times the sampled value's scale)."""
+    if math.isfinite(lo) and math.isfinite(hi):
+        return list(np.linspace(lo, hi, WITNESS_SCAN_POINTS))
+    scale = max(abs(at), 1.0)
+    magnitudes = list(scale * np.geomspace(1e-3, 1e4, WITNESS_SCAN_POINTS // 2))
+    if lo >= 0:
+        return [lo + x for x in magnitudes]
+    if hi <= 0:
+        return [hi - x for x in magnitudes]
+    return magnitudes + [-x for x in magnitudes]
+
+
+def _first_state(parameters: Sampler, states: Sampler) -> dict:
+    """The first sampled state with the first parameter point: where a search for a factor's zero starts."""
+    return states.joint(parameters.point(0), states.point(0))
 
 
 def _named(point: dict) -> dict:

@@ -862,8 +862,9 @@ _ATWOOD_EOM = {"m1": {"dimension": "mass", "domain": "positive"}, "m2": {"dimens
 def test_a_parameter_factor_is_judged_as_a_whole_not_only_as_typed(reference, answer, expected):
     verdict = check(reference, answer, _ATWOOD_EOM, kind="equation")
     assert verdict.verdict == expected, verdict.reason
-    if expected == "not_equivalent":
-        assert "could not be shown nonzero" in verdict.reason
+    if expected == "not_equivalent":  # found zero for some parameter values, not refused as unproved (red team 23)
+        assert "is zero (or undefined) at the values in the counterexample" in verdict.reason
+        assert verdict.counterexample is not None
 
 
 _R = "(l thetaddot + g sin(theta))"
@@ -1763,5 +1764,29 @@ def test_a_factor_written_with_cos_squared_for_one_less_sin_squared_is_recognise
 ])
 def test_a_state_factor_is_proved_nonzero_or_found_to_vanish_never_guessed(pendulum, factor, verdict):
     v = check(PENDULUM_EOM, f"({factor})*(l*thetaddot + g*sin(theta)) = 0", pendulum, kind="equation")
+    assert v.verdict == verdict, v.reason
+    assert "could not be shown" not in v.reason
+
+
+INCLINE_ANGLE = {"g": {"dimension": "acceleration", "domain": "positive"},
+                 "alpha": {"dimension": "angle", "domain": [-3.1416, 3.1416]},
+                 "x": {"dimension": "length", "domain": "real", "kind": "coordinate"},
+                 "xdot": {"dimension": "velocity", "domain": "real", "kind": "velocity"},
+                 "xddot": {"dimension": "acceleration", "domain": "real", "kind": "acceleration"}}
+
+
+# The same for a factor of the parameters alone: 1.4143 − cos α − sin α, or (sin α − cos α)² + 10⁻⁴, never zero
+# for any α, were refused as "could not be shown nonzero for all their values".
+@pytest.mark.parametrize("factor, verdict", [
+    ("1.4143 - cos(alpha) - sin(alpha)", "equivalent"),
+    ("(sin(alpha) - cos(alpha))^2 + 0.0001", "equivalent"),
+    ("1/(1.4143 - cos(alpha) - sin(alpha))", "equivalent"),
+    ("1.4142 - cos(alpha) - sin(alpha)", "not_equivalent"),  # zero near α = π/4
+    ("1 + cos(alpha)", "not_equivalent"),                    # zero at α = π
+    ("(sin(alpha) - cos(alpha))^2", "not_equivalent"),       # zero at α = π/4, never negative
+    ("1/(1 + cos(alpha))", "not_equivalent"),                # undefined at α = π
+])
+def test_a_parameter_factor_is_proved_nonzero_or_found_to_vanish_never_guessed(factor, verdict):
+    v = check("xddot = g*sin(alpha)", f"({factor})*xddot = ({factor})*g*sin(alpha)", INCLINE_ANGLE, kind="equation")
     assert v.verdict == verdict, v.reason
     assert "could not be shown" not in v.reason
