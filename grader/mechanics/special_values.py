@@ -116,6 +116,16 @@ def _special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     try:
         return _where(evaluator, spec, target, key, at_rest=at_rest)
     except SceneError as error:
+        if (not at_rest and scene.time not in target and len(evaluator.reduction.independent) > 1
+                and not _sets_an_acceleration_to_zero(evaluator, spec)):
+            # With several degrees of freedom energy removes one velocity, not every one: the hanging
+            # pulley's ẏ where one of two blocks it pulls across a table reaches the edge keeps both
+            # blocks' velocities. A motion with a closed form in time still gives the answer, at the
+            # first moment the condition holds, as it does for an answer that asks for t.
+            try:
+                return _at_time(evaluator, spec, target, key)
+            except SceneError:
+                raise error from None
         # The equilibrium's answer as the body passes through it failed (with several degrees of freedom
         # energy removes one velocity, not every one: a bead in a hoop rolling down an incline keeps ṡ
         # or θ̇; or the motion, whose start in_terms_of leaves out, runs away from the equilibrium):
