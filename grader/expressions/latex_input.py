@@ -144,8 +144,32 @@ def classify_command(name: str, position: int) -> tuple[str, str]:
     if name in _REFUSED:
         message, hint = _REFUSED[name]
         raise ExpressionError(message, position, "unsupported_function" if name != "placeholder" else "syntax", hint)
+    glued = _glued_commands(name)
+    if glued is not None:  # \cdotg, \costheta, \thetam, \thetadot: a command with the next letters glued on
+        raise ExpressionError(f"the LaTeX command \\{name} is not supported: LaTeX reads every letter after a "
+                              "backslash as one name", position, "unsupported_function", glued)
     raise ExpressionError(f"the LaTeX command \\{name} is not supported", position, "unsupported_function",
                           r"use + - * / ^, \frac, \sqrt and functions such as \sin")
+
+
+def _glued_commands(name: str) -> str | None:
+    r"""What to write for a product, a function or a Greek letter with letters glued on (``\cdotg``: ``\cdot g``;
+    ``\costheta``: ``\cos\theta``; ``\thetadot``: ``\dot{\theta}``), or None when ``name`` is not one: the rest
+    must be a Greek letter or one or two letters (a variable), so that ``\leftarrow`` or ``\bigcirc`` get no such
+    reading, and a function then h is a hyperbolic one (``\sech``), not sec·h."""
+    for marks in ("ddot", "dot"):
+        if name.endswith(marks) and name[:-len(marks)] in GREEK_COMMANDS:
+            return f"write \\{marks}{{\\{name[:-len(marks)]}}} for its time derivative"
+    for k in range(len(name) - 1, 1, -1):
+        known, rest = name[:k], name[k:]
+        if not (known in _OPERATORS or known in FUNCTION_COMMANDS or known in GREEK_COMMANDS):
+            continue
+        if rest in GREEK_COMMANDS:
+            return f"write \\{known}\\{rest}"
+        if len(rest) <= 2 and not (known in FUNCTION_COMMANDS and rest == "h"):
+            return f"write \\{known} {rest}, with a space after \\{known}"
+        return None
+    return None
 
 
 _WRAPPED = re.compile(r"\\(?:" + "|".join(sorted(_WRAPPERS, key=len, reverse=True)) + r")\s*\{([^{}]*)\}")

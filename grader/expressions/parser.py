@@ -100,6 +100,9 @@ def _beyond(number: sympy.Expr, bound: sympy.Integer) -> bool:
     return value.is_comparable and abs(value) > bound
 
 
+# Blank text, or LaTeX's spacing commands (MathQuill writes a typed space as '\ '): \sin 2\ \theta is \sin 2 \theta.
+_SPACING_ONLY = re.compile(r"(?:\s|~|\\[ ,;:!>]|\\(?:quad|qquad|thinspace|medspace|thickspace|enspace)(?![A-Za-z]))*")
+
 # SymPy prints a derivative as Derivative(θ(t), t) and Derivative(θ(t), (t, 2)).
 _DIFF_CALLS = {"diff": "(", "D": "[", "Derivative": "("}
 _PAIRS_CLOSE = {"(": ")", "[": "]", "{": "}"}
@@ -1139,7 +1142,7 @@ class _Parser:
             spaced = name != "e^" or latex_function or following.text[:1] == "\\"
             typed_glued = last.kind == "number" and (
                 (following.pos == last.end and not following.space_before)
-                or (spaced and not self.text[last.end:following.pos].strip()))
+                or (spaced and _SPACING_ONLY.fullmatch(self.text, last.end, following.pos) is not None))
             latex_word = (last.kind == "name" and last.text[:1] == "\\" and last.text[-1:].isalpha()
                           and not self.text[last.end:following.pos].strip())
             # sin 2(x + 1) is sin(2(x + 1)), as sin 2x is sin(2x); an exponent's e^2(x + 1) is left as it was

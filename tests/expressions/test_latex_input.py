@@ -503,3 +503,36 @@ def test_a_subscript_after_primes_on_a_function_is_refused(ns, latex):
     with pytest.raises(ExpressionError) as err:
         parse_expression(latex, ns)
     assert "_" in str(err.value)
+
+
+# -- red team 22: commands with the next letters glued on, and MathQuill's '\ ' between a number and a name --
+
+@pytest.mark.parametrize("name, fix", [
+    ("cdotg", r"write \cdot g, with a space"), ("timesl", r"write \times l"), ("costheta", r"write \cos\theta"),
+    ("sinalpha", r"write \sin\alpha"), ("thetam", r"write \theta m"), ("thetadot", r"write \dot{\theta}"),
+    ("phiddot", r"write \ddot{\phi}"), ("omegat", r"write \omega t"),
+])
+def test_a_command_with_letters_glued_on_is_named_with_the_space_or_backslash_to_type(name, fix):
+    # \cdotg was "the LaTeX command \cdotg is not supported; use + - * / ^, \frac, \sqrt and functions such as \sin"
+    with pytest.raises(ExpressionError) as err:
+        classify_command(name, 0)
+    assert "one name" in err.value.message and err.value.hint.startswith(fix)
+
+
+@pytest.mark.parametrize("name", ["leftarrow", "bigcirc", "textsc", "sech", "arcsinh", "sqrtx", "partial"])
+def test_other_unknown_commands_get_no_glued_reading(name):
+    with pytest.raises(ExpressionError) as err:
+        classify_command(name, 0)
+    assert "one name" not in err.value.message
+
+
+@pytest.mark.parametrize("latex", [r"\sin\ 2\ \theta", r"\sin 2\,\theta", r"\sin 2~\theta", r"\sin\ 2\quad\theta",
+                                   r"\sin 2\;\theta"])
+def test_latex_spacing_between_a_number_and_a_name_keeps_them_one_argument(ns, latex):
+    # MathQuill writes a typed space as '\ ': \sin\ 2\ \theta was sin(2)·θ while \sin 2 \theta is sin(2θ)
+    assert parse_expression(latex, ns).expr == parse_expression(r"\sin 2\theta", ns).expr
+
+
+def test_latex_spacing_after_a_command_still_ends_a_functions_argument(ns):
+    # \sin\theta\, l is sin(θ)·l: only a number then a name is glued across a space
+    assert parse_expression(r"\sin\theta\, l", ns).expr == parse_expression(r"\sin(\theta) l", ns).expr
