@@ -504,6 +504,12 @@ def _compare_equations(reference, answer, parameters, states, options, deadline,
         factor = _parameter_factor(reference, answer, parameters, states)
         if factor is not None:
             return factor
+        if k > 1 and mixing is not None and len(_paired_rows(mixing, k)) < k:
+            # rows that combine reference equations: one sign of the determinant at the parameter points says
+            # nothing of one that touches zero (cos² α) or is negative only in a narrow band of them
+            mixed = _parameter_mixing(reference, answer, unknowns, parameters, set(states.domains), deadline)
+            if mixed is not None:
+                return mixed
     if agreed >= min(needed, 3) and not unknowns and parameters.domains:
         # An equilibrium or a statics system must hold for every parameter value too; only an
         # equation degenerate there itself is spared (`_degenerate_there`).
@@ -798,6 +804,45 @@ def _parameter_factor(reference: list[sympy.Expr], answer: list[sympy.Expr], par
                 verdict = _factor_may_vanish(ratio, "", parameters, part)
                 if verdict is not None:
                     return verdict
+    return None
+
+
+def _parameter_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr], unknowns: tuple, parameters: Sampler,
+                      state: set, deadline: float | None = None) -> Comparison | None:
+    """A refusal (or no verdict) for equations of motion mixed by a matrix free of the state whose determinant
+    (det M_answer / det M_reference, their matrices in the accelerations) is not shown nonzero for every value of the
+    parameters: [[1, sin α], [sin α, 1]] is singular at α = ±π/2. None where it is, or where the determinant
+    cannot be had symbolically (too large, not linear in the accelerations, or depending on the state)."""
+    present = tuple(u for u in unknowns if any(u in r.free_symbols for r in reference))
+    if len(present) != len(reference) or any(_nodes(e) > FACTOR_MAX_NODES for e in (*reference, *answer)):
+        return None
+    split_r, split_s = _linear_in(reference, present), _linear_in(answer, present)
+    if split_r is None or split_s is None:
+        return None
+    det_r, det_s = _determinant(split_r[0]), _determinant(split_s[0])
+    if det_r is None or det_s is None or det_r == 0:
+        return None
+    try:
+        ratio = sympy.factor(sympy.cancel(sympy.together(det_s / det_r)))
+    except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+        return None
+    if ratio.free_symbols & state:
+        return None
+    for base in (b for part in sympy.fraction(ratio) for b in _bases(part)):
+        if _nonzero_on(base, parameters.domains) is True:
+            continue
+        decided = _zero_or_nonzero(base, parameters.domains, [parameters.point(0), parameters.point(1)], deadline)
+        if decided is True:
+            continue
+        if isinstance(decided, dict):
+            return Comparison(False, "numeric", "your equations are combinations of the reference equations by a "
+                              f"matrix of the parameters whose determinant has the factor {base}, which is zero (or "
+                              "undefined) at the values in the counterexample: there your equations no longer give "
+                              "the motion", evidence={"method": "root search"}, counterexample={"values": decided})
+        return Comparison(None, "none", "your equations are combinations of the reference equations by a matrix of the "
+                          f"parameters whose determinant has the factor {base}, which the checker could neither prove "
+                          "nonzero for all their values nor find zero for any: it cannot decide whether your "
+                          "equations are right", evidence={"method": "symbolic"})
     return None
 
 

@@ -1790,3 +1790,29 @@ def test_a_parameter_factor_is_proved_nonzero_or_found_to_vanish_never_guessed(f
     v = check("xddot = g*sin(alpha)", f"({factor})*xddot = ({factor})*g*sin(alpha)", INCLINE_ANGLE, kind="equation")
     assert v.verdict == verdict, v.reason
     assert "could not be shown" not in v.reason
+
+
+OSCILLATORS_ANGLE = {"m": {"dimension": "mass", "domain": "positive"}, "k": {"dimension": "stiffness", "domain": "positive"},
+                     "alpha": {"dimension": "angle", "domain": [-3.1416, 3.1416]},
+                     **{f"{q}{d}": {"dimension": dim, "domain": "real", "kind": kind} for q in ("x", "y")
+                        for d, dim, kind in (("", "length", "coordinate"), ("dot", "velocity", "velocity"),
+                                             ("ddot", "acceleration", "acceleration"))}}
+
+
+# Equations of motion mixed by a matrix of the parameters alone were screened by the sign of its determinant at
+# the parameter points only: [[1, sin α], [sin α, 1]] (determinant cos² α, zero at α = ±π/2 without changing sign)
+# and [[1.4142 − cos α, sin α], [1, 1]] (negative only for α within 8e-4 of π/4) were accepted. The determinant is
+# now proved nonzero for every parameter value, found zero, or left undecided.
+@pytest.mark.parametrize("a, b, c, d, verdict", [
+    ("1", "sin(alpha)", "sin(alpha)", "1", "not_equivalent"),
+    ("1.4142 - cos(alpha)", "sin(alpha)", "1", "1", "not_equivalent"),
+    ("1", "cos(alpha)", "1", "1", "not_equivalent"),            # 1 − cos α: zero at α = 0
+    ("2", "sin(alpha)", "sin(alpha)", "1", "equivalent"),       # 2 − sin² α ≥ 1
+    ("1.4143 - cos(alpha)", "sin(alpha)", "1", "1", "equivalent"),  # ≥ 8.6e-5
+    ("1", "1", "1", "1.0001", "equivalent"),
+])
+def test_equations_of_motion_mixed_by_the_parameters_need_a_nonzero_determinant_for_every_value(a, b, c, d, verdict):
+    first, second = "(m*xddot + k*x)", "(m*yddot + k*y)"
+    answer = f"({a})*{first} + ({b})*{second} = 0; ({c})*{first} + ({d})*{second} = 0"
+    v = check("m*xddot = -k*x; m*yddot = -k*y", answer, OSCILLATORS_ANGLE, kind="equation")
+    assert v.verdict == verdict, v.reason
