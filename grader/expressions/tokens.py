@@ -103,6 +103,39 @@ _NOT_EQUAL = re.compile(r"=/=|/=|<>|=\\=")
 # The combining dots above, which on a space are the spacing dots ˙ and ¨.
 _COMBINING_ACCENTS = frozenset("\u0307\u0308")
 
+# A list's marker at a line's start, as a chat assistant or a word processor sets equations out: 1. 2) - * •
+_LIST_MARKER = re.compile(r"^[ \t]*(?:(\d{1,2})[.)]|([-–*•◦▪‣⁃]))[ \t]+(?=\S)", re.MULTILINE)
+_BULLETS = frozenset("*•◦▪‣⁃")
+
+
+def _without_list_markers(text: str) -> str:
+    """The text with a list's markers made spaces (so that positions stay): every line numbered 1., 2., … (or 1),
+    2), …), or every line after the same bullet (•, *, ◦, ▪: on one line too, where nothing else starts with one).
+    Every line after '- ' (a Markdown list, or each equation's minus sign?) is refused naming both."""
+    found = list(_LIST_MARKER.finditer(text))
+    if not found:
+        return text
+    lines = sum(1 for line in text.split("\n") if line.strip())
+    numbers, bullets = [m.group(1) for m in found], {m.group(2) for m in found}
+    if len(found) != lines:
+        return text
+    if lines >= 2 and all(numbers) and [int(n) for n in numbers] == list(range(1, lines + 1)):
+        pass  # 1. … 2. …: a numbered list
+    elif len(bullets) == 1 and bullets <= _BULLETS:
+        pass  # • … • …
+    elif lines >= 2 and bullets <= {"-", "–"} and not any(numbers):
+        first = found[0].start(2)
+        raise ExpressionError(f"every line starts with '{text[first]} ': a list's bullets, or a minus sign before each "
+                              "equation?", first, "ambiguous",
+                              "delete the bullets (one equation a line, or separated by ';'), or write each minus sign "
+                              "against its term, as in -k x = m ẍ")
+    else:
+        return text
+    for marker in reversed(found):
+        text = text[:marker.start()] + " " * (marker.end() - marker.start()) + text[marker.end():]
+    return text
+
+
 # Markdown's bold around the whole answer: **…**, nothing but spaces outside (and the sentence's full stop or
 # comma after it, read as after any answer), no ** inside.
 _MARKDOWN_BOLD = re.compile(r"\s*(\*\*)(?=\S)(?:(?!\*\*).)+?(?<=[^\s*])(\*\*)[.,;。]?\s*", re.DOTALL)
@@ -230,6 +263,8 @@ class _Tokenizer:
             # **T = m g cos θ**: Markdown's bold, as a chat assistant's copy button gives its final answer (never
             # Python's power: nothing comes before the first ** to raise); spaces, so that positions stay
             text = text[:bold.start(1)] + "  " + text[bold.end(1):bold.start(2)] + "  " + text[bold.end(2):]
+        if "\n" in text or text.lstrip()[:1] in _BULLETS:
+            text = _without_list_markers(text)
         self.text = _SUPERSCRIPT_FIRST.sub(r"\2\1", text) if "^" in text and "_" in text else text
         self.n = len(text)
         self.i = 0

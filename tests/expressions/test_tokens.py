@@ -608,3 +608,31 @@ def test_a_combining_dot_after_a_gap_or_no_name_is_still_refused(text):
 def test_maximas_noun_form_of_diff_is_diff(text, plain):
     # STACK asks for 'diff(y, x) in a differential equation; the quote was "a prime can only follow a variable"
     assert kinds(text) == kinds(plain)
+
+
+# -- red team 22: a list's markers, as a chat assistant or a word processor sets several equations out --
+
+@pytest.mark.parametrize("text, plain", [
+    ("1. x = 1\n2. y = 2", "x = 1\ny = 2"), ("1) x = 1\n2) y = 2", "x = 1\ny = 2"),
+    ("  1. x = 1\n  2. y = 2\n  3. x = y", "x = 1\ny = 2\nx = y"),
+    ("* x = 1\n* y = 2", "x = 1\ny = 2"), ("• x = 1\n• y = 2", "x = 1\ny = 2"), ("• x = 1", "x = 1"),
+    ("◦ x = 1\n◦ y = 2", "x = 1\ny = 2"),
+])
+def test_a_lists_numbers_and_bullets_are_only_its_layout(text, plain):
+    # 1. was "a decimal point must be followed by digits", 1) "')' has no matching '('", • "unexpected '•'"
+    assert kinds(text) == kinds(plain)
+
+
+@pytest.mark.parametrize("text", ["- x = 1\n- y = 2", "– x = 1\n– y = 2"])
+def test_a_dash_before_every_line_is_refused_naming_bullets_and_minus_signs(text):
+    # read as minus signs, "- (m1 + m2) r̈ … = 0" on each line negated its first term: a right answer marked wrong
+    with pytest.raises(ExpressionError) as refused:
+        tokenize(text)
+    assert refused.value.code == "ambiguous" and "bullets" in refused.value.message \
+        and "minus sign" in refused.value.message
+
+
+@pytest.mark.parametrize("text", ["- x = 1", "x = 1\n- y = 2", "2. x", "1. x = 1\n3. y = 2", "x\n- y", "1. x\ny = 2"])
+def test_what_is_not_a_whole_list_keeps_its_reading(text):
+    tokens = tokenize(text)
+    assert any(t.kind in ("op", "bad") and t.text in ("-", "–", ".") for t in tokens)
