@@ -704,11 +704,20 @@ def _parameter_dependence(reference, answer, refs, anss, parameters: Sampler, st
         for part in sympy.fraction(determinant):
             for base in _bases(part):
                 if _nonzero_on(base, parameters.domains) is not True and not degenerate(base):
-                    return Comparison(False, "numeric", f"your equations are combinations of the reference "
-                                      f"equations by a matrix whose determinant has the factor {base}, which "
-                                      "depends on the parameters and could not be shown nonzero for all their "
-                                      "values: where it vanishes your equations say less than the reference",
-                                      evidence={"method": "symbolic"})
+                    decided = _zero_or_nonzero(base, parameters.domains, [parameters.point(0), parameters.point(1)])
+                    if decided is True:
+                        continue
+                    if isinstance(decided, dict):
+                        return Comparison(False, "numeric", f"your equations are combinations of the reference "
+                                          f"equations by a matrix whose determinant has the factor {base}, which "
+                                          "depends on the parameters and is zero (or undefined) at the values in the "
+                                          "counterexample: there your equations say less than the reference",
+                                          evidence={"method": "root search"}, counterexample={"values": decided})
+                    return Comparison(None, "none", f"your equations are combinations of the reference equations by "
+                                      f"a matrix whose determinant has the factor {base}, which depends on the "
+                                      "parameters and which the checker could neither prove nonzero for all their "
+                                      "values nor find zero for any: it cannot decide whether your equations are "
+                                      "right", evidence={"method": "symbolic"})
         return None
     if signs and len(_paired_rows(mixing, k)) < k:
         signs = _mixing_signs(refs, anss, parameters, states, start, target, signs, options.max_bits)

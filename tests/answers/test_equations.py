@@ -1816,3 +1816,25 @@ def test_equations_of_motion_mixed_by_the_parameters_need_a_nonzero_determinant_
     answer = f"({a})*{first} + ({b})*{second} = 0; ({c})*{first} + ({d})*{second} = 0"
     v = check("m*xddot = -k*x; m*yddot = -k*y", answer, OSCILLATORS_ANGLE, kind="equation")
     assert v.verdict == verdict, v.reason
+
+
+TENSIONS = {"T1": {"dimension": "force", "domain": "real", "kind": "force"},
+            "T2": {"dimension": "force", "domain": "real", "kind": "force"},
+            "m1": {"dimension": "mass", "domain": "positive"}, "m2": {"dimension": "mass", "domain": "positive"},
+            "g": {"dimension": "acceleration", "domain": "positive"},
+            "alpha": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "parameter"}}
+
+
+# The statics form of the same: a determinant factor of the parameters that the first proof left open was refused
+# as "could not be shown nonzero for all their values", 1.4143 − cos α − sin α too.
+@pytest.mark.parametrize("a, b, c, d, verdict", [
+    ("1.4143 - cos(alpha)", "sin(alpha)", "1", "1", "equivalent"),
+    ("1.4142 - cos(alpha)", "sin(alpha)", "1", "1", "not_equivalent"),
+    ("1", "1", "1", "1 + cos(alpha)", "not_equivalent"),       # cos α: zero at ±π/2
+])
+def test_statics_mixed_by_the_parameters_is_proved_or_found_singular_never_guessed(a, b, c, d, verdict):
+    first, second = "(T1 - m1*g)", "(T2 - (m1 + m2)*g)"
+    answer = f"({a})*{first} + ({b})*{second} = 0; ({c})*{first} + ({d})*{second} = 0"
+    v = check("T1 = m1*g; T2 = (m1 + m2)*g", answer, TENSIONS, kind="equation")
+    assert v.verdict == verdict, v.reason
+    assert "could not be shown" not in v.reason
