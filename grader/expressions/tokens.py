@@ -103,6 +103,13 @@ _NOT_EQUAL = re.compile(r"=/=|/=|<>|=\\=")
 # The combining dots above, which on a space are the spacing dots ˙ and ¨.
 _COMBINING_ACCENTS = frozenset("\u0307\u0308")
 
+# A caption before a line's formula: words that name an answer (a ratio mg : l must not lose its mg, so only these)
+# and a colon, then a space: Answer:, Final answer:, Tension:, Eq1:, Equation of motion:, Respuesta:.
+_CAPTION_WORDS = ("answer|ans|final|my|the|solution|result|tension|normal|force|reaction|acceleration|equations?|eqn?s?"
+                  "|eom|of|motion|lagrangian|respuesta|resposta|risposta|r[ée]ponse|antwort|l[öo]e?sung|ergebnis")
+_CAPTION = re.compile(rf"^[ \t]*(?:\*\*)?(?i:{_CAPTION_WORDS})\d{{0,2}}(?:[ \t]+(?i:{_CAPTION_WORDS})\d{{0,2}}){{0,3}}"
+                      r"[ \t]*:(?:\*\*)?[ \t]+(?=\S)", re.MULTILINE)
+
 # A list's marker at a line's start, as a chat assistant or a word processor sets equations out: 1. 2) - * •
 _LIST_MARKER = re.compile(r"^[ \t]*(?:(\d{1,2})[.)]|([-–*•◦▪‣⁃]))[ \t]+(?=\S)", re.MULTILINE)
 _BULLETS = frozenset("*•◦▪‣⁃")
@@ -265,6 +272,10 @@ class _Tokenizer:
             text = text[:bold.start(1)] + "  " + text[bold.end(1):bold.start(2)] + "  " + text[bold.end(2):]
         if "\n" in text or text.lstrip()[:1] in _BULLETS:
             text = _without_list_markers(text)
+        if ":" in text:
+            # Answer: …, Tension: …, **Final answer:** …, r: … on each line: a caption, as \text{Answer: } is
+            # (a colon has no other meaning here); spaces, so that positions stay
+            text = _CAPTION.sub(lambda caption: " " * len(caption.group()), text)
         self.text = _SUPERSCRIPT_FIRST.sub(r"\2\1", text) if "^" in text and "_" in text else text
         self.n = len(text)
         self.i = 0

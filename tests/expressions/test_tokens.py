@@ -636,3 +636,19 @@ def test_a_dash_before_every_line_is_refused_naming_bullets_and_minus_signs(text
 def test_what_is_not_a_whole_list_keeps_its_reading(text):
     tokens = tokenize(text)
     assert any(t.kind in ("op", "bad") and t.text in ("-", "–", ".") for t in tokens)
+
+
+@pytest.mark.parametrize("text, plain", [
+    ("Answer: m g", "m g"), ("answer: T = m g", "T = m g"), ("Final answer: m g", "m g"), ("Tension: m g", "m g"),
+    ("**Answer:** m g", "m g"), ("Eq1: x = 1\nEq2: y = 2", "x = 1\ny = 2"), ("ANSWER : m g", "m g"),
+    ("Equation of motion: x = 1", "x = 1"), ("Respuesta: m g", "m g"),
+])
+def test_a_caption_before_the_answer_is_only_its_label(text, plain):
+    # "Answer: m g" was "unknown name 'Answer'", as \text{Answer: } before a LaTeX answer is read as a caption
+    assert kinds(text) == kinds(plain)
+
+
+@pytest.mark.parametrize("text", ["mg : l", "m1m2g : (m1+m2)", "x: y", "Answer:m g"])
+def test_a_colon_after_anything_but_a_caption_keeps_its_refusal(text):
+    # a ratio mg : l must not lose its mg
+    assert any(t.kind == "bad" and ":" in t.text for t in tokenize(text))
