@@ -575,6 +575,8 @@ _SPOKEN_WORDS = {
         "zero one two three four five six seven eight nine ten".split()) if word not in ("one",)},
     "half": "write 1/2 for a half", "quarter": "write 1/4 for a quarter",
     **dict.fromkeys(("of", "the", "and", "times"), "give the formula alone, with + - * / ^ and brackets"),
+    **dict.fromkeys(("where", "with", "when", "for", "if", "so", "hence", "thus", "therefore"),
+                    "give the formula alone, without the explanation"),
 }
 
 

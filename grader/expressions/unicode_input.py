@@ -223,6 +223,10 @@ _SYMBOL_HINTS = {
     "∝": "it means 'proportional to', not an equation: write = and the factor, as in F = k x",
     **dict.fromkeys("≦≧⩽⩾≲≳≪≫⋜⋝", "inequalities are not supported: give an expression, or an equation with ="),
     "∶": "'∶' (a ratio) is not part of a formula: write a ratio with /, as in a/b",
+    # brackets of other scripts and of typesetting (an input method's 【】 〔〕, angle brackets): not grouping here
+    **dict.fromkeys("〔〕【】⟨⟩〈〉⦅⦆❨❩❪❫《》「」『』〘〙〚〛",
+                    "group with round brackets ( ) (or [ ] or { }), as in m(g + a)"),
+    **dict.fromkeys("✓✔✅☑", "delete the check mark: the answer is the formula alone"),
     "∥": "'∥' (parallel, or a norm) is not part of a formula: write |x| for the absolute value of a number",
 }
 

@@ -251,7 +251,7 @@ def test_a_capital_elsewhere_or_of_no_lowercase_name_gets_no_such_hint(ns, text)
     ("m l thetadot squared", "squared", "^2"), ("x cubed", "cubed", "^3"), ("m g plus m l", "plus", "+"),
     ("m g minus m l", "minus", "-"), ("g over l", "over", "/"),
     ("theta prime", "prime", "θ'"), ("m g two", "two", "2"),
-    ("half m g", "half", "1/2"),
+    ("half m g", "half", "1/2"), ("m g where g = 9.8", "where", "without the explanation"),
 ])
 def test_a_word_for_an_operator_is_named_with_the_symbol_to_type(ns, text, word, fix):
     # 'squared' was "did you mean 'surd'?", 'cosine' "did you mean 'cosec' or 'sin' or 'cos'?"

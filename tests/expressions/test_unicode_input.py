@@ -162,3 +162,11 @@ def test_a_variation_selector_after_a_letter_is_not_dropped():
     with pytest.raises(ExpressionError) as caught:
         parse_expression("m\ufe0f1", Namespace([Variable("m1", "dimensionless")]))
     assert "VARIATION SELECTOR-16" in caught.value.message
+
+
+@pytest.mark.parametrize("char, words", [("【", ["round brackets"]), ("〔", ["round brackets"]), ("⟨", ["round brackets"]),
+                                         ("✓", ["check mark"]), ("✅", ["check mark"])])
+def test_brackets_of_other_scripts_and_check_marks_are_named_with_the_fix(char, words):
+    error = bad_character(char, 0)
+    for word in words:
+        assert word in error.hint
