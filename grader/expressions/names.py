@@ -557,6 +557,9 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
     suggestion = _suggestion(raw, ns) or "this answer uses no variables: write a number"
     if raw in ("x", "X") and not any(name[:1] == raw for name in ns.names):  # m x g: a keyboard without ×
         suggestion += "; if 'x' stands for times, type * (or ×)"
+    if re.fullmatch(r"[xX]10", raw) and not any(name[:1] == raw[0] for name in ns.names):
+        # 3x10^-1: a calculator's (or a phone's) times ten to the, with the letter x
+        suggestion = "for a number times a power of ten, write 3*10^-1 or 3e-1 (not x, a letter)"
     if raw in _UPRIGHT_UNITS:  # √(5gR) m/s: 's' may be a variable the problem lacks, or a unit
         suggestion += f"; if '{typed}' is a unit, delete it: units are not part of the answer"
     raise ExpressionError(f"unknown name '{typed}'", position, "unknown_name", suggestion)

@@ -429,6 +429,13 @@ class _Parser:
                                       "which takes one digit for each argument without braces", unbraced.start(),
                                       "ambiguous", f"write \\frac{{{a}{b}}}{{{token.text}}} or \\frac{{{a}}}{{{b}{token.text}}} "
                                       "with braces, or put * before the number")
+            before = next((t for t in reversed(self.tokens[:self.i]) if t.pos < token.pos), None)
+            if before is not None and before.kind == "number" and before.text.isdigit() and len(before.text) <= 3 \
+                    and len(token.text) == 3 and token.text.isdigit() and len(self.text[before.end:token.pos]) == 1:
+                # 1 000, 12 500: a number's thousands set apart by a space, as many countries print them
+                raise ExpressionError(f"missing operator before '{token.text}'", token.pos, "syntax",
+                                      f"for the number {before.text}{token.text}, write it without the space (a "
+                                      f"thousands separator); for a product, write {before.text}*{token.text}")
             raise ExpressionError(f"missing operator before '{token.text}'", token.pos, "syntax",
                                   "write * (or another operator) before the number")
         factors.append(self.expression(_MUL))
@@ -1255,7 +1262,7 @@ class _Parser:
 
     def latex_command(self, token: Token) -> sympy.Expr:
         if token.value == "frac":
-            before = self.tokens[self.i - 2] if self.i >= 2 else None
+            before = next((t for t in reversed(self.tokens[:self.i]) if t.pos < token.pos), None)
             if self.i >= 3 and self.tokens[self.i - 3].kind == "op" and self.tokens[self.i - 3].value == "^":
                 before = None  # x^2\frac{1}{2}: the 2 is an exponent
             numerator = self.braced(token)

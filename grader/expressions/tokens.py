@@ -187,6 +187,8 @@ _PUNCTUATION = {
     "~": ("'~' reads as 'approximately' or as a LaTeX space", "syntax",
           "write = for an equation, or delete it"),
     "`": ("backquotes are not part of a formula", "syntax", "delete the backquotes"),
+    "%": ("'%' (percent, or a comment in MATLAB and LaTeX) is not part of a formula", "syntax",
+          "write a percentage as a number, as in 0.3 for 30%; delete a comment and everything after it"),
 }
 
 

@@ -1326,3 +1326,16 @@ def test_a_function_before_equals_is_refused_not_read_as_a_label(ns, text, inver
 @pytest.mark.parametrize("text", ["N(theta) = m g", "T(x, y) = m g", "F_N = m g"])
 def test_a_name_with_arguments_is_still_a_label(ns, text):
     assert parse(text, ns) == ns.symbol("m") * ns.symbol("g")
+
+
+# -- red team 22: numbers as phones and other countries print them --
+
+@pytest.mark.parametrize("text, hint", [
+    ("1 000 y", "for the number 1000, write it without the space"), ("2\u2009500 y", "for the number 2500"),
+    ("3x10^-1 y", "write 3*10^-1 or 3e-1"), ("30 % y", "write a percentage as a number"),
+])
+def test_a_number_typed_as_a_phone_or_another_country_prints_it_is_refused_with_the_fix(text, hint):
+    # 1 000 was "write * before the number", 3x10^-1 "unknown name 'x10'", 30 % "use letters, digits, …"
+    with pytest.raises(ExpressionError) as refused:
+        parse_expression(text, Namespace([Variable("y", "length", "real")]))
+    assert hint in refused.value.hint
