@@ -291,6 +291,10 @@ def compare_equations(
     # The declared orders (x below L) for the proofs that a factor is nonzero (`_nonzero_on`).
     token = _ORDER.set({**parameters.below, **states.below, **parameters.across, **states.across})
     try:
+        if answer_conditions:
+            # a typed real domain that is the whole domain (exp(log(2 + cos θ))) loses no state: no condition
+            domains = {**parameters.domains, **states.domains}
+            answer_conditions = tuple(c for c in answer_conditions if not _defined_everywhere(c, domains))
         return _compare_equations(reference, answer, parameters, states, options, deadline, compiled_reference,
                                   answer_conditions, unknowns)
     finally:
@@ -3159,6 +3163,43 @@ def _witness_grid(lo: float, hi: float, at: float) -> list[float]:
     if hi <= 0:
         return [hi - x for x in magnitudes]
     return magnitudes + [-x for x in magnitudes]
+
+
+_JUMPS = (sympy.sign, sympy.floor, sympy.ceiling, sympy.Heaviside, sympy.Piecewise)
+
+
+def _defined_everywhere(condition: sympy.Expr, domains: dict) -> bool:
+    """Whether a typed domain's condition (``log(u)``, ``u**(p/q)``: u must be positive, or not negative) holds on the
+    whole declared domain: ``u`` proved nonzero and finite there (`_nonzero_on`), continuous, and positive at one
+    point, so positive everywhere (the domain is a box, connected). False where that is not shown."""
+    if isinstance(condition, sympy.log):
+        u = condition.args[0]
+    elif condition.is_Pow and condition.exp.is_Rational and not condition.exp.is_Integer:
+        u = condition.base
+    else:
+        return False
+    if u.is_positive:
+        return True
+    if u.has(*_JUMPS) or _nodes(u) > FACTOR_MAX_NODES or _nonzero_on(u, domains) is not True:
+        return False
+    point = {s: _inside(domains[s]) for s in u.free_symbols if s in domains}
+    if len(point) != len(u.free_symbols):
+        return False
+    try:
+        value, _ = Compiled(u, ArbBackend()).at(point, 64)
+    except (Undefined, Unresolved, Unsupported):
+        return False
+    return bool(value > 0)
+
+
+def _inside(domain) -> float:
+    """A value inside a declared domain."""
+    lo, hi = getattr(domain, "lo", -math.inf), getattr(domain, "hi", math.inf)
+    if getattr(domain, "kind", None) in ("positive", "nonnegative"):
+        return 1.0
+    if math.isfinite(lo) and math.isfinite(hi):
+        return (lo + hi) / 2
+    return lo + 1.0 if math.isfinite(lo) else hi - 1.0 if math.isfinite(hi) else 1.0
 
 
 def _first_state(parameters: Sampler, states: Sampler) -> dict:

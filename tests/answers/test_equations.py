@@ -1838,3 +1838,19 @@ def test_statics_mixed_by_the_parameters_is_proved_or_found_singular_never_guess
     v = check("T1 = m1*g; T2 = (m1 + m2)*g", answer, TENSIONS, kind="equation")
     assert v.verdict == verdict, v.reason
     assert "could not be shown" not in v.reason
+
+
+# A system whose typed real domain is the whole domain (exp(log(2 + cos θ)), √(2 + cos θ)²: 2 + cos θ > 0 for every
+# θ) was compared as if it lost states: the state-dependent mixing was never looked for, and the right answer refused
+# as "not combinations of the reference equations with coefficients free of the state".
+@pytest.mark.parametrize("coefficient, verdict", [
+    ("exp(log(2 + cos(th)))", "equivalent"),
+    ("sqrt(2 + cos(th))^2", "equivalent"),
+    ("exp(log(1 + cos(th)))", "not_equivalent"),   # undefined at θ = π, and zero-free nowhere near it
+    ("sqrt(cos(th))^2", "not_equivalent"),         # undefined for |θ| > π/2
+])
+def test_a_system_whose_typed_domain_is_the_whole_domain_is_mixed_like_any_other(coefficient, verdict):
+    variables = {**OSCILLATORS_ANGLE, "th": {"dimension": "angle", "domain": [-3.1416, 3.1416], "kind": "coordinate"}}
+    answer = f"({coefficient})*(m*xddot + k*x) = 0; m*yddot + k*y = 0"
+    v = check("m*xddot = -k*x; m*yddot = -k*y", answer, variables, kind="equation")
+    assert v.verdict == verdict, v.reason
