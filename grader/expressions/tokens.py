@@ -369,18 +369,9 @@ class _Tokenizer:
                     self.attach_subscript()
         elif ch in _DIGITS:
             self.number()
-        elif ch in " \u00a0" and self.peek(1) in _COMBINING_ACCENTS and self.tokens and self.tokens[-1].kind == "name" \
-                and self.tokens[-1].end == start and not self.tokens[-1].forced_function:
-            # θ ̇: a combining dot on a space (or a no-break space) is Unicode's spacing dot (˙), as Word's linear
-            # format writes 〖𝜃 ̇〗:
-            # the dot of the name before it, as θ˙ is
-            name, end = self.tokens[-1], start + 1
-            while end < self.n and self.text[end] in _COMBINING_ACCENTS:
-                name.order += COMBINING_DOTS[self.text[end]]
-                end += 1
-            name.end, self.i = end, end
-            name.text = self.text[name.pos:end]
         elif ch == " ":
+            if start + 1 < self.n and self.text[start + 1] in _COMBINING_ACCENTS and self.dot_on_space(start):
+                return
             self.space = True
             self.i += 1
         elif ch == "*" and self.peek(1) == "*":
@@ -455,6 +446,8 @@ class _Tokenizer:
         elif ch in _LINE_BREAKS:  # and the line and paragraph separators Word, PDFs and web pages paste
             self.emit("newline", "\n", start, start + 1)
         elif is_space(ch) or ch == "$":  # $...$ around pasted LaTeX is only decoration
+            if ch == "\u00a0" and self.peek(1) in _COMBINING_ACCENTS and self.dot_on_space(start):
+                return
             self.space = True
             self.i += 1
         elif _is_digit(ch) or (ch == "." and _is_digit(self.peek(1))):
@@ -613,6 +606,20 @@ class _Tokenizer:
                                             "use letters, digits, + - * / ^ and brackets"))
         else:
             raise bad_character(ch, start)
+
+    def dot_on_space(self, start: int) -> bool:
+        """θ ̇: a combining dot on a space (or a no-break space) is Unicode's spacing dot (˙), as Word's linear format
+        writes 〖𝜃 ̇〗: the dot of the name right before it, as θ˙ is. Whether it was one (and is read)."""
+        name = self.tokens[-1] if self.tokens else None
+        if name is None or name.kind != "name" or name.end != start or name.forced_function:
+            return False
+        end = start + 1
+        while end < self.n and self.text[end] in _COMBINING_ACCENTS:
+            name.order += COMBINING_DOTS[self.text[end]]
+            end += 1
+        name.end, self.i = end, end
+        name.text = self.text[name.pos:end]
+        return True
 
     def module_attribute(self, dot: int) -> None:
         """``np.sin``, ``math.sqrt``, ``numpy.pi``, ``Math.PI``: a function or π pasted from Python (or JavaScript) with its module
