@@ -492,6 +492,11 @@ WRITE_INSTEAD = {
     "frac": "write a/b for a fraction (or \\frac{a}{b})",  # Typst's frac(a, b)
     # the functions' names spelt out, as dictation gives them ('cosine' was "did you mean 'cosec' or 'sin' or 'cos'?")
     "sine": "write sin, as in sin(θ)", "cosine": "write cos, as in cos(θ)", "tangent": "write tan, as in tan(θ)",
+    # French and Russian names of the hyperbolic functions (ch x is cosh x); \ch, \sh, \th are read in LaTeX
+    "ch": "write cosh(x) for the hyperbolic cosine (ch in French and Russian notation)",
+    "sh": "write sinh(x) for the hyperbolic sine (sh in French and Russian notation)",
+    **dict.fromkeys(("th", "tgh"), "write tanh(x) for the hyperbolic tangent (th in French and Russian notation)"),
+    **dict.fromkeys(("cth", "ctgh"), "write coth(x) for the hyperbolic cotangent (cth in Russian notation)"),
 }
 
 #: How to write the inverse of a function that has no inverse in the grammar, for ``f^-1``

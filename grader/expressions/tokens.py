@@ -1265,6 +1265,12 @@ class _Tokenizer:
         start, j = self.i, self.i
         while j < self.n and (self.text[j] in SUPERSCRIPT_CHARS or self.text[j] in SUPERSCRIPT_OTHERS):
             j += 1
+        last = self.tokens[-1] if self.tokens else None
+        if self.text[start:j] == "⁻" and (last is None or last.kind in ("op", "open", "newline")) \
+                and j < self.n and not is_space(self.text[j]):
+            # =⁻g: a TI calculator's raised negation sign (its (-) key), where no power can be (nothing to raise)
+            self.emit("op", "-", start, j)
+            return
         if any(c in SUPERSCRIPT_OTHERS for c in self.text[start:j]):
             self.superscript_letters(start, j)
         digits = "".join(SUPERSCRIPT_CHARS[c] for c in self.text[start:j])

@@ -275,7 +275,8 @@ def test_a_unit_word_with_a_capital_is_a_unit(ns, text):
 
 
 @pytest.mark.parametrize("text, fix", [("m g cosine(theta)", "write cos, as in cos(θ)"), ("sine theta", "write sin"),
-                                       ("tangent(theta)", "write tan")])
+                                       ("tangent(theta)", "write tan"), ("ch(theta)", "write cosh(x)"),
+                                       ("sh(theta)", "write sinh(x)"), ("th(theta)", "write tanh(x)")])
 def test_a_function_spelt_out_is_named_with_its_name_here(ns, text, fix):
     with pytest.raises(ExpressionError) as refused:
         parse_expression(text, ns)

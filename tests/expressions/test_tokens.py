@@ -652,3 +652,14 @@ def test_a_caption_before_the_answer_is_only_its_label(text, plain):
 def test_a_colon_after_anything_but_a_caption_keeps_its_refusal(text):
     # a ratio mg : l must not lose its mg
     assert any(t.kind == "bad" and ":" in t.text for t in tokenize(text))
+
+
+@pytest.mark.parametrize("text, plain", [("x = ⁻3", "x = -3"), ("⁻x", "-x"), ("x + ⁻y", "x + -y"), ("(⁻x)", "(-x)")])
+def test_a_raised_minus_where_no_power_can_be_is_a_calculators_negation(text, plain):
+    # a TI calculator's (-) key prints ⁻3: it was "cannot read the superscript '⁻'"
+    assert kinds(text) == kinds(plain)
+
+
+@pytest.mark.parametrize("text, sup", [("x⁻¹", -1), ("x ⁻¹", -1), ("(x)⁻²", -2)])
+def test_a_raised_minus_after_an_operand_is_still_a_power(text, sup):
+    assert ("sup", sup) in kinds(text)
