@@ -52,12 +52,15 @@ _ATOMS = ("number", "name", "open", "root", "command", "derivative", "time_deriv
 _WRAPPED_D = re.compile(r"^\\[A-Za-z]+(?:\s*\{d\}|\s+d)")
 # The d of Word's equations, a mathematical italic 𝑑 (read as the letter d), typed first.
 _ITALIC_D = "\U0001d451"
+# UnicodeMath's differential d (Word's \dd), DOUBLE-STRUCK ITALIC SMALL D, also read as the letter d.
+_DIFFERENTIAL_D = "\u2146"
+_TYPED_DS = ("d", _ITALIC_D, _DIFFERENTIAL_D)
 
 
 def _typed_d(text: str) -> str | None:
     """What follows the typed d of a name (``dθ`` -> ``θ``, ``𝑑𝜃`` -> ``𝜃``, ``\\mathrm{d}x`` -> ``x``), or
     None when its d is not typed as one (``\\delta``)."""
-    if text[:1] in ("d", _ITALIC_D):
+    if text[:1] in _TYPED_DS:
         return text[1:]
     wrapped = _WRAPPED_D.match(text)
     return text[wrapped.end():] if wrapped else None
@@ -502,7 +505,7 @@ def read_leibniz(tokens: list[Token], ns, text: str) -> list[Token]:
     >>> [t.kind for t in read_leibniz(tokenize(text), ns, text)]
     ['name', 'name', 'op', 'name', 'name', 'end']
     """
-    if "d" not in text and _ITALIC_D not in text:  # most answers: nothing to look at
+    if "d" not in text and _ITALIC_D not in text and _DIFFERENTIAL_D not in text:  # most answers: nothing to look at
         return tokens
     memo: dict = {}
     typed = tokens

@@ -36,7 +36,9 @@ GREEK_CHARS.update({"ς": "sigma", "ϑ": "theta", "ϕ": "phi", "ϵ": "epsilon", 
                     # likewise the script e of some fonts and equation editors for Euler's number
                     "ℯ": "e",
                     # and UnicodeMath's exponential e (Word's \ee), DOUBLE-STRUCK ITALIC SMALL E
-                    "ⅇ": "e"})
+                    "ⅇ": "e",
+                    # and its differential d (Word's \dd: ⅆθ/ⅆt), DOUBLE-STRUCK ITALIC SMALL D
+                    "ⅆ": "d"})
 
 #: Operator look-alikes -> ASCII operator.
 

@@ -493,3 +493,12 @@ def test_the_orders_of_a_dotted_variables_derivative_must_agree(ns):
     with pytest.raises(ExpressionError, match=r"has d on top but dt² below") as err:
         parse(r"\frac{d\dot x}{dt^2}", ns)
     assert r"d\dot{x}/dt" in err.value.hint
+
+
+# -- red team 22: UnicodeMath's differential d (Word's \dd), ⅆ --
+
+@pytest.mark.parametrize("text, name", [("ⅆθ/ⅆt", "thetadot"), ("ⅆ𝜃/ⅆ𝑡", "thetadot"), ("(ⅆ^2 𝜃)/(ⅆ𝑡^2 )", "thetaddot"),
+                                        ("ⅆ^2 θ/ⅆt^2", "thetaddot"), ("ⅆx/ⅆt", "xdot")])
+def test_word_s_differential_d_is_a_leibniz_d(ns, text, name):
+    # ⅆ was "character 'ⅆ' (DOUBLE-STRUCK ITALIC SMALL D) is not allowed", as ⅇ was before it read as e
+    assert parse(text, ns) == parse(name, ns)
