@@ -680,9 +680,13 @@ class _Parser:
         if not token.order and raw in self.ns.names:
             value = self.ns.symbol(raw)  # what resolve_name answers for a declared name (no notes)
         else:
-            resolved = resolve_name(raw, self.ns, order=token.order, typed=token.text,
-                                    position=token.pos, called=called,
-                                    before_power=following.kind == "op" and following.value == "^")
+            try:
+                resolved = resolve_name(raw, self.ns, order=token.order, typed=token.text,
+                                        position=token.pos, called=called,
+                                        before_power=following.kind == "op" and following.value == "^")
+            except ExpressionError as unknown:
+                self.refuse_superscript_index(token, following, unknown)
+                raise
             for text in resolved.notes:
                 self.note(text)
             if resolved.kind == "function":
@@ -1174,6 +1178,21 @@ class _Parser:
                                   inner.pos, "syntax")
         self.expect_close(opener)
         return self.derivative_of(inner, order)
+
+    def refuse_superscript_index(self, token: Token, following: Token, unknown: ExpressionError) -> None:
+        """m² where the problem has m2 and no m: a raised digit typed for the index (a phone's long-pressed 2 gives
+        ², never ₂). Refused naming both: m squared, or the variable m2."""
+        if unknown.code != "unknown_name" or following.kind != "sup" or following.pos != token.end \
+                or following.value < 0 or token.order:
+            return
+        indexed = f"{token.value}{following.value}"
+        if indexed in self.ns.names or f"{token.value}_{following.value}" in self.ns.names:
+            shown = self.text[token.pos:following.end]
+            name = indexed if indexed in self.ns.names else f"{token.value}_{following.value}"
+            raise ExpressionError(f"'{shown}' is {token.text} to the power {following.value}, and this problem has "
+                                  f"no {token.text} but a variable {name}", token.pos, "unknown_name",
+                                  f"for the variable, type {token.text}{following.value} or {token.text}_"
+                                  f"{following.value} (a subscript, not a raised digit)")
 
     def maple_d(self, token: Token) -> sympy.Expr:
         """Maple's derivative operator, as Maple and Möbius print it: ``D(θ)(t)`` is θ̇, ``D(D(θ))(t)`` is θ̈."""

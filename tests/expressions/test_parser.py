@@ -1339,3 +1339,14 @@ def test_a_number_typed_as_a_phone_or_another_country_prints_it_is_refused_with_
     with pytest.raises(ExpressionError) as refused:
         parse_expression(text, Namespace([Variable("y", "length", "real")]))
     assert hint in refused.value.hint
+
+
+@pytest.mark.parametrize("text, shown, variable", [("m¹ m² g", "m¹", "m1"), ("m² g", "m²", "m2"), ("x² + 1", "x²", "x_2")])
+def test_a_raised_digit_where_the_problem_has_the_indexed_variable_is_named(text, shown, variable):
+    # a phone's long-pressed 2 gives ², never ₂: m² for m2 was "unknown name 'm'"
+    ns = Namespace([Variable("m1", "mass", "positive"), Variable("m2", "mass", "positive"),
+                    Variable("g", "acceleration", "positive"), Variable("x_2", "length", "real")])
+    with pytest.raises(ExpressionError) as refused:
+        parse_expression(text, ns)
+    assert f"'{shown}' is" in refused.value.message and f"a variable {variable}" in refused.value.message \
+        and "a subscript, not a raised digit" in refused.value.hint
