@@ -661,6 +661,15 @@ class _Parser:
             return self.function(token.value, token)
         if raw in ("dot", "ddot") and raw not in self.ns and following.kind == "open":
             return self.derivative_call(token, 1 if raw == "dot" else 2)
+        if raw in ("dot", "ddot") and raw not in self.ns.names and not token.order and following.kind == "name" \
+                and not following.order and not following.forced_function \
+                and following.value.lower() not in FUNCTIONS and (raw == "ddot" or not self.after_operand()):
+            # ASCIIMath's accents without brackets (Canvas, Moodle, WeBWorK): ddot theta is θ̈, and dot theta is θ̇
+            # where nothing comes before it (after an operand, Typst's l dot θ is a product: refused naming both)
+            inner = self.advance()
+            value = self.derivative_of(inner, 1 if raw == "dot" else 2)
+            self.note(f"read '{self.text[token.pos:inner.end]}' as {dotted(value.name)}")
+            return value
         if raw in ("frac", "root") and raw not in self.ns.names and not token.order and called:
             two = self.asciimath_pair(token)
             if two is not None:
@@ -1178,6 +1187,12 @@ class _Parser:
                                   inner.pos, "syntax")
         self.expect_close(opener)
         return self.derivative_of(inner, order)
+
+    def after_operand(self) -> bool:
+        """Whether the token before the one just read ends an operand (so that the one just read is a factor of a
+        product): ``l dot θ``, not ``dot θ`` or ``(dot θ)``."""
+        before = self.tokens[self.i - 2] if self.i >= 2 else None
+        return before is not None and before.kind in _OPERAND_ENDS
 
     def refuse_superscript_index(self, token: Token, following: Token, unknown: ExpressionError) -> None:
         """m² where the problem has m2 and no m: a raised digit typed for the index (a phone's long-pressed 2 gives

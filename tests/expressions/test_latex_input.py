@@ -148,7 +148,8 @@ def test_a_system_in_a_brace_or_joined_by_and_is_its_equations(ns, latex):
     # & that is no alignment point
     (r"\ddot{\theta}&-g", "'&' (a LaTeX alignment mark)"),
     # Typst's and speech's "theta dot": which name is dotted?
-    ("l theta dot^2", "'dot' alone is not a variable"), ("l (dot theta)^2", "'dot' alone is not a variable"),
+    ("l theta dot^2", "'dot' alone is not a variable"), ("l (theta dot)^2", "'dot' alone is not a variable"),
+    ("l dot theta^2", "'dot' alone is not a variable"),  # Typst's l⋅θ², or ASCIIMath's l θ̇²?
 ])
 def test_editor_notation_that_cannot_be_read_is_refused_naming_it(ns, latex, named):
     with pytest.raises(ExpressionError) as err:

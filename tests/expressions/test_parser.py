@@ -1350,3 +1350,12 @@ def test_a_raised_digit_where_the_problem_has_the_indexed_variable_is_named(text
         parse_expression(text, ns)
     assert f"'{shown}' is" in refused.value.message and f"a variable {variable}" in refused.value.message \
         and "a subscript, not a raised digit" in refused.value.hint
+
+
+@pytest.mark.parametrize("text, canonical", [
+    ("ddot theta", "thetaddot"), ("l ddot theta + g sin theta", "l*thetaddot + g*sin(theta)"), ("ddot θ", "thetaddot"),
+    ("(dot theta)^2", "thetadot^2"), ("dot theta^2 m", "m*thetadot^2"), ("m g + m l (dot theta)^2", "m*g + m*l*thetadot^2"),
+])
+def test_asciimaths_accents_without_brackets_are_the_derivatives(ns, text, canonical):
+    # ASCIIMath (Canvas, Moodle, WeBWorK) writes ẍ as ddot x: it was "'ddot' alone is not a variable"
+    assert parse(text, ns) == parse(canonical, ns)
