@@ -103,6 +103,32 @@ _NOT_EQUAL = re.compile(r"=/=|/=|<>|=\\=")
 # The combining dots above, which on a space are the spacing dots ˙ and ¨.
 _COMBINING_ACCENTS = frozenset("\u0307\u0308")
 
+# Invisible characters that change nothing before or after a formula. Not the direction overrides and isolates
+# (U+202A-202E, U+2066-2069) nor the right-to-left mark: at the start they would show the formula otherwise than it
+# reads, so they stay refused, named.
+_EDGE_INVISIBLE = frozenset("\u200b\u200c\u200d\u2060\ufeff\u00ad\u200e\u2061\u2062\u2063")
+
+
+def _invisible_or_blank(ch: str) -> bool:
+    return ch.isspace() or ch in _EDGE_INVISIBLE
+
+
+def _without_invisible_edges(text: str) -> str:
+    """The text with the invisible format characters before and after the formula made spaces (a byte order mark
+    at the start, a zero-width space or a direction mark a web page or an RTL text pastes at an end): they join or
+    split nothing there, and the student cannot see them to delete. Inside the formula they stay refused."""
+    start, end = 0, len(text)
+    while start < end and _invisible_or_blank(text[start]):
+        start += 1
+    while end > start and _invisible_or_blank(text[end - 1]):
+        end -= 1
+    edges = text[:start] + text[end:]
+    if all(ch.isspace() for ch in edges):
+        return text
+    blank = lambda part: "".join(ch if ch.isspace() else " " for ch in part)  # noqa: E731 (line breaks stay)
+    return blank(text[:start]) + text[start:end] + blank(text[end:])
+
+
 # A caption before a line's formula: words that name an answer (a ratio mg : l must not lose its mg, so only these)
 # and a colon, then a space: Answer:, Final answer:, Tension:, Eq1:, Equation of motion:, Respuesta:.
 _CAPTION_WORDS = ("answer|ans|final|my|the|solution|result|tension|normal|force|reaction|acceleration|equations?|eqn?s?"
@@ -268,6 +294,8 @@ class _Tokenizer:
         # raising inside for each one it lacks, and the pattern has a ^ and a _)
         if _FULLWIDTH.search(text):
             text = text.translate(FULLWIDTH_SYMBOLS)
+        if text and (_invisible_or_blank(text[0]) or _invisible_or_blank(text[-1])):
+            text = _without_invisible_edges(text)
         if "**" in text and (bold := _MARKDOWN_BOLD.fullmatch(text)):
             # **T = m g cos θ**: Markdown's bold, as a chat assistant's copy button gives its final answer (never
             # Python's power: nothing comes before the first ** to raise); spaces, so that positions stay

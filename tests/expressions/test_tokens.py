@@ -663,3 +663,18 @@ def test_a_raised_minus_where_no_power_can_be_is_a_calculators_negation(text, pl
 @pytest.mark.parametrize("text, sup", [("x⁻¹", -1), ("x ⁻¹", -1), ("(x)⁻²", -2)])
 def test_a_raised_minus_after_an_operand_is_still_a_power(text, sup):
     assert ("sup", sup) in kinds(text)
+
+
+@pytest.mark.parametrize("text", ["\ufeffm g", "m g\u200b", "\u200em g", "m g\u00ad", " \u200b m g \u2060\n", "m g\u2062"])
+def test_an_invisible_character_before_or_after_the_formula_changes_nothing(text):
+    # a byte order mark at the start or a zero-width space at the end was "delete it": the student cannot see it
+    assert kinds(text) == kinds(text.replace("\ufeff", "").replace("\u200b", "").replace("\u200e", "")
+                                .replace("\u00ad", "").replace("\u2060", "").replace("\u2062", ""))
+
+
+@pytest.mark.parametrize("text", ["m\u200bg", "\u202em g", "m g \u202e", "\u200fm g", "\u2067m g\u2069"])
+def test_an_invisible_character_inside_or_one_that_turns_the_display_stays_refused(text):
+    # inside it may split a name (m​g); a direction override or isolate shows the formula otherwise than it reads
+    with pytest.raises(ExpressionError) as refused:
+        tokenize(text)
+    assert "invisible character" in refused.value.message
