@@ -535,3 +535,42 @@ def test_a_spinning_ball_bouncing_on_a_rough_floor_takes_a_coulomb_friction_impu
     assert motion.qdot[-1, 0] == pytest.approx(final, abs=1e-8)
     energy = m / 2 * (motion.qdot[:, 0] ** 2 + motion.qdot[:, 2] ** 2) + m * R * R / 5 * motion.qdot[:, 1] ** 2 + m * G * motion.q[:, 2]
     assert np.all(np.diff(energy) <= 1e-9)
+
+
+# -- Zeno sequences that end in resting contact ----------------------------------------------------
+
+@pytest.mark.parametrize("e, M, h", [(0.31, 0.5, 1.23), (0.58, 0.73, 0.47)])
+def test_a_small_ball_bouncing_on_a_big_one_comes_to_rest_on_it(e, M, h):
+    # Before: the small ball's last rebounds off the big one, resting on the floor, came out of
+    # each impact at ~3e-9 m/s, never lifted the gap out of its rounding, and bounced 10,000
+    # times at the same height (the rebound test used the free fall of both balls, in which
+    # the gap between them does not accelerate at all).
+    m = 0.05
+    motion = simulate_scene(load_scene(SCENES / "stacked_balls_drop.toml"), {"e": e, "M": M, "h": h}, t_end=2.0,
+                            samples=201)
+    assert motion.events[-1].effect == "contact"
+    rest = motion.t > motion.events[-1].t
+    assert rest.sum() > 10 and motion.active[rest].all()
+    np.testing.assert_allclose(motion.multipliers[rest], [[(M + m) * G, m * G]] * rest.sum(), rtol=1e-9)
+    energy = M / 2 * motion.qdot[:, 0] ** 2 + m / 2 * motion.qdot[:, 1] ** 2 + G * (M * motion.q[:, 0] + m * motion.q[:, 1])
+    assert np.all(np.diff(energy) <= 1e-9)
+
+
+@pytest.mark.parametrize("e, mu_s, mu_k, v", [
+    (0.089, 0.59, 0.42, 0.77),
+    (0.23783859635689797, 0.5190224277267071, 0.10847674431672183, 2.9051136600917373),
+])
+def test_a_ball_driven_back_into_a_wall_by_its_spin_comes_to_rest_against_it(e, mu_s, mu_k, v):
+    # With e < 2/5 friction brings the ball back to the wall, again and again. Before: the wall's
+    # last rebounds were counted as bounces although friction pressed the ball into it (the
+    # rebound test left friction out), or, at 1e-8 m/s, the contact was located 1e-13 inside
+    # the wall where Newton's steps could not reach the gap's zero, and the bounce fired again
+    # at once: 10,000 events either way.
+    motion = simulate_scene(load_scene(SCENES / "ball_rolling_into_wall.toml"),
+                            {"e": e, "mu_s": mu_s, "mu_k": mu_k, "v": v}, t_end=2.5, samples=251)
+    assert motion.events[-1].effect == "stick"
+    rest = motion.t > motion.events[-1].t
+    assert rest.sum() > 10
+    np.testing.assert_allclose(motion.qdot[rest], 0.0, atol=1e-9)
+    np.testing.assert_allclose(motion.q[rest, 0], 0.5 - 0.03, atol=1e-12)
+    assert all(b.t >= a.t for a, b in zip(motion.events, motion.events[1:]))
