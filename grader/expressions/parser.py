@@ -695,6 +695,9 @@ class _Parser:
                                         before_power=following.kind == "op" and following.value == "^")
             except ExpressionError as unknown:
                 self.refuse_superscript_index(token, following, unknown)
+                if unknown.code == "unknown_name" and following.kind == "bad" and following.text == ":=":
+                    # T := m g (Maple, Maxima, a Python walrus): the definition is what to fix, not the name T
+                    raise following.error from None
                 raise
             for text in resolved.notes:
                 self.note(text)

@@ -588,9 +588,9 @@ class _Tokenizer:
                       error=ExpressionError("'!=' (not equal) is not part of an answer", start, "syntax",
                                             "give an expression, or an equation with ="))
         elif ch == ":" and self.peek(1) == "=":
-            self.emit("bad", ch, start, start + 2,
-                      error=ExpressionError("':=' (a definition) is not part of a formula", start, "syntax",
-                                            "write an equation with ="))
+            error = ExpressionError("':=' (a definition) is not part of a formula", start, "syntax",
+                                    "write an equation with =, or the label's = (T = …), or the expression alone")
+            self.emit("bad", ch, start, start + 2, error=error)
         elif ch == "&" and ((self.environments and self.environments[-1] in _LAYOUT_ENVIRONMENTS)
                             or self.beside_equals(start)):
             # an alignment point (of \begin{aligned}, or '&=' of a line copied out of one): nothing to a grader

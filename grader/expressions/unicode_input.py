@@ -230,6 +230,7 @@ _SYMBOL_HINTS = {
                     "group with round brackets ( ) (or [ ] or { }), as in m(g + a)"),
     **dict.fromkeys("✓✔✅☑", "delete the check mark: the answer is the formula alone"),
     "٫": "'٫' is the Arabic decimal separator: write a point, as in 0.3",
+    "←": "'←' (an assignment) is no equation: write = (T = …), or give the expression alone",
     "∥": "'∥' (parallel, or a norm) is not part of a formula: write |x| for the absolute value of a number",
 }
 

@@ -1359,3 +1359,11 @@ def test_a_raised_digit_where_the_problem_has_the_indexed_variable_is_named(text
 def test_asciimaths_accents_without_brackets_are_the_derivatives(ns, text, canonical):
     # ASCIIMath (Canvas, Moodle, WeBWorK) writes ẍ as ddot x: it was "'ddot' alone is not a variable"
     assert parse(text, ns) == parse(canonical, ns)
+
+
+@pytest.mark.parametrize("text", ["T := y", "T:=y^2", "Tension := y"])
+def test_a_definition_after_an_unknown_label_names_the_definition(text):
+    # T := m g (Maple, Maxima) was "unknown name 'T'", the label, not the ':=' to fix
+    with pytest.raises(ExpressionError) as refused:
+        parse_expression(text, Namespace([Variable("y", "length", "real")]))
+    assert "':=' (a definition)" in refused.value.message and "T = …" in refused.value.hint
