@@ -553,6 +553,10 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
     spoken = _SPOKEN_WORDS.get(raw.lower())
     if spoken is not None:  # m l θ̇ squared: a phone's dictation, or the formula read aloud
         raise ExpressionError(f"unknown name '{typed}': it is a word, not a symbol", position, "unknown_name", spoken)
+    greek, letter = _LATIN_FOR_GREEK.get(raw, (None, None))
+    if greek is not None and greek in ns.names:  # sin a for sin α: a keyboard without Greek letters
+        raise ExpressionError(f"unknown name '{typed}': the problem has {letter} ({greek}), which '{typed}' may "
+                              "stand for", position, "unknown_name", f"type {greek} or {letter} for the Greek letter")
     lowered = _capitalised_start(raw, ns, position)
     if lowered is not None:  # Mg cos θ: a phone capitalises the first letter of what is typed
         shown = typed[0].lower() + typed[1:] if typed[:1] == raw[:1] else lowered
@@ -599,6 +603,13 @@ def _capitalised_start(raw: str, ns: "Namespace", position: int) -> str | None:
     except ExpressionError:
         return None
     return lowered if found.kind in ("symbol", "split") else None
+
+
+# Latin letters typed for the Greek letter they resemble, on a keyboard without Greek: sin a for sin α.
+# (q and f are θ and φ in Word's Symbol font, which a copy as plain text leaves as the Latin letters.)
+_LATIN_FOR_GREEK = {"a": ("alpha", "α"), "B": ("beta", "β"), "w": ("omega", "ω"), "W": ("Omega", "Ω"),
+                    "u": ("mu", "μ"), "v": ("nu", "ν"), "p": ("rho", "ρ"), "t": ("tau", "τ"), "q": ("theta", "θ"),
+                    "f": ("phi", "φ"), "y": ("gamma", "γ")}
 
 
 # Greek letters that look like Latin ones in most fonts, and the Latin letter.

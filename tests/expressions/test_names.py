@@ -281,3 +281,13 @@ def test_a_function_spelt_out_is_named_with_its_name_here(ns, text, fix):
     with pytest.raises(ExpressionError) as refused:
         parse_expression(text, ns)
     assert refused.value.hint.startswith(fix)
+
+
+@pytest.mark.parametrize("text, greek", [("cos a", "alpha"), ("m g cos q", "theta"), ("w t", "omega")])
+def test_a_latin_letter_for_a_greek_one_of_the_problem_is_named(text, greek):
+    # sin a for sin α (no Greek on the keyboard; q is θ in Word's Symbol font): it was "unknown name 'a'"
+    ns = Namespace([Variable("alpha", "angle", "real"), Variable("theta", "angle", "real"), Variable("m", "mass"),
+                    Variable("g", "acceleration"), Variable("omega", "angular_velocity"), Variable("t", "time")])
+    with pytest.raises(ExpressionError) as refused:
+        parse_expression(text, ns)
+    assert f"({greek})" in refused.value.message and refused.value.hint.startswith(f"type {greek}")
