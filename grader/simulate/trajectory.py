@@ -361,12 +361,9 @@ class Simulation:
         return np.concatenate([q, v])
 
     def _velocity_change(self, t, q, v, rows, change) -> np.ndarray:
-        """Δq̇ = M⁻¹ Jᵀ Λ with J Δq̇ = ``change`` for the constraints ``rows`` (an impulse)."""
+        """Δq̇ with M Δq̇ = Jᵀ Λ and J Δq̇ = ``change`` for the constraints ``rows`` (an impulse)."""
         M, _, J, _ = self.compiled.terms(t, q, v)
-        JB = J[rows]
-        MinvJT = np.linalg.solve(M, JB.T)
-        impulse = np.linalg.solve(JB @ MinvJT, change)
-        return MinvJT @ impulse
+        return _impulse(M, J[rows].T, J[rows], change)[0]
 
     def _impacts(self, t, q, v, mode: Mode, struck: list[int]) -> tuple[np.ndarray, set[int], set[int], set[int]]:
         """Newton's impact law on the contacts ``struck``, then on every contact the impulses
@@ -455,15 +452,14 @@ class Simulation:
             rows = sorted((contacts | rough) - let_go - set(saturated))
             if not rows:
                 return v, set(), set(), rough & rigid
-            # Δq̇ = M⁻¹ (J_rowsᵀ P + Σ J_rᵀ σ μ_k P_normal) for the saturated frictions
+            # M Δq̇ = J_rowsᵀ P + Σ J_rᵀ σ μ_k P_normal for the saturated frictions
             B = J[rows].T.copy()
             for r, sign in saturated.items():
                 effect = self.effects[r]
                 if effect.normal in rows:
                     B[:, rows.index(effect.normal)] += sign * effect.mu_k * J[r]
-            MinvB = np.linalg.solve(M, B)
             target = np.array([targets.get(r, 0.0) for r in rows])
-            impulse = np.linalg.lstsq(J[rows] @ MinvB, target - rates[rows], rcond=None)[0]
+            change, impulse = _impulse(M, B, J[rows], target - rates[rows])
             band = 1e-9 * np.abs(impulse).max(initial=0.0)
             pulling = [(impulse[k], r) for k, r in enumerate(rows)
                        if self.effects[r].kind == "unilateral" and impulse[k] < -band]
@@ -483,7 +479,7 @@ class Simulation:
             _, r, sign = max(sliding)
             saturated[r] = sign
         held = (held | (set(struck) - bounced)) - let_go
-        return v + MinvB @ impulse, held, bounced - let_go, (let_go | set(saturated)) & rigid
+        return v + change, held, bounced - let_go, (let_go | set(saturated)) & rigid
 
     def transition(self, t: float, y: np.ndarray, mode: Mode, effect: str, i: int
                    ) -> tuple[Mode, np.ndarray, list[tuple[str, int]]]:
@@ -736,6 +732,21 @@ class Simulation:
         k = len(t)
         return Trajectory(self.compiled.coordinates, self.compiled.constraints, t, q, v,
                           lam.reshape(k, m), Q.reshape(k, m, n), active.reshape(k, m), events)
+
+
+def _impulse(M: np.ndarray, B: np.ndarray, J: np.ndarray, change: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(Δq̇, P) with M Δq̇ = B P and J Δq̇ = ``change``, solved together: M alone may be singular
+    (a massless pulley's coordinate, held by its strings), which made ``solve(M, ...)`` raise
+    numpy's bare "Singular matrix" at the first event of such a scene."""
+    n, k = B.shape
+    K = np.zeros((n + k, n + k))
+    K[:n, :n], K[:n, n:], K[n:, :n] = M, -B, J
+    rhs = np.concatenate([np.zeros(n), change])
+    try:
+        x = np.linalg.solve(K, rhs)
+    except np.linalg.LinAlgError:
+        x = np.linalg.lstsq(K, rhs, rcond=None)[0]
+    return x[:n], x[n:]
 
 
 def simulate_scene(scene, overrides: Mapping[str, float] | None = None, *, t_end: float,

@@ -574,3 +574,21 @@ def test_a_ball_driven_back_into_a_wall_by_its_spin_comes_to_rest_against_it(e, 
     np.testing.assert_allclose(motion.qdot[rest], 0.0, atol=1e-9)
     np.testing.assert_allclose(motion.q[rest, 0], 0.5 - 0.03, atol=1e-12)
     assert all(b.t >= a.t for a, b in zip(motion.events, motion.events[1:]))
+
+
+# -- a massless pulley held by strings that could go slack -------------------------------------------
+
+@pytest.mark.parametrize("m2, m3", [(1.0, 2.0), (1.053, 2.263)])
+def test_a_double_atwood_machine_with_a_massless_pulley_and_slack_capable_strings_is_simulated(m2, m3):
+    # The movable pulley's coordinate has no mass: M is singular, the KKT system is not. Before:
+    # projecting the start onto the strings solved M Δq̇ = Jᵀ Λ with M alone and raised numpy's
+    # bare "Singular matrix", so the scene had no simulation at all, whatever its values.
+    m1 = 3.0
+    scene_ = load_scene(Path(__file__).resolve().parents[1] / "mechanics" / "scenes" / "double_atwood.toml")
+    motion = simulate_scene(scene_, {"m2": m2, "m3": m3}, t_end=1.0, samples=51)
+    assert motion.events == [] and motion.active.all()
+    mu = m1 * (m2 + m3) + 4 * m2 * m3
+    upper = 8 * m1 * m2 * m3 * G / mu
+    np.testing.assert_allclose(motion.q[:, 0], 1.0 + G * (m1 * (m2 + m3) - 4 * m2 * m3) / mu * motion.t ** 2 / 2,
+                               atol=1e-10)
+    np.testing.assert_allclose(motion.multipliers, [[upper, upper / 2]] * len(motion.t), rtol=1e-9)
