@@ -72,6 +72,8 @@ OPERATOR_CHARS = {"·": "*", "⋅": "*", "×": "*", "∗": "*", "•": "*", "∙
                   # the middle dots of Japanese and Chinese input methods (m・g), and the hyphenation point
                   # some PDFs give for a middle dot: a product, as · is (between digits, as ambiguous as ·)
                   "・": "*", "･": "*", "‧": "*",
+                  # and the long-vowel mark a Japanese input method types for the '-' key in kana mode (m g ー m a)
+                  "ー": "-", "ｰ": "-",
                   # a phone's emoji keyboard (➕ ➖ ✖️ ➗), the multiplication X of symbol pickers (✕) and the cross
                   # product sign OCR gives for × (⨯): the operators they are drawn as
                   "➕": "+", "➖": "-", "✖": "*", "➗": "/", "✕": "*", "⨯": "*",

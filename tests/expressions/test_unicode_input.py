@@ -110,6 +110,7 @@ def test_every_exponential_e_of_editors_is_eulers_number(text):
 
 @pytest.mark.parametrize("typed, plain", [
     ("m・n", "m*n"), ("m･n", "m*n"), ("m‧n", "m*n"),  # Japanese and Chinese input methods' middle dots
+    ("m ー n", "m - n"), ("ーm", "-m"), ("m ｰ n", "m - n"),  # the long-vowel mark of a kana-mode '-' key
     ("m ✕ n", "m*n"), ("m ✖ n", "m*n"), ("m ✖\ufe0f n", "m*n"), ("m ✖\ufe0e n", "m*n"), ("m ⨯ n", "m*n"),
     ("m ➕ n", "m + n"), ("m ➕\ufe0f n", "m + n"), ("m ➖ n", "m - n"), ("➖m", "-m"), ("m ➗ n", "m/n"),
     ("m ˖ n", "m + n"), ("m ˗ n", "m - n"), ("˗m", "-m"), ("mˆ2", "m^2"), ("(m + n)ˆ(-1)", "(m + n)^(-1)"),
