@@ -34,7 +34,9 @@ a release, and a tension that touches zero (a whirl at exactly the critical spee
 
 **Impacts** (:meth:`Simulation._impacts`) follow Newton's law contact by contact: a resting contact
 that would have to pull lets go (a struck Atwood mass slackens its string), and one with
-restitution > 0 is struck in turn when the impulses drive it in (Newton's cradle).
+restitution > 0 is struck in turn when the impulses drive it in (Newton's cradle). Friction at an
+impact follows Coulomb's law for impulses. A contact that would leave too slowly to lift its gap
+out of rounding holds, which ends a Zeno sequence of bounces in resting contact.
 
 Examples
 --------
@@ -61,7 +63,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq, minimize_scalar
 
-from grader.simulate.compiled import CompiledScene, kkt_solve, parameter_values
+from grader.simulate.compiled import CompiledScene, SingularDynamics, kkt_solve, parameter_values
 from grader.simulate.effects import Effect, Mode, declared_effects
 from grader.simulate.events import EventRecord, SimulationError, guard_start, within_budget
 from grader.simulate.initial import initial_state
@@ -371,8 +373,8 @@ class Simulation:
         rolling constraints that slip).
 
         In each round the struck contacts take their impulses together, each by its own
-        restitution, with the bilateral and sticking constraints kept and the resting contacts
-        of restitution 0 kept at rest; a resting contact that could only be kept by pulling (a
+        restitution, with the bilateral constraints kept, the rolling ones by Coulomb's law (see
+        :meth:`_impact_round`) and the resting contacts of restitution 0 kept at rest; a resting contact that could only be kept by pulling (a
         string whose mass is struck towards the pulley, a ball under a block that the block's
         string jerks away) lets go, and so does a struck one whose joint impulse would pull.
         A resting contact with restitution > 0 takes no part in the round: if the impulses
@@ -393,7 +395,10 @@ class Simulation:
         # small ball bouncing on a big one resting on the floor).
         bias = self.compiled.terms(t, q, v)[3]
         for j in touching:
-            qddot, _, J, _ = self.solve(t, y, Mode(mode.active - {j}, dict(mode.slipping), dict(mode.offsets)))
+            try:
+                qddot, _, J, _ = self.solve(t, y, Mode(mode.active - {j}, dict(mode.slipping), dict(mode.offsets)))
+            except SingularDynamics:  # open, it would leave a massless coordinate free
+                continue
             pull = -(J[j] @ qddot + bias[j])
             v_tol[j] = max(v_tol[j], np.sqrt(max(2 * pull * 4 * np.finfo(float).eps / _TOL * f_tol[j], 0.0)))
         hit: set[int] = set()
@@ -737,7 +742,7 @@ class Simulation:
 def _impulse(M: np.ndarray, B: np.ndarray, J: np.ndarray, change: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(Δq̇, P) with M Δq̇ = B P and J Δq̇ = ``change``, solved together: M alone may be singular
     (a massless pulley's coordinate, held by its strings), which made ``solve(M, ...)`` raise
-    numpy's bare "Singular matrix" at the first event of such a scene."""
+    numpy's bare "Singular matrix" when such a scene's start was put on its constraints."""
     n, k = B.shape
     K = np.zeros((n + k, n + k))
     K[:n, :n], K[:n, n:], K[n:, :n] = M, -B, J
