@@ -14,7 +14,8 @@ from the ``[initial]`` state at t = 0 in three ways, tried in this order:
    and u_c(t) = u_c(0) + ∫₀ᵗ u̇_c dt.
 3. **An energy quadrature.** With one coordinate q left and no explicit t, energy gives
    q̇² = v²(q) and t = s ∫_{q₀}^{q} dq'/√(v²(q')) (s the sign q̇ starts with, or that of q̈ from
-   rest). When sympy integrates it, t(q) is known in closed form; when it also solves t = t(q)
+   rest; an integrand in cos q alone also in w = sin(q/2), where the tautochrone's is elementary).
+   When sympy integrates it, t(q) is known in closed form; when it also solves t = t(q)
    for q, so is q(t) (r = r₀√(1 + ω₀²t²) for the free particle). The quadrature follows the
    motion only until it turns back; a closed form that goes on matching the motion beyond the
    turning point is kept, others are refused. A motion that starts at rest at an equilibrium has
@@ -399,10 +400,18 @@ def _quadrature(evaluator, plan: _Plan) -> Quadrature:
     # cost most of the time on an elementary integrand (a second for the radial fall's
     # √(r/(r₀ − r))) and return a Piecewise over both sides of a branch point. Without them, an
     # antiderivative that does not follow the motion, or none, sends us on to everything sympy has.
+    # Between the two, an integrand in cos q alone in half-angles: with w = sin(q/2), dq = 2 dw/cos(q/2) and
+    # cos q = 1 − 2w², elementary where the direct one is not for sympy (a bead on a cycloid, ∫ √((1 + cos φ)/
+    # (cos φ − cos φ₀)) dφ: the tautochrone). Only where cos(q/2) > 0 on q's whole domain.
+    half_angle = _half_angle_integrand(squared, u)
+    attempts = [(integrate, {"meijerg": False}, _CHEAP_INTEGRATE_BUDGET_S)]
+    if half_angle is not None:
+        attempts.append((half_angle, {"meijerg": False}, _CHEAP_INTEGRATE_BUDGET_S))
+    attempts.append((integrate, {}, _INTEGRATE_BUDGET_S))
     refused, tried = None, []
-    for options, seconds in (({"meijerg": False}, _CHEAP_INTEGRATE_BUDGET_S), ({}, _INTEGRATE_BUDGET_S)):
+    for method, options, seconds in attempts:
         with budget.step(f"integrating the energy quadrature in {u.name}"):
-            antiderivative = budget.attempt(lambda: integrate(options), seconds, fallback=lambda: None)
+            antiderivative = budget.attempt(lambda: method(options), seconds, fallback=lambda: None)
         if antiderivative is None or antiderivative.has(sympy.Integral) or antiderivative in tried:
             continue
         tried.append(antiderivative)
@@ -416,6 +425,43 @@ def _quadrature(evaluator, plan: _Plan) -> Quadrature:
     raise _refusal(evaluator, plan,
                    f"and the energy quadrature {shown} is not an elementary function{elliptic}: sympy "
                    f"finds no antiderivative (it tries for {_INTEGRATE_BUDGET_S:g} s); {_ASK_INSTEAD}")
+
+
+def _half_angle_integrand(squared: sympy.Expr, u):
+    """∫ dq/√(squared) as a function of options that integrates in w = sin(q/2) and returns G(sin(q/2)),
+    or None: where squared is not a function of cos q alone, or q may leave (−π, π) (cos(q/2) > 0 there).
+
+    >>> phi, g, a, c0 = sympy.symbols("phi g a c0", positive=True)
+    >>> class U: symbol = phi; domain = type("D", (), {"kind": "interval", "lo": -3.1, "hi": 3.1})()
+    >>> integrate = _half_angle_integrand(g*(sympy.cos(phi) - c0)/(a*(sympy.cos(phi) + 1)), U)
+    >>> integrate({"meijerg": False}).has(sympy.asin)
+    True
+    """
+    q = u.symbol
+    domain = u.domain
+    # (to 1e-3: [-3.1416, 3.1416] is how scenes write (−π, π))
+    if domain.kind != "interval" or not (-math.pi - 1e-3 <= float(domain.lo) and float(domain.hi) <= math.pi + 1e-3):
+        return None
+    c = sympy.Dummy("c")
+    in_cos = squared.xreplace({sympy.cos(q): c})
+    if q in in_cos.free_symbols or c not in in_cos.free_symbols:
+        return None
+    w = sympy.Dummy("w", real=True)
+    # Other cosines (of the start, cos φ₀ from energy) in half-angles too: the radicand is then
+    # sin²(φ₀/2) − w², whose arcsine at the start is π/2 as it reads, not asin(√2 sin(φ₀/2)/√(1 − cos φ₀)).
+    in_cos = in_cos.replace(lambda e: isinstance(e, sympy.cos), lambda e: 1 - 2 * sympy.sin(e.args[0] / 2) ** 2)
+    radicand = sympy.factor(sympy.cancel((1 - w ** 2) * in_cos.xreplace({c: 1 - 2 * w ** 2})))
+
+    def integrate(options):
+        try:
+            antiderivative = sympy.integrate(2 / sympy.sqrt(radicand), w, **options)
+        except (NotImplementedError, ValueError, TypeError):
+            return None
+        if antiderivative.has(sympy.Integral):  # none found (an elliptic integral: a pendulum)
+            return None
+        return antiderivative.xreplace({w: sympy.sin(q / 2)})
+
+    return integrate
 
 
 def _quadrature_from(evaluator, plan: _Plan, u, sign: int, squared: sympy.Expr, antiderivative: sympy.Expr,
