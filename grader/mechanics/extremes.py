@@ -84,6 +84,9 @@ def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
         raise SceneError(scene.source, key, f"an extreme over the motion follows it from [initial]; give {u.name}")
     # The quantity on the way out (u̇ with the sign it starts with) and on the way back (the other
     # sign): θ̇ of a swing is −√(…) one way and +√(…) the other, and its maximum is on the way back.
+    # Before any solving: where other coordinates move too, that is the reason, whatever the solves
+    # would do (one that ran out of its budget on a loaded machine gave that reason instead).
+    _one_coordinate_moves(evaluator, spec, u, key)
     start = int(_direction(evaluator, u, _parameter_points(scene)[0]))
     with budget.step("writing the quantity in one coordinate", spec.name):
         branches = {sign: evaluator.reduce(spec.expr, allowed, key, signs={u.name: sign}) for sign in (start, -start)}
@@ -94,7 +97,6 @@ def _extreme_over_the_coordinate(evaluator, spec: AnswerSpec) -> sympy.Expr:
         squared = _turning_condition(evaluator, u, key)
         if squared is not None:
             candidates += [r for r in solve_for(squared, u.symbol, scene.source, key) if r not in candidates]
-    _one_coordinate_moves(evaluator, spec, u, key)
     periodic = _periodic(value, u.symbol)
     want_max = spec.kind == "maximum"
 

@@ -284,3 +284,21 @@ def test_a_motion_far_shorter_than_a_metre_is_followed_to_where_it_turns(stiffne
     text = HANGING_SPRING.replace("STIFFNESS", stiffness).replace(
         "[[answers]]", '[[answers]]\nname = "rest"\nexpr = "x"\nwhere = "xddot = 0"\n\n[[answers]]', 1)
     derived(text, {"rest": "m*g/k", "lowest": "2*m*g/k"})
+
+
+@pytest.mark.parametrize("start", [("theta = 0\n", "theta = 0.3\n"), ("thetadot = 0\n", "thetadot = 1.5\n")])
+def test_other_coordinates_moving_is_the_reason_before_any_solve_runs(monkeypatch, start):
+    # An elastic pendulum released tilted: θ moves as well as r. That was found only after solving for
+    # r's stationary points, so a solve that ran out of its budget (a loaded machine) gave its own
+    # reason instead, and the same scene was refused differently from one run to the next.
+    from grader.mechanics import extremes
+    from tests.mechanics.test_red_team_scenes_8 import HANGING
+
+    def out_of_budget(expr, x, source, key):
+        raise SceneError(source, key, f"solving the condition for {x} ran out of its budget")
+
+    monkeypatch.setattr(extremes, "solve_for", out_of_budget)
+    with pytest.raises(SceneError) as refused:
+        derive(parse_scene(HANGING.read_text().replace(*start), "tilted.toml"))
+    assert "theta moves as well as r" in str(refused.value)
+    assert "ran out of" not in str(refused.value)
