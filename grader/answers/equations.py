@@ -738,8 +738,8 @@ def _state_free_determinant(reference: list[sympy.Expr], answer: list[sympy.Expr
     if split_r is None or split_s is None:
         return None
     try:
-        quotient = sympy.factor(sympy.cancel(sympy.together(split_s[0].det(method="berkowitz")
-                                                            / split_r[0].det(method="berkowitz"))))
+        quotient = _factored(sympy.cancel(sympy.together(split_s[0].det(method="berkowitz")
+                                                         / split_r[0].det(method="berkowitz"))))
     except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
         return None
     return None if quotient.free_symbols & state else quotient
@@ -836,7 +836,7 @@ def _parameter_mixing(reference: list[sympy.Expr], answer: list[sympy.Expr], unk
     if det_r is None or det_s is None or det_r == 0:
         return None
     try:
-        ratio = sympy.factor(sympy.cancel(sympy.together(det_s / det_r)))
+        ratio = _factored(sympy.cancel(sympy.together(det_s / det_r)))
     except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
         return None
     if ratio.free_symbols & state:
@@ -892,7 +892,7 @@ def _state_free_ratio(reference: sympy.Expr, answer: sympy.Expr, state: set) -> 
         ratio = sympy.cancel(sympy.together(_quotients_written_out(answer) / _quotients_written_out(reference)))
         if ratio.free_symbols & state:
             return None
-        return sympy.factor(ratio)  # (m1 - m2)**2, as the student wrote it, rather than multiplied out
+        return _factored(ratio)  # (m1 - m2)**2, as the student wrote it, rather than multiplied out
     except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
         return None
 
@@ -1646,6 +1646,9 @@ _SPECIAL_ANGLES = (0.0, math.pi / 2, -math.pi / 2, math.pi, -math.pi)
 
 # CPU seconds for factoring a mixing determinant too large for `_factored`.
 LARGE_FACTOR_BUDGET_S = 0.3
+# CPU seconds for any other factoring: a few milliseconds as a rule, seconds only with coefficients of
+# hundreds of digits.
+FACTOR_BUDGET_S = 0.1
 # How small against its size (`_singular_near`) a determinant found by descent must be to count as zero: a
 # touching zero ((cos θ − 1/2)²) is reached to about the square root of float precision.
 DESCENT_SMALLNESS = 1e-9
@@ -2023,7 +2026,7 @@ def _determinants_nonzero(m_r: sympy.Matrix, m_s: sympy.Matrix, domains: dict,
         if numerator == sympy.fraction(det_s)[0]:
             # too large for `_factored`: a student's factor ((m₁ − 2m₂)²) multiplied into the mass matrix's
             # determinant is found far more surely on its own
-            numerator = budget.attempt(lambda: sympy.factor(numerator), LARGE_FACTOR_BUDGET_S, lambda: numerator)
+            numerator = _factored(numerator, LARGE_FACTOR_BUDGET_S)
         return [base for base in _bases(numerator) if not base.is_number and _nonzero_on(base, domains) is not True]
     return (_finite_on(m_r, domains) and _finite_on(m_s, domains)
             and _nonzero_on(_factored(sympy.fraction(det_r)[0]), domains) is True) or []
@@ -2051,13 +2054,24 @@ def _where_the_reference_is_undefined(numerator: sympy.Expr, reference: list, do
     return found
 
 
-def _factored(expr: sympy.Expr) -> sympy.Expr:
-    """``expr`` factored when it is small enough: cancelling expands a determinant, and its factors
-    (``r**2 - r*L + L**2``, ``10*theta**2 + 1``) are what `_nonzero_on` can prove one by one."""
-    if _nodes(expr) > FACTOR_MAX_NODES:
-        return expr
+def _factored(expr: sympy.Expr, seconds: float | None = None) -> sympy.Expr:
+    """``expr`` factored when it is small enough, else ``expr`` itself: cancelling expands a determinant,
+    and its factors (``r**2 - r*L + L**2``, ``10*theta**2 + 1``) are what `_nonzero_on` can prove one by one.
+
+    Every factoring here goes through this function: sympy's factoring runs to its end whatever the
+    check's deadline, and a coefficient of hundreds of digits (a typed constant) makes it take seconds
+    (Wang's algorithm looks for large primes), so it runs under a CPU budget.
+
+    >>> x = sympy.Symbol("x")
+    >>> _factored(x**2 - 1)
+    (x - 1)*(x + 1)
+    """
+    if seconds is None:
+        if _nodes(expr) > FACTOR_MAX_NODES:
+            return expr
+        seconds = FACTOR_BUDGET_S
     try:
-        return sympy.factor(expr)
+        return budget.attempt(lambda: sympy.factor(expr), seconds, fallback=lambda: expr)
     except (sympy.PolynomialError, ValueError, TypeError):
         return expr
 
@@ -2717,7 +2731,8 @@ def _real_zeros_only(residual: sympy.Expr, domains: dict) -> sympy.Expr:
     if _nodes(residual) > FACTOR_MAX_NODES:
         return residual
     try:
-        _, factors = sympy.factor_list(residual)
+        _, factors = budget.attempt(lambda: sympy.factor_list(residual), FACTOR_BUDGET_S,
+                                    fallback=lambda: (1, [(residual, 1)]))
     except (sympy.PolynomialError, NotImplementedError, ValueError, TypeError):
         return residual
     kept = [f for f, _ in factors if not (f.free_symbols and _nonzero_on(f, domains) is True)]
@@ -2762,9 +2777,8 @@ def _nonzero_on(expr: sympy.Expr, domains: dict, boxes: int = FACTOR_MAX_BOXES) 
     Factor by factor: cancelling a ratio multiplies out a product of nonzero factors ((2 + cos θ₁)
     times a double pendulum's 2m₁ + m₂ − m₂ cos 2(θ₁ − θ₂)), and each is shown nonzero by its own rule,
     the sum they multiply out to by none."""
-    try:
-        factored = sympy.factor(expr) if _nodes(expr) <= FACTOR_MAX_NODES else sympy.factor_terms(expr)
-    except (sympy.PolynomialError, ValueError, TypeError):
+    factored = _factored(expr)
+    if factored is expr:  # too large, out of its budget, or irreducible
         factored = sympy.factor_terms(expr)
     for factor in sympy.Mul.make_args(factored):
         if factor.is_Pow and factor.exp.is_Integer:
@@ -2797,7 +2811,7 @@ def _signed_by_the_order(expr: sympy.Expr) -> bool:
         return False
     gaps = {b: a + sympy.Dummy(positive=True) for a, b in order.items()}
     shifted = expr.xreplace(gaps)
-    for form in (sympy.expand(shifted), sympy.factor(shifted)):
+    for form in (sympy.expand(shifted), _factored(shifted)):
         if form.is_positive or form.is_negative or _signed_as_squares(form):
             return True
     return False

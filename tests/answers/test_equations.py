@@ -2,6 +2,7 @@
 free of the state, or depending on it and invertible on the whole declared domain)."""
 
 import math
+import time
 
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -1854,3 +1855,36 @@ def test_a_system_whose_typed_domain_is_the_whole_domain_is_mixed_like_any_other
     answer = f"({coefficient})*(m*xddot + k*x) = 0; m*yddot + k*y = 0"
     v = check("m*xddot = -k*x; m*yddot = -k*y", answer, variables, kind="equation")
     assert v.verdict == verdict, v.reason
+
+
+BIG = "9" * 400
+
+
+@pytest.mark.parametrize("reference, answer", [
+    (f"thetadot^2 = g*cos(theta)/l + {BIG}/(l*m)", "thetadot^2 = g*cos(theta)/l"),
+    (f"thetadot^2 = g*cos(theta)/l + {BIG}/(l*m)", f"m*l*thetadot^2 + g*m*cos(theta) = {BIG}"),
+    (f"{BIG}*m*l*thetadot^2 = g*cos(theta)", "thetadot^2 = g*cos(theta)/l"),
+])
+def test_factoring_runs_within_a_budget_whatever_the_constants(monkeypatch, reference, answer):
+    # sympy's factoring runs to its end whatever the check's deadline, and a typed constant of 400 digits
+    # made it take seconds (Wang's algorithm looks for large primes): every factoring runs under a
+    # CPU budget. Here it never ends by itself, so one that ran unbudgeted fails the check.
+    import sympy
+
+    variables = {"m": {"dimension": "mass", "domain": "positive"},
+                 "g": {"dimension": "acceleration", "domain": "positive"},
+                 "l": {"dimension": "length", "domain": "positive"},
+                 "theta": {"dimension": "dimensionless", "domain": "real"},
+                 "thetadot": {"dimension": "1/time", "domain": "real"}}
+
+    def endless(*args, **kwargs):
+        end = time.process_time() + 3
+        while time.process_time() < end:
+            pass
+        raise AssertionError("factoring ran without a budget")
+
+    monkeypatch.setattr(sympy, "factor", endless)
+    monkeypatch.setattr(sympy, "factor_list", endless)
+    v = check(reference, answer, variables, kind="equation", state=["theta", "thetadot"])
+    assert v.verdict == "not_equivalent", v.reason
+    assert "internal error" not in v.reason
