@@ -38,10 +38,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
 
 from grader.mechanics.lagrange import derive
 from grader.mechanics.scene import load_scene
+from tests.mechanics.hand_checks import agrees_by_hand, integrate, period, scene_values
 from tests.mechanics.test_red_team_scenes_7 import at
 
 SCENES = Path(__file__).resolve().parent / "scenes"
@@ -50,11 +50,6 @@ SCENES = Path(__file__).resolve().parent / "scenes"
 @functools.lru_cache(maxsize=None)
 def _derived(name: str):
     return derive(load_scene(SCENES / f"{name}.toml"))
-
-
-def _values(name: str) -> dict[str, float]:
-    """The scene's parameter values (the numbers the engine chose its closed forms at)."""
-    return {p.name: float(p.value) for p in load_scene(SCENES / f"{name}.toml").parameters.values()}
 
 
 def _engine(name: str, answer: str, point: dict[str, float]) -> float:
@@ -191,10 +186,7 @@ CASES = [(scene, answer, expected, points)
 
 @pytest.mark.parametrize("scene, answer, expected, points", CASES, ids=[f"{c[0]}-{c[1]}" for c in CASES])
 def test_answer_agrees_with_the_hand_derivation(scene, answer, expected, points):
-    derivation = _derived(scene)
-    for point in points:
-        got, want = at(derivation, derivation.answers[answer], point), at(derivation, expected, point)
-        assert got == pytest.approx(want, rel=1e-10, abs=1e-12), f"{answer} at {point}"
+    agrees_by_hand(_derived(scene), answer, expected, points)
 
 
 def test_every_answer_of_the_new_scenes_is_checked_by_hand():
@@ -204,22 +196,8 @@ def test_every_answer_of_the_new_scenes_is_checked_by_hand():
 
 
 # -- numerical experiments: Newton's laws written again, integrated with scipy ---------------------------
-def _integrate(rhs, start, t_end, events=None):
-    return solve_ivp(rhs, (0.0, t_end), start, method="DOP853", rtol=1e-11, atol=1e-13, dense_output=True,
-                     events=events)
-
-
-def _period(solution, velocity_index: int, t_end: float) -> float:
-    """The time between the first and the third sign change of a velocity (one full swing)."""
-    ts = np.linspace(0.0, t_end, 20001)
-    v = solution.sol(ts)[velocity_index]
-    crossings = [ts[i] - v[i] * (ts[i + 1] - ts[i]) / (v[i + 1] - v[i])
-                 for i in range(1, len(ts) - 1) if v[i] * v[i + 1] < 0]
-    return crossings[2] - crossings[0]
-
-
 def test_yoyo_hovers_at_the_engines_acceleration_and_rises_as_its_height_in_time():
-    p = _values("yoyo_pulled_up_accelerating")
+    p = scene_values("yoyo_pulled_up_accelerating")
     m, I, R, g = p["m"], p["I"], p["R"], p["g"]
 
     def newton(A):  # unknowns ÿ, φ̈, T: m ÿ = T − m g, I φ̈ = T R, ÿ + R φ̈ = A
@@ -230,14 +208,14 @@ def test_yoyo_hovers_at_the_engines_acceleration_and_rises_as_its_height_in_time
     assert newton(1.01 * hover)[0] > 0 > newton(0.99 * hover)[0]
     y_acc, _, tension = newton(p["A"])
     assert tension == pytest.approx(_engine("yoyo_pulled_up_accelerating", "tension", p), rel=1e-12)
-    run = _integrate(lambda t, s: [s[1], y_acc], [0.0, 0.0], 1.5)
+    run = integrate(lambda t, s: [s[1], y_acc], [0.0, 0.0], 1.5)
     assert run.sol(1.5)[0] == pytest.approx(
         _engine("yoyo_pulled_up_accelerating", "height_in_time", {**p, "t": 1.5}), rel=1e-9)
 
 
 def test_incline_peg_spring_swing_its_period_and_tensions():
     name = "incline_peg_spring_hanging"
-    p = _values(name)
+    p = scene_values(name)
     m1, m2, k, alpha, g = p["m1"], p["m2"], p["k"], p["alpha"], p["g"]
 
     def newton(s, z):  # unknowns s̈, z̈, T: m1 s̈ = T − m1 g sin α, m2 z̈ = T − m2 g − k z, s̈ + z̈ = 0
@@ -247,11 +225,11 @@ def test_incline_peg_spring_swing_its_period_and_tensions():
         s, sdot = y
         return [sdot, newton(s, -s)[0]]
 
-    run = _integrate(rhs, [0.0, 0.0], 1.5)
+    run = integrate(rhs, [0.0, 0.0], 1.5)
     ts = np.linspace(0.0, 1.5, 15001)
     s = run.sol(ts)[0]
     tensions = [newton(x, -x)[2] for x in s]
-    omega = 2 * math.pi / _period(run, 1, 1.5)
+    omega = 2 * math.pi / period(run, 1, 1.5)
     assert omega == pytest.approx(_engine(name, "frequency", p), rel=1e-6)
     assert max(s) == pytest.approx(_engine(name, "largest_stretch", p), rel=1e-6)
     assert min(tensions) == pytest.approx(_engine(name, "least_tension", p), rel=1e-6)
@@ -262,7 +240,7 @@ def test_incline_peg_spring_swing_its_period_and_tensions():
 
 def test_bead_on_a_spun_up_rod_feels_the_engines_force_in_an_inertial_frame():
     name = "bead_rod_spun_up"
-    p = _values(name)
+    p = scene_values(name)
     m, w0, alpha, r0 = p["m"], p["omega0"], p["alpha"], p["r0"]
 
     def rhs(t, y):  # the bead in inertial x, y; the rod's force λ (−sin φ, cos φ) keeps −x sin φ + y cos φ = 0
@@ -274,7 +252,7 @@ def test_bead_on_a_spun_up_rod_feels_the_engines_force_in_an_inertial_frame():
         lam = m * (2 * w * (vx * c + vy * s) + alpha * (x * c + y_ * s) - w * w * (x * s - y_ * c))
         return [vx, vy, -lam * s / m, lam * c / m]
 
-    run = _integrate(rhs, [r0, 0.0, 0.0, w0 * r0], 1.6)
+    run = integrate(rhs, [r0, 0.0, 0.0, w0 * r0], 1.6)
     for t in (0.0, 0.5, 1.1, 1.6):
         x, y_, vx, vy = run.sol(t)
         phi, w = w0 * t + alpha * t * t / 2, w0 + alpha * t
@@ -301,12 +279,12 @@ def _ellipse_run(p, x0, t_end):
 
     start = [x0, -b * math.sqrt(1 - x0**2 / a**2), 0.0, 0.0]
     bottom = lambda t, s: s[0]  # noqa: E731
-    return _integrate(rhs, start, t_end, events=bottom), forces
+    return integrate(rhs, start, t_end, events=bottom), forces
 
 
 def test_bead_on_an_ellipse_speed_and_force_at_the_bottom_and_its_frequency():
     name = "bead_vertical_ellipse_cartesian"
-    p = _values(name)
+    p = scene_values(name)
     run, forces = _ellipse_run(p, p["x0"], 1.5)
     x, y, vx, vy = run.y_events[0][0]
     assert vx * vx + vy * vy == pytest.approx(_engine(name, "largest_speed_squared", p), rel=1e-8)
@@ -315,24 +293,24 @@ def test_bead_on_an_ellipse_speed_and_force_at_the_bottom_and_its_frequency():
     speeds = [v[2] ** 2 + v[3] ** 2 for v in run.sol(ts).T]
     assert max(speeds) <= _engine(name, "largest_speed_squared", p) * (1 + 1e-9)
     small, _ = _ellipse_run(p, 1e-4 * p["a"], 5.0)
-    assert 2 * math.pi / _period(small, 2, 5.0) == pytest.approx(_engine(name, "frequency", p), rel=1e-6)
+    assert 2 * math.pi / period(small, 2, 5.0) == pytest.approx(_engine(name, "frequency", p), rel=1e-6)
 
 
 def test_disk_on_an_incline_with_a_spring_needs_tan_alpha_over_three():
     name = "disk_incline_spring_axle"
-    p = _values(name)
+    p = scene_values(name)
     m, R, k, alpha, g = p["m"], p["R"], p["k"], p["alpha"], p["g"]
 
     def newton(x):  # unknowns ẍ, φ̈, F: m ẍ = m g sin α − k x − F, m R²/2 φ̈ = F R, ẍ = R φ̈
         return np.linalg.solve([[m, 0, 1], [0, m * R * R / 2, -R], [1, -R, 0]], [m * g * math.sin(alpha) - k * x, 0, 0])
 
-    run = _integrate(lambda t, y: [y[1], newton(y[0])[0]], [0.0, 0.0], 3.0)
+    run = integrate(lambda t, y: [y[1], newton(y[0])[0]], [0.0, 0.0], 3.0)
     ts = np.linspace(0.0, 3.0, 30001)
     xs, vs = run.sol(ts)
     mu = max(abs(newton(x)[2]) / (m * g * math.cos(alpha)) for x in xs)
     assert mu == pytest.approx(_engine(name, "least_friction_coefficient", p), rel=1e-6)
     assert max(vs) == pytest.approx(_engine(name, "largest_speed", p), rel=1e-6)
-    assert 2 * math.pi / _period(run, 1, 3.0) == pytest.approx(_engine(name, "frequency", p), rel=1e-6)
+    assert 2 * math.pi / period(run, 1, 3.0) == pytest.approx(_engine(name, "frequency", p), rel=1e-6)
     for point in _DISK_POINTS[:1]:
         assert newton(point["x"])[2] == pytest.approx(_engine(name, "friction", point), rel=1e-12)
 

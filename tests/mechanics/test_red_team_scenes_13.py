@@ -42,10 +42,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 import sympy
-from scipy.integrate import solve_ivp
 
 from grader.mechanics.lagrange import derive
 from grader.mechanics.scene import SceneError, load_scene, parse_scene
+from tests.mechanics.hand_checks import agrees_by_hand, integrate, period, scene_values
 from tests.mechanics.test_red_team_scenes_7 import at
 
 SCENES = Path(__file__).resolve().parent / "scenes"
@@ -55,10 +55,6 @@ SCENES = Path(__file__).resolve().parent / "scenes"
 def _derived(name: str):
     # The budget is the one `grader derive` gives; the swing seat ran out of it before its fix.
     return derive(load_scene(SCENES / f"{name}.toml"), budget_s=60)
-
-
-def _values(name: str) -> dict[str, float]:
-    return {p.name: float(p.value) for p in load_scene(SCENES / f"{name}.toml").parameters.values()}
 
 
 def _engine(name: str, answer: str, point: dict[str, float]) -> float:
@@ -203,10 +199,7 @@ CASES = [(scene, answer, expected, points)
 
 @pytest.mark.parametrize("scene, answer, expected, points", CASES, ids=[f"{c[0]}-{c[1]}" for c in CASES])
 def test_answer_agrees_with_the_hand_derivation(scene, answer, expected, points):
-    derivation = _derived(scene)
-    for point in points:
-        got, want = at(derivation, derivation.answers[answer], point), at(derivation, expected, point)
-        assert got == pytest.approx(want, rel=1e-10, abs=1e-12), f"{answer} at {point}"
+    agrees_by_hand(_derived(scene), answer, expected, points)
 
 
 def test_every_answer_of_the_new_scenes_is_checked_by_hand():
@@ -216,20 +209,6 @@ def test_every_answer_of_the_new_scenes_is_checked_by_hand():
 
 
 # -- numerical experiments: Newton's laws written again, integrated with scipy -------------------------------
-def _integrate(rhs, start, t_end, events=None):
-    return solve_ivp(rhs, (0.0, t_end), start, method="DOP853", rtol=1e-11, atol=1e-13, dense_output=True,
-                     events=events)
-
-
-def _period(solution, velocity_index: int, t_end: float) -> float:
-    """The time between the first and the third sign change of a velocity (one full swing)."""
-    ts = np.linspace(0.0, t_end, 20001)
-    v = solution.sol(ts)[velocity_index]
-    crossings = [ts[i] - v[i] * (ts[i + 1] - ts[i]) / (v[i + 1] - v[i])
-                 for i in range(1, len(ts) - 1) if v[i] * v[i + 1] < 0]
-    return crossings[2] - crossings[0]
-
-
 def _crossing(condition):
     condition.terminal = False
     return condition
@@ -238,7 +217,7 @@ def _crossing(condition):
 @pytest.mark.parametrize("theta0", [1.2, 0.45])
 def test_stick_on_ice_forces_and_landing_from_newton(theta0):
     name = "stick_falling_on_ice"
-    p = {**_values(name), "theta0": theta0}
+    p = {**scene_values(name), "theta0": theta0}
     m, l, g = p["m"], p["l"], p["g"]
 
     def newton(theta, thetadot):  # unknowns ÿ, θ̈, N
@@ -252,7 +231,7 @@ def test_stick_on_ice_forces_and_landing_from_newton(theta0):
 
     landing = _crossing(lambda t, y: y[2])
     landing.terminal = True
-    run = _integrate(rhs, [0.0, l / 2 * math.sin(theta0), theta0, 0.0, 0.0, 0.0], 10.0, events=landing)
+    run = integrate(rhs, [0.0, l / 2 * math.sin(theta0), theta0, 0.0, 0.0, 0.0], 10.0, events=landing)
     end = run.y_events[0][0]
     assert end[4] ** 2 == pytest.approx(_engine(name, "landing_speed_squared", p), rel=1e-8)
     assert newton(end[2], end[5])[2] == pytest.approx(_engine(name, "landing_normal_force", p), rel=1e-8)
@@ -307,12 +286,12 @@ def _swing_run(p, theta0, t_end):
 
     start = [l * math.sin(theta0) + offset, -l * math.cos(theta0), 0.0, 0.0, 0.0, 0.0]
     bottom = _crossing(lambda t, s: s[0] - offset)
-    return _integrate(rhs, start, t_end, events=bottom), newton, offset
+    return integrate(rhs, start, t_end, events=bottom), newton, offset
 
 
 def test_swing_seat_tensions_and_extremes_from_newton():
     name = "swing_seat_parallel_ropes"
-    p = _values(name)
+    p = scene_values(name)
     run, newton, offset = _swing_run(p, p["theta0"], 3.0)
     l = p["l"]
     ts = np.linspace(0.0, 3.0, 3001)
@@ -338,7 +317,7 @@ def test_swing_seat_tensions_and_extremes_from_newton():
     assert least == pytest.approx(_engine(name, "least_left_tension", p), rel=1e-9)
     assert min(left) >= least * (1 - 1e-9)
     small, _, _ = _swing_run(p, 1e-4, 6.0)
-    assert 2 * math.pi / _period(small, 3, 6.0) == pytest.approx(_engine(name, "small_oscillation_frequency", p),
+    assert 2 * math.pi / period(small, 3, 6.0) == pytest.approx(_engine(name, "small_oscillation_frequency", p),
                                                                  rel=1e-6)
 
 
@@ -368,12 +347,12 @@ def _beads_run(p, theta0, t_end):
     s0, c0 = math.sin(theta0), math.cos(theta0)
     start = [a * s0, -a * c0, b * s0, -b * c0, 0, 0, 0, 0]
     bottom = _crossing(lambda t, s: s[0])
-    return _integrate(rhs, start, t_end, events=bottom), newton
+    return integrate(rhs, start, t_end, events=bottom), newton
 
 
 def test_two_beads_forces_and_extremes_from_newton():
     name = "two_beads_rigid_rod_cartesian"
-    p = _values(name)
+    p = scene_values(name)
     a, b = p["a"], p["b"]
     run, newton = _beads_run(p, p["theta0"], 2.0)
     sides = []
@@ -392,7 +371,7 @@ def test_two_beads_forces_and_extremes_from_newton():
     assert max(sides) == pytest.approx(_engine(name, "largest_inner_side_force", p), rel=1e-12)
     assert newton(run.y_events[0][0])[5] == pytest.approx(_engine(name, "bottom_outer_pull", p), rel=1e-8)
     small, _ = _beads_run(p, 1e-4, 6.0)
-    assert 2 * math.pi / _period(small, 4, 6.0) == pytest.approx(_engine(name, "small_oscillation_frequency", p),
+    assert 2 * math.pi / period(small, 4, 6.0) == pytest.approx(_engine(name, "small_oscillation_frequency", p),
                                                                  rel=1e-6)
 
 
@@ -407,7 +386,7 @@ def test_table_blocks_reach_the_edge_when_and_as_fast_as_the_engine_says(point):
     s1dd, s2dd, ydd, tension = newton()
     edge = _crossing(lambda t, s: s[0])
     edge.terminal = True
-    run = _integrate(lambda t, s: [s[3], s[4], s[5], s1dd, s2dd, ydd], [d1, d2, 0.0, 0.0, 0.0, 0.0], 100.0,
+    run = integrate(lambda t, s: [s[3], s[4], s[5], s1dd, s2dd, ydd], [d1, d2, 0.0, 0.0, 0.0, 0.0], 100.0,
                      events=edge)
     moment, state = run.t_events[0][0], run.y_events[0][0]
     assert moment == pytest.approx(_engine(name, "time_to_edge", point), rel=1e-9)
@@ -423,12 +402,12 @@ def _drum_run(p, start, t_end, events=None):
         return np.linalg.solve([[m * (R - r), 0, -1], [0, m * r * r / 2, -r], [R - r, r, 0]],
                                [-m * g * math.sin(phi), 0, R * beta])
 
-    return _integrate(lambda t, s: [s[2], s[3], *newton(s[0])[:2]], start, t_end, events=events), newton
+    return integrate(lambda t, s: [s[2], s[3], *newton(s[0])[:2]], start, t_end, events=events), newton
 
 
 def test_cylinder_in_accelerating_drum_from_newton():
     name = "cylinder_in_accelerating_drum"
-    p = _values(name)
+    p = scene_values(name)
     m, g, R, r, beta = (p[k] for k in ("m", "g", "R", "r", "beta"))
     riding = math.asin(R * beta / (2 * g))
     turns = _crossing(lambda t, s: s[2] if t > 1e-6 else 1.0)
@@ -452,13 +431,13 @@ def test_cylinder_in_accelerating_drum_from_newton():
     highest = reference_value(reference["reference"], reference["variables"], values, reference["implicit"])
     assert highest == pytest.approx(run.y_events[0][0][0], rel=1e-8)
     small, _ = _drum_run(p, [riding + 1e-5, 0.0, 0.0, 0.0], 4.0)
-    assert 2 * math.pi / _period(small, 2, 4.0) == pytest.approx(_engine(name, "small_oscillation_frequency", p),
+    assert 2 * math.pi / period(small, 2, 4.0) == pytest.approx(_engine(name, "small_oscillation_frequency", p),
                                                                  rel=1e-6)
 
 
 def test_atwood_on_a_spring_from_newton():
     name = "atwood_hung_from_spring"
-    p = _values(name)
+    p = scene_values(name)
     m1, m2, k, g, L = (p[key] for key in ("m1", "m2", "k", "g", "L"))
 
     def newton(y1, y2):  # unknowns ÿ1, ÿ2, z̈, T; the light pulley: 2T = k z
@@ -473,7 +452,7 @@ def test_atwood_on_a_spring_from_newton():
     def pulley_rate(t, s):
         return (s[2] + s[3]) / 2 if t > 1e-6 else 1.0
 
-    run = _integrate(rhs, [L / 2, L / 2, 0.0, 0.0], 1.5, events=_crossing(pulley_rate))
+    run = integrate(rhs, [L / 2, L / 2, 0.0, 0.0], 1.5, events=_crossing(pulley_rate))
     ts = np.linspace(0.0, 1.5, 1501)
     tensions = [newton(*run.sol(t)[:2])[3] for t in ts]
     top = run.y_events[0][0]
@@ -606,5 +585,5 @@ def test_the_time_down_a_cycloid_is_the_same_from_every_start(phi0, a, g):
 
     bottom = _crossing(lambda t, s: s[0])
     bottom.terminal = True
-    run = _integrate(rhs, [phi0, 0.0], 10.0, events=bottom)
+    run = integrate(rhs, [phi0, 0.0], 10.0, events=bottom)
     assert run.t_events[0][0] == pytest.approx(expected, rel=1e-8)

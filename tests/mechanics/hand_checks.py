@@ -1,0 +1,38 @@
+"""What the red-team scene tests share: a scene's own numbers, agreement with a hand derivation at
+parameter points, and Newton's laws integrated with scipy (written again, never the engine's equations)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from grader.mechanics.scene import load_scene
+from tests.mechanics.conftest import SCENES
+from tests.mechanics.test_red_team_scenes_7 import at
+
+
+def scene_values(name: str) -> dict[str, float]:
+    """The scene's parameter values (the numbers the engine chose its closed forms at)."""
+    return {p.name: float(p.value) for p in load_scene(SCENES / f"{name}.toml").parameters.values()}
+
+
+def agrees_by_hand(derivation, answer: str, expected: str, points: list[dict[str, float]]) -> None:
+    """The engine's answer equals the hand-derived ``expected`` at every point, to 1e-10."""
+    for point in points:
+        got, want = at(derivation, derivation.answers[answer], point), at(derivation, expected, point)
+        assert got == pytest.approx(want, rel=1e-10, abs=1e-12), f"{answer} at {point}"
+
+
+def integrate(rhs, start, t_end, events=None):
+    return solve_ivp(rhs, (0.0, t_end), start, method="DOP853", rtol=1e-11, atol=1e-13, dense_output=True,
+                     events=events)
+
+
+def period(solution, velocity_index: int, t_end: float) -> float:
+    """The time between the first and the third sign change of a velocity (one full swing)."""
+    ts = np.linspace(0.0, t_end, 20001)
+    v = solution.sol(ts)[velocity_index]
+    crossings = [ts[i] - v[i] * (ts[i + 1] - ts[i]) / (v[i + 1] - v[i])
+                 for i in range(1, len(ts) - 1) if v[i] * v[i + 1] < 0]
+    return crossings[2] - crossings[0]
