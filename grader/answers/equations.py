@@ -1219,7 +1219,10 @@ def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: d
     # unrelated symbols, so the factor cancels only once every cos² is written 1 - sin² on both sides, products
     # multiplied out first (m cos θ (l θ̈ cos θ - …)); the same values, so a factor found nonzero there is
     # nonzero here.
-    pythagorean = tuple(_pythagorean(sympy.expand(e, trig=False) if _nodes(e) <= FACTOR_MAX_NODES else e)
+    # sin 2θ and cos 2θ likewise: the factor of θ̈ (2 + sin θ cos θ) = −(g/l) sin θ (2 + sin 2θ/2) cancels only
+    # once the double angle is written with θ's own sine and cosine.
+    pythagorean = tuple(_pythagorean(sympy.expand(_in_single_angles(e), trig=False)
+                                     if _nodes(e) <= FACTOR_MAX_NODES else e)
                         for e in (reference, answer))
     if pythagorean != (reference, answer) and not (deadline is not None and time.monotonic() > deadline):
         again = _state_dependent_factor(*pythagorean, domains, samplers, deadline)
@@ -1229,6 +1232,24 @@ def state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: d
 
 
 _SQUARE_AS_ONE_LESS = {sympy.cos: (sympy.sin, -1), sympy.cosh: (sympy.sinh, 1)}
+# Largest whole multiple of an angle written out with the angle's own sine and cosine (sin 12θ has 7 terms).
+MAX_MULTIPLE_ANGLE = 12
+
+
+def _in_single_angles(expr: sympy.Expr) -> sympy.Expr:
+    """``expr`` with the sine and cosine of each small whole multiple of an argument (sin 2θ, cos 3φ) written
+    with the argument's own sine and cosine: the same values, one form.
+
+    >>> t = sympy.Symbol("theta")
+    >>> _in_single_angles(2 + sympy.sin(2*t)/2)
+    sin(theta)*cos(theta) + 2
+    """
+    def multiple(f) -> bool:
+        factor = f.args[0].as_coeff_Mul()[0]
+        return factor.is_Integer and 2 <= abs(factor) <= MAX_MULTIPLE_ANGLE
+
+    multiples = {f: sympy.expand_trig(f) for f in expr.atoms(sympy.sin, sympy.cos) if multiple(f)}
+    return expr.xreplace(multiples) if multiples else expr
 
 
 def _pythagorean(expr: sympy.Expr) -> sympy.Expr:

@@ -1888,3 +1888,23 @@ def test_factoring_runs_within_a_budget_whatever_the_constants(monkeypatch, refe
     v = check(reference, answer, variables, kind="equation", state=["theta", "thetadot"])
     assert v.verdict == "not_equivalent", v.reason
     assert "internal error" not in v.reason
+
+
+# A nonzero state factor written one way on the left and another on the right (2 + sin θ cos θ against
+# 2 + sin 2θ/2) did not cancel in sympy, and a right equation was refused as "proved" not a multiple: multiple
+# angles are now written with the angle's own sine and cosine before the factor is looked for (red team 23).
+@pytest.mark.parametrize("answer, verdict", [
+    ("thetaddot*(2 + sin(theta)*cos(theta)) = -g/l*sin(theta)*(2 + sin(2*theta)/2)", "equivalent"),
+    ("l*thetaddot*(1 + sin(theta)^2) = -g*sin(theta)*(3 - cos(2*theta))/2", "equivalent"),
+    ("thetaddot*(1 + cos(theta)^2) = -g/l*sin(theta)*(3 + cos(2*theta))/2", "equivalent"),
+    ("thetaddot*(2 + sin(theta)*cos(theta)) = -g/l*sin(theta)*(2 + sin(2*theta)/2.001)", "not_equivalent"),
+    ("thetaddot*(1 + sin(theta)*cos(theta)) = -g/l*sin(theta)*(1 + sin(2*theta)/2)", "equivalent"),  # ≥ 1/2
+    ("thetaddot*(1 + 2*sin(theta)*cos(theta)) = -g/l*sin(theta)*(1 + sin(2*theta))", "not_equivalent"),  # 0 at −π/4
+    ("thetaddot*(1 - cos(theta)^2) = -g/l*sin(theta)*(1 - cos(2*theta))/2", "not_equivalent"),   # sin² θ: zero at 0
+    ("thetaddot*(3 + cos(2*theta)) = -g/l*sin(theta)*(2 + 2*cos(theta)^2)", "equivalent"),
+    ("thetaddot*(2 + sin(3*theta)) = -g/l*sin(theta)*(2 + 3*sin(theta) - 4*sin(theta)^3)", "equivalent"),
+    ("thetaddot*(1 + sin(3*theta)) = -g/l*sin(theta)*(1 + 3*sin(theta) - 4*sin(theta)^3)", "not_equivalent"),
+])
+def test_a_state_factor_written_differently_on_each_side_is_found(pendulum, answer, verdict):
+    v = check(PENDULUM_EOM, answer, pendulum, kind="equation")
+    assert v.verdict == verdict, v.reason
