@@ -23,6 +23,7 @@ from __future__ import annotations
 import contextvars
 import itertools
 import math
+import random
 import time
 
 import flint
@@ -1375,7 +1376,8 @@ def _state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: 
     # Neither proved nonzero nor seen to change sign: a factor that touches zero (1 + cos θ at θ = π, θ̇², l θ̇² +
     # g(1 − cos θ) at rest at the bottom) is found where it vanishes; one that stays off zero by less than the first
     # proof's boxes resolve (1.4143 − cos θ − sin θ ≥ 8.6e-5) is proved with more. Either way never a guess.
-    decided = _zero_or_nonzero(numerator, domains, [] if samplers is None else [_first_state(*samplers)], deadline)
+    start = _first_state(*samplers) if samplers is not None else _domain_point(numerator, domains)
+    decided = _zero_or_nonzero(numerator, domains, [start], deadline)
     if isinstance(decided, dict):
         return Comparison(False, "numeric", "your equation is the reference multiplied by a factor that depends on "
                           "the state and is zero (or undefined) at the state in the counterexample (to 30 digits): "
@@ -3240,6 +3242,13 @@ def _inside(domain) -> float:
 def _first_state(parameters: Sampler, states: Sampler) -> dict:
     """The first sampled state with the first parameter point: where a search for a factor's zero starts."""
     return states.joint(parameters.point(0), states.point(0))
+
+
+def _domain_point(expr: sympy.Expr, domains: dict) -> dict:
+    """A point of the declared domains for ``expr``'s variables (a fixed draw), where a search for a factor's zero
+    starts when no sampler is given (the second try of `state_dependent_factor`, in new variables)."""
+    rng = random.Random(0)
+    return {s: domains[s].sample(rng) for s in sorted(expr.free_symbols, key=lambda s: s.name) if s in domains}
 
 
 def _named(point: dict) -> dict:
