@@ -200,8 +200,63 @@ def _remembered_form(expr: sympy.Expr, seconds: float, bounds: tuple = (), order
     limit = sympy.count_ops(expr)
     for candidate in sorted(dict.fromkeys(candidates + rewritten), key=weight):
         if candidate == expr or (sympy.count_ops(candidate) <= limit and _equal(candidate, expr)):
-            return candidate
-    return expr
+            return _positive_sums(candidate, bounds, order, weight)
+    return _positive_sums(expr, bounds, order, weight)
+
+
+def _positive_sums(expr: sympy.Expr, bounds: tuple, order: tuple, weight) -> sympy.Expr:
+    """``expr`` with the sums it multiplies or divides by that are ≤ 0 on the declared domains written
+    negated, where that reads no longer: g m/(4 − 3 sin²θ₀), not −g m/(3 sin²θ₀ − 4). Exact: only signs move.
+
+    >>> g, m = sympy.symbols("g m", positive=True)
+    >>> th0 = sympy.Symbol("theta0", real=True)
+    >>> e = -g*m/(3*sympy.sin(th0)**2 - 4)
+    >>> size = lambda x: (sympy.count_ops(x), len(str(x)))
+    >>> _positive_sums(e, (), (), size)
+    g*m/(4 - 3*sin(theta0)**2)
+    >>> _positive_sums(g*(1 - 2*m*sympy.cos(th0))/(3*sympy.sin(th0)**2 - 4), (), (), size)
+    g*(2*m*cos(theta0) - 1)/(4 - 3*sin(theta0)**2)
+    >>> _positive_sums(m*(1 - 2*g)/(2*g*(3*sympy.sin(th0)**2 - 4)), (), (), size)
+    m*(2*g - 1)/(2*g*(4 - 3*sin(theta0)**2))
+    """
+    numerator, denominator = sympy.fraction(expr)
+    forms = []
+    for content in (False, True):  # 8 − 6 sin²θ as it is, or as 2(4 − 3 sin²θ)
+        forms += _negated_where_negative(numerator, denominator, bounds, order, content)
+    if not forms:
+        return expr
+    flipped = min(forms, key=weight)
+    return flipped if weight(flipped) <= weight(expr) else expr
+
+
+def _negated_where_negative(numerator: sympy.Expr, denominator: sympy.Expr, bounds: tuple, order: tuple,
+                            content: bool) -> list[sympy.Expr]:
+    """numerator/denominator with each sum factor ≤ 0 on the domains negated, the sign in front or in a
+    sum of the numerator; ``content``: with the numbers of each negated sum taken out in front. [] if none."""
+    # Numbers apart from the factors, multiplied in front at the end: sympy multiplies a number into a
+    # sum it stands alone with, and 2(4 − 3 sin²θ) would print as 8 − 6 sin²θ.
+    coefficient, changed, parts = sympy.S.One, False, []
+    for which, part in enumerate((numerator, denominator)):
+        factors = []
+        for factor in sympy.Mul.make_args(part):
+            if factor.is_Number:
+                coefficient = coefficient * factor if which == 0 else coefficient / factor
+                continue
+            base, exp = factor.as_base_exp()
+            if base.is_Add and exp.is_Integer and _factor_sign(base, bounds, order) == -1:
+                number, base = sympy.factor_terms(-base).as_coeff_Mul() if content else (sympy.S.One, -base)
+                number = number ** int(exp if which == 0 else -exp)
+                coefficient, changed = coefficient * number * (-1) ** int(exp), True
+            factors.append(base ** exp if which == 0 else base ** -exp)
+        parts.append(factors)
+    if not changed:
+        return []
+    factors = parts[0] + parts[1]
+    forms = [sympy.Mul(coefficient, *factors)]
+    if coefficient < 0:  # the minus into a sum of the numerator instead: 3(l θ̇² sin θ − 2g)/(l(4 − 3 sin²θ))
+        forms += [sympy.Mul(-coefficient, *factors[:i], -f, *factors[i + 1:])
+                  for i, f in enumerate(parts[0]) if f.is_Add]
+    return forms
 
 
 _REWRITTEN = 3  # how many of the shortest candidates go through our rewritings
@@ -820,16 +875,25 @@ def _factor_sign(f: sympy.Expr, bounds: tuple, order: tuple = ()) -> int | None:
 
 
 def _trig_interval(f: sympy.Expr) -> tuple[float, float] | None:
-    """Bounds of a sum of numbers and numbers times a sine or cosine (each in [−1, 1]): 1 − cos θ₀ ≥ 0."""
+    """Bounds of a sum of numbers and numbers times products of powers of sines and cosines (a product
+    with an odd power in [−1, 1], one of even powers only in [0, 1]): 1 − cos θ₀ ≥ 0, 3 sin²θ − 4 < 0.
+
+    >>> th = sympy.Symbol("theta", real=True)
+    >>> _trig_interval(3*sympy.sin(th)**2 - 4), _trig_interval(1 - sympy.sin(th)*sympy.cos(th)**2)
+    ((-4.0, -1.0), (0.0, 2.0))
+    """
     lo = hi = 0.0
     for term in sympy.Add.make_args(f):
         coefficient, rest = term.as_coeff_Mul()
         if rest == 1:
             lo, hi = lo + float(coefficient), hi + float(coefficient)
-        elif isinstance(rest, (sympy.sin, sympy.cos)):
-            lo, hi = lo - abs(float(coefficient)), hi + abs(float(coefficient))
-        else:
+            continue
+        powers = [factor.as_base_exp() for factor in sympy.Mul.make_args(rest)]
+        if not all(isinstance(base, (sympy.sin, sympy.cos)) and exp.is_Integer and exp > 0 for base, exp in powers):
             return None
+        low = 0.0 if all(exp.is_even for _, exp in powers) else -1.0
+        a, b = sorted((float(coefficient) * low, float(coefficient)))
+        lo, hi = lo + a, hi + b
     return lo, hi
 
 
@@ -1208,11 +1272,22 @@ def _square_part(n: int) -> sympy.Integer:
 
 
 def _negative_pairs_flipped(radicand: sympy.Expr, bounds: tuple, order: tuple) -> sympy.Expr:
-    """``radicand`` with its sums that are ≤ 0 on the domains negated, two at a time."""
+    """``radicand`` with its sums that are ≤ 0 on the domains negated, two at a time; one such sum alone
+    with the one sum of unknown sign: a nonnegative radicand makes that one ≤ 0 too (negating both
+    changes nothing anyway), √((sin θ₀ − sin θ)/(4 − 3 sin²θ)), not √((sin θ − sin θ₀)/(3 sin²θ − 4)).
+
+    >>> th, th0 = sympy.symbols("theta theta0", real=True)
+    >>> _negative_pairs_flipped((sympy.sin(th) - sympy.sin(th0))/(3*sympy.sin(th)**2 - 4), (), ())
+    (-sin(theta) + sin(theta0))/(4 - 3*sin(theta)**2)
+    """
     numerator, denominator = sympy.fraction(radicand)
     factors = [*sympy.Mul.make_args(numerator), *(1 / f for f in sympy.Mul.make_args(denominator))]
-    negative = [f for f in factors if (f.is_Add or (f.is_Pow and f.base.is_Add and f.exp.is_odd))
-                and _factor_sign(f, bounds, order) == -1]
+    odd_sums = [f for f in factors if f.is_Add or (f.is_Pow and f.base.is_Add and f.exp.is_odd)]
+    signs = [_factor_sign(f, bounds, order) for f in odd_sums]
+    negative = [f for f, sign in zip(odd_sums, signs) if sign == -1]
+    unknown = [f for f, sign in zip(odd_sums, signs) if sign is None]
+    if len(negative) % 2 and len(unknown) == 1:
+        negative.append(unknown[0])
     if len(negative) < 2:
         return radicand
     flipped = negative[: len(negative) // 2 * 2]

@@ -528,3 +528,35 @@ def test_a_trammels_forces_print_over_its_shortest_denominator():
     force = (g * m1 * (m1 * cos(theta) ** 2 + m2) + l * m2 * (-_k * cos(theta) ** 2 + _k - m1 * thetadot ** 2)
              * cos(theta)) / (m1 * cos(theta) ** 2 - m2 * cos(theta) ** 2 + m2)
     assert str(human_form(force)).endswith("/(m1*cos(theta)**2 + m2*sin(theta)**2)")
+
+
+@pytest.mark.parametrize("expr, printed", [
+    # a stick falling on ice: the normal force at release, −g m/(3 sin²θ₀ − 4) as derived
+    (-g * m / (3 * sin(theta0) ** 2 - 4), "g*m/(4 - 3*sin(theta0)**2)"),
+    # the minus goes into a sum of the numerator rather than in front, the number stays outside
+    (m * (l * thetadot ** 2 * sin(theta) - 2 * g) / (2 * (3 * sin(theta) ** 2 - 4)),
+     "m*(2*g - l*thetadot**2*sin(theta))/(8 - 6*sin(theta)**2)"),
+    (m * (l * thetadot ** 2 * sin(theta) - 2 * g) / (2 * l * (3 * sin(theta) ** 2 - 4)),
+     "m*(2*g - l*thetadot**2*sin(theta))/(2*l*(3*cos(theta)**2 + 1))"),  # 4 − 3 sin²θ, shorter
+    (g * (cos(theta0) - 3) / (cos(theta) - 2), "g*(3 - cos(theta0))/(2 - cos(theta))"),
+    # a sum of unknown sign keeps its order
+    (g * m / (_x - 4), "g*m/(x - 4)"),
+    # so does one of known sign where the other way round reads longer (a minus in front)
+    (2 * g * (cos(theta) - 1) / l, "2*g*(cos(theta) - 1)/l"),
+])
+def test_a_sum_negative_on_the_whole_domain_is_written_positive(expr, printed):
+    simplification.forget_forms()
+    assert sympy.sstr(human_form(expr)) == printed
+
+
+@pytest.mark.parametrize("expr, printed", [
+    # the stick's fall rate: a radicand over 3 sin²θ − 4 < 0 makes its numerator ≤ 0 too
+    (sqrt(g * l * (sin(theta) - sin(theta0)) / (3 * sin(theta) ** 2 - 4)),
+     "sqrt(g*l*(-sin(theta) + sin(theta0))/(4 - 3*sin(theta)**2))"),
+    # with two sums of unknown sign beside it there is no telling which one to negate
+    (sqrt(g * (_x - 1) * (_x - 2) / (3 * sin(theta) ** 2 - 4)), "sqrt(g*(x - 2)*(x - 1)/(3*sin(theta)**2 - 4))"),
+])
+def test_a_negative_sum_under_a_root_is_negated_with_the_one_of_unknown_sign(expr, printed):
+    joined = simplification.joined_roots(expr)
+    assert str(joined) == printed
+    _assert_same_value_on(expr, joined, ())
