@@ -1193,6 +1193,9 @@ class _Tokenizer:
         elif ch == "|":  # \|x\|: a norm
             raise ExpressionError("'‖…‖' (a norm) is not supported", start, "unsupported_function",
                                   "write |x| for the absolute value of a number")
+        elif ch == "%":  # LaTeX's escaped percent sign (CortexJS, MathLive), not a stray backslash
+            raise ExpressionError("'\\%' (a percent sign) is not part of a formula", start, "syntax",
+                                  "write a percentage as a number, as in 0.3 for 30%")
         else:
             raise ExpressionError("'\\' must start a LaTeX command such as \\frac", start, "syntax",
                                   "delete the backslash, or write a command such as \\frac{a}{b}")
@@ -1451,6 +1454,14 @@ def _absolute_values(tokens: list[Token]) -> list[Token]:
             out.append(token)
             continue
         previous = out[-1] if out else None
+        if (not open_bars and token.value is None and previous is not None and previous.kind not in _OPERAND_EXPECTED
+                and tokens[n + 1].kind == "bar" and tokens[n + 1].pos == token.end):
+            # a||b is edX's parallel operator (a b/(a + b)) and 'or' in code; read as a·‖b‖ it made
+            # R1||R2||R3 the product R1·R2·R3
+            raise ExpressionError(f"'{token.text}{tokens[n + 1].text}' after an operand reads as the parallel operator "
+                                  "(a||b = a b/(a + b)) or as a double bar", token.pos, "ambiguous",
+                                  "write a*b/(a + b) or 1/(1/a + 1/b) for a and b in parallel, "
+                                  "or a*|b| for a product with an absolute value")
         last = tokens[n + 1].kind in ("end", "close") and open_bars  # nothing can follow an opening here
         opens = token.value == "open" or (token.value is None and not last and (
             previous is None or previous.kind in _OPERAND_EXPECTED or not open_bars))
