@@ -170,6 +170,7 @@ class AnswerSpec:
     numeric: NumericSpec | None = None  # kind = "numeric": unit and tolerance
     weight: float = 1.0  # the answer's weight in the problem's score
     tests: tuple[dict[str, Any], ...] = ()  # [[answers.tests]]: {answer, expect, score?, values?}
+    at_rest: bool = False  # where = "thetaddot = 0, thetadot = 0": the equilibrium at rest, not passed through
 
 
 @dataclass
@@ -210,6 +211,24 @@ class Scene:
     def answer_coordinates(self) -> dict[str, Coordinate]:
         """The coordinates answers are written in: the parametrization's, else the scene's."""
         return self.parametrization.variables if self.parametrization else self.coordinates
+
+
+def _top_level_parts(text: str) -> list[str]:
+    """``text`` split at the commas outside brackets (atan2(y, x) = 0 is one condition).
+
+    >>> _top_level_parts("thetaddot = 0, thetadot = 0")
+    ['thetaddot = 0', ' thetadot = 0']
+    >>> _top_level_parts("atan2(y, x) = 1")
+    ['atan2(y, x) = 1']
+    """
+    parts, depth, start = [], 0, 0
+    for i, character in enumerate(text):
+        depth += character in "([{"
+        depth -= character in ")]}"
+        if character == "," and depth == 0:
+            parts.append(text[start:i])
+            start = i + 1
+    return parts + [text[start:]]
 
 
 def load_scene(path: str | Path) -> Scene:
@@ -686,9 +705,9 @@ class _SceneReader:
             if dimension is not None and inferred != dimension:
                 raise self.fail(f"{key}.dimension", f"the expression is {inferred.describe()}, "
                                                     f"not {dimension.describe()}")
-            where = None
+            where, at_rest = None, False
             if spec.get("where") is not None:
-                where = self.read_where(f"{key}.where", spec["where"], namespace)
+                where, at_rest = self.read_where(f"{key}.where", spec["where"], namespace)
             feedback = self.read_feedback(key, spec.get("feedback", []))
             alternatives = self.read_alternatives(key, spec.get("alternatives", []), namespace, inferred,
                                                   {a.symbol for a in answers})
@@ -702,7 +721,7 @@ class _SceneReader:
             known.add(name)
             answers.append(AnswerSpec(name, prompt, expr, kind, in_terms_of, dimension or inferred,
                                       where, feedback, symbol, source_expr, alternatives, numeric,
-                                      float(weight), tests))
+                                      float(weight), tests, at_rest))
         return answers
 
     def read_numeric(self, key: str, spec: Mapping[str, Any], kind: str, dimension: Dimension) -> NumericSpec | None:
@@ -781,8 +800,30 @@ class _SceneReader:
             alternatives.append(value)
         return tuple(alternatives)
 
-    def read_where(self, key: str, text: Any, namespace: Namespace) -> tuple[sympy.Expr, sympy.Expr]:
-        if not isinstance(text, str) or text.count("=") != 1:
+    def read_where(self, key: str, text: Any, namespace: Namespace) -> tuple[tuple[sympy.Expr, sympy.Expr], bool]:
+        """The condition lhs = rhs, and whether it is an equilibrium asked at rest.
+
+        Several conditions, separated by commas, are read only as an equilibrium at rest: an
+        acceleration set to zero and velocities set to zero (``"thetaddot = 0, thetadot = 0"``: the
+        tension in a pendulum hanging at rest in an accelerating car, where ``[initial]`` would
+        otherwise have it swing through that angle).
+        """
+        if not isinstance(text, str):
+            raise self.fail(key, "write a condition such as \"normal_force = 0\"")
+        conditions = [self._condition(key, part, namespace) for part in _top_level_parts(text)]
+        if len(conditions) == 1:
+            return conditions[0], False
+        velocities = {v.symbol for v in self.variables if v.kind == "velocity"}
+        accelerations = {v.symbol for v in self.variables if v.kind == "acceleration"}
+        at_rest = [c for c in conditions if c[0] in velocities and c[1] == 0]
+        others = [c for c in conditions if c not in at_rest]
+        if len(others) != 1 or others[0][1] != 0 or not others[0][0].free_symbols & accelerations:
+            raise self.fail(key, "several conditions are read only as an equilibrium at rest: an acceleration "
+                                 "set to zero and velocities set to zero, as in \"thetaddot = 0, thetadot = 0\"")
+        return others[0], True
+
+    def _condition(self, key: str, text: str, namespace: Namespace) -> tuple[sympy.Expr, sympy.Expr]:
+        if text.count("=") != 1:
             raise self.fail(key, "write a condition such as \"normal_force = 0\"")
         lhs_text, rhs_text = text.split("=")
         lhs = self.expression(key, lhs_text, namespace)

@@ -146,7 +146,8 @@ SCENE_SCHEMA: dict[str, Any] = {
                 "kind": {"enum": ["expression", "equation", "small_oscillation", "maximum", "minimum", "numeric"]},
                 "in_terms_of": {"type": "array", "maxItems": MAX_ITEMS, "items": _string(MAX_NAME_CHARS)},
                 "dimension": _DIMENSION,
-                "where": _string(MAX_EXPRESSION_CHARS, description='a condition such as "normal_force = 0"'),
+                "where": _string(MAX_EXPRESSION_CHARS, description='a condition such as "normal_force = 0"; '
+                                 'an equilibrium at rest as "thetaddot = 0, thetadot = 0"'),
                 "feedback": {"type": "array", "maxItems": MAX_ITEMS, "items": _FEEDBACK},
                 # other values that are also right (the mirror equilibrium, the other sign convention)
                 "alternatives": {"type": "array", "maxItems": MAX_ITEMS, "items": _EXPRESSION},

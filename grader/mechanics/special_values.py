@@ -110,7 +110,7 @@ def _special_value(evaluator, spec: AnswerSpec) -> sympy.Expr:
     # a bead resting at a spinning hoop's relative equilibrium). With one, as the body passes through it
     # (a pendulum in an accelerating car). (A velocity left free by in_terms_of' coordinates is a steady
     # motion instead: r̈ = 0 for φ̇ at r.)
-    at_rest = spec.kind == "small_oscillation" or (_sets_an_acceleration_to_zero(evaluator, spec)
+    at_rest = spec.kind == "small_oscillation" or spec.at_rest or (_sets_an_acceleration_to_zero(evaluator, spec)
                                                    and _no_motion_given(evaluator)
                                                    and not target & evaluator.state_symbols())
     try:

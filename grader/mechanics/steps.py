@@ -97,6 +97,7 @@ def derivation_steps(derivation) -> list[Step]:
     for spec in scene.answers:
         value = derivation.answers[spec.name]
         where = f" where {sympy.sstr(spec.where[0])} = {sympy.sstr(spec.where[1])}" if spec.where else ""
+        where += ", at rest" if spec.at_rest else ""
         if spec.kind == "small_oscillation":
             s.add(f"{spec.name} = frequency of small oscillations of {sympy.sstr(spec.expr)} about the "
                   f"equilibrium{where} = sqrt(-d({spec.expr}ddot)/d{spec.expr}) = {sympy.sstr(value)}",

@@ -1057,3 +1057,43 @@ def test_a_root_in_a_parameter_without_a_number_that_changes_across_its_domain_i
     # cos(theta) = 1, silently; above it the bead rests off the axis
     with pytest.raises(SceneError, match=r"which root holds depends on the parameter values.*omega = .*give them values"):
         derive(parse_scene(DRIVEN_HOOP.replace('domain = "positive", DRAW', domain), "driven_hoop.toml"))
+
+
+AT_REST = {
+    # a pendulum hanging at rest in a car accelerating at A: the rod's tension balances m√(g² + A²);
+    # [initial] releases it vertical, so passing through that angle it would also have a speed
+    "pendulum_accelerating_car": ("tension", ["m", "g", "A"], "m*sqrt(A^2 + g^2)"),
+    # a bead resting at a spinning hoop's relative equilibrium: no Coriolis force, so the motor exerts
+    # no torque; released at θ = 0.3 it passes through the equilibrium with θ̇ ≠ 0, and a torque
+    "bead_rotating_hoop": ("drive_torque", ["m", "g", "a", "omega"], "0"),
+}
+
+
+@pytest.mark.parametrize("scene, asked", AT_REST.items(), ids=AT_REST.keys())
+def test_an_equilibrium_asked_at_rest_is_taken_at_rest_whatever_initial_gives(scene, asked):
+    answer, in_terms_of, expected = asked
+    extra = ''.join(f'''
+[[answers]]
+name = "{name}"
+expr = "{answer}"
+where = "{where}"
+in_terms_of = {in_terms_of!r}
+'''.replace("'", '"') for name, where in (("at_rest", "thetaddot = 0, thetadot = 0"),
+                                          ("passing", "thetaddot = 0")))
+    parsed = parse_scene(scene_text(scene) + extra, f"{scene}.toml")
+    answers = derive(parsed).answers
+    at_rest, passing = answers["at_rest"], answers["passing"]
+    assert sympy.simplify(at_rest - parse_expression(expected, parsed.namespace).expr) == 0
+    assert at_rest != passing  # the motion from [initial] passes through with a speed
+
+
+@pytest.mark.parametrize("where, problem", [
+    ("thetadot = 0, theta = 0", "several conditions are read only as an equilibrium at rest"),
+    ("tension = 0, thetadot = 0", "several conditions are read only as an equilibrium at rest"),
+    ("thetaddot = 0, thetadot = sqrt(g/l)", "several conditions are read only as an equilibrium at rest"),
+    ("thetaddot = 0, thetadot", "write a condition such as"),
+])
+def test_several_conditions_are_refused_unless_an_equilibrium_at_rest(where, problem):
+    extra = f'\n[[answers]]\nname = "asked"\nexpr = "tension"\nwhere = "{where}"\n'
+    with pytest.raises(SceneError, match=problem):
+        parse_scene(scene_text("pendulum_accelerating_car") + extra, "car.toml")
