@@ -462,7 +462,8 @@ def _suggestion(name: str, ns: "Namespace", functions_only: bool = False) -> str
 # conventions, so it is spelt out rather than guessed).
 _ACOT = "write pi/2 - atan(x) or atan(1/x), the one you mean (they differ for x < 0)"
 WRITE_INSTEAD = {
-    "root": "write x^(1/n) for the n-th root of x, or sqrt(x)",
+    # Maple's root(x, n): x^(1/n) has no value for x < 0, where surd (nthroot) gives the real root
+    "root": "write surd(x, n) for the real n-th root of x (x^(1/n) for x >= 0), or sqrt(x)",
     "logbase": "write log(x, b) for the logarithm of x to base b",
     "acot": _ACOT,
     "arccot": _ACOT,
@@ -484,6 +485,7 @@ WRITE_INSTEAD = {
     "arccoth": "write atanh(1/x) for the inverse hyperbolic cotangent",
     "binomial": "write the binomial coefficient out with products",
     "factorial": "write the product out, as in 2*3",
+    "fact": "write the product out, as in 2*3 for fact(3)",  # edX's and qtype_formulas' fact(n) is n!
     # SymPy's derivative object (diff(θ(t), t) itself is read as the time derivative)
     "derivative": "write the time derivative as θ̇ (thetadot), or as diff(θ(t), t)",
     "hypot": "write sqrt(x^2 + y^2)",
@@ -550,6 +552,13 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
         raise ExpressionError(f"unknown name '{typed}': '{greek}' is the Greek letter {GREEK_CHARS[greek]}, "
                               f"which looks like the Latin '{letter}'", position, "unknown_name",
                               f"type {name} with the Latin '{letter}' if that is what you meant")
+    if raw.lower() in ("inf", "infinity", "nan", "oo"):  # edX's and mathjs' inf, NaN: 'nan' was "did you mean 'tan'?"
+        raise ExpressionError(f"unknown name '{typed}': infinity and not-a-number are not values of an answer",
+                              position, "unknown_name", "give a formula with a finite value")
+    if raw.lower() == "tau" and "tau" not in ns.names:  # mathjs' tau is 2π; 'tau' was "did you mean 'tan'?"
+        raise ExpressionError(f"unknown name '{typed}': this problem has no variable τ", position, "unknown_name",
+                              "write 2*pi for the constant τ = 2π of some calculators"
+                              + (f"; the variables here are {', '.join(sorted(ns.names))}" if ns.names else ""))
     spoken = _SPOKEN_WORDS.get(raw.lower())
     if spoken is not None:  # m l θ̇ squared: a phone's dictation, or the formula read aloud
         raise ExpressionError(f"unknown name '{typed}': it is a word, not a symbol", position, "unknown_name", spoken)
