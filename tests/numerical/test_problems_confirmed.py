@@ -225,9 +225,11 @@ def _follow_motion(model: SceneModel, start, conditions: list[Event]):
         if release is not None and release.t < released_at:
             # Sample the stretch up to the release as densely as a whole chunk: a contact
             # may let go long before the chunk ends.
-            dense = simulate(model.numeric, q, qdot, release.t, t0=t,
-                             sample_times=np.linspace(t, release.t, SAMPLES_PER_CHUNK))
-            states += list(dense.samples) + [release]
+            # (a contact whose force starts at zero lets go at once: nothing to sample before it)
+            dense = (simulate(model.numeric, q, qdot, release.t, t0=t,
+                              sample_times=np.linspace(t, release.t, SAMPLES_PER_CHUNK)).samples
+                     if release.t > t else [])
+            states += list(dense) + [release]
             released_at = release.t
         elif released_at == math.inf:
             states += motion.samples
@@ -342,3 +344,17 @@ def test_answer_agrees_with_the_numerical_experiment(path, answer):
     for numeric, exact, state in pairs:
         assert abs(numeric - exact) <= RTOL * max(abs(exact), scale), (
             f"{answer} at t = {state['t']:.6g}: numerical {numeric!r}, engine {closed_form} = {exact!r}")
+
+
+def test_a_contact_whose_force_starts_at_zero_lets_go_at_the_start():
+    """Launched over the top of a sphere with v² = gR the normal force starts at zero: the harness
+    records the release at t = 0 instead of integrating an empty stretch before it (which raised)."""
+    from grader.mechanics.scene import parse_scene
+
+    text = (PROBLEMS / "sphere.toml").read_text(encoding="utf-8")
+    text = text.replace("theta = 0\nthetadot = 0", "theta = 0\nthetadot = 3.5")  # R θ̇² = 9.8 ≈ g
+    scene = parse_scene(text.replace('value = 9.81', 'value = 9.8'), "sphere.toml")
+    model = SceneModel(scene, {})
+    start = model.initial_state(push=0.0)
+    states, _ = _follow_motion(model, start, [])
+    assert states and max(s.t for s in states) <= start.t + 1e-6
