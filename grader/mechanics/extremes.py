@@ -262,7 +262,13 @@ def _stationary_points(value: sympy.Expr, x: sympy.Symbol, source: str, key: str
     """
     arguments = [a.args[0] for a in value.atoms(sympy.Abs) if x in a.free_symbols]
     signed = value.replace(lambda e: isinstance(e, sympy.Abs), lambda e: e.args[0]) if arguments else value
-    found = solve_for(sympy.diff(signed, x), x, source, key)
+    try:
+        found = solve_for(sympy.diff(signed, x), x, source, key)
+    except SceneError as refused:
+        # solve_for's own advice (write the condition more simply) means nothing here: nobody wrote one
+        raise SceneError(source, key, f"the extreme lies where d/d{x} of {sympy.sstr(value)} is zero, and "
+                                      f"{refused.problem.split(';')[0]}; ask instead for the value at a state "
+                                      f"(in_terms_of with {x})") from None
     for argument in arguments:
         found += [r for r in solve_for(argument, x, source, key) if r not in found]
     return found

@@ -302,3 +302,23 @@ def test_other_coordinates_moving_is_the_reason_before_any_solve_runs(monkeypatc
         derive(parse_scene(HANGING.read_text().replace(*start), "tilted.toml"))
     assert "theta moves as well as r" in str(refused.value)
     assert "ran out of" not in str(refused.value)
+
+
+def test_an_extreme_whose_stationary_points_cannot_be_solved_names_them_not_a_condition(monkeypatch):
+    """The largest ẋ of a bead on an ellipse: solving d(ẋ)/dx = 0 runs out of its budget. The refusal
+    names the derivative and suggests a value at a state; 'write the condition in a simpler form'
+    (solve_for's advice for a where the instructor wrote) would point at nothing the file has."""
+    from grader.mechanics import extremes
+
+    def out_of_budget(condition, x, source, key):
+        raise SceneError(source, key, f"solving the condition for {x} ran out of its 3 s budget; "
+                                      "write the condition in a simpler form")
+
+    monkeypatch.setattr(extremes, "solve_for", out_of_budget)
+    x, a = sympy.symbols("x a", positive=True)
+    with pytest.raises(SceneError) as refused:
+        extremes._stationary_points(sympy.sqrt(a ** 2 - x ** 2) * x, x, "ellipse.toml", "answers (largest_xdot)")
+    assert "d/dx of x*sqrt(a**2 - x**2) is zero" in refused.value.problem
+    assert "ran out of its 3 s budget" in refused.value.problem
+    assert "in_terms_of with x" in refused.value.problem
+    assert "simpler form" not in refused.value.problem
