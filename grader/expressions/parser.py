@@ -117,6 +117,10 @@ _ATOM_STARTS = ("number", "name", "open", "root", "command", "derivative", "time
 _KIND_POWER = {"sup": _POW, "prime": _POW + 10, **{kind: _MUL for kind in _ATOM_STARTS}}
 
 
+# SI prefixes edX's calculator reads after a number (5k is 5000), with their powers of ten
+_SI_SUFFIXES = {"T": 12, "G": 9, "M": 6, "k": 3, "c": -2, "m": -3, "u": -6, "n": -9, "p": -12}
+
+
 @dataclass(frozen=True)
 class Parsed:
     """A parsed expression.
@@ -278,6 +282,19 @@ class _Parser:
         if i + 1 < len(self.tokens):
             self.i = i + 1
         return token
+
+    def refuse_si_suffix(self, token: Token, raw: str, unknown: ExpressionError) -> None:
+        """5k, 1.2m, 5n with no such variable: edX's calculator reads an SI prefix glued to a number as its power
+        of ten (5k is 5000); say so, with the power of ten to write ('5n' was "did you mean 'ln'?")."""
+        previous = self.before(token)
+        if (unknown.code != "unknown_name" or raw not in _SI_SUFFIXES or token.order or previous is None
+                or previous.kind != "number" or previous.end != token.pos):
+            return
+        unit = "; if it is the unit, delete it: units are not part of the answer" if raw in ("m", "T") else ""
+        raise ExpressionError(f"unknown name '{token.text}' after the number {previous.text}: this problem has no "
+                              f"variable {token.text}", token.pos, "unknown_name",
+                              f"if {token.text} is the SI prefix (as some calculators read it), write the power of "
+                              f"ten: {previous.text}e{_SI_SUFFIXES[raw]}{unit}")
 
     def before(self, token: Token) -> Token | None:
         """The token just before ``token`` (for "'+' needs something after it")."""
@@ -695,6 +712,7 @@ class _Parser:
                                         before_power=following.kind == "op" and following.value == "^")
             except ExpressionError as unknown:
                 self.refuse_superscript_index(token, following, unknown)
+                self.refuse_si_suffix(token, raw, unknown)
                 if unknown.code == "unknown_name" and following.kind == "bad" and following.text == ":=":
                     # T := m g (Maple, Maxima, a Python walrus): the definition is what to fix, not the name T
                     raise following.error from None

@@ -1367,3 +1367,17 @@ def test_a_definition_after_an_unknown_label_names_the_definition(text):
     with pytest.raises(ExpressionError) as refused:
         parse_expression(text, Namespace([Variable("y", "length", "real")]))
     assert "':=' (a definition)" in refused.value.message and "T = …" in refused.value.hint
+
+
+@pytest.mark.parametrize("text, power", [("5k", "5e3"), ("1.2m", "1.2e-3"), ("3.4M", "3.4e6"), ("2u", "2e-6"),
+                                         ("5n", "5e-9"), ("7p", "7e-12"), ("5k^2", "5e3")])
+def test_an_si_prefix_glued_to_a_number_is_named_with_its_power_of_ten(text, power):
+    # edX's calculator reads 5k as 5000; '5n' was "did you mean 'ln'?"
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text, Namespace([]))
+    assert "after the number" in err.value.message and f"write the power of ten: {power}" in err.value.hint
+
+
+def test_a_declared_variable_after_a_number_is_still_a_product():
+    ns = Namespace([Variable("k", "stiffness", "positive")])
+    assert parse_expression("5k", ns).expr == 5 * ns.symbol("k")
