@@ -25,7 +25,7 @@ import sympy
 from grader.mechanics import budget
 from grader.mechanics.augmented import generic_point, solve_augmented
 from grader.mechanics.scene import Coordinate, Scene, SceneError
-from grader.mechanics.simplification import readable_denominator, tidy_trig
+from grader.mechanics.simplification import pythagorean_roots, readable_denominator, tidy_trig
 
 __all__ = ["Reduction", "without_hidden_coordinates"]
 
@@ -73,7 +73,9 @@ class Reduction:
             if c.symbol in self.phi and self.phi[c.symbol] != c.symbol:
                 subs[c.symbol] = self.phi[c.symbol]
                 subs[c.dot] = self.phi_dot[c.symbol]
-        return expr.xreplace(subs) if subs else expr
+        # A root of the scene's coordinates (√(x² + y²) in a constraint) is tidied as it is mapped,
+        # before anything expands it.
+        return pythagorean_roots(expr.xreplace(subs)) if subs else expr
 
     def _with_completed_initial(self, scene: Scene) -> Scene:
         """The scene with [initial] values for every independent variable that [initial] fixes

@@ -54,7 +54,7 @@ import time
 import sympy
 from sympy.core.mul import _keep_coeff
 
-__all__ = ["contract_double_angles", "declared_domains", "half_angles", "identically_zero", "in_single_angles", "factored_sums", "gathered_roots", "grouped", "human_form", "inverse_hyperbolic", "joined_roots",
+__all__ = ["contract_double_angles", "declared_domains", "half_angles", "identically_zero", "in_single_angles", "factored_sums", "gathered_roots", "grouped", "human_form", "inverse_hyperbolic", "pythagorean_roots", "joined_roots",
            "pythagorean_pairs", "quick_form", "readable_denominator", "seen_nonzero", "signs_in_front", "spread_denominator", "tidy_radicands", "tidy_trig"]
 
 _TRIG = (sympy.sin, sympy.cos, sympy.tan, sympy.cot, sympy.sec, sympy.csc)
@@ -567,6 +567,46 @@ def tidy_radicands(expr: sympy.Expr) -> sympy.Expr:
                         _tidy_root)
 
 
+def pythagorean_roots(expr: sympy.Expr) -> sympy.Expr:
+    """Each root whose radicand sin² + cos² = 1 shortens over that radicand, with the bars of an even
+    root taken off where the declared domains and orders (:func:`declared_domains`) fix the sign.
+
+    A constraint in Cartesian coordinates with √(x² + y²) in it, mapped onto a surface of revolution,
+    leaves √((a + b cos θ)² sin²φ + (a + b cos θ)² cos²φ) in every force and acceleration: left so,
+    the tidy-ups after it expanded the powers and took seconds a matrix entry (a torus: 7 s in all).
+
+    >>> a, b = sympy.symbols("a b", positive=True)
+    >>> th, ph = sympy.symbols("theta phi", real=True)
+    >>> ring = (a + b*sympy.cos(th))**2
+    >>> pythagorean_roots(sympy.sqrt(ring*sympy.sin(ph)**2 + ring*sympy.cos(ph)**2))
+    Abs(a + b*cos(theta))
+    >>> with declared_domains({}, {b: a}):
+    ...     pythagorean_roots(sympy.sqrt(ring*sympy.sin(ph)**2 + ring*sympy.cos(ph)**2))
+    a + b*cos(theta)
+    """
+    roots = [e for e in expr.atoms(sympy.Pow)
+             if e.exp.is_Rational and not e.exp.is_Integer and e.base.has(sympy.sin, sympy.cos)]
+    if not roots:
+        return expr
+    symbols = set().union(*(r.free_symbols for r in roots))
+    bounds, order = _bounds_of(symbols), _order_of(symbols)
+    return expr.xreplace({r: _pythagorean_root(r, bounds, order) for r in roots})
+
+
+_PYTHAGOREAN_ROOT_LIMIT = 60  # operations in a radicand; the mapped √(x² + y²) of a torus has 20
+
+
+@functools.lru_cache(maxsize=1024)
+def _pythagorean_root(root: sympy.Pow, bounds: tuple, order: tuple) -> sympy.Expr:
+    """One root of :func:`pythagorean_roots`, remembered with the domains it was taken under."""
+    if sympy.count_ops(root.base) > _PYTHAGOREAN_ROOT_LIMIT:
+        return root
+    base = sympy.factor(tidy_trig(root.base))
+    if sympy.count_ops(base) >= sympy.count_ops(root.base):
+        return root
+    return signed_abs(base ** root.exp, bounds, order)
+
+
 @functools.lru_cache(maxsize=1024)
 def _tidy_root(root: sympy.Pow) -> sympy.Expr:
     """One root of :func:`tidy_radicands` (remembered: the candidates of one form, and the forms of
@@ -870,8 +910,53 @@ def _factor_sign(f: sympy.Expr, bounds: tuple, order: tuple = ()) -> int | None:
             ratio = sympy.cancel(f / (b - a))
             if ratio.is_number and ratio.is_nonzero:
                 return 1 if ratio.is_positive else -1
+        bounded = _trig_bounds(f)
+        if bounded is not None:
+            if _factor_sign(bounded[0], bounds, order) == 1:
+                return 1
+            if _factor_sign(bounded[1], bounds, order) == -1:
+                return -1
         return _definite_quadratic(f)
     return None
+
+
+def _trig_bounds(f: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr] | None:
+    """Lower and upper bounds of a sum of terms free of sines and cosines and terms c·P with P a
+    product of powers of sines and cosines (in [−1, 1], or [0, 1] with even powers only) and c of
+    known sign, each P at its worst end; None where no term has a sine or cosine or a c's sign is
+    unknown. The tube's distance from a torus's axis, a + b cos θ, lies in [a − b, a + b], so it is
+    positive where b is declared below a.
+
+    >>> a, b, th = sympy.symbols("a b theta", positive=True)
+    >>> _trig_bounds(a + b*sympy.cos(th) - a*sympy.sin(th)**2)
+    (-b, a + b)
+    """
+    lower, upper, trigonometric = [], [], False
+    for term in sympy.Add.make_args(f):
+        coefficient, product = sympy.S.One, sympy.S.One
+        for factor in sympy.Mul.make_args(term):
+            base, exp = factor.as_base_exp()
+            if isinstance(base, (sympy.sin, sympy.cos)) and exp.is_Integer and exp > 0:
+                product *= factor
+            else:
+                coefficient *= factor
+        if product == 1:
+            lower.append(term)
+            upper.append(term)
+            continue
+        if coefficient.has(sympy.sin, sympy.cos) or coefficient.is_extended_real is not True:
+            return None
+        low = 0 if all(e.is_even for _, e in (x.as_base_exp() for x in sympy.Mul.make_args(product))) else -1
+        if coefficient.is_nonnegative:
+            lower.append(low * coefficient)
+            upper.append(coefficient)
+        elif coefficient.is_nonpositive:
+            lower.append(coefficient)
+            upper.append(low * coefficient)
+        else:
+            return None
+        trigonometric = True
+    return (sympy.Add(*lower), sympy.Add(*upper)) if trigonometric else None
 
 
 def _trig_interval(f: sympy.Expr) -> tuple[float, float] | None:
@@ -1413,6 +1498,10 @@ def readable_denominator(expr: sympy.Expr) -> sympy.Expr:
     return min(candidates, key=lambda e: _weight(e, (0, 0)))
 
 
+def _angle_count(expr: sympy.Expr) -> int:
+    return len({f.args[0] for f in expr.atoms(sympy.sin, sympy.cos)})
+
+
 @functools.lru_cache(maxsize=4096)  # the matrix entries, their solution and its answers meet the same sums
 def tidy_trig(expr: sympy.Expr) -> sympy.Expr:
     """A fast trigonometric tidy-up for small entries: combine and use sin² + cos² = 1.
@@ -1433,9 +1522,14 @@ def tidy_trig(expr: sympy.Expr) -> sympy.Expr:
     expr = sympy.expand(expr)
     if not expr.has(*_TRIG):
         return sympy.factor_terms(expr)
-    if len({f.args[0] for f in expr.atoms(sympy.sin, sympy.cos)}) > 1:
+    if _angle_count(expr) > 1:
         # Sums of products into the sine or cosine of a sum need two angles; with one, TR10i
-        # changed nothing in 1,127 calls over the test scenes and cost a second of them.
-        expr = TR10i(expr)
+        # changed nothing in 1,127 calls over the test scenes and cost a second of them. Where
+        # sin² + cos² = 1 removes an angle (the azimuth of a Cartesian constraint mapped onto a
+        # surface of revolution, in sin⁴φ + 2 sin²φ cos²φ + cos⁴φ), that form goes on instead:
+        # TR10i on the expanded sum it came from took 4.7 s an entry of a torus's multiplier.
+        fewer = [e for e in (sympy.expand(_pythagorean(expr, square)) for square in (sympy.sin, sympy.cos))
+                 if _angle_count(e) < _angle_count(expr)]
+        expr = min(fewer, key=lambda e: _weight(e, (0, 0))) if fewer else TR10i(expr)
     candidates = [expr] + [sympy.expand(_pythagorean(expr, square)) for square in (sympy.sin, sympy.cos)]
     return sympy.factor_terms(min(candidates, key=lambda e: _weight(e, (0, 0))))

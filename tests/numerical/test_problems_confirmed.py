@@ -150,6 +150,17 @@ CONFIRMED_ELSEWHERE = {
     ("two_beads_rigid_rod_cartesian", "small_oscillation_frequency"),
     ("cylinder_in_accelerating_drum", "small_oscillation_frequency"),
     ("atwood_hung_from_spring", "largest_tension"),
+    # Red team 24's: tests/mechanics/test_red_team_scenes_14.py (steady circles launched at the engine's rate,
+    # the turning radius and the frequencies against integrated orbits and swings).
+    ("gravity_well_funnel", "orbit_angular_velocity"),
+    ("gravity_well_funnel", "innermost_radius"),
+    ("gravity_well_funnel", "small_oscillation_frequency"),
+    ("magnetic_spherical_pendulum", "steady_orbit_rate"),
+    ("particle_on_torus", "steady_orbit_rate"),
+    ("bead_rotating_ellipse_cartesian", "small_oscillation_frequency"),
+    # ẍ = 0 names the equilibrium at rest (ẍ has a ẋ² term in Cartesian x), not a moment of the swing.
+    ("bead_rotating_ellipse_cartesian", "equilibrium_height"),
+    ("bead_rotating_ellipse_cartesian", "passing_normal_force"),
 }
 
 
