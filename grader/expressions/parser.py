@@ -1317,7 +1317,20 @@ class _Parser:
 
     def latex_command(self, token: Token) -> sympy.Expr:
         if token.value == "frac":
-            before = next((t for t in reversed(self.tokens[:self.i]) if t.pos < token.pos), None)
+            # 3{\frac{1}{2}} and {3}\frac{1}{2}: TeX's braces print nothing, so these are 3½ all the same
+            # (the last tokens only: braces nest at most 50 deep, and a text of many fractions stays linear)
+            earlier = [t for t in self.tokens[max(0, self.i - 128):self.i] if t.pos < token.pos]
+            opened = closed = 0
+            while earlier and earlier[-1].kind == "open" and earlier[-1].text == "{":
+                opened += bool(earlier.pop())
+            while not opened and earlier and earlier[-1].kind == "close" and earlier[-1].text == "}":
+                closed += bool(earlier.pop())
+            braced = opened or closed
+            before = earlier.pop() if earlier else None
+            while closed and earlier and earlier[-1].kind == "open" and earlier[-1].text == "{":
+                closed -= bool(earlier.pop())
+            if braced and (closed or earlier and (earlier[-1].kind not in ("op", "open") or earlier[-1].value == "^")):
+                before = None  # \frac{1}{2}\frac{1}{2}, 3^{2}\frac{1}{2}: a command's argument or an exponent
             if self.i >= 3 and self.tokens[self.i - 3].kind == "op" and self.tokens[self.i - 3].value == "^":
                 before = None  # x^2\frac{1}{2}: the 2 is an exponent
             numerator = self.braced(token)
@@ -1326,7 +1339,10 @@ class _Parser:
                     and numerator.is_Integer and denominator.is_Integer):
                 # 2\frac{1}{2} prints 2½: the mixed number 5/2 at school, 2·½ to KAS; refused as ½ after a
                 # number is (tokens.vulgar_fraction), never guessed
-                shown = self.text[before.pos:self.tokens[self.i - 1].end]
+                start = before.pos
+                while start and self.text[start - 1] == "{":
+                    start -= 1
+                shown = self.text[start:self.tokens[self.i - 1].end] + "}" * opened
                 raise ExpressionError(f"'{shown}' mixes a number and a fraction", before.pos, "ambiguous",
                                       f"write {before.value} + {numerator}/{denominator} for the mixed number, or "
                                       f"{before.value}*{numerator}/{denominator} for the product")

@@ -681,7 +681,8 @@ class _Tokenizer:
 
     def vulgar_fraction(self, start: int) -> None:
         """``½`` is the number 1/2; ``1½`` (a mixed number, or 1·½?) is refused rather than guessed."""
-        if self.tokens and self.tokens[-1].kind == "number" and self.tokens[-1].end == start:
+        if self.tokens and self.tokens[-1].kind == "number" and not self.text[self.tokens[-1].end:start].strip():
+            # 1 ½ with a space is the mixed number as often as 1½ ('missing operator' named neither)
             raise ExpressionError(f"'{self.text[self.tokens[-1].pos:start + 1]}' mixes a number and a fraction",
                                   start, "syntax", "write 3/2 or 1 + 1/2, with the operator you mean")
         num, den = VULGAR_FRACTIONS[self.text[start]]

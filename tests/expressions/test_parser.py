@@ -1381,3 +1381,22 @@ def test_an_si_prefix_glued_to_a_number_is_named_with_its_power_of_ten(text, pow
 def test_a_declared_variable_after_a_number_is_still_a_product():
     ns = Namespace([Variable("k", "stiffness", "positive")])
     assert parse_expression("5k", ns).expr == 5 * ns.symbol("k")
+
+
+@pytest.mark.parametrize("text, shown", [
+    ("3{\\frac{1}{2}}", "3{\\frac{1}{2}}"), ("{3}\\frac{1}{2}", "{3}\\frac{1}{2}"), ("3{{\\frac12}}", "3{{\\frac12}}"),
+    ("x + {3}\\frac{1}{2}", "{3}\\frac{1}{2}"), ("3 ½", "3 ½"), ("1 ½ x", "1 ½"),
+])
+def test_a_mixed_number_behind_braces_or_a_space_is_refused_as_3_frac_1_2_is(text, shown):
+    # TeX's braces print nothing: 3{\frac{1}{2}} shows 3½ (CortexJS reads 7/2), and it was the product 3/2
+    with pytest.raises(ExpressionError) as err:
+        parse_expression(text, Namespace([Variable("x", "dimensionless", "real")]))
+    assert err.value.message == f"'{shown}' mixes a number and a fraction"
+
+
+@pytest.mark.parametrize("text, value", [("3^{2}\\frac12", "9/2"), ("3\\left(\\frac{1}{2}\\right)", "3/2"),
+                                         ("{3x}\\frac12", "3*x/2"), ("3·½", "3/2"), ("\\frac{1}{2}\\frac{1}{2}", "1/4"),
+                                         ("\\sqrt{2}\\frac{3}{2}", "3*sqrt(2)/2"), ("{3}^2\\frac12", "9/2")])
+def test_an_exponent_a_bracket_or_an_operator_before_the_fraction_is_still_a_product(text, value):
+    ns = Namespace([Variable("x", "dimensionless", "real")])
+    assert parse_expression(text, ns).expr == parse_expression(value, ns).expr
