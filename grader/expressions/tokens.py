@@ -445,8 +445,9 @@ class _Tokenizer:
             self.emit("op", "/", start, start + 2)
         elif ch == "/" and self.peek(1) == "/":
             self.emit("bad", "//", start, start + 2, error=ExpressionError(
-                "'//' is floor division in Python, a postfix function in Mathematica and a slash in ASCIIMath",
-                start, "ambiguous", "write / for a quotient"))
+                "'//' is floor division in Python, a postfix function in Mathematica, a slash in ASCIIMath and "
+                "'in parallel' in French (R1 // R2)", start, "ambiguous",
+                "write / for a quotient, or a*b/(a + b) for a and b in parallel"))
         elif ch in "=/<" and _NOT_EQUAL.match(self.text, start):  # (the first characters of its spellings)
             # =/= (KAS), /= (Fortran, Haskell), <> (BASIC, SQL), =\= (Prolog): "not equal", named as such
             # rather than as a stray '/', a second '=' or an inequality

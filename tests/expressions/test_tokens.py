@@ -463,7 +463,14 @@ def test_asciimaths_division_sign_is_a_quotient(text):
 def test_a_double_slash_is_refused_naming_its_readings(text):
     # floor division (Python), postfix application (Mathematica), a slash (ASCIIMath): never guessed
     [bad] = [t for t in tokenize(text) if t.kind == "bad"]
-    assert bad.error.code == "ambiguous" and "floor division" in bad.error.message and bad.error.hint == "write / for a quotient"
+    assert bad.error.code == "ambiguous" and "floor division" in bad.error.message and bad.error.hint.startswith("write / for a quotient")
+
+
+@pytest.mark.parametrize("text", ["R1 // R2", "R1//R2"])
+def test_a_double_slash_names_the_french_parallel_and_its_fix(text):
+    # R1 // R2 is 'R1 in parallel with R2' in French: "write / for a quotient" alone was the wrong fix
+    [bad] = [t for t in tokenize(text) if t.kind == "bad"]
+    assert "in parallel" in bad.error.message and "a*b/(a + b)" in bad.error.hint
 
 
 @pytest.mark.parametrize("text", ["x\u2028y", "x\u2029y", "x\u0085y", "x\x0by", "x\x0cy"])
