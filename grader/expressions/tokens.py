@@ -1441,6 +1441,13 @@ def _equation_numbers(tokens: list[Token]) -> None:  # changes tokens in place
 _OPERAND_EXPECTED = frozenset({"op", "open", "root", "command", "newline"})
 
 
+def _parallel_bars(pair: tuple[Token, Token]) -> ExpressionError:
+    return ExpressionError(f"'{pair[0].text}{pair[1].text}' after an operand reads as the parallel operator "
+                           "(a||b = a b/(a + b)) or as a double bar", pair[0].pos, "ambiguous",
+                           "write a*b/(a + b) or 1/(1/a + 1/b) for a and b in parallel, "
+                           "or a*|b| for a product with an absolute value")
+
+
 def _absolute_values(tokens: list[Token]) -> list[Token]:
     r"""``|x|`` -> ``abs ( x )``: each bar becomes the opening or the closing of an absolute value.
 
@@ -1451,6 +1458,7 @@ def _absolute_values(tokens: list[Token]) -> list[Token]:
     """
     out: list[Token] = []
     open_bars: list[Token] = []
+    pair = None  # a || after an operand, with no bar open: the parallel operator, unless it closes apart
     for n, token in enumerate(tokens):
         if token.kind != "bar":
             out.append(token)
@@ -1459,11 +1467,8 @@ def _absolute_values(tokens: list[Token]) -> list[Token]:
         if (not open_bars and token.value is None and previous is not None and previous.kind not in _OPERAND_EXPECTED
                 and tokens[n + 1].kind == "bar" and tokens[n + 1].pos == token.end):
             # a||b is edX's parallel operator (a b/(a + b)) and 'or' in code; read as a·‖b‖ it made
-            # R1||R2||R3 the product R1·R2·R3
-            raise ExpressionError(f"'{token.text}{tokens[n + 1].text}' after an operand reads as the parallel operator "
-                                  "(a||b = a b/(a + b)) or as a double bar", token.pos, "ambiguous",
-                                  "write a*b/(a + b) or 1/(1/a + 1/b) for a and b in parallel, "
-                                  "or a*|b| for a product with an absolute value")
+            # R1||R2||R3 the product R1·R2·R3. Refused unless the two bars close apart (2||x| - 1|, nested).
+            pair = (token, tokens[n + 1])
         last = tokens[n + 1].kind in ("end", "close") and open_bars  # nothing can follow an opening here
         opens = token.value == "open" or (token.value is None and not last and (
             previous is None or previous.kind in _OPERAND_EXPECTED or not open_bars))
@@ -1479,8 +1484,15 @@ def _absolute_values(tokens: list[Token]) -> list[Token]:
         if previous is not None and previous.kind == "open" and previous.text == open_bars[-1].text \
                 and previous.pos == open_bars[-1].pos:
             raise ExpressionError("empty absolute value bars", open_bars[-1].pos, "syntax", "put an expression between them")
+        if pair is not None and open_bars[-1] is pair[1] and tokens[n + 1].kind == "bar" \
+                and tokens[n + 1].pos == token.end:
+            raise _parallel_bars(pair)  # a||b||c: the pair closes as a pair, ‖b‖
+        if pair is not None and open_bars[-1] is pair[0]:
+            pair = None  # 2||x| - 1|: nested absolute values
         out.append(Token("close", ")", token.pos, token.end, token.text))
         open_bars.pop()
+    if open_bars and pair is not None:
+        raise _parallel_bars(pair)
     if open_bars:
         raise ExpressionError(f"'{open_bars[-1].text}' opens an absolute value that is never closed",
                               open_bars[-1].pos, "unbalanced", "close it with a second bar")
