@@ -123,6 +123,11 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
     expr = sympy.sympify(expr, strict=True)  # an expression or a number, never text
     if expr.is_Atom:
         return expr
+    if sympy.count_ops(expr) > TIDY_MAX_OPS and _nested_roots(expr):
+        # Cardano's root of a cubic: no rewriting makes it readable, and the first step, an unbudgeted
+        # cancel, spent 10 s a call where a bead's azimuthal rate was taken at the turning point of a
+        # magnetic bowl (a cubic in cos θ): the derivation ran out of its 60 s.
+        return expr
     bounds, order = _bounds_of(expr.free_symbols), _order_of(expr.free_symbols)
     form = _remembered_form(expr, seconds, bounds, order)
     if not form.has(sympy.Abs):
@@ -132,6 +137,17 @@ def human_form(expr: sympy.Expr, seconds: float = 0.3) -> sympy.Expr:
     # is 2 sin θ₀/(7 cos θ₀), and that is 2 tan θ₀/7).
     signed = signed_abs(form, bounds, order)
     return signed if signed == form or signed.has(sympy.Abs) else _remembered_form(signed, seconds, bounds, order)
+
+
+def _nested_roots(expr: sympy.Expr) -> bool:
+    """Whether a root (not a whole power) of ``expr`` has another root inside it, as Cardano's ∛(q + √Δ) has.
+
+    >>> x = sympy.Symbol("x", positive=True)
+    >>> _nested_roots(sympy.cbrt(x + sympy.sqrt(x**3 + 1))), _nested_roots(sympy.sqrt(x) + sympy.cbrt(x + 1))
+    (True, False)
+    """
+    roots = [p for p in expr.atoms(sympy.Pow) if p.exp.is_Rational and not p.exp.is_Integer]
+    return any(inner != root and root.base.has(inner) for root in roots for inner in roots)
 
 
 @functools.lru_cache(maxsize=512)
