@@ -555,6 +555,11 @@ def _raise_unknown(raw: str, ns: "Namespace", typed: str, position: int, called:
     if raw.lower() in ("inf", "infinity", "nan", "oo"):  # edX's and mathjs' inf, NaN: 'nan' was "did you mean 'tan'?"
         raise ExpressionError(f"unknown name '{typed}': infinity and not-a-number are not values of an answer",
                               position, "unknown_name", "give a formula with a finite value")
+    if raw in ("i", "I", "j"):  # edX's i and j, Wolfram's and Maple's I: 'i' was "did you mean 'pi'?"
+        raise ExpressionError(f"unknown name '{typed}': this problem has no variable {raw}, and complex numbers "
+                              "(i, the imaginary unit) are not part of these answers", position, "unknown_name",
+                              "write the answer with real quantities"
+                              + (f"; the variables here are {', '.join(sorted(ns.names))}" if ns.names else ""))
     if raw.lower() == "tau" and "tau" not in ns.names:  # mathjs' tau is 2π; 'tau' was "did you mean 'tan'?"
         raise ExpressionError(f"unknown name '{typed}': this problem has no variable τ", position, "unknown_name",
                               "write 2*pi for the constant τ = 2π of some calculators"

@@ -296,11 +296,14 @@ def test_a_latin_letter_for_a_greek_one_of_the_problem_is_named(text, greek):
 @pytest.mark.parametrize("text, said, fix", [
     ("inf", "infinity", "finite"), ("m g + Infinity", "infinity", "finite"), ("NaN", "not-a-number", "finite"),
     ("nan", "not-a-number", "finite"), ("tau", "no variable τ", "2*pi"), ("2 tau m g", "no variable τ", "2*pi"),
+    ("i^2", "imaginary unit", "real quantities"), ("1 + I", "imaginary unit", "real quantities"),
+    ("\\mathrm{i}^2", "imaginary unit", "real quantities"), ("2j", "imaginary unit", "real quantities"),
     ("fact(3)", "fact", "write the product out"), ("root(8, 3)", "root", "write surd(x, n) for the real n-th root"),
 ])
 def test_other_graders_constants_and_fact_are_named_with_the_fix(ns, text, said, fix):
     # edX's and mathjs' inf, NaN, tau and fact(n): 'nan' was "did you mean 'tan'?", fact "'arctg' or 'arctan'?";
-    # Maple's root(x, n) was told x^(1/n), which has no value for x < 0
+    # Maple's root(x, n) was told x^(1/n), which has no value for x < 0; edX's i and j, Wolfram's I: 'i' was
+    # "did you mean 'pi'?"
     with pytest.raises(ExpressionError) as refused:
         parse_expression(text, ns)
     assert said in refused.value.message and fix in refused.value.hint
