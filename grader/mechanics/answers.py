@@ -142,6 +142,14 @@ class AnswerEvaluator:
         if spec.kind in ("maximum", "minimum"):
             from grader.mechanics.extremes import extreme_value
 
+            if self.reduction.branch_end is not None:
+                # (a function of the state is a formula on the branch its states are on, as a student
+                # writes it; an extreme is one number over the whole motion, on both branches.) Checked
+                # first: past the branch's end the formula turns complex, and the extreme's own search
+                # said the motion "runs away" (a bead carried over the end of a spun ellipse's lower half).
+                from grader.mechanics.special_values import motion_stays_on_the_branch
+
+                motion_stays_on_the_branch(self, spec)
             value = extreme_value(self, spec)
         elif spec.kind == "small_oscillation" and len(self.reduction.independent) > 1:
             from grader.mechanics.oscillations import small_oscillation_with_cyclic_coordinates
@@ -154,12 +162,6 @@ class AnswerEvaluator:
         else:
             with budget.step("expressing the answer in its variables", spec.name):
                 value = self.reduce_in_time(spec, key)
-        if self.reduction.branch_end is not None and spec.kind in ("maximum", "minimum"):
-            # (a function of the state is a formula on the branch its states are on, as a student
-            # writes it; an extreme is one number over the whole motion, on both branches)
-            from grader.mechanics.special_values import motion_stays_on_the_branch
-
-            motion_stays_on_the_branch(self, spec)
         # Last, the small sums in it that factor shorter: cancelling and combining multiply out
         # M² + 2Mm + m² on the way, and it is (M + m)² in the answer.
         value = _factored(value)

@@ -568,3 +568,28 @@ def test_an_answer_at_the_root_of_a_cubic_derives_within_the_budget():
     assert _spherical(run.y_events[0][0], R)[0] < th0  # launched inwards: it turns at the lower root
     assert at(derivation, derivation.answers["turning_rate"], p) == pytest.approx(
         _spherical(run.y_events[0][0], R)[2], rel=1e-8)
+
+
+# -- Found and fixed: an extreme over a motion that leaves its branch was said to "run away" -----------------------
+# Spun faster (Ω² a² > 2 g b), the bead is carried past the end of the ellipse's lower half, x = a, onto the upper
+# half, where y = −(b/a)√(a² − x²), the branch the constraint was solved on, no longer holds. The least force over
+# the motion was refused as "the motion runs away": the extreme's own search, run before the check that the motion
+# stays on its branch, found the formula complex past x = a. The branch is now checked first, as the reason.
+def test_an_extreme_past_the_end_of_the_branch_is_refused_for_that_reason():
+    from grader.mechanics.scene import SceneError
+
+    text = (SCENES / "bead_rotating_ellipse_cartesian.toml").read_text().replace(
+        'domain = [5.0, 6.5], value = 6.0', 'domain = [8.0, 100.0], value = 10.0') + '''
+[[answers]]
+name = "least_force"
+prompt = "The least force of the wire on the bead over the motion"
+kind = "minimum"
+expr = "normal_force"
+'''
+    with pytest.raises(SceneError, match=r"reaches x = 0\.3, where the constraints as solved .* change branch"):
+        derive(parse_scene(text, source="ellipse.toml"))
+    p = {**scene_values("bead_rotating_ellipse_cartesian"), "Omega": 10.0}
+    rhs, _ = _ellipse_newton(p)
+    over = _crossing(lambda t, s: s[1], terminal=True, direction=1)
+    run = integrate(rhs, [p["x0"], -p["b"] * math.sqrt(1 - (p["x0"] / p["a"]) ** 2), 0.0, 0.0], 5.0, events=over)
+    assert run.y_events[0][0][0] == pytest.approx(p["a"], rel=1e-6)  # over the end of the lower half, at x = a
