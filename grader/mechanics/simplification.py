@@ -915,12 +915,6 @@ def _factor_sign(f: sympy.Expr, bounds: tuple, order: tuple = ()) -> int | None:
     if f.is_Mul:
         signs = [_factor_sign(factor, bounds, order) for factor in f.args]
         return None if None in signs else math.prod(signs)
-    if f.is_Add and _trig_interval(f) is not None:
-        lo, hi = _trig_interval(f)
-        if lo >= 0:
-            return 1
-        if hi <= 0:
-            return -1
     if f.is_Add:
         for a, b in order:  # a multiple of R − a, of either sign
             ratio = sympy.cancel(f / (b - a))
@@ -928,9 +922,10 @@ def _factor_sign(f: sympy.Expr, bounds: tuple, order: tuple = ()) -> int | None:
                 return 1 if ratio.is_positive else -1
         bounded = _trig_bounds(f)
         if bounded is not None:
-            if _factor_sign(bounded[0], bounds, order) == 1:
+            lower, upper = bounded
+            if _factor_sign(lower, bounds, order) == 1:
                 return 1
-            if _factor_sign(bounded[1], bounds, order) == -1:
+            if _factor_sign(-upper, bounds, order) == 1:  # upper ≤ 0 (cos θ₀ − 1: upper 0, which is ≥ 0 too)
                 return -1
         return _definite_quadratic(f)
     return None
@@ -973,29 +968,6 @@ def _trig_bounds(f: sympy.Expr) -> tuple[sympy.Expr, sympy.Expr] | None:
             return None
         trigonometric = True
     return (sympy.Add(*lower), sympy.Add(*upper)) if trigonometric else None
-
-
-def _trig_interval(f: sympy.Expr) -> tuple[float, float] | None:
-    """Bounds of a sum of numbers and numbers times products of powers of sines and cosines (a product
-    with an odd power in [−1, 1], one of even powers only in [0, 1]): 1 − cos θ₀ ≥ 0, 3 sin²θ − 4 < 0.
-
-    >>> th = sympy.Symbol("theta", real=True)
-    >>> _trig_interval(3*sympy.sin(th)**2 - 4), _trig_interval(1 - sympy.sin(th)*sympy.cos(th)**2)
-    ((-4.0, -1.0), (0.0, 2.0))
-    """
-    lo = hi = 0.0
-    for term in sympy.Add.make_args(f):
-        coefficient, rest = term.as_coeff_Mul()
-        if rest == 1:
-            lo, hi = lo + float(coefficient), hi + float(coefficient)
-            continue
-        powers = [factor.as_base_exp() for factor in sympy.Mul.make_args(rest)]
-        if not all(isinstance(base, (sympy.sin, sympy.cos)) and exp.is_Integer and exp > 0 for base, exp in powers):
-            return None
-        low = 0.0 if all(exp.is_even for _, exp in powers) else -1.0
-        a, b = sorted((float(coefficient) * low, float(coefficient)))
-        lo, hi = lo + a, hi + b
-    return lo, hi
 
 
 def _definite_quadratic(f: sympy.Expr) -> int | None:
