@@ -20,6 +20,7 @@ verdict.
 
 from __future__ import annotations
 
+import collections
 import contextvars
 import itertools
 import math
@@ -912,6 +913,50 @@ def _common_factors(expr: sympy.Expr) -> set:
     return common
 
 
+def _common_factor_kept(total: sympy.Add, domains: dict) -> sympy.Expr:
+    """``total`` as a sum F·(c₁ + c₂ + …) is F alone, where F is the sum most of its terms multiply and the
+    cofactor is nonzero on the whole domain (the same solutions); else ``total`` itself. Terms without F
+    are divided by it, where that leaves no state in a denominator: sympy multiplies out (x − y)/2.
+
+    >>> x, y = sympy.symbols("x y", real=True)
+    >>> from grader.expressions import parse_domain
+    >>> domains = {x: parse_domain("real"), y: parse_domain("real")}
+    >>> _common_factor_kept((x - y)/2 + (x - y)*x**2 + (x - y)*y**2, domains)
+    x - y
+    >>> _common_factor_kept((x - y)/2 - (x - y)*x**2 + (x - y)*y**2, domains)  # 1/2 − x² + y² vanishes
+    -x**2*(x - y) + x/2 + y**2*(x - y) - y/2
+    """
+    terms = total.args
+    sums = collections.Counter(f for term in terms for f in sympy.Mul.make_args(term) if f.is_Add)
+    if not sums:
+        return total
+    factor, count = sums.most_common(1)[0]
+    if 2 * count < len(terms):
+        return total
+    with_factor = [t for t in terms if factor in sympy.Mul.make_args(t)]
+    cofactor = [sympy.Mul(*[f for f in sympy.Mul.make_args(t) if f != factor]) for t in with_factor]
+    rest = [t for t in terms if factor not in sympy.Mul.make_args(t)]
+    # Only where the pieces are small (the factor is then compared with the reference under the same limit): a
+    # triple pendulum's row times (2 + cos θ₁) has a thousand-node sum as its factor or its cofactor, and
+    # cancelling or bounding that took minutes.
+    sizes = [_nodes(e) for e in (factor, *cofactor, *rest)]
+    if max(sizes) > FACTOR_MAX_NODES or sum(sizes) > 2 * FACTOR_MAX_NODES:
+        return total
+    if rest:
+        try:
+            quotient = budget.attempt(lambda: sympy.cancel(sympy.Add(*rest) / factor), FACTOR_BUDGET_S,
+                                      fallback=lambda: None)
+        except (sympy.PolynomialError, ValueError, TypeError, ZeroDivisionError):
+            return total
+        if quotient is None:
+            return total
+        positive = {s for s, d in domains.items() if getattr(d, "kind", None) == "positive"}
+        if sympy.fraction(quotient)[1].free_symbols - positive:
+            return total  # F does not divide them: no such product
+        cofactor.append(quotient)
+    return factor if _nonzero_on(sympy.Add(*cofactor), domains) is True else total
+
+
 def _cancels_inside(row: sympy.Expr, factor: sympy.Expr, base: sympy.Expr) -> bool:
     """Whether the rest of ``row`` divides by ``base`` where ``factor`` multiplies by it (or the other way):
     then the product is defined and the same where ``base`` vanishes (a removable point), no factor."""
@@ -1328,6 +1373,10 @@ def _state_dependent_factor(reference: sympy.Expr, answer: sympy.Expr, domains: 
                                  for t in answer.args])
         else:
             answer = sympy.Mul(*[g for g in sympy.Mul.make_args(answer) if g not in set_aside])
+    if answer.is_Add and _nodes(answer) > FACTOR_MAX_NODES:
+        # The reference multiplied into every term of a sum that is nonzero on the domain ((l θ̈/g + sin θ) cos^k θ/(k + 2)
+        # over k = 0…11): too large to cancel as typed, the reference once the sum is shown nonzero.
+        answer = _common_factor_kept(answer, domains)
     if not (_nodes(reference) <= FACTOR_MAX_NODES and _nodes(answer) <= FACTOR_MAX_NODES):
         return None
     # a = g tan(theta) is a*cos(theta) = g*sin(theta) over cos(theta): only as a quotient does the factor cancel

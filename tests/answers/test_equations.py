@@ -1134,8 +1134,8 @@ _BIG_FACTOR = " + ".join(f"(l*thetaddot/g + sin(theta))*cos(theta)^{k}/{k + 2}" 
 
 
 @pytest.mark.parametrize("answer", [
-    f"{_BIG_FACTOR} = 0",                                                     # right: the factor is positive
-    f"{_BIG_FACTOR} + (l*thetaddot/g + sin(theta))*(cos(theta) - 1/2) = 0",  # the factor vanishes somewhere
+    # the factor vanishes somewhere (right where it is positive: test_a_long_answer_that_is_the_reference_…)
+    f"{_BIG_FACTOR} + (l*thetaddot/g + sin(theta))*(cos(theta) - 1/2) = 0",
 ])
 def test_an_answer_too_large_for_the_state_dependent_factor_is_not_refused_as_proved(answer):
     v = check(PENDULUM_EOM, answer, _PENDULUM_TAGGED, kind="equation")
@@ -1908,3 +1908,21 @@ def test_factoring_runs_within_a_budget_whatever_the_constants(monkeypatch, refe
 def test_a_state_factor_written_differently_on_each_side_is_found(pendulum, answer, verdict):
     v = check(PENDULUM_EOM, answer, pendulum, kind="equation")
     assert v.verdict == verdict, v.reason
+
+
+_PENDULUM_TIMES = "(l*thetaddot/g + sin(theta))"
+
+
+@pytest.mark.parametrize("answer, expected", [
+    # past the factor search's size: the reference times Σ cos^k θ/(k + 2) ≥ 0.27, nonzero on the domain (its
+    # first term multiplied out by sympy, sin(θ)/2 + lθ̈/(2g), is divided by the factor again)
+    (f"{_BIG_FACTOR} = 0", "equivalent"),
+    (f"{_BIG_FACTOR} + {_PENDULUM_TIMES}*(2 + sin(theta)) = 0", "equivalent"),
+    # a cofactor that vanishes on the domain (at cos θ ≈ 0.86) leaves the motion undetermined there
+    (f"{_BIG_FACTOR} + {_PENDULUM_TIMES}*(-2) = 0", "not_equivalent"),
+    # a term without the factor that it does not divide: no such product, and not the reference's equation
+    (f"{_BIG_FACTOR} + thetadot = 0", "not_equivalent"),
+])
+def test_a_long_answer_that_is_the_reference_times_a_nonzero_sum_is_right(pendulum, answer, expected):
+    v = check(PENDULUM_EOM, answer, pendulum, kind="equation")
+    assert v.verdict == expected, v.reason
