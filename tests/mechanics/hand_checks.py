@@ -3,13 +3,28 @@ parameter points, and Newton's laws integrated with scipy (written again, never 
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
+from grader.mechanics.lagrange import derive
 from grader.mechanics.scene import load_scene
 from tests.mechanics.conftest import SCENES
 from tests.mechanics.test_red_team_scenes_7 import at
+
+
+@functools.lru_cache(maxsize=None)
+def derived(name: str):
+    """The scene ``name`` of tests/mechanics/scenes derived once, under `grader derive`'s budget."""
+    return derive(load_scene(SCENES / f"{name}.toml"), budget_s=60)
+
+
+def engine_value(name: str, answer: str, point: dict[str, float]) -> float:
+    """The engine's ``answer`` of the scene ``name`` at ``point``."""
+    derivation = derived(name)
+    return at(derivation, derivation.answers[answer], point)
 
 
 def scene_values(name: str) -> dict[str, float]:

@@ -32,7 +32,6 @@ tests/numerical/test_problems_confirmed.py's CONFIRMED_ELSEWHERE.
 
 from __future__ import annotations
 
-import functools
 import math
 from pathlib import Path
 
@@ -42,19 +41,12 @@ import pytest
 from grader.mechanics.lagrange import derive
 from grader.mechanics.scene import load_scene
 from tests.mechanics.hand_checks import agrees_by_hand, integrate, period, scene_values
+from tests.mechanics.hand_checks import derived as _derived, engine_value as _engine
 from tests.mechanics.test_red_team_scenes_7 import at
 
 SCENES = Path(__file__).resolve().parent / "scenes"
 
 
-@functools.lru_cache(maxsize=None)
-def _derived(name: str):
-    return derive(load_scene(SCENES / f"{name}.toml"))
-
-
-def _engine(name: str, answer: str, point: dict[str, float]) -> float:
-    derivation = _derived(name)
-    return at(derivation, derivation.answers[answer], point)
 
 
 # -- yoyo_pulled_up_accelerating ------------------------------------------------------------------------

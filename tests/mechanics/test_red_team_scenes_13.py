@@ -46,20 +46,12 @@ import sympy
 from grader.mechanics.lagrange import derive
 from grader.mechanics.scene import SceneError, load_scene, parse_scene
 from tests.mechanics.hand_checks import agrees_by_hand, integrate, period, scene_values
+from tests.mechanics.hand_checks import derived as _derived, engine_value as _engine
 from tests.mechanics.test_red_team_scenes_7 import at
 
 SCENES = Path(__file__).resolve().parent / "scenes"
 
 
-@functools.lru_cache(maxsize=None)
-def _derived(name: str):
-    # The budget is the one `grader derive` gives; the swing seat ran out of it before its fix.
-    return derive(load_scene(SCENES / f"{name}.toml"), budget_s=60)
-
-
-def _engine(name: str, answer: str, point: dict[str, float]) -> float:
-    derivation = _derived(name)
-    return at(derivation, derivation.answers[answer], point)
 
 
 # -- stick_falling_on_ice ----------------------------------------------------------------------------------
