@@ -27,6 +27,24 @@ def engine_value(name: str, answer: str, point: dict[str, float]) -> float:
     return at(derivation, derivation.answers[answer], point)
 
 
+def hand_cases(tables: dict) -> list[tuple]:
+    """(scene, answer, expected, points) for each answer of ``{scene: ({answer: expected}, points)}``."""
+    return [(scene, answer, expected, points)
+            for scene, (table, points) in tables.items() for answer, expected in table.items()]
+
+
+def unchecked_answers(tables: dict, elsewhere: set = frozenset()) -> dict[str, set]:
+    """Per scene, the answers in its file or its table but not both (``elsewhere``: (scene, answer) pairs
+    checked by other tests count as in the table)."""
+    unchecked = {}
+    for scene, (table, _) in tables.items():
+        names = {a.name for a in load_scene(SCENES / f"{scene}.toml").answers}
+        left = names ^ (set(table) | {a for s, a in elsewhere if s == scene})
+        if left:
+            unchecked[scene] = left
+    return unchecked
+
+
 def scene_values(name: str) -> dict[str, float]:
     """The scene's parameter values (the numbers the engine chose its closed forms at)."""
     return {p.name: float(p.value) for p in load_scene(SCENES / f"{name}.toml").parameters.values()}
